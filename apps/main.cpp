@@ -1,0 +1,45 @@
+// `ibl`: command-line front end of the ibl library.
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include <fmt/core.h>
+#include <tbb/global_control.h>
+
+#include "commands.hpp"
+#include "ibl/error.hpp"
+#include "ibl/version.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"ibl: image-based lighting toolkit (bake, convert and inspect HDR environments)"};
+  app.set_version_flag("--version", std::string("ibl ") + ibl::kVersion);
+  app.require_subcommand(1);
+  ibl::cli::GlobalOptions global;
+  int threads = 0;
+  app.add_option("--threads", threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  app.add_flag("-q,--quiet", global.quiet, "Print nothing but errors");
+  std::unique_ptr<tbb::global_control> threadLimit;
+  app.parse_complete_callback([&] {
+    if (threads > 0)
+      threadLimit = std::make_unique<tbb::global_control>(
+          tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  });
+  ibl::cli::addConvertCommand(app, global);
+  ibl::cli::addInfoCommand(app, global);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const ibl::Error& e) {
+    fmt::print(stderr, "ibl: error: {}\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "ibl: error: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "ibl: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

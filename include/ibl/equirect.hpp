@@ -1,0 +1,28 @@
+#pragma once
+// Equirectangular (latitude-longitude) maps: u = 0.5 + atan2(z, x) / 2pi, v = acos(y) / pi,
+// row 0 at v = 0 (straight up), image center toward +X (DESIGN.md).
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "ibl/image.hpp"
+
+namespace ibl {
+
+glm::vec2 directionToEquirect(glm::vec3 dir);
+glm::vec3 equirectToDirection(float u, float v);
+
+// Exact solid angle of one pixel of row y in a width x height map.
+double equirectPixelSolidAngle(int y, int width, int height);
+
+// Bilinear lookup at (u, v): wraps around in u, clamps at the poles.
+glm::vec3 sampleEquirect(const Image& image, float u, float v);
+glm::vec3 sampleEquirect(const Image& image, glm::vec3 dir);
+
+// Halves width and height; each pixel is the solid-angle weighted mean of its 2 x 2 children,
+// so the integral over the sphere is unchanged. Width and height must be even.
+Image downsampleEquirect(const Image& image);
+
+// Integral of the radiance over the sphere (per channel).
+glm::dvec3 integrateEquirect(const Image& image);
+
+}  // namespace ibl

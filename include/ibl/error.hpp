@@ -1,0 +1,28 @@
+#pragma once
+// Errors and resource limits shared by every part of ibl.
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace ibl {
+
+// Every failure the library reports: one line, "<file>: <problem>".
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws Error("<what>: <problem>").
+[[noreturn]] void fail(std::string_view what, std::string_view problem);
+
+// Limits applied to every input before memory is allocated for it (see README, "Limits").
+inline constexpr int kMaxImageDimension = 65536;             // width or height of one image
+inline constexpr std::uint64_t kMaxImagePixels = 1ull << 28;  // 268 M pixels, 3 GiB as float RGB
+inline constexpr std::uint64_t kMaxFileBytes = 4ull << 30;    // 4 GiB
+
+// Throws unless width x height is a non-empty image within the limits above.
+void checkImageSize(std::string_view what, std::uint64_t width, std::uint64_t height);
+
+}  // namespace ibl

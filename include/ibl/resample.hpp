@@ -1,0 +1,25 @@
+#pragma once
+// Area-filtered resampling between equirectangular maps and cube maps, with an optional
+// rotation about +Y.
+#include <glm/mat3x3.hpp>
+
+#include "ibl/environment.hpp"
+
+namespace ibl {
+
+// Rotation about +Y by `degrees` (right-handed: +X turns toward -Z for positive angles).
+// Rotating an environment by it moves a feature seen in direction d to direction R d.
+glm::mat3 rotationY(float degrees);
+
+// Resamples any environment to a cube map of `size`^2 faces (one level). Each output texel is
+// the solid-angle weighted mean of the source over the texel: the source is first reduced
+// with exact box filters until it is at most twice as fine as the output, then integrated over
+// each texel with k x k bilinear samples weighted by their exact solid angles. Energy over the
+// sphere is preserved (tested to 0.1 %), and a 4K panorama becomes a 64^2 cube without aliasing.
+CubeMap resampleToCube(const Environment& source, int size, float rotateDegrees = 0.0f);
+
+// Resamples any environment to an equirectangular map of width x width/2, with the same
+// area filtering.
+Image resampleToEquirect(const Environment& source, int width, float rotateDegrees = 0.0f);
+
+}  // namespace ibl
