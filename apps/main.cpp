@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   CLI::App app{"ibl: image-based lighting toolkit (bake, convert and inspect HDR environments)"};
   app.set_version_flag("--version", std::string("ibl ") + ibl::kVersion);
   app.require_subcommand(1);
+  app.fallthrough();  // global options may follow the subcommand
   ibl::cli::GlobalOptions global;
   int threads = 0;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")

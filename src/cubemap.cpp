@@ -78,19 +78,67 @@ CubeMap::CubeMap(int size, int levelCount) {
   }
 }
 
+namespace {
+// Bilinear lookup within one face at continuous texel coordinates, clamped to the face.
+glm::vec3 bilinearInFace(const Image& img, float fx, float fy) {
+  const int n = img.width;
+  fx = std::clamp(fx, 0.0f, static_cast<float>(n - 1));
+  fy = std::clamp(fy, 0.0f, static_cast<float>(n - 1));
+  const int x0 = std::min(static_cast<int>(fx), n - 1), y0 = std::min(static_cast<int>(fy), n - 1);
+  const int x1 = std::min(x0 + 1, n - 1), y1 = std::min(y0 + 1, n - 1);
+  const float wx = fx - static_cast<float>(x0), wy = fy - static_cast<float>(y0);
+  return (img.at(x0, y0) * (1.0f - wx) + img.at(x1, y0) * wx) * (1.0f - wy) +
+         (img.at(x0, y1) * (1.0f - wx) + img.at(x1, y1) * wx) * wy;
+}
+}  // namespace
+
 glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int face, int x,
                                 int y) {
   const int n = level[face].width;
   if (x >= 0 && y >= 0 && x < n && y < n) return level[face].at(x, y);
-  // Extend the face plane past its edge, then find the texel of the neighbouring face that
-  // the extended texel center projects onto.
+  // Extend the face plane past its edge and look up the neighbouring face where the extended
+  // texel center projects.
   const float inv = 2.0f / static_cast<float>(n);
   const glm::vec3 dir = faceToDirection(face, (static_cast<float>(x) + 0.5f) * inv - 1.0f,
                                         (static_cast<float>(y) + 0.5f) * inv - 1.0f);
   const FacePoint p = directionToFace(dir);
-  const int tx = std::clamp(static_cast<int>(p.s * static_cast<float>(n)), 0, n - 1);
-  const int ty = std::clamp(static_cast<int>(p.t * static_cast<float>(n)), 0, n - 1);
-  return level[p.face].at(tx, ty);
+  return bilinearInFace(level[p.face], p.s * static_cast<float>(n) - 0.5f,
+                        p.t * static_cast<float>(n) - 0.5f);
+}
+
+void cubicBSplineWeights(float t, float w[4]) {
+  const float t2 = t * t, t3 = t2 * t, s = 1.0f - t;
+  w[0] = s * s * s / 6.0f;
+  w[1] = (3.0f * t3 - 6.0f * t2 + 4.0f) / 6.0f;
+  w[2] = (-3.0f * t3 + 3.0f * t2 + 3.0f * t + 1.0f) / 6.0f;
+  w[3] = t3 / 6.0f;
+}
+
+glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir) {
+  const auto& faces = cube.levels[level];
+  const FacePoint p = directionToFace(dir);
+  const int n = faces[0].width;
+  const float fx = p.s * static_cast<float>(n) - 0.5f;
+  const float fy = p.t * static_cast<float>(n) - 0.5f;
+  const float flx = std::floor(fx), fly = std::floor(fy);
+  const int x0 = static_cast<int>(flx), y0 = static_cast<int>(fly);
+  float wx[4], wy[4];
+  cubicBSplineWeights(fx - flx, wx);
+  cubicBSplineWeights(fy - fly, wy);
+  glm::vec3 sum(0.0f);
+  if (x0 >= 1 && y0 >= 1 && x0 + 2 < n && y0 + 2 < n) {
+    const Image& img = faces[p.face];
+    for (int j = 0; j < 4; ++j) {
+      glm::vec3 row(0.0f);
+      for (int i = 0; i < 4; ++i) row += img.at(x0 - 1 + i, y0 - 1 + j) * wx[i];
+      sum += row * wy[j];
+    }
+    return sum;
+  }
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i)
+      sum += fetchTexelAcrossEdges(faces, p.face, x0 - 1 + i, y0 - 1 + j) * (wx[i] * wy[j]);
+  return sum;
 }
 
 glm::vec3 sampleBilinear(const CubeMap& cube, int level, glm::vec3 dir) {

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "ibl/cubemap.hpp"
 #include "ibl/error.hpp"
 
 namespace ibl {
@@ -46,6 +47,29 @@ glm::vec3 sampleEquirect(const Image& img, float u, float v) {
   const glm::vec3 top = img.at(x0, y0) * (1.0f - wx) + img.at(x1, y0) * wx;
   const glm::vec3 bottom = img.at(x0, y1) * (1.0f - wx) + img.at(x1, y1) * wx;
   return top * (1.0f - wy) + bottom * wy;
+}
+
+glm::vec3 sampleEquirectCubic(const Image& img, float u, float v) {
+  const int w = img.width, h = img.height;
+  const float fx = u * static_cast<float>(w) - 0.5f;
+  const float fy = v * static_cast<float>(h) - 0.5f;
+  const float flx = std::floor(fx), fly = std::floor(fy);
+  float wx[4], wy[4];
+  cubicBSplineWeights(fx - flx, wx);
+  cubicBSplineWeights(fy - fly, wy);
+  int xs[4];
+  for (int i = 0; i < 4; ++i) {
+    int x = (static_cast<int>(flx) - 1 + i) % w;
+    xs[i] = x < 0 ? x + w : x;
+  }
+  glm::vec3 sum(0.0f);
+  for (int j = 0; j < 4; ++j) {
+    const int y = std::clamp(static_cast<int>(fly) - 1 + j, 0, h - 1);
+    glm::vec3 row(0.0f);
+    for (int i = 0; i < 4; ++i) row += img.at(xs[i], y) * wx[i];
+    sum += row * wy[j];
+  }
+  return sum;
 }
 
 glm::vec3 sampleEquirect(const Image& img, glm::vec3 dir) {

@@ -51,13 +51,21 @@ struct CubeMap {
   Image& face(int level, int f) { return levels[level][f]; }
 };
 
-// Texel of a level addressed with coordinates that may lie one texel outside the face: those
-// are taken from the neighbouring face across the edge (or corner).
+// Texel of a level addressed with coordinates that may lie up to a few texels outside the face:
+// those are the value at the texel center extended past the edge, projected onto the
+// neighbouring face and interpolated bilinearly there (or at a corner, on one of the faces).
 glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int face, int x,
                                 int y);
 
 // Bilinear lookup in one level, filtering across face edges (no seams).
 glm::vec3 sampleBilinear(const CubeMap& cube, int level, glm::vec3 dir);
+// Cubic B-spline reconstruction in one level (4 x 4 taps, across face edges).
+glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir);
+
+// Weights of the uniform cubic B-spline for the taps at -1, 0, 1, 2 around a sample that lies
+// a fraction t past tap 0.
+void cubicBSplineWeights(float t, float w[4]);
+
 // Trilinear lookup: bilinear in the two levels around `lod`, blended.
 glm::vec3 sampleTrilinear(const CubeMap& cube, float lod, glm::vec3 dir);
 

@@ -1,0 +1,128 @@
+// End-to-end tests of the `ibl` executable: exit codes, outputs, and error messages.
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "helpers.hpp"
+#include "ibl/file_io.hpp"
+#include "ibl/image_io.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+struct CliRun {
+  int status;
+  std::string output;  // stdout and stderr
+};
+
+CliRun runIbl(const std::string& args) {
+  const std::string cmd = std::string(IBL_CLI) + " " + args + " 2>&1";
+  CliRun r{-1, ""};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  while (fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string quote(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+int countFiles(const std::filesystem::path& dir) {
+  int n = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST(Cli, Version) {
+  const CliRun r = runIbl("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("ibl 0."), std::string::npos);
+}
+
+TEST(Cli, ConvertToKtx2CubeWithMips) {
+  TempDir dir;
+  const CliRun r = runIbl("convert " + quote(hdriPath("sunset")) + " -o " + quote(dir / "s.ktx2") +
+                    " --size 64 --mips --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, "");  // --quiet
+  const DecodedFile d = readImageFile(dir / "s.ktx2");
+  EXPECT_EQ(d.levels.size(), 7u);
+  EXPECT_EQ(d.levels[0].size(), 6u);
+  EXPECT_EQ(d.levels[0][0].width, 64);
+}
+
+TEST(Cli, ConvertToFacesAndMipFiles) {
+  TempDir dir;
+  CliRun r = runIbl("convert " + quote(hdriPath("park")) + " -o " + quote(dir / "f_{face}.png") +
+              " --layout faces --size 16 --exposure -1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"px", "nx", "py", "ny", "pz", "nz"})
+    EXPECT_TRUE(std::filesystem::exists(dir / (std::string("f_") + f + ".png"))) << f;
+  r = runIbl("convert " + quote(hdriPath("park")) + " -o " + quote(dir / "c.exr") +
+          " --layout vcross --size 8 --mips --exr-type float");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (int m = 0; m < 4; ++m) {
+    const DecodedFile d = readImageFile(dir / ("c_m" + std::to_string(m) + ".exr"));
+    EXPECT_EQ(d.levels[0][0].width, 3 * (8 >> m));
+  }
+  // Back from six faces to an equirect HDR, rotated.
+  r = runIbl("convert " + quote(dir / "f_{face}.png") + " -o " + quote(dir / "e.hdr") + " --rotate 45");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readImageFile(dir / "e.hdr").levels[0][0].width, 64);
+}
+
+TEST(Cli, InfoJson) {
+  const CliRun r = runIbl("info --json " + quote(hdriPath("studio")));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["format"], "exr");
+  EXPECT_EQ(j["layout"], "equirect");
+  EXPECT_EQ(j["width"], 512);
+  EXPECT_EQ(j["negative"], 2028);
+  EXPECT_GT(j["radiant_integral"][0].get<double>(), 0.0);
+}
+
+TEST(Cli, InfoText) {
+  const CliRun r = runIbl("info " + quote(hdriPath("sunset")));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("exr (half, DWAB)"), std::string::npos);
+  EXPECT_NE(r.output.find("912 negative"), std::string::npos);
+}
+
+TEST(Cli, BadInputsFailCleanlyAndWriteNothing) {
+  TempDir dir;
+  std::filesystem::create_directories(dir / "out");
+  std::ofstream(dir / "corrupt.exr") << "v/1\x01garbage that is not an EXR file";
+  std::ofstream(dir / "cut.hdr") << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 64 +X 128\n\x02\x02";
+  struct Case {
+    std::string args;
+    std::string expect;  // a piece of the one-line error
+  };
+  const Case cases[] = {
+      {quote(dir / "missing.exr"), "missing.exr: no such file"},
+      {quote(dir / "corrupt.exr"), "corrupt.exr: "},
+      {quote(dir / "cut.hdr"), "cut.hdr: truncated"},
+      {quote(hdriPath("sunset")) + " --size 0", "--size"},
+      {quote(hdriPath("sunset")) + " --format rgb565", "--format"},
+      {quote(hdriPath("sunset")) + " --size 100 --mips", "power-of-two"},
+  };
+  for (const Case& c : cases) {
+    const CliRun r = runIbl("convert " + c.args + " -o " + quote(dir / "out" / "x.ktx2"));
+    EXPECT_NE(r.status, 0) << c.args;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << " -> " << r.output;
+    EXPECT_EQ(countFiles(dir / "out"), 0) << c.args;
+  }
+  const CliRun r = runIbl("convert " + quote(hdriPath("sunset")) + " -o " + quote(dir / "out" / "x.jpg"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("unknown output format"), std::string::npos);
+}
