@@ -44,18 +44,22 @@ std::filesystem::path levelPath(const std::filesystem::path& p, int level, bool 
 
 std::vector<std::uint8_t> encodeFlat(const Image& img, FileFormat format, const ConvertOptions& o) {
   switch (format) {
-    case FileFormat::Hdr: return encodeHdr(img);
+    case FileFormat::Hdr:
+      return encodeHdr(img);
     case FileFormat::Exr:
       return encodeExr(img, o.exrType == "float" ? ExrPixelType::Float : ExrPixelType::Half);
-    case FileFormat::Png: return encodePng(img, o.exposure);
-    default: fail(o.output, "cannot write this format as a flat image");
+    case FileFormat::Png:
+      return encodePng(img, o.exposure);
+    default:
+      fail(o.output, "cannot write this format as a flat image");
   }
 }
 
 // Default output size: match the angular resolution of the source.
 int defaultCubeSize(const Environment& env) {
   if (env.isCube()) return env.cube.size();
-  return std::max(1, static_cast<int>(std::bit_floor(static_cast<unsigned>(env.equirect.width / 4))));
+  return std::max(1,
+                  static_cast<int>(std::bit_floor(static_cast<unsigned>(env.equirect.width / 4))));
 }
 
 void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
@@ -95,7 +99,8 @@ void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
   std::vector<std::pair<std::filesystem::path, std::vector<std::uint8_t>>> files;
   if (layout == Layout::Equirect) {
     if (o.mips) fail(o.output, "--mips applies to cube map outputs only");
-    const int width = o.size > 0 ? o.size : (env.isCube() ? 4 * env.cube.size() : env.equirect.width);
+    const int width =
+        o.size > 0 ? o.size : (env.isCube() ? 4 * env.cube.size() : env.equirect.width);
     if (width % 2 != 0) fail(o.output, "equirect width (--size) must be even");
     const bool same = !env.isCube() && width == env.equirect.width && o.rotate == 0.0f;
     const Image img = same ? env.equirect : resampleToEquirect(env, width, o.rotate);
@@ -131,8 +136,8 @@ void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
           for (int f = 0; f < kFaceCount; ++f)
             files.emplace_back(facePath(path, f), encodeFlat(cube.levels[m][f], *outFormat, o));
         } else {
-          files.emplace_back(path, encodeFlat(crossFromCube(cube, m, layout == Layout::VCross),
-                                              *outFormat, o));
+          files.emplace_back(
+              path, encodeFlat(crossFromCube(cube, m, layout == Layout::VCross), *outFormat, o));
         }
       }
     }

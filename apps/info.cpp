@@ -86,7 +86,8 @@ void runInfo(const InfoOptions& o) {
     return;
   }
   fmt::print("file        {}\n", o.file);
-  fmt::print("format      {} ({}), {} channel{}\n", format, detail, channels, channels == 1 ? "" : "s");
+  fmt::print("format      {} ({}), {} channel{}\n", format, detail, channels,
+             channels == 1 ? "" : "s");
   fmt::print("layout      {}\n", env ? layoutName(env->layout) : "2d image (not an environment)");
   fmt::print("size        {}x{}{}, {} level{}\n", base.width, base.height,
              faces == kFaceCount ? " per face" : "", levels, levels == 1 ? "" : "s");
@@ -96,10 +97,12 @@ void runInfo(const InfoOptions& o) {
   fmt::print("invalid     {} NaN, {} infinite, {} negative components\n", stats.invalid.nan,
              stats.invalid.infinite, stats.invalid.negative);
   if (env) {
-    fmt::print("integral    {:.6g} {:.6g} {:.6g}  (RGB, sum of L dw over the sphere; invalid "
-               "values as 0)\n",
-               integral.x, integral.y, integral.z);
-    fmt::print("brightest   direction {:.3f} {:.3f} {:.3f}\n", brightest.x, brightest.y, brightest.z);
+    fmt::print(
+        "integral    {:.6g} {:.6g} {:.6g}  (RGB, sum of L dw over the sphere; invalid "
+        "values as 0)\n",
+        integral.x, integral.y, integral.z);
+    fmt::print("brightest   direction {:.3f} {:.3f} {:.3f}\n", brightest.x, brightest.y,
+               brightest.z);
   }
 }
 
@@ -107,8 +110,9 @@ void runInfo(const InfoOptions& o) {
 
 void addInfoCommand(CLI::App& app, const GlobalOptions&) {
   auto opts = std::make_shared<InfoOptions>();
-  CLI::App* cmd = app.add_subcommand("info", "Describe an image file: format, layout, size, "
-                                              "value range, invalid pixels, radiant integral");
+  CLI::App* cmd = app.add_subcommand("info",
+                                     "Describe an image file: format, layout, size, "
+                                     "value range, invalid pixels, radiant integral");
   cmd->add_option("file", opts->file, "Image file (.hdr, .exr, .png, .jpg, .ktx2)")->required();
   cmd->add_option("--input-layout", opts->inputLayout, "Layout (default: from the shape)")
       ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross"}));

@@ -4,8 +4,8 @@
 #include <bit>
 #include <cmath>
 
-#include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 #include "ibl/error.hpp"
 
@@ -14,12 +14,18 @@ namespace ibl {
 glm::vec3 faceToDirection(int face, float sc, float tc) {
   // Inverse of the major-axis table (Vulkan spec, "Cube Map Face Selection").
   switch (face) {
-    case 0: return {1.0f, -tc, -sc};
-    case 1: return {-1.0f, -tc, sc};
-    case 2: return {sc, 1.0f, tc};
-    case 3: return {sc, -1.0f, -tc};
-    case 4: return {sc, -tc, 1.0f};
-    default: return {-sc, -tc, -1.0f};
+    case 0:
+      return {1.0f, -tc, -sc};
+    case 1:
+      return {-1.0f, -tc, sc};
+    case 2:
+      return {sc, 1.0f, tc};
+    case 3:
+      return {sc, -1.0f, -tc};
+    case 4:
+      return {sc, -tc, 1.0f};
+    default:
+      return {-sc, -tc, -1.0f};
   }
 }
 
@@ -55,7 +61,9 @@ FacePoint directionToFace(glm::vec3 d) {
 
 namespace {
 // Solid angle of the face-plane rectangle [0, x] x [0, y] (signed), the standard closed form.
-double cornerSolidAngle(double x, double y) { return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0)); }
+double cornerSolidAngle(double x, double y) {
+  return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
+}
 }  // namespace
 
 double faceRectSolidAngle(double sc0, double tc0, double sc1, double tc1) {
@@ -68,7 +76,9 @@ double texelSolidAngle(int x, int y, int n) {
   return faceRectSolidAngle(x * inv - 1.0, y * inv - 1.0, (x + 1) * inv - 1.0, (y + 1) * inv - 1.0);
 }
 
-int fullMipCount(int size) { return size <= 0 ? 0 : std::bit_width(static_cast<unsigned>(size)); }
+int fullMipCount(int size) {
+  return size <= 0 ? 0 : std::bit_width(static_cast<unsigned>(size));
+}
 
 CubeMap::CubeMap(int size, int levelCount) {
   levels.resize(levelCount);
@@ -189,7 +199,8 @@ void buildMipChain(CubeMap& cube, int levelCount) {
     // Solid angles of the parent level's texels: identical on every face.
     std::vector<double> omega(static_cast<std::size_t>(np) * np);
     for (int y = 0; y < np; ++y)
-      for (int x = 0; x < np; ++x) omega[static_cast<std::size_t>(y) * np + x] = texelSolidAngle(x, y, np);
+      for (int x = 0; x < np; ++x)
+        omega[static_cast<std::size_t>(y) * np + x] = texelSolidAngle(x, y, np);
     for (auto& f : cube.levels[m]) f = Image(n, n);
     const auto& src = cube.levels[m - 1];
     auto& dst = cube.levels[m];

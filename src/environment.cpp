@@ -9,11 +9,16 @@ namespace ibl {
 
 std::string_view layoutName(Layout l) {
   switch (l) {
-    case Layout::Equirect: return "equirect";
-    case Layout::HCross: return "hcross";
-    case Layout::VCross: return "vcross";
-    case Layout::Faces: return "faces";
-    case Layout::Cube: return "cube";
+    case Layout::Equirect:
+      return "equirect";
+    case Layout::HCross:
+      return "hcross";
+    case Layout::VCross:
+      return "vcross";
+    case Layout::Faces:
+      return "faces";
+    case Layout::Cube:
+      return "cube";
   }
   return "?";
 }
@@ -49,7 +54,8 @@ CrossCell crossCell(int face, bool vertical) {
 
 CubeMap cubeFromCross(const Image& cross, bool vertical, std::string_view name) {
   const int cols = vertical ? 3 : 4, rows = vertical ? 4 : 3;
-  if (cross.width % cols != 0 || cross.height % rows != 0 || cross.width / cols != cross.height / rows)
+  if (cross.width % cols != 0 || cross.height % rows != 0 ||
+      cross.width / cols != cross.height / rows)
     fail(name, fmt::format("{}x{} is not a {} cross ({}:{})", cross.width, cross.height,
                            vertical ? "vertical" : "horizontal", cols, rows));
   const int n = cross.width / cols;
@@ -126,9 +132,9 @@ LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& op
       const std::string file = facePath(path, f).string();
       DecodedFile d = readImageFile(file);
       Image& img = d.levels[0][0];
-      if (img.width != img.height) fail(file, fmt::format("face is {}x{}, not square", img.width, img.height));
-      if (f > 0 && img.width != env.cube.levels[0][0].width)
-        fail(file, "faces differ in size");
+      if (img.width != img.height)
+        fail(file, fmt::format("face is {}x{}, not square", img.width, img.height));
+      if (f > 0 && img.width != env.cube.levels[0][0].width) fail(file, "faces differ in size");
       out.format = fileFormatName(d.format);
       env.cube.levels[0][f] = std::move(img);
     }

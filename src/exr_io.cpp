@@ -73,26 +73,41 @@ void useAllCores() {
 
 std::string_view compressionName(Imf::Compression c) {
   switch (c) {
-    case Imf::NO_COMPRESSION: return "uncompressed";
-    case Imf::RLE_COMPRESSION: return "RLE";
-    case Imf::ZIPS_COMPRESSION: return "ZIPS";
-    case Imf::ZIP_COMPRESSION: return "ZIP";
-    case Imf::PIZ_COMPRESSION: return "PIZ";
-    case Imf::PXR24_COMPRESSION: return "PXR24";
-    case Imf::B44_COMPRESSION: return "B44";
-    case Imf::B44A_COMPRESSION: return "B44A";
-    case Imf::DWAA_COMPRESSION: return "DWAA";
-    case Imf::DWAB_COMPRESSION: return "DWAB";
-    default: return "unknown";
+    case Imf::NO_COMPRESSION:
+      return "uncompressed";
+    case Imf::RLE_COMPRESSION:
+      return "RLE";
+    case Imf::ZIPS_COMPRESSION:
+      return "ZIPS";
+    case Imf::ZIP_COMPRESSION:
+      return "ZIP";
+    case Imf::PIZ_COMPRESSION:
+      return "PIZ";
+    case Imf::PXR24_COMPRESSION:
+      return "PXR24";
+    case Imf::B44_COMPRESSION:
+      return "B44";
+    case Imf::B44A_COMPRESSION:
+      return "B44A";
+    case Imf::DWAA_COMPRESSION:
+      return "DWAA";
+    case Imf::DWAB_COMPRESSION:
+      return "DWAB";
+    default:
+      return "unknown";
   }
 }
 
 std::string_view pixelTypeName(Imf::PixelType t) {
   switch (t) {
-    case Imf::HALF: return "half";
-    case Imf::FLOAT: return "float";
-    case Imf::UINT: return "uint";
-    default: return "unknown";
+    case Imf::HALF:
+      return "half";
+    case Imf::FLOAT:
+      return "float";
+    case Imf::UINT:
+      return "uint";
+    default:
+      return "unknown";
   }
 }
 
@@ -124,8 +139,8 @@ Image decodeExr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
       if (!firstChannel) firstChannel = &it.channel();
     }
     if (channelCount == 0) fail(name, "no channels");
-    const bool hasRgb = channels.findChannel("R") && channels.findChannel("G") &&
-                        channels.findChannel("B");
+    const bool hasRgb =
+        channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
     const bool hasY = channels.findChannel("Y") != nullptr;
     const bool hasChroma = channels.findChannel("RY") || channels.findChannel("BY");
     if (info) {

@@ -31,8 +31,7 @@ std::vector<std::uint8_t> readFileBytes(const fs::path& path) {
     fail(name, fmt::format("file of {} bytes exceeds the {} byte limit", size, kMaxFileBytes));
   in.seekg(0);
   std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
-  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size))
-    fail(name, "read error");
+  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) fail(name, "read error");
   return bytes;
 }
 

@@ -211,7 +211,8 @@ std::vector<std::uint8_t> encodeHdr(const Image& img) {
       out.insert(out.end(), rgbe.begin(), rgbe.end());
       continue;
     }
-    out.insert(out.end(), {2, 2, static_cast<std::uint8_t>(w >> 8), static_cast<std::uint8_t>(w & 255)});
+    out.insert(out.end(),
+               {2, 2, static_cast<std::uint8_t>(w >> 8), static_cast<std::uint8_t>(w & 255)});
     for (int c = 0; c < 4; ++c) {
       for (int x = 0; x < w; ++x) plane[x] = rgbe[4 * x + c];
       appendRunLengthEncoded(out, plane.data(), w);

@@ -40,8 +40,12 @@ InvalidPixelCounts scanInvalid(ImageRef& image) {
 }
 }  // namespace
 
-InvalidPixelCounts countInvalidPixels(const Image& image) { return scanInvalid<false>(image); }
-InvalidPixelCounts sanitizePixels(Image& image) { return scanInvalid<true>(image); }
+InvalidPixelCounts countInvalidPixels(const Image& image) {
+  return scanInvalid<false>(image);
+}
+InvalidPixelCounts sanitizePixels(Image& image) {
+  return scanInvalid<true>(image);
+}
 
 Image cropImage(const Image& image, int x0, int y0, int w, int h) {
   Image out(w, h);

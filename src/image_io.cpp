@@ -14,11 +14,16 @@ namespace ibl {
 
 std::string_view fileFormatName(FileFormat f) {
   switch (f) {
-    case FileFormat::Hdr: return "hdr";
-    case FileFormat::Exr: return "exr";
-    case FileFormat::Png: return "png";
-    case FileFormat::Jpg: return "jpg";
-    case FileFormat::Ktx2: return "ktx2";
+    case FileFormat::Hdr:
+      return "hdr";
+    case FileFormat::Exr:
+      return "exr";
+    case FileFormat::Png:
+      return "png";
+    case FileFormat::Jpg:
+      return "jpg";
+    case FileFormat::Ktx2:
+      return "ktx2";
   }
   return "?";
 }
@@ -37,7 +42,8 @@ std::optional<FileFormat> detectFileFormat(std::span<const std::uint8_t> b) {
 
 std::optional<FileFormat> fileFormatFromExtension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext == ".hdr" || ext == ".pic") return FileFormat::Hdr;
   if (ext == ".exr") return FileFormat::Exr;
   if (ext == ".png") return FileFormat::Png;
@@ -60,12 +66,17 @@ DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_vie
       out.detail = "RGBE";
       out.levels = {{decodeHdr(bytes, name)}};
       break;
-    case FileFormat::Exr: out.levels = {{decodeExr(bytes, name, &out)}}; break;
+    case FileFormat::Exr:
+      out.levels = {{decodeExr(bytes, name, &out)}};
+      break;
     case FileFormat::Png:
-    case FileFormat::Jpg: out.levels = {{decodeLdr(bytes, name, &out)}}; break;
+    case FileFormat::Jpg:
+      out.levels = {{decodeLdr(bytes, name, &out)}};
+      break;
     case FileFormat::Ktx2: {
       Ktx2Texture tex = decodeKtx2(bytes, name);
-      out.channels = tex.format == PixelFormat::Rgba16f || tex.format == PixelFormat::Rgba32f ? 4 : 3;
+      out.channels =
+          tex.format == PixelFormat::Rgba16f || tex.format == PixelFormat::Rgba32f ? 4 : 3;
       out.detail = std::string(vulkanFormatName(tex.format));
       out.levels = std::move(tex.levels);
       break;

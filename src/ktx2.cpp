@@ -17,7 +17,7 @@ namespace ibl {
 
 namespace {
 
-constexpr std::size_t kHeaderBytes = 80;     // identifier + 9 uint32 + 4 index fields
+constexpr std::size_t kHeaderBytes = 80;      // identifier + 9 uint32 + 4 index fields
 constexpr std::size_t kLevelIndexEntry = 24;  // byteOffset, byteLength, uncompressedByteLength
 
 // Khronos Data Format constants.
@@ -74,7 +74,9 @@ std::uint32_t get32(std::span<const std::uint8_t> b, std::size_t at) {
 std::uint64_t get64(std::span<const std::uint8_t> b, std::size_t at) {
   return get32(b, at) | (static_cast<std::uint64_t>(get32(b, at + 4)) << 32);
 }
-std::size_t alignUp(std::size_t v, std::size_t a) { return (v + a - 1) / a * a; }
+std::size_t alignUp(std::size_t v, std::size_t a) {
+  return (v + a - 1) / a * a;
+}
 
 void encodeTexel(PixelFormat f, glm::vec3 c, std::uint8_t* dst) {
   switch (f) {
@@ -133,13 +135,13 @@ std::vector<std::uint32_t> dataFormatDescriptor(PixelFormat f) {
   const std::vector<Sample> samples = samplesOf(f);
   const auto blockSize = static_cast<std::uint32_t>(24 + 16 * samples.size());
   std::vector<std::uint32_t> d;
-  d.push_back(4 + blockSize);                       // dfdTotalSize
-  d.push_back(0);                                   // vendorId = Khronos, descriptorType = basic
-  d.push_back(2u | (blockSize << 16));              // versionNumber = 2 (KDF 1.3)
+  d.push_back(4 + blockSize);           // dfdTotalSize
+  d.push_back(0);                       // vendorId = Khronos, descriptorType = basic
+  d.push_back(2u | (blockSize << 16));  // versionNumber = 2 (KDF 1.3)
   d.push_back(kModelRgbsda | (kPrimariesBt709 << 8) | (kTransferLinear << 16));  // flags 0
-  d.push_back(0);                                   // texel block 1x1x1x1
-  d.push_back(bytesPerTexel(f));                    // bytesPlane0
-  d.push_back(0);                                   // bytesPlane4..7
+  d.push_back(0);                 // texel block 1x1x1x1
+  d.push_back(bytesPerTexel(f));  // bytesPlane0
+  d.push_back(0);                 // bytesPlane4..7
   for (const Sample& s : samples) {
     d.push_back(s.bitOffset | ((s.bitLength - 1) << 16) | (s.channel << 24));
     d.push_back(0);  // sample position
@@ -185,7 +187,8 @@ std::vector<std::uint8_t> encodeKtx2(const Ktx2Texture& tex) {
   for (std::uint32_t m = levelCount; m-- > 0;) {
     const auto& faces = tex.levels[m];
     if (faces.size() != static_cast<std::size_t>(tex.faceCount))
-      fail("ktx2", fmt::format("level {} has {} faces, expected {}", m, faces.size(), tex.faceCount));
+      fail("ktx2",
+           fmt::format("level {} has {} faces, expected {}", m, faces.size(), tex.faceCount));
     const int w = std::max(1, width >> m), h = std::max(1, height >> m);
     for (const Image& f : faces)
       if (f.width != w || f.height != h)
@@ -242,7 +245,8 @@ Ktx2Texture decodeKtx2(std::span<const std::uint8_t> b, std::string_view name) {
   const auto format = pixelFormatFromVk(vkFormat);
   if (!format)
     fail(name, fmt::format("unsupported vkFormat {} (supported: RGBA16F, RGBA32F, B10G11R11, "
-                           "E5B9G9R9)", vkFormat));
+                           "E5B9G9R9)",
+                           vkFormat));
   if (get32(b, 16) != ktxTypeSize(*format)) fail(name, "typeSize does not match vkFormat");
   if (scheme != 0) fail(name, fmt::format("supercompression scheme {} is not supported", scheme));
   if (height == 0) fail(name, "1D textures are not supported");

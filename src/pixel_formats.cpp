@@ -8,10 +8,13 @@ namespace ibl {
 
 std::uint32_t bytesPerTexel(PixelFormat f) {
   switch (f) {
-    case PixelFormat::Rgba16f: return 8;
-    case PixelFormat::Rgba32f: return 16;
+    case PixelFormat::Rgba16f:
+      return 8;
+    case PixelFormat::Rgba32f:
+      return 16;
     case PixelFormat::B10G11R11:
-    case PixelFormat::E5B9G9R9: return 4;
+    case PixelFormat::E5B9G9R9:
+      return 4;
   }
   return 0;
 }
@@ -20,48 +23,64 @@ std::uint32_t ktxTypeSize(PixelFormat f) {
   // KTX2: the size of the data type of a component; 1 for packed formats would be wrong,
   // packed formats use the size of the packed word.
   switch (f) {
-    case PixelFormat::Rgba16f: return 2;
-    case PixelFormat::Rgba32f: return 4;
+    case PixelFormat::Rgba16f:
+      return 2;
+    case PixelFormat::Rgba32f:
+      return 4;
     case PixelFormat::B10G11R11:
-    case PixelFormat::E5B9G9R9: return 4;
+    case PixelFormat::E5B9G9R9:
+      return 4;
   }
   return 0;
 }
 
 std::string_view formatName(PixelFormat f) {
   switch (f) {
-    case PixelFormat::Rgba16f: return "rgba16f";
-    case PixelFormat::Rgba32f: return "rgba32f";
-    case PixelFormat::B10G11R11: return "b10g11r11";
-    case PixelFormat::E5B9G9R9: return "e5b9g9r9";
+    case PixelFormat::Rgba16f:
+      return "rgba16f";
+    case PixelFormat::Rgba32f:
+      return "rgba32f";
+    case PixelFormat::B10G11R11:
+      return "b10g11r11";
+    case PixelFormat::E5B9G9R9:
+      return "e5b9g9r9";
   }
   return "?";
 }
 
 std::string_view vulkanFormatName(PixelFormat f) {
   switch (f) {
-    case PixelFormat::Rgba16f: return "VK_FORMAT_R16G16B16A16_SFLOAT";
-    case PixelFormat::Rgba32f: return "VK_FORMAT_R32G32B32A32_SFLOAT";
-    case PixelFormat::B10G11R11: return "VK_FORMAT_B10G11R11_UFLOAT_PACK32";
-    case PixelFormat::E5B9G9R9: return "VK_FORMAT_E5B9G9R9_UFLOAT_PACK32";
+    case PixelFormat::Rgba16f:
+      return "VK_FORMAT_R16G16B16A16_SFLOAT";
+    case PixelFormat::Rgba32f:
+      return "VK_FORMAT_R32G32B32A32_SFLOAT";
+    case PixelFormat::B10G11R11:
+      return "VK_FORMAT_B10G11R11_UFLOAT_PACK32";
+    case PixelFormat::E5B9G9R9:
+      return "VK_FORMAT_E5B9G9R9_UFLOAT_PACK32";
   }
   return "?";
 }
 
 std::optional<PixelFormat> parsePixelFormat(std::string_view name) {
-  for (auto f : {PixelFormat::Rgba16f, PixelFormat::Rgba32f, PixelFormat::B10G11R11,
-                 PixelFormat::E5B9G9R9})
+  for (auto f :
+       {PixelFormat::Rgba16f, PixelFormat::Rgba32f, PixelFormat::B10G11R11, PixelFormat::E5B9G9R9})
     if (name == formatName(f)) return f;
   return std::nullopt;
 }
 
 std::optional<PixelFormat> pixelFormatFromVk(std::uint32_t vk) {
   switch (vk) {
-    case 97: return PixelFormat::Rgba16f;
-    case 109: return PixelFormat::Rgba32f;
-    case 122: return PixelFormat::B10G11R11;
-    case 123: return PixelFormat::E5B9G9R9;
-    default: return std::nullopt;
+    case 97:
+      return PixelFormat::Rgba16f;
+    case 109:
+      return PixelFormat::Rgba32f;
+    case 122:
+      return PixelFormat::B10G11R11;
+    case 123:
+      return PixelFormat::E5B9G9R9;
+    default:
+      return std::nullopt;
   }
 }
 
@@ -70,7 +89,7 @@ std::uint16_t floatToHalf(float v) {
   std::memcpy(&x, &v, 4);
   const std::uint32_t sign = (x >> 16) & 0x8000u;
   x &= 0x7fffffffu;
-  if (x > 0x7f800000u) return static_cast<std::uint16_t>(sign | 0x7e00u);  // NaN
+  if (x > 0x7f800000u) return static_cast<std::uint16_t>(sign | 0x7e00u);   // NaN
   if (x >= 0x477ff000u) return static_cast<std::uint16_t>(sign | 0x7c00u);  // overflow -> inf
   if (x < 0x38800000u) {  // subnormal half (or zero): value * 2^24, rounded to nearest even
     float a;
@@ -117,7 +136,8 @@ std::uint32_t packUnsignedFloat(float v, int m) {
     const auto mant = static_cast<std::uint32_t>(std::lround(std::ldexp(v, 14 + m)));
     return mant;  // mant == one rounds up into the smallest normal, which has the same bits
   }
-  auto mant = static_cast<std::uint32_t>(std::lround((2.0f * frac - 1.0f) * static_cast<float>(one)));
+  auto mant =
+      static_cast<std::uint32_t>(std::lround((2.0f * frac - 1.0f) * static_cast<float>(one)));
   if (mant == one) {
     mant = 0;
     ++biased;

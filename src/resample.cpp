@@ -6,9 +6,9 @@
 #include <numbers>
 #include <optional>
 
+#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include "ibl/equirect.hpp"
 #include "ibl/error.hpp"
@@ -26,8 +26,12 @@ namespace {
 
 // Angular density of a map: texels per radian (at the equator of an equirect map, at the
 // center of a cube face).
-double equirectDensity(int height) { return height / std::numbers::pi; }
-double cubeDensity(int size) { return size / 2.0; }
+double equirectDensity(int height) {
+  return height / std::numbers::pi;
+}
+double cubeDensity(int size) {
+  return size / 2.0;
+}
 
 // The source of a resampling, reduced (by exact box filters) to at most twice the density of
 // the output, and reconstructed with a cubic B-spline in the rotated frame.
@@ -48,7 +52,8 @@ class Source {
       cube_ = &env.cube;
       const int size = env.cube.size();
       const bool pow2 = std::has_single_bit(static_cast<unsigned>(size));
-      if (pow2 && cubeDensity(size) > 2.0 * outputDensity && env.cube.levelCount() < fullMipCount(size)) {
+      if (pow2 && cubeDensity(size) > 2.0 * outputDensity &&
+          env.cube.levelCount() < fullMipCount(size)) {
         // Needs coarser levels than the source has: build them.
         reducedCube_ = CubeMap();
         reducedCube_->levels.push_back(env.cube.levels[0]);
@@ -61,7 +66,8 @@ class Source {
       while (level_ + 1 < cube_->levelCount()) {
         const double d = cubeDensity(cube_->levels[level_][0].width);
         const bool coarseEnough = d <= 2.0 * outputDensity;
-        const bool keepDetail = cube_->levels[level_ + 1][0].width < 128 && d <= 8.0 * outputDensity;
+        const bool keepDetail =
+            cube_->levels[level_ + 1][0].width < 128 && d <= 8.0 * outputDensity;
         if (coarseEnough || keepDetail) break;
         ++level_;
       }
@@ -107,8 +113,8 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
   tbb::parallel_for(0, sub, [&](int j) {
     const double inv = 2.0 / sub;
     for (int i = 0; i < sub; ++i)
-      weights[static_cast<std::size_t>(j) * sub + i] = static_cast<float>(
-          faceRectSolidAngle(i * inv - 1.0, j * inv - 1.0, (i + 1) * inv - 1.0, (j + 1) * inv - 1.0));
+      weights[static_cast<std::size_t>(j) * sub + i] = static_cast<float>(faceRectSolidAngle(
+          i * inv - 1.0, j * inv - 1.0, (i + 1) * inv - 1.0, (j + 1) * inv - 1.0));
   });
   CubeMap out(size, 1);
   tbb::parallel_for(0, kFaceCount * size, [&](int row) {
@@ -144,8 +150,8 @@ Image resampleToEquirect(const Environment& env, int width, float rotateDegrees)
   tbb::parallel_for(0, height, [&](int y) {
     // Sub-rows of a row have solid angles proportional to cos(theta0) - cos(theta1).
     std::vector<float> rowWeight(k);
-    for (int b = 0; b < k; ++b) rowWeight[b] = static_cast<float>(
-        equirectPixelSolidAngle(y * k + b, width * k, height * k));
+    for (int b = 0; b < k; ++b)
+      rowWeight[b] = static_cast<float>(equirectPixelSolidAngle(y * k + b, width * k, height * k));
     for (int x = 0; x < width; ++x) {
       glm::vec3 sum(0.0f);
       float wsum = 0.0f;

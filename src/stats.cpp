@@ -56,8 +56,9 @@ glm::vec3 brightestDirection(const Environment& env) {
         const float l = luminance(img.at(x, y));
         if (l > best) {
           best = l;
-          dir = equirectToDirection((static_cast<float>(x) + 0.5f) / static_cast<float>(img.width),
-                                    (static_cast<float>(y) + 0.5f) / static_cast<float>(img.height));
+          dir =
+              equirectToDirection((static_cast<float>(x) + 0.5f) / static_cast<float>(img.width),
+                                  (static_cast<float>(y) + 0.5f) / static_cast<float>(img.height));
         }
       }
   }

@@ -15,7 +15,9 @@
 
 namespace ibl::test {
 
-inline std::filesystem::path dataDir() { return IBL_TEST_DATA; }
+inline std::filesystem::path dataDir() {
+  return IBL_TEST_DATA;
+}
 inline std::filesystem::path hdriPath(const std::string& name) {
   return dataDir() / "hdri" / (name + ".exr");
 }
@@ -54,7 +56,8 @@ inline CubeMap cubeFromFunction(int size, const RadianceFn& f) {
   CubeMap cube(size, 1);
   for (int face = 0; face < kFaceCount; ++face)
     for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) cube.levels[0][face].at(x, y) = f(texelDirection(face, x, y, size));
+      for (int x = 0; x < size; ++x)
+        cube.levels[0][face].at(x, y) = f(texelDirection(face, x, y, size));
   return cube;
 }
 

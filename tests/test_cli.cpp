@@ -33,7 +33,9 @@ CliRun runIbl(const std::string& args) {
   return r;
 }
 
-std::string quote(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+std::string quote(const std::filesystem::path& p) {
+  return "'" + p.string() + "'";
+}
 
 int countFiles(const std::filesystem::path& dir) {
   int n = 0;
@@ -52,7 +54,7 @@ TEST(Cli, Version) {
 TEST(Cli, ConvertToKtx2CubeWithMips) {
   TempDir dir;
   const CliRun r = runIbl("convert " + quote(hdriPath("sunset")) + " -o " + quote(dir / "s.ktx2") +
-                    " --size 64 --mips --quiet");
+                          " --size 64 --mips --quiet");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output, "");  // --quiet
   const DecodedFile d = readImageFile(dir / "s.ktx2");
@@ -64,19 +66,20 @@ TEST(Cli, ConvertToKtx2CubeWithMips) {
 TEST(Cli, ConvertToFacesAndMipFiles) {
   TempDir dir;
   CliRun r = runIbl("convert " + quote(hdriPath("park")) + " -o " + quote(dir / "f_{face}.png") +
-              " --layout faces --size 16 --exposure -1");
+                    " --layout faces --size 16 --exposure -1");
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* f : {"px", "nx", "py", "ny", "pz", "nz"})
     EXPECT_TRUE(std::filesystem::exists(dir / (std::string("f_") + f + ".png"))) << f;
   r = runIbl("convert " + quote(hdriPath("park")) + " -o " + quote(dir / "c.exr") +
-          " --layout vcross --size 8 --mips --exr-type float");
+             " --layout vcross --size 8 --mips --exr-type float");
   ASSERT_EQ(r.status, 0) << r.output;
   for (int m = 0; m < 4; ++m) {
     const DecodedFile d = readImageFile(dir / ("c_m" + std::to_string(m) + ".exr"));
     EXPECT_EQ(d.levels[0][0].width, 3 * (8 >> m));
   }
   // Back from six faces to an equirect HDR, rotated.
-  r = runIbl("convert " + quote(dir / "f_{face}.png") + " -o " + quote(dir / "e.hdr") + " --rotate 45");
+  r = runIbl("convert " + quote(dir / "f_{face}.png") + " -o " + quote(dir / "e.hdr") +
+             " --rotate 45");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(readImageFile(dir / "e.hdr").levels[0][0].width, 64);
 }
@@ -122,7 +125,8 @@ TEST(Cli, BadInputsFailCleanlyAndWriteNothing) {
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << " -> " << r.output;
     EXPECT_EQ(countFiles(dir / "out"), 0) << c.args;
   }
-  const CliRun r = runIbl("convert " + quote(hdriPath("sunset")) + " -o " + quote(dir / "out" / "x.jpg"));
+  const CliRun r =
+      runIbl("convert " + quote(hdriPath("sunset")) + " -o " + quote(dir / "out" / "x.jpg"));
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("unknown output format"), std::string::npos);
 }

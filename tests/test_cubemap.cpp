@@ -2,8 +2,8 @@
 #include <numbers>
 #include <random>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "helpers.hpp"
 #include "ibl/cubemap.hpp"
@@ -39,7 +39,8 @@ TEST(CubeMap, TexelDirectionsFollowTheMajorAxisTable) {
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x) {
         const float sc = 2.0f * (x + 0.5f) / n - 1.0f, tc = 2.0f * (y + 0.5f) / n - 1.0f;
-        const glm::vec3 expected = glm::normalize(kTable[f].major + sc * kTable[f].s + tc * kTable[f].t);
+        const glm::vec3 expected =
+            glm::normalize(kTable[f].major + sc * kTable[f].s + tc * kTable[f].t);
         const glm::vec3 d = texelDirection(f, x, y, n);
         ASSERT_NEAR(glm::distance(d, expected), 0.0f, 1e-6f) << "face " << f;
       }
@@ -109,7 +110,8 @@ glm::vec3 sampleClampedToFace(const CubeMap& cube, glm::vec3 dir) {
   const FacePoint p = directionToFace(dir);
   const Image& img = cube.levels[0][p.face];
   const int n = img.width;
-  const float fx = std::clamp(p.s * n - 0.5f, 0.0f, n - 1.0f), fy = std::clamp(p.t * n - 0.5f, 0.0f, n - 1.0f);
+  const float fx = std::clamp(p.s * n - 0.5f, 0.0f, n - 1.0f),
+              fy = std::clamp(p.t * n - 0.5f, 0.0f, n - 1.0f);
   const int x0 = std::min(int(fx), n - 2), y0 = std::min(int(fy), n - 2);
   const float wx = fx - x0, wy = fy - y0;
   return (img.at(x0, y0) * (1 - wx) + img.at(x0 + 1, y0) * wx) * (1 - wy) +
@@ -133,12 +135,14 @@ TEST(CubeMap, BilinearHasNoSeamsAtEdgesAndCorners) {
     const glm::vec3 outside = glm::normalize(faceToDirection(f, 1.0f + 1e-4f, along));
     const glm::vec3 a = sampleBilinear(cube, 0, inside), b = sampleBilinear(cube, 0, outside);
     worstJump = std::max(worstJump, double(glm::length(a - b)));
-    worstClampJump = std::max(
-        worstClampJump, double(glm::length(sampleClampedToFace(cube, inside) - sampleClampedToFace(cube, outside))));
+    worstClampJump =
+        std::max(worstClampJump, double(glm::length(sampleClampedToFace(cube, inside) -
+                                                    sampleClampedToFace(cube, outside))));
     worstEdge = std::max(worstEdge, double(glm::length(a - smoothField(edge))));
     const glm::vec3 interior = glm::normalize(faceToDirection(f, 0.9f * u(rng), 0.9f * along));
-    worstInterior = std::max(worstInterior,
-                             double(glm::length(sampleBilinear(cube, 0, interior) - smoothField(interior))));
+    worstInterior =
+        std::max(worstInterior,
+                 double(glm::length(sampleBilinear(cube, 0, interior) - smoothField(interior))));
   }
   // Interpolating in the extended plane of either face (as seamless hardware filtering does)
   // leaves an O(h^2) difference between the two sides, within a few times the interior error; a

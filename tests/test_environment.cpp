@@ -83,10 +83,13 @@ TEST(Environment, ClearErrorsNameTheFile) {
   EXPECT_EQ(errorOf([&] { loadEnvironment((dir / "empty.exr").string()); }),
             (dir / "empty.exr").string() + ": empty file");
   std::ofstream(dir / "text.hdr") << "hello world";
-  EXPECT_NE(errorOf([&] { loadEnvironment((dir / "text.hdr").string()); }).find("unknown file format"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf([&] { loadEnvironment((dir / "text.hdr").string()); }).find("unknown file format"),
+      std::string::npos);
   writeFileAtomic(dir / "square.exr", encodeExr(Image(16, 16)));
-  EXPECT_NE(errorOf([&] { loadEnvironment((dir / "square.exr").string()); }).find("cannot tell the layout"),
+  EXPECT_NE(errorOf([&] {
+              loadEnvironment((dir / "square.exr").string());
+            }).find("cannot tell the layout"),
             std::string::npos);
   EXPECT_NE(errorOf([&] { loadEnvironment(dir.path().string()); }).find("is a directory"),
             std::string::npos);

@@ -1,8 +1,8 @@
 #include <numbers>
 #include <random>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "helpers.hpp"
 #include "ibl/equirect.hpp"

@@ -40,7 +40,8 @@ std::vector<std::uint8_t> writeWithOpenExr(const Image& img, Imf::Compression co
     }
     void* base = type == Imf::HALF ? static_cast<void*>(halves[c].data()) : planes[c].data();
     const std::size_t size = type == Imf::HALF ? 2 : 4;
-    fb.insert(std::string(1, "RGB"[c]), Imf::Slice::Make(type, base, dataWindow, size, size * img.width));
+    fb.insert(std::string(1, "RGB"[c]),
+              Imf::Slice::Make(type, base, dataWindow, size, size * img.width));
   }
   if (tiled) {
     header.setTileDescription(Imf::TileDescription(16, 16, Imf::ONE_LEVEL));
@@ -77,10 +78,10 @@ TEST(ExrIo, EveryCompressionScanlineAndTiled) {
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x)
       img.at(x, y) = glm::vec3(1.0f + 0.5f * std::sin(x / 5.0f), 2.0f + std::cos(y / 7.0f), 0.25f);
-  for (auto compression : {Imf::NO_COMPRESSION, Imf::RLE_COMPRESSION, Imf::ZIPS_COMPRESSION,
-                           Imf::ZIP_COMPRESSION, Imf::PIZ_COMPRESSION, Imf::PXR24_COMPRESSION,
-                           Imf::B44_COMPRESSION, Imf::B44A_COMPRESSION, Imf::DWAA_COMPRESSION,
-                           Imf::DWAB_COMPRESSION}) {
+  for (auto compression :
+       {Imf::NO_COMPRESSION, Imf::RLE_COMPRESSION, Imf::ZIPS_COMPRESSION, Imf::ZIP_COMPRESSION,
+        Imf::PIZ_COMPRESSION, Imf::PXR24_COMPRESSION, Imf::B44_COMPRESSION, Imf::B44A_COMPRESSION,
+        Imf::DWAA_COMPRESSION, Imf::DWAB_COMPRESSION}) {
     for (bool tiled : {false, true}) {
       const auto bytes = writeWithOpenExr(img, compression, tiled, Imf::HALF, dir);
       DecodedFile info;
@@ -95,7 +96,8 @@ TEST(ExrIo, EveryCompressionScanlineAndTiled) {
       for (std::size_t i = 0; i < img.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) {
           const float ref = halfToFloat(floatToHalf(img.pixels[i][c]));
-          worst = std::max(worst, std::abs(double(back.pixels[i][c]) - ref) / (std::abs(ref) + 1e-3));
+          worst =
+              std::max(worst, std::abs(double(back.pixels[i][c]) - ref) / (std::abs(ref) + 1e-3));
         }
       EXPECT_LE(worst, lossy ? 0.05 : 0.0) << "compression " << compression << " tiled " << tiled;
     }
@@ -105,7 +107,8 @@ TEST(ExrIo, EveryCompressionScanlineAndTiled) {
 TEST(ExrIo, FloatScanlineFromOpenExr) {
   TempDir dir;
   const Image img = randomImage(20, 10, 4, 1e5f);
-  EXPECT_EQ(decodeExr(writeWithOpenExr(img, Imf::ZIP_COMPRESSION, false, Imf::FLOAT, dir), "f.exr").pixels,
+  EXPECT_EQ(decodeExr(writeWithOpenExr(img, Imf::ZIP_COMPRESSION, false, Imf::FLOAT, dir), "f.exr")
+                .pixels,
             img.pixels);
 }
 

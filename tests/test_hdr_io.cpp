@@ -14,7 +14,9 @@ using namespace ibl::test;
 
 namespace {
 
-std::vector<std::uint8_t> bytesOf(const std::string& s) { return {s.begin(), s.end()}; }
+std::vector<std::uint8_t> bytesOf(const std::string& s) {
+  return {s.begin(), s.end()};
+}
 
 // A flat (uncompressed) RGBE file whose pixel i of the file order has mantissa i + 10 and
 // exponent 129 (value (i + 10.5) / 128).
@@ -27,7 +29,9 @@ std::vector<std::uint8_t> flatFile(const std::string& resolution, int count) {
   return out;
 }
 
-float fileOrderValue(int i) { return (i + 10.5f) / 128.0f; }
+float fileOrderValue(int i) {
+  return (i + 10.5f) / 128.0f;
+}
 
 void expectRgbeClose(const Image& a, const Image& b) {
   ASSERT_EQ(a.width, b.width);
@@ -65,7 +69,8 @@ TEST(HdrIo, ReadsFilesWrittenByStb) {
   stbi_write_hdr_to_func(
       [](void* ctx, void* data, int size) {
         auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
-        v->insert(v->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+        v->insert(v->end(), static_cast<std::uint8_t*>(data),
+                  static_cast<std::uint8_t*>(data) + size);
       },
       &bytes, img.width, img.height, 3, &img.pixels[0].x);
   expectRgbeClose(decodeHdr(bytes, "stb.hdr"), img);
@@ -123,7 +128,8 @@ TEST(HdrIo, RejectsBrokenFiles) {
     const std::span<const std::uint8_t> prefix(good.data(), len);
     EXPECT_THROW(decodeHdr(prefix, "cut.hdr"), Error) << len;
   }
-  EXPECT_THROW(decodeHdr(bytesOf("#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\n1234"), "x.hdr"), Error);
+  EXPECT_THROW(decodeHdr(bytesOf("#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\n1234"), "x.hdr"),
+               Error);
   EXPECT_THROW(decodeHdr(bytesOf("#?RADIANCE\n\n-Y 0 +X 5\n"), "x.hdr"), Error);
   EXPECT_THROW(decodeHdr(bytesOf("#?RADIANCE\n\n-Y 3 -Y 5\n"), "x.hdr"), Error);
   EXPECT_THROW(decodeHdr(bytesOf("#?RADIANCE\n\n-Y 99999999 +X 99999999\n"), "x.hdr"), Error);

@@ -43,7 +43,8 @@ TEST(Ktx2, HeaderAndLevelIndexFollowTheSpecification) {
   const Ktx2Texture tex = cubeTexture(PixelFormat::Rgba16f, 16, 5);
   const auto b = encodeKtx2(tex);
   // Identifier (KTX 2.0 section 3.1).
-  const std::uint8_t id[12] = {0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A};
+  const std::uint8_t id[12] = {0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32,
+                               0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A};
   EXPECT_EQ(std::memcmp(b.data(), id, 12), 0);
   EXPECT_EQ(u32(b, 12), 97u);  // VK_FORMAT_R16G16B16A16_SFLOAT
   EXPECT_EQ(u32(b, 16), 2u);   // typeSize
@@ -87,12 +88,12 @@ TEST(Ktx2, DataFormatDescriptorsMatchTheSpecification) {
   // createDFD writes them for these Vulkan formats.
   const auto rgba16 = dataFormatDescriptor(PixelFormat::Rgba16f);
   ASSERT_EQ(rgba16.size(), 23u);
-  EXPECT_EQ(rgba16[0], 92u);                  // dfdTotalSize
-  EXPECT_EQ(rgba16[1], 0u);                   // vendorId 0 (Khronos), descriptorType 0 (basic)
-  EXPECT_EQ(rgba16[2], 2u | (88u << 16));     // versionNumber 2, descriptorBlockSize 88
+  EXPECT_EQ(rgba16[0], 92u);               // dfdTotalSize
+  EXPECT_EQ(rgba16[1], 0u);                // vendorId 0 (Khronos), descriptorType 0 (basic)
+  EXPECT_EQ(rgba16[2], 2u | (88u << 16));  // versionNumber 2, descriptorBlockSize 88
   EXPECT_EQ(rgba16[3], 1u | (1u << 8) | (1u << 16));  // RGBSDA, BT709, linear, straight alpha
-  EXPECT_EQ(rgba16[4], 0u);                   // 1x1x1x1 texel block
-  EXPECT_EQ(rgba16[5], 8u);                   // bytesPlane0
+  EXPECT_EQ(rgba16[4], 0u);                           // 1x1x1x1 texel block
+  EXPECT_EQ(rgba16[5], 8u);                           // bytesPlane0
   EXPECT_EQ(rgba16[6], 0u);
   const std::uint32_t channels[4] = {0, 1, 2, 15};
   for (int s = 0; s < 4; ++s) {
@@ -108,20 +109,20 @@ TEST(Ktx2, DataFormatDescriptorsMatchTheSpecification) {
   ASSERT_EQ(b10.size(), 7u + 12u);
   EXPECT_EQ(b10[0], 4u + 24u + 48u);
   EXPECT_EQ(b10[5], 4u);
-  EXPECT_EQ(b10[7], 0u | (10u << 16) | (0x80u << 24));   // R: bits 0..10, unsigned float
-  EXPECT_EQ(b10[11], 11u | (10u << 16) | (0x81u << 24)); // G: bits 11..21
-  EXPECT_EQ(b10[15], 22u | (9u << 16) | (0x82u << 24));  // B: bits 22..31
+  EXPECT_EQ(b10[7], 0u | (10u << 16) | (0x80u << 24));    // R: bits 0..10, unsigned float
+  EXPECT_EQ(b10[11], 11u | (10u << 16) | (0x81u << 24));  // G: bits 11..21
+  EXPECT_EQ(b10[15], 22u | (9u << 16) | (0x82u << 24));   // B: bits 22..31
   EXPECT_EQ(b10[9], 0u);
   EXPECT_EQ(b10[10], 0x3F800000u);
   const auto e5 = dataFormatDescriptor(PixelFormat::E5B9G9R9);
   ASSERT_EQ(e5.size(), 7u + 24u);
-  EXPECT_EQ(e5[7], 0u | (8u << 16) | (0u << 24));          // R mantissa, bits 0..8
-  EXPECT_EQ(e5[11], 27u | (4u << 16) | (0x20u << 24));     // R exponent, bits 27..31
-  EXPECT_EQ(e5[13], 15u);                                  // exponent bias
-  EXPECT_EQ(e5[10], 256u);                                 // mantissa of 1.0
+  EXPECT_EQ(e5[7], 0u | (8u << 16) | (0u << 24));       // R mantissa, bits 0..8
+  EXPECT_EQ(e5[11], 27u | (4u << 16) | (0x20u << 24));  // R exponent, bits 27..31
+  EXPECT_EQ(e5[13], 15u);                               // exponent bias
+  EXPECT_EQ(e5[10], 256u);                              // mantissa of 1.0
   EXPECT_EQ(e5[14], 31u);
-  EXPECT_EQ(e5[15], 9u | (8u << 16) | (0x01u << 24));      // G mantissa, bits 9..17
-  EXPECT_EQ(e5[27], 27u | (4u << 16) | (0x22u << 24));     // B exponent
+  EXPECT_EQ(e5[15], 9u | (8u << 16) | (0x01u << 24));   // G mantissa, bits 9..17
+  EXPECT_EQ(e5[27], 27u | (4u << 16) | (0x22u << 24));  // B exponent
 }
 
 TEST(Ktx2, RoundTripEveryFormat) {
@@ -132,8 +133,8 @@ TEST(Ktx2, RoundTripEveryFormat) {
     ASSERT_EQ(back.format, format);
     ASSERT_EQ(back.faceCount, 6);
     ASSERT_EQ(back.levels.size(), 4u);
-    const double tolerance = format == PixelFormat::Rgba32f   ? 0.0
-                             : format == PixelFormat::Rgba16f ? 1.0 / 2048
+    const double tolerance = format == PixelFormat::Rgba32f     ? 0.0
+                             : format == PixelFormat::Rgba16f   ? 1.0 / 2048
                              : format == PixelFormat::B10G11R11 ? 1.0 / 64
                                                                 : 1.0;  // shared exponent: below
     for (int m = 0; m < 4; ++m)
@@ -181,10 +182,10 @@ TEST(Ktx2, RejectsTruncatedAndCorruptFiles) {
     std::memcpy(b.data() + at, &v, 4);
     return b;
   };
-  EXPECT_THROW(decodeKtx2(patched(12, 43), "f.ktx2"), Error);        // unsupported format
-  EXPECT_THROW(decodeKtx2(patched(36, 3), "f.ktx2"), Error);         // faceCount 3
-  EXPECT_THROW(decodeKtx2(patched(40, 30), "f.ktx2"), Error);        // too many levels
-  EXPECT_THROW(decodeKtx2(patched(44, 2), "f.ktx2"), Error);         // zstd supercompression
+  EXPECT_THROW(decodeKtx2(patched(12, 43), "f.ktx2"), Error);          // unsupported format
+  EXPECT_THROW(decodeKtx2(patched(36, 3), "f.ktx2"), Error);           // faceCount 3
+  EXPECT_THROW(decodeKtx2(patched(40, 30), "f.ktx2"), Error);          // too many levels
+  EXPECT_THROW(decodeKtx2(patched(44, 2), "f.ktx2"), Error);           // zstd supercompression
   EXPECT_THROW(decodeKtx2(patched(20, 0x7fffffff), "f.ktx2"), Error);  // absurd width
   EXPECT_THROW(decodeKtx2(patched(80, 0xfffffff0), "f.ktx2"), Error);  // level offset
   // Random corruption never crashes: it decodes or throws Error.

@@ -27,7 +27,8 @@ void putBe32(std::vector<std::uint8_t>& v, std::uint32_t x) {
   for (int i = 3; i >= 0; --i) v.push_back(static_cast<std::uint8_t>(x >> (8 * i)));
 }
 
-void chunk(std::vector<std::uint8_t>& png, const char* type, const std::vector<std::uint8_t>& data) {
+void chunk(std::vector<std::uint8_t>& png, const char* type,
+           const std::vector<std::uint8_t>& data) {
   putBe32(png, static_cast<std::uint32_t>(data.size()));
   std::vector<std::uint8_t> body(type, type + 4);
   body.insert(body.end(), data.begin(), data.end());
@@ -105,7 +106,8 @@ TEST(LdrIo, JpegIsDecoded) {
   stbi_write_jpg_to_func(
       [](void* ctx, void* data, int size) {
         auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
-        v->insert(v->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+        v->insert(v->end(), static_cast<std::uint8_t*>(data),
+                  static_cast<std::uint8_t*>(data) + size);
       },
       &jpg, 32, 32, 3, rgb.data(), 95);
   const DecodedFile d = decodeImageFile(jpg, "t.jpg");

@@ -16,6 +16,8 @@ float srgb8ToLinear(std::uint8_t code);
 std::uint8_t linearToSrgb8(float linear);
 
 // Relative luminance of linear Rec.709 RGB.
-inline float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+inline float luminance(glm::vec3 c) {
+  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
 
 }  // namespace ibl

@@ -14,7 +14,7 @@ namespace ibl {
 
 inline constexpr int kFaceCount = 6;
 inline constexpr std::array<std::string_view, kFaceCount> kFaceNames = {"px", "nx", "py",
-                                                                       "ny", "pz", "nz"};
+                                                                        "ny", "pz", "nz"};
 
 // Unnormalized direction through the point (sc, tc) in [-1, 1]^2 of a face plane.
 glm::vec3 faceToDirection(int face, float sc, float tc);
@@ -54,8 +54,7 @@ struct CubeMap {
 // Texel of a level addressed with coordinates that may lie up to a few texels outside the face:
 // those are the value at the texel center extended past the edge, projected onto the
 // neighbouring face and interpolated bilinearly there (or at a corner, on one of the faces).
-glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int face, int x,
-                                int y);
+glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int face, int x, int y);
 
 // Bilinear lookup in one level, filtering across face edges (no seams).
 glm::vec3 sampleBilinear(const CubeMap& cube, int level, glm::vec3 dir);

@@ -52,8 +52,8 @@ struct LoadOptions {
 
 struct LoadedEnvironment {
   Environment environment;
-  std::string format;              // "hdr", "exr", "png", "jpg" or "ktx2"
-  InvalidPixelCounts replaced;     // pixels that were NaN, infinite or negative (now 0)
+  std::string format;           // "hdr", "exr", "png", "jpg" or "ktx2"
+  InvalidPixelCounts replaced;  // pixels that were NaN, infinite or negative (now 0)
 };
 
 struct DecodedFile;

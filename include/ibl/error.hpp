@@ -18,7 +18,7 @@ class Error : public std::runtime_error {
 [[noreturn]] void fail(std::string_view what, std::string_view problem);
 
 // Limits applied to every input before memory is allocated for it (see README, "Limits").
-inline constexpr int kMaxImageDimension = 65536;             // width or height of one image
+inline constexpr int kMaxImageDimension = 65536;              // width or height of one image
 inline constexpr std::uint64_t kMaxImagePixels = 1ull << 28;  // 268 M pixels, 3 GiB as float RGB
 inline constexpr std::uint64_t kMaxFileBytes = 4ull << 30;    // 4 GiB
 

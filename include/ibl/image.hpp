@@ -37,7 +37,7 @@ InvalidPixelCounts countInvalidPixels(const Image& image);
 // Replaces NaN, infinite and negative components by 0 and returns how many there were.
 InvalidPixelCounts sanitizePixels(Image& image);
 
-// Copies the w x h block at (x0, y0); flipX / flipY mirror the copied block.
+// Copies the w x h block whose top-left pixel is (x0, y0).
 Image cropImage(const Image& image, int x0, int y0, int w, int h);
 
 // Rotates an image by 180 degrees (the -Z face of a vertical cross is stored so).

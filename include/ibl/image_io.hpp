@@ -20,8 +20,8 @@ std::optional<FileFormat> fileFormatFromExtension(const std::filesystem::path& p
 
 struct DecodedFile {
   FileFormat format = FileFormat::Hdr;
-  int channels = 3;    // channels stored in the file
-  std::string detail;  // e.g. "half, DWAB" or "RLE"
+  int channels = 3;                        // channels stored in the file
+  std::string detail;                      // e.g. "half, DWAB" or "RLE"
   std::vector<std::vector<Image>> levels;  // [level][face]; a plain image is 1 x 1
 };
 

@@ -13,13 +13,13 @@
 
 namespace ibl {
 
-inline constexpr std::uint8_t kKtx2Identifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2',
+inline constexpr std::uint8_t kKtx2Identifier[12] = {0xAB, 'K',  'T',  'X',  ' ',  '2',
                                                      '0',  0xBB, '\r', '\n', 0x1A, '\n'};
 
 struct Ktx2Texture {
   PixelFormat format = PixelFormat::Rgba16f;
-  int faceCount = 1;                                     // 1 (2D) or 6 (cube)
-  std::vector<std::vector<Image>> levels;                // [level][face], level 0 largest
+  int faceCount = 1;                                           // 1 (2D) or 6 (cube)
+  std::vector<std::vector<Image>> levels;                      // [level][face], level 0 largest
   std::vector<std::pair<std::string, std::string>> keyValues;  // besides KTXwriter
 };
 

@@ -10,16 +10,16 @@ namespace ibl {
 
 // The Vulkan formats of the textures ibl writes (values are VkFormat enumerants).
 enum class PixelFormat : std::uint32_t {
-  Rgba16f = 97,      // VK_FORMAT_R16G16B16A16_SFLOAT
-  Rgba32f = 109,     // VK_FORMAT_R32G32B32A32_SFLOAT
-  B10G11R11 = 122,   // VK_FORMAT_B10G11R11_UFLOAT_PACK32
-  E5B9G9R9 = 123,    // VK_FORMAT_E5B9G9R9_UFLOAT_PACK32
+  Rgba16f = 97,     // VK_FORMAT_R16G16B16A16_SFLOAT
+  Rgba32f = 109,    // VK_FORMAT_R32G32B32A32_SFLOAT
+  B10G11R11 = 122,  // VK_FORMAT_B10G11R11_UFLOAT_PACK32
+  E5B9G9R9 = 123,   // VK_FORMAT_E5B9G9R9_UFLOAT_PACK32
 };
 
 std::uint32_t bytesPerTexel(PixelFormat f);
 // Size of one component as KTX2's typeSize field defines it.
 std::uint32_t ktxTypeSize(PixelFormat f);
-std::string_view formatName(PixelFormat f);  // e.g. "rgba16f"
+std::string_view formatName(PixelFormat f);        // e.g. "rgba16f"
 std::string_view vulkanFormatName(PixelFormat f);  // e.g. "VK_FORMAT_R16G16B16A16_SFLOAT"
 std::optional<PixelFormat> parsePixelFormat(std::string_view name);
 std::optional<PixelFormat> pixelFormatFromVk(std::uint32_t vkFormat);

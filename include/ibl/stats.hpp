@@ -7,9 +7,9 @@
 namespace ibl {
 
 struct ImageStats {
-  glm::vec3 min{0.0f};    // over finite values
+  glm::vec3 min{0.0f};  // over finite values
   glm::vec3 max{0.0f};
-  glm::dvec3 mean{0.0};   // plain mean over pixels (finite values)
+  glm::dvec3 mean{0.0};  // plain mean over pixels (finite values)
   InvalidPixelCounts invalid;
 };
 ImageStats imageStats(const Image& image);

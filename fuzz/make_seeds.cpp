@@ -1,0 +1,66 @@
+// Writes small valid files of every format into fuzz/seeds/<reader>/ to start the fuzzers.
+#include <filesystem>
+#include <vector>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfTiledOutputFile.h>
+
+#include "ibl/file_io.hpp"
+#include "ibl/image_io.hpp"
+#include "ibl/ktx2.hpp"
+
+int main(int argc, char** argv) {
+  namespace fs = std::filesystem;
+  const fs::path root = argc > 1 ? argv[1] : "fuzz/seeds";
+  ibl::Image img(9, 4);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    img.pixels[i] = glm::vec3(float(i % 5), float(i % 3) * 0.25f, 100.0f / float(i + 1));
+  ibl::writeFileAtomic(root / "hdr" / "small.hdr", ibl::encodeHdr(img));
+  ibl::writeFileAtomic(root / "hdr" / "narrow.hdr",
+                       ibl::encodeHdr(ibl::Image(3, 2, glm::vec3(1.0f))));
+  ibl::writeFileAtomic(root / "exr" / "half.exr", ibl::encodeExr(img, ibl::ExrPixelType::Half));
+  ibl::writeFileAtomic(root / "exr" / "float.exr", ibl::encodeExr(img, ibl::ExrPixelType::Float));
+  ibl::writeFileAtomic(root / "ldr" / "small.png", ibl::encodePng(img));
+  for (auto f : {ibl::PixelFormat::Rgba16f, ibl::PixelFormat::E5B9G9R9}) {
+    ibl::Ktx2Texture tex;
+    tex.format = f;
+    tex.faceCount = 6;
+    tex.levels.resize(2);
+    for (int m = 0; m < 2; ++m)
+      for (int face = 0; face < 6; ++face)
+        tex.levels[m].push_back(ibl::Image(2 >> m, 2 >> m, glm::vec3(0.5f)));
+    ibl::writeFileAtomic(root / "ktx2" / (std::string(ibl::formatName(f)) + ".ktx2"),
+                         ibl::encodeKtx2(tex));
+  }
+  // Small files in the codecs and layouts real HDRIs use, written by OpenEXR itself.
+  std::vector<Imath::half> px(16 * 16 * 3, Imath::half(0.75f));
+  for (auto [compression, name] :
+       {std::pair{Imf::DWAB_COMPRESSION, "dwab"}, std::pair{Imf::PIZ_COMPRESSION, "piz"},
+        std::pair{Imf::B44_COMPRESSION, "b44"}}) {
+    for (bool tiled : {false, true}) {
+      Imf::Header header(16, 16);
+      header.compression() = compression;
+      Imf::FrameBuffer fb;
+      for (int c = 0; c < 3; ++c) {
+        header.channels().insert(std::string(1, "RGB"[c]), Imf::Channel(Imf::HALF));
+        fb.insert(std::string(1, "RGB"[c]),
+                  Imf::Slice(Imf::HALF, reinterpret_cast<char*>(px.data() + c), 6, 6 * 16));
+      }
+      const fs::path path = root / "exr" / (std::string(name) + (tiled ? "_tiled" : "") + ".exr");
+      if (tiled) {
+        header.setTileDescription(Imf::TileDescription(8, 8, Imf::ONE_LEVEL));
+        Imf::TiledOutputFile file(path.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writeTiles(0, file.numXTiles() - 1, 0, file.numYTiles() - 1);
+      } else {
+        Imf::OutputFile file(path.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(16);
+      }
+    }
+  }
+  return 0;
+}

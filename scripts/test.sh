@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Sets up the machine and runs every check CI runs:
+#   1. release build with warnings as errors, and the whole test suite;
+#   2. clang-format check;
+#   3. libFuzzer on every reader for a bounded time (IBL_FUZZ_SECONDS each, default 15);
+#   4. the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs="$(nproc)"
+
+bash scripts/setup.sh
+
+echo "== release build and tests" >&2
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DIBL_WERROR=ON >/dev/null
+ninja -C build
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+echo "== clang-format" >&2
+git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run --Werror
+
+echo "== fuzzing the readers" >&2
+bash scripts/fuzz.sh "${IBL_FUZZ_SECONDS:-15}"
+
+echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests" >&2
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_SANITIZE=ON \
+  -DIBL_WERROR=ON -DIBL_BUILD_BENCH=OFF >/dev/null
+ninja -C build-asan
+ctest --test-dir build-asan --output-on-failure -j "$jobs"
