@@ -102,6 +102,22 @@ glm::vec3 bilinearInFace(const Image& img, float fx, float fy) {
 }
 }  // namespace
 
+namespace {
+// Where a direction falls among the texel centers of an n x n face: the texel (x0, y0) whose
+// center is at or before it in both axes, and the fractions of a texel past that center.
+struct TexelPosition {
+  int face, x0, y0;
+  float fracX, fracY;
+};
+TexelPosition texelPosition(glm::vec3 dir, int n) {
+  const FacePoint p = directionToFace(dir);
+  const float fx = p.s * static_cast<float>(n) - 0.5f;
+  const float fy = p.t * static_cast<float>(n) - 0.5f;
+  const float flx = std::floor(fx), fly = std::floor(fy);
+  return {p.face, static_cast<int>(flx), static_cast<int>(fly), fx - flx, fy - fly};
+}
+}  // namespace
+
 glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int face, int x,
                                 int y) {
   const int n = level[face].width;
@@ -126,15 +142,12 @@ void cubicBSplineWeights(float t, float w[4]) {
 
 glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir) {
   const auto& faces = cube.levels[level];
-  const FacePoint p = directionToFace(dir);
   const int n = faces[0].width;
-  const float fx = p.s * static_cast<float>(n) - 0.5f;
-  const float fy = p.t * static_cast<float>(n) - 0.5f;
-  const float flx = std::floor(fx), fly = std::floor(fy);
-  const int x0 = static_cast<int>(flx), y0 = static_cast<int>(fly);
+  const TexelPosition p = texelPosition(dir, n);
+  const int x0 = p.x0, y0 = p.y0;
   float wx[4], wy[4];
-  cubicBSplineWeights(fx - flx, wx);
-  cubicBSplineWeights(fy - fly, wy);
+  cubicBSplineWeights(p.fracX, wx);
+  cubicBSplineWeights(p.fracY, wy);
   glm::vec3 sum(0.0f);
   if (x0 >= 1 && y0 >= 1 && x0 + 2 < n && y0 + 2 < n) {
     const Image& img = faces[p.face];
@@ -153,13 +166,10 @@ glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir) {
 
 glm::vec3 sampleBilinear(const CubeMap& cube, int level, glm::vec3 dir) {
   const auto& faces = cube.levels[level];
-  const FacePoint p = directionToFace(dir);
   const int n = faces[0].width;
-  const float fx = p.s * static_cast<float>(n) - 0.5f;
-  const float fy = p.t * static_cast<float>(n) - 0.5f;
-  const float flx = std::floor(fx), fly = std::floor(fy);
-  const int x0 = static_cast<int>(flx), y0 = static_cast<int>(fly);
-  const float wx = fx - flx, wy = fy - fly;
+  const TexelPosition p = texelPosition(dir, n);
+  const int x0 = p.x0, y0 = p.y0;
+  const float wx = p.fracX, wy = p.fracY;
   glm::vec3 c00, c10, c01, c11;
   if (x0 >= 0 && y0 >= 0 && x0 + 1 < n && y0 + 1 < n) {
     const Image& img = faces[p.face];

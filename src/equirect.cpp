@@ -14,6 +14,12 @@ namespace ibl {
 namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr float kPiF = std::numbers::pi_v<float>;
+
+// Column x of a map `w` wide, wrapped around the 360-degree seam.
+int wrapColumn(int x, int w) {
+  x %= w;
+  return x < 0 ? x + w : x;
+}
 }  // namespace
 
 glm::vec2 directionToEquirect(glm::vec3 d) {
@@ -39,9 +45,8 @@ glm::vec3 sampleEquirect(const Image& img, float u, float v) {
   const float fy = std::clamp(v * static_cast<float>(h) - 0.5f, 0.0f, static_cast<float>(h - 1));
   const float flx = std::floor(fx), fly = std::floor(fy);
   const float wx = fx - flx, wy = fy - fly;
-  int x0 = static_cast<int>(flx) % w;
-  if (x0 < 0) x0 += w;
-  const int x1 = x0 + 1 == w ? 0 : x0 + 1;
+  const int x0 = wrapColumn(static_cast<int>(flx), w);
+  const int x1 = wrapColumn(x0 + 1, w);
   const int y0 = static_cast<int>(fly);
   const int y1 = std::min(y0 + 1, h - 1);
   const glm::vec3 top = img.at(x0, y0) * (1.0f - wx) + img.at(x1, y0) * wx;
@@ -58,10 +63,7 @@ glm::vec3 sampleEquirectCubic(const Image& img, float u, float v) {
   cubicBSplineWeights(fx - flx, wx);
   cubicBSplineWeights(fy - fly, wy);
   int xs[4];
-  for (int i = 0; i < 4; ++i) {
-    int x = (static_cast<int>(flx) - 1 + i) % w;
-    xs[i] = x < 0 ? x + w : x;
-  }
+  for (int i = 0; i < 4; ++i) xs[i] = wrapColumn(static_cast<int>(flx) - 1 + i, w);
   glm::vec3 sum(0.0f);
   for (int j = 0; j < 4; ++j) {
     const int y = std::clamp(static_cast<int>(fly) - 1 + j, 0, h - 1);

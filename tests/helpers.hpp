@@ -5,6 +5,7 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -85,6 +86,12 @@ inline Image randomImage(int w, int h, unsigned seed, float maxValue = 100.0f) {
     p = glm::exp2(p * 20.0f - 12.0f) * (maxValue / 256.0f);
   }
   return img;
+}
+
+// stb_image_write callback that appends the written bytes to a std::vector<std::uint8_t>.
+inline void appendToVector(void* vector, void* data, int size) {
+  auto* v = static_cast<std::vector<std::uint8_t>*>(vector);
+  v->insert(v->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
 }
 
 inline double maxRelativeError(glm::vec3 a, glm::vec3 ref) {

@@ -66,13 +66,7 @@ TEST(HdrIo, RoundTripFlatForNarrowImages) {
 TEST(HdrIo, ReadsFilesWrittenByStb) {
   const Image img = randomImage(64, 16, 3);
   std::vector<std::uint8_t> bytes;
-  stbi_write_hdr_to_func(
-      [](void* ctx, void* data, int size) {
-        auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
-        v->insert(v->end(), static_cast<std::uint8_t*>(data),
-                  static_cast<std::uint8_t*>(data) + size);
-      },
-      &bytes, img.width, img.height, 3, &img.pixels[0].x);
+  stbi_write_hdr_to_func(appendToVector, &bytes, img.width, img.height, 3, &img.pixels[0].x);
   expectRgbeClose(decodeHdr(bytes, "stb.hdr"), img);
 }
 

@@ -103,13 +103,7 @@ TEST(LdrIo, Png16IsDecodedWithTheExactCurve) {
 TEST(LdrIo, JpegIsDecoded) {
   std::vector<std::uint8_t> rgb(32 * 32 * 3, 188);
   std::vector<std::uint8_t> jpg;
-  stbi_write_jpg_to_func(
-      [](void* ctx, void* data, int size) {
-        auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
-        v->insert(v->end(), static_cast<std::uint8_t*>(data),
-                  static_cast<std::uint8_t*>(data) + size);
-      },
-      &jpg, 32, 32, 3, rgb.data(), 95);
+  stbi_write_jpg_to_func(appendToVector, &jpg, 32, 32, 3, rgb.data(), 95);
   const DecodedFile d = decodeImageFile(jpg, "t.jpg");
   EXPECT_EQ(d.format, FileFormat::Jpg);
   EXPECT_NEAR(d.levels[0][0].at(10, 10).y, srgb8ToLinear(188), 0.01f);
