@@ -1,0 +1,98 @@
+#pragma once
+// Convolutions of an environment for image-based lighting: the GGX-prefiltered specular cube
+// map of the split-sum approximation (Karis 2013) and the irradiance cube map.
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "ibl/cubemap.hpp"
+
+namespace ibl {
+
+// Roughness of mip level m of L prefiltered levels.
+enum class RoughnessMapping {
+  Linear,     // r = m / (L - 1) (DESIGN.md default)
+  Frostbite,  // r = (m / (L - 1))^2, i.e. level = sqrt(r) (L - 1) (Lagarde & de Rousiers 2014)
+};
+float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping);
+
+// What each specular level averages the environment with (the split sum's first factor).
+enum class PrefilterWeight {
+  Standard,  // D(h) (n.l): Karis 2013, n = v = r
+  FresnelF0Zero,  // D V F (n.l) with F0 = 0: keeps the Fresnel/visibility weight C(n, l)
+  FresnelF0One,   // D V F (n.l) with F0 = 1 (F = 1)
+};
+
+// How a specular level was computed (reported in the manifest).
+struct LevelMethod {
+  float roughness = 0.0f;
+  std::string method;  // "source", "direct", "rings", "sampled"
+  int sourceSize = 0;  // size of the source level read
+  int samples = 0;     // samples per texel ("sampled")
+};
+
+enum class PrefilterMethod {
+  Direct,   // quadrature over source texels, in rings for sharp lobes (prefilterLevelRings)
+  Sampled,  // filtered importance sampling (prefilterLevelSampled)
+};
+
+struct PrefilterOptions {
+  int size = 256;  // size of level 0
+  int levels = 0;  // 0: down to kMinSpecularSize
+  RoughnessMapping mapping = RoughnessMapping::Linear;
+  PrefilterWeight weight = PrefilterWeight::Standard;
+  PrefilterMethod method = PrefilterMethod::Direct;
+  int samples = 64;  // GGX samples per texel with PrefilterMethod::Sampled
+};
+
+inline constexpr int kMinSpecularSize = 8;
+// Levels from `size` down to kMinSpecularSize (or 1 level if size is smaller).
+int defaultSpecularLevels(int size);
+
+using ProgressFn = std::function<void(const std::string& stage)>;
+
+// Prefiltered specular cube map: level m holds the environment averaged with the GGX lobe of
+// roughness roughnessForLevel(m) around n = v = r. Level 0 (r = 0) is the source itself.
+// `source` must hold a full mip chain (buildMipChain) of a power-of-two size.
+CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& options,
+                     std::vector<LevelMethod>* methods = nullptr,
+                     const ProgressFn& progress = {});
+
+// Direct convolution of one specular level over every texel of source level `sourceLevel`:
+// sum L w / sum w with w = weight(n.l) x texel solid angle. The reference for the tests and
+// the accuracy benchmark, and the method for rough levels.
+std::array<Image, kFaceCount> prefilterLevelDirect(const CubeMap& source, int sourceLevel, int size,
+                                                   float roughness, PrefilterWeight weight);
+
+// The same integral, computed in rings for sharp lobes: the lobe's core over a fine source
+// level, then rings [b, 4b] of growing radius (b doubling) over ever coarser levels, at ever
+// coarser output resolution, blended by smooth radial windows that add up to 1. The cost no
+// longer grows with the source resolution times the output resolution.
+std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int size, float roughness,
+                                                  PrefilterWeight weight,
+                                                  LevelMethod* info = nullptr);
+
+// The same convolution for arbitrary directions (brute-force references: pass level 0).
+std::vector<glm::vec3> prefilterDirections(const std::array<Image, kFaceCount>& sourceLevel,
+                                           std::span<const glm::vec3> directions, float roughness,
+                                           PrefilterWeight weight);
+// E(n) / pi for arbitrary directions, by direct convolution over a source level.
+std::vector<glm::vec3> irradianceDirections(const std::array<Image, kFaceCount>& sourceLevel,
+                                            std::span<const glm::vec3> directions);
+
+// Filtered importance sampling of one specular level (Krivanek & Colbert 2008): `samples`
+// Hammersley GGX samples per texel, each read from the source mip whose texel solid angle
+// matches the sample's.
+std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int size,
+                                                    float roughness, int samples,
+                                                    PrefilterWeight weight);
+
+// Irradiance cube map storing E(n) / pi (a white Lambertian surface's radiance), by direct
+// convolution with the clamped cosine over source level `sourceLevel`.
+CubeMap convolveIrradiance(const CubeMap& source, int size, int sourceLevel);
+
+// Index of the first level of `cube` no larger than `size` (the last level if none).
+int levelOfSize(const CubeMap& cube, int size);
+
+}  // namespace ibl

@@ -1,0 +1,29 @@
+#pragma once
+// Low-discrepancy sequences and the importance sampling of BRDF lobes, shared by the bake,
+// the reference renderer and (as constants) the GPU shaders.
+#include <cstdint>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace ibl {
+
+// Van der Corput radical inverse in base 2 (bit reversal of i), in [0, 1).
+float radicalInverse2(std::uint32_t i);
+
+// Point i of the n-point Hammersley set: (i / n, radicalInverse2(i)).
+glm::vec2 hammersley(std::uint32_t i, std::uint32_t n);
+
+// Orthonormal basis whose third column is n (Duff et al. 2017, "Building an Orthonormal
+// Basis, Revisited", JCGT 6(1)); continuous everywhere but at n.z = -1 exactly.
+glm::mat3 tangentFrame(glm::vec3 n);
+
+// Half vector distributed with pdf D(h) (n.h) for GGX of parameter alpha, in the tangent
+// frame (z = n). Walter et al. 2007, eq. 35-36: cos^2 theta = (1 - u) / (1 + (alpha^2 - 1) u).
+glm::vec3 sampleGgxHalfVector(glm::vec2 xi, float alpha);
+
+// Direction with pdf cos(theta) / pi in the tangent frame (Malley's method).
+glm::vec3 sampleCosineHemisphere(glm::vec2 xi);
+
+}  // namespace ibl

@@ -1,0 +1,35 @@
+#pragma once
+// Real spherical harmonics, bands 0..2, with the normalization of Ramamoorthi & Hanrahan 2001
+// ("An Efficient Representation for Irradiance Environment Maps"), as polynomials of the
+// world-frame direction (x, y, z), +Y up. Coefficient order: (l, m) = (0,0), (1,-1), (1,0),
+// (1,1), (2,-2), (2,-1), (2,0), (2,1), (2,2).
+#include <array>
+
+#include <glm/vec3.hpp>
+
+#include "ibl/cubemap.hpp"
+
+namespace ibl {
+
+using Sh9 = std::array<glm::vec3, 9>;  // RGB coefficients
+
+// The nine basis functions at a unit direction.
+std::array<float, 9> shBasis9(glm::vec3 d);
+
+// Radiance coefficients L_lm = integral of L(w) Y_lm(w) dw, with exact texel solid angles.
+Sh9 projectSh9(const CubeMap& cube, int level = 0);
+
+// Radiance reconstructed from the coefficients.
+glm::vec3 evaluateSh9(const Sh9& sh, glm::vec3 d);
+
+// Cosine-lobe convolution factors A_l (R&H eq. 8): pi, 2 pi / 3, pi / 4.
+inline constexpr float kShCosineLobe[3] = {3.14159265f, 2.09439510f, 0.78539816f};
+
+// Irradiance E(n) = sum A_l L_lm Y_lm(n) (R&H eq. 7).
+glm::vec3 irradianceSh9(const Sh9& sh, glm::vec3 n);
+
+// Multiplies band l by the Lanczos sigma factor sinc(l / 3) (1, 0.827, 0.414) to soften the
+// ringing of bright lights (Sloan 2008, "Stupid Spherical Harmonics Tricks").
+Sh9 windowSh9(const Sh9& sh);
+
+}  // namespace ibl
