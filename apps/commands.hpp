@@ -10,5 +10,6 @@ struct GlobalOptions {
 
 void addConvertCommand(CLI::App& app, const GlobalOptions& global);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global);
+void addBakeCommand(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace ibl::cli

@@ -48,12 +48,7 @@ void runInfo(const InfoOptions& o) {
   if (!o.inputLayout.empty()) layout = parseLayout(o.inputLayout);
   if (faces == kFaceCount || layout || layoutFromShape(base.width, base.height)) {
     env = environmentFromFile(std::move(d), {layout}, o.file);
-    if (env->isCube()) {
-      for (auto& lv : env->cube.levels)
-        for (auto& f : lv) sanitizePixels(f);
-    } else {
-      sanitizePixels(env->equirect);
-    }
+    sanitizeEnvironment(*env);
   }
 
   nlohmann::ordered_json j;

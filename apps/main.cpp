@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
       threadLimit = std::make_unique<tbb::global_control>(
           tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   });
+  ibl::cli::addBakeCommand(app, global);
   ibl::cli::addConvertCommand(app, global);
   ibl::cli::addInfoCommand(app, global);
   try {

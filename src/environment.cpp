@@ -143,13 +143,29 @@ LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& op
     out.format = fileFormatName(d.format);
     env = environmentFromFile(std::move(d), options, path);
   }
+  out.replaced = sanitizeEnvironment(env);
+  return out;
+}
+
+LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes, std::string_view name,
+                                            const LoadOptions& options) {
+  LoadedEnvironment out;
+  DecodedFile d = decodeImageFile(bytes, name);
+  out.format = fileFormatName(d.format);
+  out.environment = environmentFromFile(std::move(d), options, name);
+  out.replaced = sanitizeEnvironment(out.environment);
+  return out;
+}
+
+InvalidPixelCounts sanitizeEnvironment(Environment& env) {
+  InvalidPixelCounts replaced;
   if (env.isCube()) {
     for (auto& level : env.cube.levels)
-      for (auto& face : level) out.replaced += sanitizePixels(face);
+      for (auto& face : level) replaced += sanitizePixels(face);
   } else {
-    out.replaced += sanitizePixels(env.equirect);
+    replaced += sanitizePixels(env.equirect);
   }
-  return out;
+  return replaced;
 }
 
 }  // namespace ibl

@@ -1,7 +1,10 @@
 #include "ibl/sampling.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <numbers>
+
+#include <glm/geometric.hpp>
 
 namespace ibl {
 
@@ -36,10 +39,37 @@ glm::vec3 sampleGgxHalfVector(glm::vec2 xi, float alpha) {
   return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
 }
 
-glm::vec3 sampleCosineHemisphere(glm::vec2 xi) {
+glm::vec2 uniformDiskPoint(glm::vec2 xi) {
   const float r = std::sqrt(xi.x);
   const float phi = 2.0f * std::numbers::pi_v<float> * xi.y;
-  return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - xi.x))};
+  return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+GgxVisibleNormalSampler::GgxVisibleNormalSampler(glm::vec3 v, float alpha) : alpha_(alpha) {
+  // Stretch the view to the hemisphere configuration and build a frame around it.
+  vh_ = glm::normalize(glm::vec3(alpha * v.x, alpha * v.y, v.z));
+  const float lensq = vh_.x * vh_.x + vh_.y * vh_.y;
+  t1_ = lensq > 0.0f ? glm::vec3(-vh_.y, vh_.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1, 0, 0);
+  t2_ = glm::cross(vh_, t1_);
+  s_ = 0.5f * (1.0f + vh_.z);
+}
+
+glm::vec3 GgxVisibleNormalSampler::sample(glm::vec2 disk) const {
+  // Warp the disk onto the projection of the visible hemisphere, lift, unstretch.
+  const float p1 = disk.x;
+  const float p2 = (1.0f - s_) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s_ * disk.y;
+  const glm::vec3 nh = p1 * t1_ + p2 * t2_ + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh_;
+  return glm::normalize(glm::vec3(alpha_ * nh.x, alpha_ * nh.y, std::max(0.0f, nh.z)));
+}
+
+glm::vec3 sampleGgxVisibleNormal(glm::vec3 v, glm::vec2 xi, float alpha) {
+  return GgxVisibleNormalSampler(v, alpha).sample(uniformDiskPoint(xi));
+}
+
+glm::vec3 sampleCosineHemisphere(glm::vec2 xi) {
+  // Malley: a uniform disk point lifted to the hemisphere.
+  const glm::vec2 d = uniformDiskPoint(xi);
+  return {d.x, d.y, std::sqrt(std::max(0.0f, 1.0f - xi.x))};
 }
 
 }  // namespace ibl

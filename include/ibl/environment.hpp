@@ -2,7 +2,9 @@
 // An HDR environment as loaded from disk (equirectangular or cube map), and the cross and
 // six-face layouts of cube maps.
 #include <filesystem>
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -62,6 +64,14 @@ struct DecodedFile;
 // laid out by shape or options.layout), without sanitizing. `name` is used in errors.
 Environment environmentFromFile(DecodedFile&& file, const LoadOptions& options,
                                 std::string_view name);
+
+// Replaces NaN, infinite and negative components of every image of an environment by 0.
+InvalidPixelCounts sanitizeEnvironment(Environment& env);
+
+// Decodes an environment from memory (any format, one file), replacing NaN, infinite and
+// negative pixel components by 0.
+LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes, std::string_view name,
+                                            const LoadOptions& options = {});
 
 // Reads an environment in any supported format and layout; NaN, infinite and negative pixel
 // components are replaced by 0 and counted. Throws Error naming the file on any problem.

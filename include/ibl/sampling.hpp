@@ -23,6 +23,24 @@ glm::mat3 tangentFrame(glm::vec3 n);
 // frame (z = n). Walter et al. 2007, eq. 35-36: cos^2 theta = (1 - u) / (1 + (alpha^2 - 1) u).
 glm::vec3 sampleGgxHalfVector(glm::vec2 xi, float alpha);
 
+// Point of the unit disk, uniform in area: (sqrt(u1) cos 2 pi u2, sqrt(u1) sin 2 pi u2).
+glm::vec2 uniformDiskPoint(glm::vec2 xi);
+
+// GGX normals visible from direction v (tangent frame, v.z > 0), distributed with pdf
+// G1(v) max(0, v.h) D(h) / (n.v): Heitz 2018, "Sampling the GGX Distribution of Visible
+// Normals", listing 1 (isotropic). Reflecting v about one gives l with pdf G1 D / (4 n.v).
+// The view-dependent part is computed once; sample() maps a uniform disk point to a normal.
+class GgxVisibleNormalSampler {
+ public:
+  GgxVisibleNormalSampler(glm::vec3 v, float alpha);
+  glm::vec3 sample(glm::vec2 disk) const;
+
+ private:
+  glm::vec3 vh_, t1_, t2_;
+  float alpha_, s_;
+};
+glm::vec3 sampleGgxVisibleNormal(glm::vec3 v, glm::vec2 xi, float alpha);
+
 // Direction with pdf cos(theta) / pi in the tangent frame (Malley's method).
 glm::vec3 sampleCosineHemisphere(glm::vec2 xi);
 

@@ -1,0 +1,12 @@
+#pragma once
+// The bundled default environment: data/hdri/sunset.exr (512 x 256 half-float DWAB EXR with a
+// visible sun; CC0, Poly Haven), compiled into the library.
+#include <cstdint>
+#include <span>
+
+namespace ibl {
+
+inline constexpr const char* kDefaultEnvironmentName = "sunset.exr";
+std::span<const std::uint8_t> defaultEnvironmentBytes();
+
+}  // namespace ibl

@@ -1,0 +1,77 @@
+#include "ibl/preview.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <tbb/parallel_for.h>
+
+#include "ibl/color.hpp"
+#include "ibl/dfg.hpp"
+
+namespace ibl {
+
+namespace {
+
+// Mip level holding roughness r, the inverse of roughnessForLevel.
+float lodForRoughness(float r, int levelCount, RoughnessMapping mapping) {
+  const float t = mapping == RoughnessMapping::Linear ? r : std::sqrt(r);
+  return t * static_cast<float>(levelCount - 1);
+}
+
+}  // namespace
+
+Image renderMaterialGrid(const PreviewAssets& a, int columns, int cell) {
+  const int rows = 2;
+  Image img(columns * cell, rows * cell);
+  const glm::vec3 view(0.0f, 0.0f, 1.0f);  // orthographic camera on +Z looking toward -Z
+  tbb::parallel_for(0, img.height, [&](int py) {
+    for (int px = 0; px < img.width; ++px) {
+      const int col = px / cell, row = py / cell;
+      const float radius = 0.42f * static_cast<float>(cell);
+      const float dx = (static_cast<float>(px % cell) + 0.5f - 0.5f * static_cast<float>(cell)) / radius;
+      const float dy = (0.5f * static_cast<float>(cell) - static_cast<float>(py % cell) - 0.5f) / radius;
+      const float d2 = dx * dx + dy * dy;
+      if (d2 >= 1.0f) {  // background: the environment behind the grid, blurred a little
+        const glm::vec3 dir = glm::normalize(glm::vec3(
+            (static_cast<float>(px) / static_cast<float>(img.width) - 0.5f) * 1.6f,
+            (0.5f - static_cast<float>(py) / static_cast<float>(img.height)) * 0.6f, -1.0f));
+        img.at(px, py) = sampleTrilinear(a.specular, 1.0f, dir) * 0.5f;
+        continue;
+      }
+      const glm::vec3 n(dx, dy, std::sqrt(1.0f - d2));
+      const float r = columns > 1 ? static_cast<float>(col) / static_cast<float>(columns - 1) : 0.5f;
+      const bool metal = row == 1;
+      const glm::vec3 albedo(0.8f);
+      const glm::vec3 f0 = metal ? glm::vec3(0.95f) : glm::vec3(0.04f);
+      const float NoV = std::max(glm::dot(n, view), 1e-4f);
+      const glm::vec3 refl = 2.0f * glm::dot(n, view) * n - view;
+      const glm::vec3 dfg = sampleDfgLut(a.dfg, NoV, r);
+      const glm::vec3 ld = sampleTrilinear(a.specular, lodForRoughness(r, a.specular.levelCount(), a.mapping), refl);
+      // Split sum with multiple-scattering compensation (dfg.hpp).
+      const glm::vec3 specular = ld * (f0 * dfg.x + dfg.y) * (1.0f + f0 * (1.0f / (dfg.x + dfg.y) - 1.0f));
+      const glm::vec3 diffuse = metal ? glm::vec3(0.0f) : albedo * sampleBilinear(a.irradiance, 0, n) * dfg.z;
+      img.at(px, py) = diffuse + specular;
+    }
+  });
+  return img;
+}
+
+Image toneMapAces(const Image& image, float exposure) {
+  const float scale = std::exp2(exposure);
+  Image out(image.width, image.height);
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    const glm::vec3 x = image.pixels[i] * scale;
+    out.pixels[i] = glm::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+  }
+  return out;
+}
+
+float autoExposure(const Image& image) {
+  double sum = 0.0;
+  for (const auto& p : image.pixels) sum += luminance(p);
+  const double mean = sum / static_cast<double>(std::max<std::size_t>(1, image.pixels.size()));
+  return mean > 0.0 ? static_cast<float>(std::log2(0.18 / mean)) : 0.0f;
+}
+
+}  // namespace ibl
