@@ -130,3 +130,30 @@ TEST(Cli, BadInputsFailCleanlyAndWriteNothing) {
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("unknown output format"), std::string::npos);
 }
+
+TEST(Cli, BakeDefaultEnvironment) {
+  TempDir dir;
+  const CliRun r = runIbl("bake -o " + quote(dir / "out") + " --size 32 --dfg-size 16 --dfg-samples 64 --hdr --layout vcross");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("baked sunset.exr (bundled)"), std::string::npos) << r.output;
+  for (const char* f : {"manifest.json", "specular.ktx2", "irradiance.ktx2", "source.ktx2", "dfg.ktx2", "sh.json",
+                        "preview.png", "specular_m0.hdr", "irradiance.hdr"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+  const auto bytes = readFileBytes(dir / "out" / "manifest.json");
+  const auto m = nlohmann::json::parse(bytes.begin(), bytes.end());
+  EXPECT_EQ(m["source"]["path"], "(bundled default: sunset.exr)");
+}
+
+TEST(Cli, BakeFailsCleanly) {
+  TempDir dir;
+  std::ofstream(dir / "bad.hdr") << "#?RADIANCE\n\n-Y 8 +X 16\n";
+  CliRun r = runIbl("bake " + quote(dir / "bad.hdr") + " -o " + quote(dir / "out"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("bad.hdr: truncated"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+  r = runIbl("bake -o " + quote(dir / "out") + " --size 100");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("power of two"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+  EXPECT_EQ(countFiles(dir.path()), 1);  // bad.hdr only: no staging directory
+}
