@@ -49,19 +49,24 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
 
   LoadOptions loadOptions;
   if (!o.inputLayout.empty()) loadOptions.layout = parseLayout(o.inputLayout);
-  const std::string name = o.input.empty() ? std::string(kDefaultEnvironmentName) + " (bundled)" : o.input;
-  const LoadedEnvironment loaded = o.input.empty()
-                                       ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), name, loadOptions)
-                                       : loadEnvironment(o.input, loadOptions);
+  const std::string name =
+      o.input.empty() ? std::string(kDefaultEnvironmentName) + " (bundled)" : o.input;
+  const LoadedEnvironment loaded =
+      o.input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), name, loadOptions)
+                      : loadEnvironment(o.input, loadOptions);
   if (loaded.replaced.total() > 0 && !global.quiet)
-    fmt::print(stderr, "ibl: warning: {}: replaced {} NaN, {} infinite and {} negative pixel components by 0\n",
-               name, loaded.replaced.nan, loaded.replaced.infinite, loaded.replaced.negative);
+    fmt::print(
+        stderr,
+        "ibl: warning: {}: replaced {} NaN, {} infinite and {} negative pixel components by 0\n",
+        name, loaded.replaced.nan, loaded.replaced.infinite, loaded.replaced.negative);
 
   BakeOptions options;
   options.specular.size = o.size;
   options.specular.levels = o.levels;
-  options.specular.mapping = o.mapping == "frostbite" ? RoughnessMapping::Frostbite : RoughnessMapping::Linear;
-  options.specular.method = o.method == "sampled" ? PrefilterMethod::Sampled : PrefilterMethod::Direct;
+  options.specular.mapping =
+      o.mapping == "frostbite" ? RoughnessMapping::Frostbite : RoughnessMapping::Linear;
+  options.specular.method =
+      o.method == "sampled" ? PrefilterMethod::Sampled : PrefilterMethod::Direct;
   options.specular.samples = o.samples;
   options.fresnelWeighted = o.fresnelWeighted;
   options.irradianceSize = o.irradianceSize;
@@ -79,17 +84,22 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
   output.format = *parsePixelFormat(o.format);
   output.exr = o.exr;
   output.hdr = o.hdr;
-  output.layout = o.layout == "faces" ? FlatLayout::Faces : o.layout == "vcross" ? FlatLayout::VCross : FlatLayout::HCross;
+  output.layout = o.layout == "faces"    ? FlatLayout::Faces
+                  : o.layout == "vcross" ? FlatLayout::VCross
+                                         : FlatLayout::HCross;
   output.preview = !o.noPreview;
   const Environment& env = loaded.environment;
-  BakeSource source{o.input, loaded.format, std::string(layoutName(env.layout)),
+  BakeSource source{o.input,
+                    loaded.format,
+                    std::string(layoutName(env.layout)),
                     env.isCube() ? env.cube.size() : env.equirect.width,
-                    env.isCube() ? env.cube.size() : env.equirect.height, loaded.replaced};
+                    env.isCube() ? env.cube.size() : env.equirect.height,
+                    loaded.replaced};
   progress("writing outputs");
   const auto files = writeBakeOutputs(result, options, output, source, o.output);
   if (!global.quiet) {
-    fmt::print(stderr, "baked {} into {}: {} files in {:.2f} s (bake {:.0f} ms)\n", name, o.output, files.size(),
-               elapsed(), result.timingsMs.at("total"));
+    fmt::print(stderr, "baked {} into {}: {} files in {:.2f} s (bake {:.0f} ms)\n", name, o.output,
+               files.size(), elapsed(), result.timingsMs.at("total"));
   }
 }
 
@@ -97,35 +107,53 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
 
 void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   auto opts = std::make_shared<BakeCliOptions>();
-  CLI::App* cmd = app.add_subcommand("bake", "Bake an HDR environment into IBL assets (specular, irradiance, SH9, DFG)");
-  cmd->add_option("input", opts->input, "Environment (any `ibl convert` input); default: the bundled sunset.exr");
+  CLI::App* cmd = app.add_subcommand(
+      "bake", "Bake an HDR environment into IBL assets (specular, irradiance, SH9, DFG)");
+  cmd->add_option("input", opts->input,
+                  "Environment (any `ibl convert` input); default: the bundled sunset.exr");
   cmd->add_option("-o,--output", opts->output, "Output directory")->required();
-  cmd->add_option("--input-layout", opts->inputLayout, "Input layout (default: from the image shape)")
+  cmd->add_option("--input-layout", opts->inputLayout,
+                  "Input layout (default: from the image shape)")
       ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "faces"}));
   cmd->add_option("--size", opts->size, "Specular (and source) cube size, a power of two")
-      ->check(CLI::Range(1, 4096))->capture_default_str();
-  cmd->add_option("--levels", opts->levels, "Specular mip levels (default: down to 8x8)")->check(CLI::Range(0, 13));
-  cmd->add_option("--mapping", opts->mapping, "Roughness of level m: linear r = m/(L-1), frostbite r = (m/(L-1))^2")
-      ->check(CLI::IsMember({"linear", "frostbite"}))->capture_default_str();
-  cmd->add_option("--method", opts->method, "Specular convolution: direct (quadrature in rings) or sampled (FIS)")
-      ->check(CLI::IsMember({"direct", "sampled"}))->capture_default_str();
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  cmd->add_option("--levels", opts->levels, "Specular mip levels (default: down to 8x8)")
+      ->check(CLI::Range(0, 13));
+  cmd->add_option("--mapping", opts->mapping,
+                  "Roughness of level m: linear r = m/(L-1), frostbite r = (m/(L-1))^2")
+      ->check(CLI::IsMember({"linear", "frostbite"}))
+      ->capture_default_str();
+  cmd->add_option("--method", opts->method,
+                  "Specular convolution: direct (quadrature in rings) or sampled (FIS)")
+      ->check(CLI::IsMember({"direct", "sampled"}))
+      ->capture_default_str();
   cmd->add_option("--samples", opts->samples, "GGX samples per texel with --method sampled")
-      ->check(CLI::Range(1, 65536))->capture_default_str();
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
   cmd->add_flag("--fresnel-weighted", opts->fresnelWeighted,
                 "Also bake the C(n,l)-weighted specular pair (specular_f0_0, specular_f0_1)");
   cmd->add_option("--irradiance-size", opts->irradianceSize, "Irradiance cube size")
-      ->check(CLI::Range(1, 1024))->capture_default_str();
-  cmd->add_option("--dfg-size", opts->dfgSize, "DFG table size")->check(CLI::Range(2, 4096))->capture_default_str();
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  cmd->add_option("--dfg-size", opts->dfgSize, "DFG table size")
+      ->check(CLI::Range(2, 4096))
+      ->capture_default_str();
   cmd->add_option("--dfg-samples", opts->dfgSamples, "Integration points per DFG texel")
-      ->check(CLI::Range(1, 1 << 20))->capture_default_str();
-  cmd->add_flag("--sh-window", opts->shWindow, "Window the SH9 coefficients (Lanczos) against ringing");
-  cmd->add_option("--rotate", opts->rotate, "Rotate the environment about +Y by DEG degrees")->capture_default_str();
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  cmd->add_flag("--sh-window", opts->shWindow,
+                "Window the SH9 coefficients (Lanczos) against ringing");
+  cmd->add_option("--rotate", opts->rotate, "Rotate the environment about +Y by DEG degrees")
+      ->capture_default_str();
   cmd->add_option("--format", opts->format, "KTX2 texel format of the cube maps")
-      ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}))->capture_default_str();
+      ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}))
+      ->capture_default_str();
   cmd->add_flag("--exr", opts->exr, "Also write EXR files");
   cmd->add_flag("--hdr", opts->hdr, "Also write Radiance HDR files");
   cmd->add_option("--layout", opts->layout, "Layout of EXR/HDR cube maps")
-      ->check(CLI::IsMember({"hcross", "vcross", "faces"}))->capture_default_str();
+      ->check(CLI::IsMember({"hcross", "vcross", "faces"}))
+      ->capture_default_str();
   cmd->add_flag("--no-preview", opts->noPreview, "Skip the PNG previews");
   cmd->callback([opts, &global] { runBake(*opts, global); });
 }

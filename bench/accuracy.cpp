@@ -49,7 +49,8 @@ double levelError(const std::array<ibl::Image, 6>& level, const std::array<ibl::
   std::vector<glm::vec3> dirs;
   for (const auto& [f, p] : texels) dirs.push_back(ibl::texelDirection(f, p.x, p.y, size));
   const auto ref = irradiance ? ibl::irradianceDirections(source, dirs)
-                              : ibl::prefilterDirections(source, dirs, roughness, ibl::PrefilterWeight::Standard);
+                              : ibl::prefilterDirections(source, dirs, roughness,
+                                                         ibl::PrefilterWeight::Standard);
   std::vector<float> a, b;
   for (std::size_t i = 0; i < texels.size(); ++i) {
     a.push_back(ibl::luminance(level[texels[i].first].at(texels[i].second.x, texels[i].second.y)));
@@ -65,10 +66,12 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) names.push_back(argv[i]);
   if (names.empty()) names = {"sunset", "park", "studio"};
   for (const auto& name : names) {
-    const auto env = ibl::loadEnvironment(std::string(IBL_BENCH_DATA) + "/hdri/" + name + ".exr").environment;
+    const auto env =
+        ibl::loadEnvironment(std::string(IBL_BENCH_DATA) + "/hdri/" + name + ".exr").environment;
     ibl::CubeMap source = ibl::resampleToCube(env, 256);
     ibl::buildMipChain(source);
-    fmt::print("{} (256^2 source, relative RMSE of luminance against the brute-force reference)\n", name);
+    fmt::print("{} (256^2 source, relative RMSE of luminance against the brute-force reference)\n",
+               name);
     for (auto method : {ibl::PrefilterMethod::Direct, ibl::PrefilterMethod::Sampled}) {
       ibl::PrefilterOptions options;
       options.method = method;
@@ -76,16 +79,22 @@ int main(int argc, char** argv) {
       const auto t0 = Clock::now();
       const ibl::CubeMap specular = ibl::prefilterGgx(source, options, &methods);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-      fmt::print("  specular, {} ({:.0f} ms)\n", method == ibl::PrefilterMethod::Direct ? "direct (default)" : "filtered importance sampling, 64 samples", ms);
+      fmt::print("  specular, {} ({:.0f} ms)\n",
+                 method == ibl::PrefilterMethod::Direct
+                     ? "direct (default)"
+                     : "filtered importance sampling, 64 samples",
+                 ms);
       for (int m = 1; m < specular.levelCount(); ++m) {
-        const double e = levelError(specular.levels[m], source.levels[0], methods[m].roughness, false);
+        const double e =
+            levelError(specular.levels[m], source.levels[0], methods[m].roughness, false);
         fmt::print("    level {}  {:3}^2  r = {:.3f}  {:8} source {:3}^2  {:7.3f} %\n", m,
                    specular.levels[m][0].width, methods[m].roughness, methods[m].method,
                    methods[m].sourceSize, 100.0 * e);
       }
     }
     const auto t1 = Clock::now();
-    const ibl::CubeMap irradiance = ibl::convolveIrradiance(source, 32, ibl::levelOfSize(source, 32));
+    const ibl::CubeMap irradiance =
+        ibl::convolveIrradiance(source, 32, ibl::levelOfSize(source, 32));
     const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t1).count();
     fmt::print("  irradiance 32^2, direct over the 32^2 level ({:.0f} ms)  {:7.3f} %\n", ms,
                100.0 * levelError(irradiance.levels[0], source.levels[0], 0.0f, true));

@@ -1,12 +1,14 @@
 #include "ibl/bake.hpp"
 
 #include <chrono>
+#include <functional>
 #include <system_error>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include "ibl/dfg.hpp"
 #include "ibl/error.hpp"
@@ -22,6 +24,8 @@ namespace ibl {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
+constexpr int kPreviewColumns = 6, kPreviewCell = 96;
+
 namespace {
 
 class StageTimer {
@@ -31,7 +35,8 @@ class StageTimer {
   auto operator()(const std::string& stage, F&& f) {
     const auto start = std::chrono::steady_clock::now();
     auto result = f();
-    timings_[stage] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    timings_[stage] =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result;
   }
 
@@ -41,7 +46,8 @@ class StageTimer {
 
 }  // namespace
 
-BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const ProgressFn& progress) {
+BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o,
+                           const ProgressFn& progress) {
   BakeResult r;
   StageTimer time(r.timingsMs);
   const auto start = std::chrono::steady_clock::now();
@@ -58,7 +64,9 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
   // The DFG table does not depend on the environment: compute it beside the convolutions.
   tbb::parallel_invoke(
       [&] {
-        r.specular = time("specular", [&] { return prefilterGgx(r.source, o.specular, &r.specularLevels, progress); });
+        r.specular = time("specular", [&] {
+          return prefilterGgx(r.source, o.specular, &r.specularLevels, progress);
+        });
         if (o.fresnelWeighted) {
           PrefilterOptions variant = o.specular;
           variant.weight = PrefilterWeight::FresnelF0Zero;
@@ -66,23 +74,32 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
           variant.weight = PrefilterWeight::FresnelF0One;
           r.specularF0One = time("specular_f0_1", [&] { return prefilterGgx(r.source, variant); });
         }
-        if (progress) progress(fmt::format("irradiance {}x{} and SH9", o.irradianceSize, o.irradianceSize));
+        if (progress)
+          progress(fmt::format("irradiance {}x{} and SH9", o.irradianceSize, o.irradianceSize));
         r.irradiance = time("irradiance", [&] {
-          return convolveIrradiance(r.source, o.irradianceSize, levelOfSize(r.source, o.irradianceSize));
+          return convolveIrradiance(r.source, o.irradianceSize,
+                                    levelOfSize(r.source, o.irradianceSize));
         });
         r.sh = time("sh", [&] {
-          const Sh9 sh = projectSh9(r.source, 0);
+          // The 64^2 level integrates like level 0 (box-filtered mips keep every texel's
+          // integral), and bands 0-2 vary slowly across its texels: 16x less work.
+          const Sh9 sh = projectSh9(r.source, levelOfSize(r.source, 64));
           return o.shWindow ? windowSh9(sh) : sh;
         });
       },
-      [&] { r.dfg = time("dfg", [&] { return integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples); }); });
-  r.timingsMs["total"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      [&] {
+        r.dfg = time("dfg", [&] { return integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples); });
+      });
+  r.timingsMs["total"] =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return r;
 }
 
 namespace {
 
-Json vec3Json(glm::vec3 v) { return Json::array({v.x, v.y, v.z}); }
+Json vec3Json(glm::vec3 v) {
+  return Json::array({v.x, v.y, v.z});
+}
 
 Json conventionsJson(const BakeOptions& o, const BakeResult& r) {
   Json c;
@@ -104,14 +121,18 @@ Json conventionsJson(const BakeOptions& o, const BakeResult& r) {
                    {"center", "+X"},
                    {"rotate_degrees", o.rotateDegrees},
                    {"rotation", "R_y(deg), right-handed about +Y: a feature at d appears at R d"}};
-  c["roughness"] = {{"parameter", "perceptual roughness r (glTF metallic-roughness)"}, {"alpha", "r^2"}};
+  c["roughness"] = {{"parameter", "perceptual roughness r (glTF metallic-roughness)"},
+                    {"alpha", "r^2"}};
   Json levels = Json::array();
   for (const auto& l : r.specularLevels) levels.push_back(l.roughness);
   c["specular"] = {
       {"model", "split sum (Karis 2013), n = v = r, GGX with alpha = r^2"},
       {"mapping", o.specular.mapping == RoughnessMapping::Linear ? "linear" : "frostbite"},
-      {"level_roughness", o.specular.mapping == RoughnessMapping::Linear ? "r = m / (L - 1)" : "r = (m / (L - 1))^2"},
-      {"lod_from_roughness", o.specular.mapping == RoughnessMapping::Linear ? "lod = r (L - 1)" : "lod = sqrt(r) (L - 1)"},
+      {"level_roughness",
+       o.specular.mapping == RoughnessMapping::Linear ? "r = m / (L - 1)" : "r = (m / (L - 1))^2"},
+      {"lod_from_roughness", o.specular.mapping == RoughnessMapping::Linear
+                                 ? "lod = r (L - 1)"
+                                 : "lod = sqrt(r) (L - 1)"},
       {"weight", "D(h) (n.l)"},
       {"level0", "mirror reflection: the source itself"},
       {"roughness_per_level", levels}};
@@ -130,22 +151,27 @@ Json conventionsJson(const BakeOptions& o, const BakeResult& r) {
               {"multiple_scattering", "specular *= 1 + F0 * (1 / (A + B) - 1)"}};
   c["irradiance"] = {{"stores", "E(n) / pi: the radiance of a white Lambertian surface"},
                      {"constant_environment", "L stays L"}};
-  c["sh"] = {{"basis", "real spherical harmonics, bands 0..2, Ramamoorthi & Hanrahan 2001 normalization"},
-             {"order", {"(0,0)", "(1,-1)", "(1,0)", "(1,1)", "(2,-2)", "(2,-1)", "(2,0)", "(2,1)", "(2,2)"}},
-             {"functions",
-              {"0.282095", "0.488603 y", "0.488603 z", "0.488603 x", "1.092548 x y", "1.092548 y z",
-               "0.315392 (3 z^2 - 1)", "1.092548 x z", "0.546274 (x^2 - y^2)"}},
-             {"frame", "world (x, y, z), +Y up"},
-             {"coefficients", "radiance L_lm = integral of L Y_lm"},
-             {"irradiance", "E(n) = sum A_l L_lm Y_lm(n), A = (pi, 2 pi / 3, pi / 4); divide by pi for the "
-                            "irradiance cube's units"},
-             {"windowed", o.shWindow ? "Lanczos sigma factors (1, 0.827, 0.414)" : "no"}};
+  c["sh"] = {
+      {"basis", "real spherical harmonics, bands 0..2, Ramamoorthi & Hanrahan 2001 normalization"},
+      {"order",
+       {"(0,0)", "(1,-1)", "(1,0)", "(1,1)", "(2,-2)", "(2,-1)", "(2,0)", "(2,1)", "(2,2)"}},
+      {"functions",
+       {"0.282095", "0.488603 y", "0.488603 z", "0.488603 x", "1.092548 x y", "1.092548 y z",
+        "0.315392 (3 z^2 - 1)", "1.092548 x z", "0.546274 (x^2 - y^2)"}},
+      {"frame", "world (x, y, z), +Y up"},
+      {"coefficients", "radiance L_lm = integral of L Y_lm"},
+      {"irradiance",
+       "E(n) = sum A_l L_lm Y_lm(n), A = (pi, 2 pi / 3, pi / 4); divide by pi for the "
+       "irradiance cube's units"},
+      {"windowed", o.shWindow ? "Lanczos sigma factors (1, 0.827, 0.414)" : "no"}};
   c["color"] = {{"primaries", "Rec.709 / sRGB"}, {"encoding", "linear"}};
   return c;
 }
 
+// A file to write: encoded later, all files in parallel.
 struct PendingFile {
   fs::path path;  // relative to the output directory
+  std::function<std::vector<std::uint8_t>()> encode;
   std::vector<std::uint8_t> bytes;
 };
 
@@ -158,10 +184,11 @@ Ktx2Texture cubeTexture(const CubeMap& cube, PixelFormat format) {
 }
 
 // One cube map as flat files (cross or six faces) in `format` (EXR or HDR), level by level.
-void addFlatCube(std::vector<PendingFile>& files, Json& outputs, const Json& entry, const CubeMap& cube,
-                 const std::string& stem, FileFormat format, FlatLayout layout) {
+void addFlatCube(std::vector<PendingFile>& files, Json& outputs, const Json& entry,
+                 const CubeMap& cube, const std::string& stem, FileFormat format,
+                 FlatLayout layout) {
   const std::string ext = format == FileFormat::Exr ? ".exr" : ".hdr";
-  const auto encode = [&](const Image& img) {
+  const auto encoder = [format](const Image& img) {
     return format == FileFormat::Exr ? encodeExr(img, ExrPixelType::Half) : encodeHdr(img);
   };
   for (int m = 0; m < cube.levelCount(); ++m) {
@@ -174,7 +201,7 @@ void addFlatCube(std::vector<PendingFile>& files, Json& outputs, const Json& ent
       Json paths = Json::array();
       for (int f = 0; f < kFaceCount; ++f) {
         const std::string p = fmt::format("{}_{}{}", base, kFaceNames[f], ext);
-        files.push_back({p, encode(cube.levels[m][f])});
+        files.push_back({p, [=, &cube] { return encoder(cube.levels[m][f]); }, {}});
         paths.push_back(p);
       }
       e["layout"] = "faces";
@@ -182,7 +209,10 @@ void addFlatCube(std::vector<PendingFile>& files, Json& outputs, const Json& ent
       e["paths"] = paths;
     } else {
       const std::string p = base + ext;
-      files.push_back({p, encode(crossFromCube(cube, m, layout == FlatLayout::VCross))});
+      files.push_back(
+          {p,
+           [=, &cube] { return encoder(crossFromCube(cube, m, layout == FlatLayout::VCross)); },
+           {}});
       e["layout"] = layout == FlatLayout::VCross ? "vcross" : "hcross";
       e["path"] = p;
     }
@@ -190,13 +220,17 @@ void addFlatCube(std::vector<PendingFile>& files, Json& outputs, const Json& ent
   }
 }
 
-void writeAll(const std::vector<PendingFile>& files, const fs::path& outDir, std::vector<fs::path>& written) {
+void writeAll(std::vector<PendingFile>& files, const fs::path& outDir,
+              std::vector<fs::path>& written) {
+  tbb::parallel_for(std::size_t{0}, files.size(),
+                    [&](std::size_t i) { files[i].bytes = files[i].encode(); });
   std::error_code ec;
   if (!fs::exists(outDir, ec)) {
     // Stage beside the destination and rename it into place: the directory appears complete.
     const fs::path parent = outDir.has_parent_path() ? outDir.parent_path() : fs::path(".");
     fs::create_directories(parent, ec);
-    const fs::path staging = parent / fmt::format(".{}.ibl-staging-{}", outDir.filename().string(), ::getpid());
+    const fs::path staging =
+        parent / fmt::format(".{}.ibl-staging-{}", outDir.filename().string(), ::getpid());
     fs::remove_all(staging, ec);
     try {
       for (const auto& f : files) writeFileAtomic(staging / f.path, f.bytes);
@@ -218,20 +252,29 @@ void writeAll(const std::vector<PendingFile>& files, const fs::path& outDir, std
 
 }  // namespace
 
-std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o, const BakeOutputOptions& out,
-                                       const BakeSource& src, const fs::path& outDir) {
+std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o,
+                                       const BakeOutputOptions& out, const BakeSource& src,
+                                       const fs::path& outDir) {
   std::vector<PendingFile> files;
   Json outputs = Json::array();
   const std::string fmtName(formatName(out.format));
 
-  const auto addCube = [&](const std::string& role, const std::string& stem, const CubeMap& cube, Json extra) {
-    Json e = {{"role", role}, {"path", stem + ".ktx2"}, {"format", "ktx2"}, {"pixel_format", fmtName},
-              {"vk_format", vulkanFormatName(out.format)}, {"size", {cube.size(), cube.size()}}, {"faces", 6},
+  const auto addCube = [&](const std::string& role, const std::string& stem, const CubeMap& cube,
+                           Json extra) {
+    Json e = {{"role", role},
+              {"path", stem + ".ktx2"},
+              {"format", "ktx2"},
+              {"pixel_format", fmtName},
+              {"vk_format", vulkanFormatName(out.format)},
+              {"size", {cube.size(), cube.size()}},
+              {"faces", 6},
               {"levels", cube.levelCount()}};
     if (extra.is_object()) e.update(extra);
-    files.push_back({stem + ".ktx2", encodeKtx2(cubeTexture(cube, out.format))});
+    files.push_back(
+        {stem + ".ktx2", [&cube, &out] { return encodeKtx2(cubeTexture(cube, out.format)); }, {}});
     outputs.push_back(e);
-    for (auto [enabled, format] : {std::pair{out.exr, FileFormat::Exr}, std::pair{out.hdr, FileFormat::Hdr}})
+    for (auto [enabled, format] :
+         {std::pair{out.exr, FileFormat::Exr}, std::pair{out.hdr, FileFormat::Hdr}})
       if (enabled) {
         Json flat = {{"role", role}};
         if (extra.is_object()) flat.update(extra);
@@ -243,14 +286,23 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   Json methods = Json::array();
   for (const auto& l : r.specularLevels) {
     roughness.push_back(l.roughness);
-    methods.push_back({{"roughness", l.roughness}, {"method", l.method}, {"source_size", l.sourceSize}, {"samples", l.samples}});
+    methods.push_back({{"roughness", l.roughness},
+                       {"method", l.method},
+                       {"source_size", l.sourceSize},
+                       {"samples", l.samples}});
   }
-  const std::string mapping = o.specular.mapping == RoughnessMapping::Linear ? "linear" : "frostbite";
+  const std::string mapping =
+      o.specular.mapping == RoughnessMapping::Linear ? "linear" : "frostbite";
   addCube("specular", "specular", r.specular,
-          {{"variant", "standard"}, {"roughness", roughness}, {"mapping", mapping}, {"methods", methods}});
+          {{"variant", "standard"},
+           {"roughness", roughness},
+           {"mapping", mapping},
+           {"methods", methods}});
   if (r.specularF0Zero) {
-    addCube("specular", "specular_f0_0", *r.specularF0Zero, {{"variant", "fresnel_f0_0"}, {"roughness", roughness}, {"mapping", mapping}});
-    addCube("specular", "specular_f0_1", *r.specularF0One, {{"variant", "fresnel_f0_1"}, {"roughness", roughness}, {"mapping", mapping}});
+    addCube("specular", "specular_f0_0", *r.specularF0Zero,
+            {{"variant", "fresnel_f0_0"}, {"roughness", roughness}, {"mapping", mapping}});
+    addCube("specular", "specular_f0_1", *r.specularF0One,
+            {{"variant", "fresnel_f0_1"}, {"roughness", roughness}, {"mapping", mapping}});
   }
   addCube("irradiance", "irradiance", r.irradiance, {{"stores", "E / pi"}});
   addCube("source", "source", r.source, {});
@@ -260,13 +312,23 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
     Ktx2Texture tex;
     tex.format = PixelFormat::Rgba16f;
     tex.levels = {{r.dfg}};
-    files.push_back({"dfg.ktx2", encodeKtx2(tex)});
-    outputs.push_back({{"role", "dfg"}, {"path", "dfg.ktx2"}, {"format", "ktx2"}, {"pixel_format", "rgba16f"},
-                       {"vk_format", vulkanFormatName(PixelFormat::Rgba16f)}, {"size", {r.dfg.width, r.dfg.height}},
-                       {"faces", 1}, {"levels", 1}, {"channels", {"A", "B", "diffuse"}}, {"samples", o.dfgSamples}});
+    files.push_back({"dfg.ktx2", [tex] { return encodeKtx2(tex); }, {}});
+    outputs.push_back({{"role", "dfg"},
+                       {"path", "dfg.ktx2"},
+                       {"format", "ktx2"},
+                       {"pixel_format", "rgba16f"},
+                       {"vk_format", vulkanFormatName(PixelFormat::Rgba16f)},
+                       {"size", {r.dfg.width, r.dfg.height}},
+                       {"faces", 1},
+                       {"levels", 1},
+                       {"channels", {"A", "B", "diffuse"}},
+                       {"samples", o.dfgSamples}});
     if (out.exr) {
-      files.push_back({"dfg.exr", encodeExr(r.dfg, ExrPixelType::Float)});
-      outputs.push_back({{"role", "dfg"}, {"path", "dfg.exr"}, {"format", "exr"}, {"size", {r.dfg.width, r.dfg.height}},
+      files.push_back({"dfg.exr", [&r] { return encodeExr(r.dfg, ExrPixelType::Float); }, {}});
+      outputs.push_back({{"role", "dfg"},
+                         {"path", "dfg.exr"},
+                         {"format", "exr"},
+                         {"size", {r.dfg.width, r.dfg.height}},
                          {"channels", {"A", "B", "diffuse"}}});
     }
   }
@@ -275,26 +337,51 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   Json coefficients = Json::array();
   for (const auto& c : r.sh) coefficients.push_back(vec3Json(c));
   {
-    const Json sh = {{"generator", fmt::format("ibl {}", kVersion)}, {"coefficients", coefficients},
+    const Json sh = {{"generator", fmt::format("ibl {}", kVersion)},
+                     {"coefficients", coefficients},
                      {"windowed", o.shWindow}};
     const std::string text = sh.dump(2) + "\n";
-    files.push_back({"sh.json", {text.begin(), text.end()}});
-    outputs.push_back({{"role", "sh"}, {"path", "sh.json"}, {"format", "json"}, {"size", {9, 1}},
-                       {"coefficients", coefficients}, {"windowed", o.shWindow}});
+    files.push_back(
+        {"sh.json", [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); }, {}});
+    outputs.push_back({{"role", "sh"},
+                       {"path", "sh.json"},
+                       {"format", "json"},
+                       {"size", {9, 1}},
+                       {"coefficients", coefficients},
+                       {"windowed", o.shWindow}});
   }
 
   if (out.preview) {
-    const Image grid = renderMaterialGrid({r.specular, o.specular.mapping, r.irradiance, r.dfg});
-    const float exposure = autoExposure(grid) + 0.5f;
-    files.push_back({"preview.png", encodePng(toneMapAces(grid, exposure))});
-    outputs.push_back({{"role", "preview"}, {"path", "preview.png"}, {"format", "png"}, {"size", {grid.width, grid.height}},
-                       {"shows", "spheres of roughness 0..1 (columns), dielectric (top) and metal (bottom), ACES"}});
-    const Image cross = crossFromCube(r.source, 0, false);
-    files.push_back({"source.png", encodePng(toneMapAces(cross, autoExposure(cross)))});
-    outputs.push_back({{"role", "preview"}, {"path", "source.png"}, {"format", "png"}, {"size", {cross.width, cross.height}},
+    const PreviewAssets assets{r.specular, o.specular.mapping, r.irradiance, r.dfg};
+    files.push_back({"preview.png",
+                     [assets] {
+                       const Image grid = renderMaterialGrid(assets, kPreviewColumns, kPreviewCell);
+                       return encodePng(toneMapAces(grid, autoExposure(grid) + 0.5f));
+                     },
+                     {}});
+    outputs.push_back(
+        {{"role", "preview"},
+         {"path", "preview.png"},
+         {"format", "png"},
+         {"size", {kPreviewColumns * kPreviewCell, 2 * kPreviewCell}},
+         {"shows",
+          "spheres of roughness 0..1 (columns), dielectric (top) and metal (bottom), ACES"}});
+    files.push_back({"source.png",
+                     [&r] {
+                       const Image cross = crossFromCube(r.source, 0, false);
+                       return encodePng(toneMapAces(cross, autoExposure(cross)));
+                     },
+                     {}});
+    outputs.push_back({{"role", "preview"},
+                       {"path", "source.png"},
+                       {"format", "png"},
+                       {"size", {4 * r.source.size(), 3 * r.source.size()}},
                        {"shows", "source cube, horizontal cross, ACES"}});
-    files.push_back({"dfg.png", encodePng(r.dfg)});
-    outputs.push_back({{"role", "preview"}, {"path", "dfg.png"}, {"format", "png"}, {"size", {r.dfg.width, r.dfg.height}},
+    files.push_back({"dfg.png", [&r] { return encodePng(r.dfg); }, {}});
+    outputs.push_back({{"role", "preview"},
+                       {"path", "dfg.png"},
+                       {"format", "png"},
+                       {"size", {r.dfg.width, r.dfg.height}},
                        {"shows", "DFG table, sRGB-encoded"}});
   }
 
@@ -304,15 +391,19 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
                         {"format", src.format},
                         {"layout", src.layout},
                         {"size", {src.width, src.height}},
-                        {"replaced_pixels", {{"nan", src.replaced.nan}, {"infinite", src.replaced.infinite},
-                                             {"negative", src.replaced.negative}}}};
+                        {"replaced_pixels",
+                         {{"nan", src.replaced.nan},
+                          {"infinite", src.replaced.infinite},
+                          {"negative", src.replaced.negative}}}};
   manifest["conventions"] = conventionsJson(o, r);
   manifest["outputs"] = outputs;
   Json timings;
   for (const auto& [stage, ms] : r.timingsMs) timings[stage] = ms;
   manifest["timings_ms"] = timings;
   const std::string text = manifest.dump(2) + "\n";
-  files.push_back({"manifest.json", {text.begin(), text.end()}});
+  files.push_back({"manifest.json",
+                   [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); },
+                   {}});
 
   std::vector<fs::path> written;
   writeAll(files, outDir, written);

@@ -6,34 +6,6 @@
 
 namespace ibl {
 
-float ggxDistribution(float NoH, float alpha) {
-  const float a2 = alpha * alpha;
-  const float d = NoH * NoH * (a2 - 1.0f) + 1.0f;
-  return a2 / (std::numbers::pi_v<float> * d * d);
-}
-
-float smithGgxCorrelatedVisibility(float NoV, float NoL, float alpha) {
-  const float a2 = alpha * alpha;
-  const float lambdaV = NoL * std::sqrt(NoV * NoV * (1.0f - a2) + a2);
-  const float lambdaL = NoV * std::sqrt(NoL * NoL * (1.0f - a2) + a2);
-  return 0.5f / (lambdaV + lambdaL);
-}
-
-float schlickWeight(float VoH) {
-  const float m = std::clamp(1.0f - VoH, 0.0f, 1.0f);
-  const float m2 = m * m;
-  return m2 * m2 * m;
-}
-
-float disneyDiffuseRenormalized(float NoV, float NoL, float LoH, float roughness) {
-  const float energyBias = 0.5f * roughness;
-  const float energyFactor = 1.0f + (1.0f / 1.51f - 1.0f) * roughness;
-  const float fd90 = energyBias + 2.0f * LoH * LoH * roughness;
-  const float lightScatter = 1.0f + (fd90 - 1.0f) * schlickWeight(NoL);
-  const float viewScatter = 1.0f + (fd90 - 1.0f) * schlickWeight(NoV);
-  return lightScatter * viewScatter * energyFactor;
-}
-
 glm::vec2 dfgBlackOps2(float roughness, float NoV) {
   const float g = 1.0f - roughness;
   const float tx = g / 0.96f;

@@ -132,14 +132,6 @@ glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int 
                         p.t * static_cast<float>(n) - 0.5f);
 }
 
-void cubicBSplineWeights(float t, float w[4]) {
-  const float t2 = t * t, t3 = t2 * t, s = 1.0f - t;
-  w[0] = s * s * s / 6.0f;
-  w[1] = (3.0f * t3 - 6.0f * t2 + 4.0f) / 6.0f;
-  w[2] = (-3.0f * t3 + 3.0f * t2 + 3.0f * t + 1.0f) / 6.0f;
-  w[3] = t3 / 6.0f;
-}
-
 glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir) {
   const auto& faces = cube.levels[level];
   const int n = faces[0].width;

@@ -147,8 +147,8 @@ LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& op
   return out;
 }
 
-LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes, std::string_view name,
-                                            const LoadOptions& options) {
+LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes,
+                                            std::string_view name, const LoadOptions& options) {
   LoadedEnvironment out;
   DecodedFile d = decodeImageFile(bytes, name);
   out.format = fileFormatName(d.format);

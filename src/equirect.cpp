@@ -23,9 +23,10 @@ int wrapColumn(int x, int w) {
 }  // namespace
 
 glm::vec2 directionToEquirect(glm::vec3 d) {
-  const float len = glm::length(d);
-  const float y = len > 0.0f ? std::clamp(d.y / len, -1.0f, 1.0f) : 1.0f;
-  return {0.5f + std::atan2(d.z, d.x) / (2.0f * kPiF), std::acos(y) / kPiF};
+  // v = acos(y / |d|) = atan2(sqrt(x^2 + z^2), y): accurate at the poles too.
+  const float u = 0.5f + atan2Approx(d.z, d.x) / (2.0f * kPiF);
+  const float v = atan2Approx(std::sqrt(d.x * d.x + d.z * d.z), d.y) / kPiF;
+  return {u, v};
 }
 
 glm::vec3 equirectToDirection(float u, float v) {
@@ -62,11 +63,19 @@ glm::vec3 sampleEquirectCubic(const Image& img, float u, float v) {
   float wx[4], wy[4];
   cubicBSplineWeights(fx - flx, wx);
   cubicBSplineWeights(fy - fly, wy);
-  int xs[4];
-  for (int i = 0; i < 4; ++i) xs[i] = wrapColumn(static_cast<int>(flx) - 1 + i, w);
+  const int x0 = static_cast<int>(flx) - 1, y0 = static_cast<int>(fly) - 1;
   glm::vec3 sum(0.0f);
+  if (x0 >= 0 && x0 + 3 < w && y0 >= 0 && y0 + 3 < h) {  // away from the seam and the poles
+    for (int j = 0; j < 4; ++j) {
+      const glm::vec3* row = &img.at(x0, y0 + j);
+      sum += (row[0] * wx[0] + row[1] * wx[1] + row[2] * wx[2] + row[3] * wx[3]) * wy[j];
+    }
+    return sum;
+  }
+  int xs[4];
+  for (int i = 0; i < 4; ++i) xs[i] = wrapColumn(x0 + i, w);
   for (int j = 0; j < 4; ++j) {
-    const int y = std::clamp(static_cast<int>(fly) - 1 + j, 0, h - 1);
+    const int y = std::clamp(y0 + j, 0, h - 1);
     glm::vec3 row(0.0f);
     for (int i = 0; i < 4; ++i) row += img.at(xs[i], y) * wx[i];
     sum += row * wy[j];

@@ -6,8 +6,8 @@
 #include <numbers>
 
 #include <fmt/format.h>
-#include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 #include "ibl/brdf.hpp"
 #include "ibl/error.hpp"
@@ -76,69 +76,98 @@ inline float smoothRise(float c, float lo, float inv) {
   return t * t * (3.0f - 2.0f * t);
 }
 
-// Up to 64 output directions convolved together: the inner loop runs across them, so it
-// vectorizes whatever the source texels are.
-constexpr int kTileLanes = 64;
+// Up to 16 output directions convolved together: the inner loop runs across them, so it
+// vectorizes whatever the source texels are (one AVX-512 register, two AVX2 ones).
+constexpr int kTileLanes = 16;
 struct DestTile {
   alignas(64) float x[kTileLanes], y[kTileLanes], z[kTileLanes];
   alignas(64) float r[kTileLanes], g[kTileLanes], b[kTileLanes], w[kTileLanes];
 };
 
 // Adds, for every lane j, the sum over source texels [begin, end) of (L w, w) with
-// w = weight(max(n_j . l, 0)) window(n_j . l) omega. Compiled for AVX-512, AVX2 and baseline
-// x86-64; the best one runs.
-#if defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx512f", "avx2", "default")))
-#endif
-void accumulateTile(const TexelArrays& t, std::size_t begin, std::size_t end, DestTile& tile,
-                    LobeWeight lobe, Window win, bool windowed) {
+// w = weight(max(n_j . l, 0)) window(n_j . l) omega. kWindow: 0 none, 1 outer edge only,
+// 2 both edges (a ring).
+// Lambdas of the SIMD loops must be inlined into each target clone, or they run unvectorized.
+#define IBL_INLINE __attribute__((always_inline))
+
+template <int kWindow>
+[[gnu::always_inline]] inline void accumulateTileBody(const TexelArrays& t, std::size_t begin,
+                                                      std::size_t end, DestTile& tile,
+                                                      LobeWeight lobe, Window win) {
   const float a2m1 = lobe.a2 - 1.0f, a2 = lobe.a2;
-  const auto run = [&](auto weight) {
+  const auto run = [&](auto weight) IBL_INLINE {
     for (std::size_t i = begin; i < end; ++i) {
       const float sx = t.x[i], sy = t.y[i], sz = t.z[i], om = t.omega[i];
       const float lr = t.r[i], lg = t.g[i], lb = t.b[i];
-      if (windowed) {
-        for (int j = 0; j < kTileLanes; ++j) {
-          const float c = std::max(tile.x[j] * sx + tile.y[j] * sy + tile.z[j] * sz, 0.0f);
-          const float w = weight(c) * om *
-                          (smoothRise(c, win.outerLo, win.outerInv) - smoothRise(c, win.innerLo, win.innerInv));
-          tile.r[j] += w * lr;
-          tile.g[j] += w * lg;
-          tile.b[j] += w * lb;
-          tile.w[j] += w;
-        }
-      } else {
-        for (int j = 0; j < kTileLanes; ++j) {
-          const float c = std::max(tile.x[j] * sx + tile.y[j] * sy + tile.z[j] * sz, 0.0f);
-          const float w = weight(c) * om;
-          tile.r[j] += w * lr;
-          tile.g[j] += w * lg;
-          tile.b[j] += w * lb;
-          tile.w[j] += w;
-        }
+      for (int j = 0; j < kTileLanes; ++j) {
+        const float c = std::max(tile.x[j] * sx + tile.y[j] * sy + tile.z[j] * sz, 0.0f);
+        float w = weight(c) * om;
+        if constexpr (kWindow >= 1) w *= smoothRise(c, win.outerLo, win.outerInv);
+        if constexpr (kWindow == 2) w -= weight(c) * om * smoothRise(c, win.innerLo, win.innerInv);
+        tile.r[j] += w * lr;
+        tile.g[j] += w * lg;
+        tile.b[j] += w * lb;
+        tile.w[j] += w;
       }
     }
   };
   // D(h) (n.l) up to a constant: (n.l) / (nh2 (a^2 - 1) + 1)^2.
-  const auto ggx = [=](float c) {
+  const auto ggx = [=](float c) IBL_INLINE {
     const float d = 0.5f * (1.0f + c) * a2m1 + 1.0f;
     return c / (d * d);
   };
   // With the height-correlated visibility for n.v = 1: V = 0.5 / (c + sqrt(c^2 (1 - a^2) + a^2)).
-  const auto ggxVis = [=](float c) {
+  const auto ggxVis = [=](float c) IBL_INLINE {
     return ggx(c) * 0.5f / (c + std::sqrt(c * c * (1.0f - a2) + a2) + 1e-30f);
   };
-  const auto ggxVisFresnel = [=](float c) {
+  const auto ggxVisFresnel = [=](float c) IBL_INLINE {
     const float m = 1.0f - std::sqrt(0.5f * (1.0f + c));
     const float m2 = m * m;
     return ggxVis(c) * (m2 * m2 * m);
   };
   switch (lobe.kind) {
-    case LobeWeight::Kind::Cosine: run([](float c) { return c; }); break;
-    case LobeWeight::Kind::Ggx: run(ggx); break;
-    case LobeWeight::Kind::GgxVisibility: run(ggxVis); break;
-    case LobeWeight::Kind::GgxVisibilityFresnel: run(ggxVisFresnel); break;
+    case LobeWeight::Kind::Cosine:
+      run([](float c) IBL_INLINE { return c; });
+      break;
+    case LobeWeight::Kind::Ggx:
+      run(ggx);
+      break;
+    case LobeWeight::Kind::GgxVisibility:
+      run(ggxVis);
+      break;
+    case LobeWeight::Kind::GgxVisibilityFresnel:
+      run(ggxVisFresnel);
+      break;
   }
+}
+
+// The loops above, compiled for AVX-512, AVX2 and baseline x86-64; the best one runs.
+#if defined(__x86_64__) && !defined(__clang__)
+#define IBL_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define IBL_SIMD_CLONES
+#endif
+IBL_SIMD_CLONES void accumulateTileAll(const TexelArrays& t, std::size_t begin, std::size_t end,
+                                       DestTile& tile, LobeWeight lobe, Window win) {
+  accumulateTileBody<0>(t, begin, end, tile, lobe, win);
+}
+IBL_SIMD_CLONES void accumulateTileCore(const TexelArrays& t, std::size_t begin, std::size_t end,
+                                        DestTile& tile, LobeWeight lobe, Window win) {
+  accumulateTileBody<1>(t, begin, end, tile, lobe, win);
+}
+IBL_SIMD_CLONES void accumulateTileRing(const TexelArrays& t, std::size_t begin, std::size_t end,
+                                        DestTile& tile, LobeWeight lobe, Window win) {
+  accumulateTileBody<2>(t, begin, end, tile, lobe, win);
+}
+
+void accumulateTile(const TexelArrays& t, std::size_t begin, std::size_t end, DestTile& tile,
+                    LobeWeight lobe, Window win, bool windowed) {
+  if (!windowed)
+    accumulateTileAll(t, begin, end, tile, lobe, win);
+  else if (win.innerLo > 1.5f)
+    accumulateTileCore(t, begin, end, tile, lobe, win);
+  else
+    accumulateTileRing(t, begin, end, tile, lobe, win);
 }
 
 // Face axes of DESIGN.md's table: major axis, direction of growing s, of growing t.
@@ -154,8 +183,8 @@ glm::vec3 faceAxis(int face, int which) {
 // Accumulates the source texels within angle acos(cosCap) of n (all texels if cosCap <= 0)
 // into the tile. Each face row is searched only over the columns the cap can reach: on the
 // row at tc, n.d >= k |d| with d = a + sc s + tc t is a quadratic inequality in sc.
-void accumulateCap(const TexelArrays& t, glm::vec3 n, float cosCap, DestTile& tile,
-                   LobeWeight lobe, Window win, bool windowed) {
+void accumulateCap(const TexelArrays& t, glm::vec3 n, float cosCap, DestTile& tile, LobeWeight lobe,
+                   Window win, bool windowed) {
   if (cosCap <= 0.0f) {
     accumulateTile(t, 0, t.size(), tile, lobe, win, windowed);
     return;
@@ -194,7 +223,7 @@ void accumulateCap(const TexelArrays& t, glm::vec3 n, float cosCap, DestTile& ti
 
 // One convolution pass: for every texel of an output level of `size`, (L w, w) summed over the
 // source texels within the cap around it, as a (sum, weight) pair of images. Output texels
-// are processed in square tiles of up to 64 sharing one cap that covers them all.
+// are processed in square tiles of up to 16 sharing one cap that covers them all.
 struct LevelSums {
   std::array<Image, kFaceCount> sum;
   std::array<Image, kFaceCount> weight;  // in x
@@ -203,7 +232,7 @@ struct LevelSums {
 LevelSums convolvePass(const TexelArrays& texels, int size, LobeWeight lobe, Window win,
                        float cosCap) {
   const bool windowed = win.outerLo > -2.0f || win.innerLo < 1.5f;
-  const int side = std::min(size, 8);  // tile side in texels
+  const int side = std::min(size, 4);  // tile side in texels
   const int tilesPerRow = (size + side - 1) / side;
   LevelSums out;
   for (int f = 0; f < kFaceCount; ++f) {
@@ -232,13 +261,15 @@ LevelSums convolvePass(const TexelArrays& texels, int size, LobeWeight lobe, Win
     const float inv = 2.0f / static_cast<float>(size);
     const float cx = static_cast<float>(x0) + 0.5f * static_cast<float>(std::min(side, size - x0));
     const float cy = static_cast<float>(y0) + 0.5f * static_cast<float>(std::min(side, size - y0));
-    const glm::vec3 center = glm::normalize(faceToDirection(face, cx * inv - 1.0f, cy * inv - 1.0f));
+    const glm::vec3 center =
+        glm::normalize(faceToDirection(face, cx * inv - 1.0f, cy * inv - 1.0f));
     float cap = cosCap;
     if (cosCap > 0.0f) {
       float radius = 0.0f;
       for (int j = 0; j < lanes; ++j)
         radius = std::max(radius, std::acos(std::clamp(
-                                      glm::dot(center, glm::vec3(tile.x[j], tile.y[j], tile.z[j])), -1.0f, 1.0f)));
+                                      glm::dot(center, glm::vec3(tile.x[j], tile.y[j], tile.z[j])),
+                                      -1.0f, 1.0f)));
       const float angle = std::acos(cosCap) + radius + 1e-4f;
       cap = angle >= 0.5f * kPi ? 0.0f : std::cos(angle);
     }
@@ -286,7 +317,8 @@ std::vector<glm::vec3> convolveDirections(const std::array<Image, kFaceCount>& s
     }
     accumulateTile(texels, 0, texels.size(), tile, lobe, Window{}, false);
     for (std::size_t j = 0; j < kTileLanes && first + j < dirs.size(); ++j)
-      out[first + j] = tile.w[j] > 0.0f ? glm::vec3(tile.r[j], tile.g[j], tile.b[j]) / tile.w[j] : glm::vec3(0.0f);
+      out[first + j] = tile.w[j] > 0.0f ? glm::vec3(tile.r[j], tile.g[j], tile.b[j]) / tile.w[j]
+                                        : glm::vec3(0.0f);
   });
   return out;
 }
@@ -306,7 +338,9 @@ constexpr float kDirectTexelsPerLobe = 12.0f;
 
 // Angle from the lobe axis at which the lobe falls to half its peak (n = v): n.h at half
 // maximum of D satisfies sin(theta_h) ~ 0.64 alpha, and theta_l = 2 theta_h.
-float lobeHalfWidth(float alpha) { return 2.0f * std::asin(std::min(1.0f, 0.64f * alpha)); }
+float lobeHalfWidth(float alpha) {
+  return 2.0f * std::asin(std::min(1.0f, 0.64f * alpha));
+}
 
 }  // namespace
 
@@ -316,7 +350,7 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
   const float theta = lobeHalfWidth(alphaFromRoughness(roughness));
   constexpr float kPiF = std::numbers::pi_v<float>;
   // Ring 0, the lobe's core: texels at most a third of its half width, cap 2 b1.
-  const float b1 = 2.5f * theta;
+  const float b1 = 2.0f * theta;
   if (2.0f * b1 >= 0.5f * kPiF) {
     // A wide lobe: one pass over the whole sphere, with texels an eighth of its half width.
     const int level = levelForTexelAngle(source, theta / kDirectTexelsPerLobe);
@@ -327,7 +361,8 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
     return normalize(convolvePass(TexelArrays(source.levels[level]), size, lobe, Window{}, 0.0f));
   }
   // The core reads texels a third of the lobe's half width, and no coarser than the output.
-  const int core = std::min(levelForTexelAngle(source, theta / kCoreTexelsPerLobe), levelOfSize(source, size));
+  const int core =
+      std::min(levelForTexelAngle(source, theta / kCoreTexelsPerLobe), levelOfSize(source, size));
   if (info) info->sourceSize = source.levels[core][0].width;
 
   const auto rise = [](float thetaOne, float thetaZero) {  // 1 inside thetaOne, 0 beyond thetaZero
@@ -336,16 +371,17 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
   };
   Window w0;
   std::tie(w0.outerLo, w0.outerInv) = rise(b1, 2.0f * b1);
-  LevelSums total = convolvePass(TexelArrays(source.levels[core]), size, lobe, w0, std::cos(2.0f * b1));
+  LevelSums total =
+      convolvePass(TexelArrays(source.levels[core]), size, lobe, w0, std::cos(2.0f * b1));
   if (info) info->method = "rings";
   // Ring k covers [b_k, 4 b_k], where the lobe is smooth on the scale of b_k: it reads, and is
-  // computed at, a level with texels of b_k / 4, then is interpolated up and added.
+  // computed at, a level with texels of b_k / 3, then is interpolated up and added.
   for (float bk = b1;; bk *= 2.0f) {
     const bool last = 4.0f * bk >= kPiF;
     Window win;
     if (!last) std::tie(win.outerLo, win.outerInv) = rise(2.0f * bk, 4.0f * bk);
     std::tie(win.innerLo, win.innerInv) = rise(bk, 2.0f * bk);
-    const int level = levelForTexelAngle(source, bk / 4.0f);
+    const int level = levelForTexelAngle(source, bk / 3.0f);
     const int ringSize = std::min(size, source.levels[level][0].width);
     const LevelSums ring = convolvePass(TexelArrays(source.levels[level]), ringSize, lobe, win,
                                         last ? 0.0f : std::cos(4.0f * bk));
@@ -402,9 +438,8 @@ int levelOfSize(const CubeMap& cube, int size) {
   return cube.levelCount() - 1;
 }
 
-std::array<Image, kFaceCount> prefilterLevelDirect(const CubeMap& source, int sourceLevel,
-                                                   int size, float roughness,
-                                                   PrefilterWeight weight) {
+std::array<Image, kFaceCount> prefilterLevelDirect(const CubeMap& source, int sourceLevel, int size,
+                                                   float roughness, PrefilterWeight weight) {
   return convolveLevel(source.levels[sourceLevel], size, LobeWeight::forLevel(roughness, weight));
 }
 
@@ -413,7 +448,8 @@ std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int s
                                                     PrefilterWeight weight) {
   const float alpha = alphaFromRoughness(roughness);
   const int n0 = source.size();
-  const float texelSolidAngle0 = 4.0f * kPi / (6.0f * static_cast<float>(n0) * static_cast<float>(n0));
+  const float texelSolidAngle0 =
+      4.0f * kPi / (6.0f * static_cast<float>(n0) * static_cast<float>(n0));
   const float maxLod = static_cast<float>(source.levelCount() - 1);
   // One set of samples in the tangent frame, shared by every texel: no noise.
   struct Sample {
@@ -422,16 +458,16 @@ std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int s
   };
   std::vector<Sample> set;
   for (int k = 0; k < samples; ++k) {
-    const glm::vec3 h = sampleGgxHalfVector(hammersley(static_cast<std::uint32_t>(k),
-                                                       static_cast<std::uint32_t>(samples)),
-                                            alpha);
+    const glm::vec3 h = sampleGgxHalfVector(
+        hammersley(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(samples)), alpha);
     const glm::vec3 l(2.0f * h.z * h.x, 2.0f * h.z * h.y, 2.0f * h.z * h.z - 1.0f);
     const float c = l.z;
     if (c <= 0.0f) continue;
     // pdf of l = D(h) (n.h) / (4 v.h) = D / 4 with n = v; the sample stands for 1 / (N pdf).
     const float pdf = ggxDistribution(h.z, alpha) * 0.25f;
     const float sampleSolidAngle = 1.0f / (static_cast<float>(samples) * pdf);
-    const float lod = std::clamp(0.5f * std::log2(sampleSolidAngle / texelSolidAngle0) + 1.0f, 0.0f, maxLod);
+    const float lod =
+        std::clamp(0.5f * std::log2(sampleSolidAngle / texelSolidAngle0) + 1.0f, 0.0f, maxLod);
     float w = c;  // Karis: the n.l weight; D cancels with the pdf
     if (weight != PrefilterWeight::Standard) {
       w *= smithGgxCorrelatedVisibility(1.0f, c, alpha);
@@ -463,14 +499,17 @@ CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& o,
     fail("prefilter", fmt::format("specular size must be a power of two, not {}", o.size));
   if (source.levelCount() != fullMipCount(source.size()))
     fail("prefilter", "the source cube map needs its full mip chain");
-  const int levels = o.levels > 0 ? std::min(o.levels, fullMipCount(o.size)) : defaultSpecularLevels(o.size);
+  const int levels =
+      o.levels > 0 ? std::min(o.levels, fullMipCount(o.size)) : defaultSpecularLevels(o.size);
   CubeMap out;
   out.levels.resize(levels);
   if (methods) methods->assign(levels, {});
   for (int m = 0; m < levels; ++m) {
     const int size = o.size >> m;
     const float r = roughnessForLevel(m, levels, o.mapping);
-    if (progress) progress(fmt::format("specular level {}/{} ({}x{}, roughness {:.3f})", m + 1, levels, size, size, r));
+    if (progress)
+      progress(fmt::format("specular level {}/{} ({}x{}, roughness {:.3f})", m + 1, levels, size,
+                           size, r));
     LevelMethod method{r, "", 0, 0};
     if (r == 0.0f) {
       // Mirror reflection: the source itself (area-resampled if sizes differ).
@@ -493,7 +532,8 @@ CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& o,
 
 CubeMap convolveIrradiance(const CubeMap& source, int size, int sourceLevel) {
   CubeMap out;
-  out.levels.push_back(convolveLevel(source.levels[sourceLevel], size, {LobeWeight::Kind::Cosine, 0.0f}));
+  out.levels.push_back(
+      convolveLevel(source.levels[sourceLevel], size, {LobeWeight::Kind::Cosine, 0.0f}));
   return out;
 }
 

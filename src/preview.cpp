@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <glm/geometric.hpp>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 #include "ibl/color.hpp"
 #include "ibl/dfg.hpp"
@@ -29,8 +29,10 @@ Image renderMaterialGrid(const PreviewAssets& a, int columns, int cell) {
     for (int px = 0; px < img.width; ++px) {
       const int col = px / cell, row = py / cell;
       const float radius = 0.42f * static_cast<float>(cell);
-      const float dx = (static_cast<float>(px % cell) + 0.5f - 0.5f * static_cast<float>(cell)) / radius;
-      const float dy = (0.5f * static_cast<float>(cell) - static_cast<float>(py % cell) - 0.5f) / radius;
+      const float dx =
+          (static_cast<float>(px % cell) + 0.5f - 0.5f * static_cast<float>(cell)) / radius;
+      const float dy =
+          (0.5f * static_cast<float>(cell) - static_cast<float>(py % cell) - 0.5f) / radius;
       const float d2 = dx * dx + dy * dy;
       if (d2 >= 1.0f) {  // background: the environment behind the grid, blurred a little
         const glm::vec3 dir = glm::normalize(glm::vec3(
@@ -40,17 +42,21 @@ Image renderMaterialGrid(const PreviewAssets& a, int columns, int cell) {
         continue;
       }
       const glm::vec3 n(dx, dy, std::sqrt(1.0f - d2));
-      const float r = columns > 1 ? static_cast<float>(col) / static_cast<float>(columns - 1) : 0.5f;
+      const float r =
+          columns > 1 ? static_cast<float>(col) / static_cast<float>(columns - 1) : 0.5f;
       const bool metal = row == 1;
       const glm::vec3 albedo(0.8f);
       const glm::vec3 f0 = metal ? glm::vec3(0.95f) : glm::vec3(0.04f);
       const float NoV = std::max(glm::dot(n, view), 1e-4f);
       const glm::vec3 refl = 2.0f * glm::dot(n, view) * n - view;
       const glm::vec3 dfg = sampleDfgLut(a.dfg, NoV, r);
-      const glm::vec3 ld = sampleTrilinear(a.specular, lodForRoughness(r, a.specular.levelCount(), a.mapping), refl);
+      const glm::vec3 ld =
+          sampleTrilinear(a.specular, lodForRoughness(r, a.specular.levelCount(), a.mapping), refl);
       // Split sum with multiple-scattering compensation (dfg.hpp).
-      const glm::vec3 specular = ld * (f0 * dfg.x + dfg.y) * (1.0f + f0 * (1.0f / (dfg.x + dfg.y) - 1.0f));
-      const glm::vec3 diffuse = metal ? glm::vec3(0.0f) : albedo * sampleBilinear(a.irradiance, 0, n) * dfg.z;
+      const glm::vec3 specular =
+          ld * (f0 * dfg.x + dfg.y) * (1.0f + f0 * (1.0f / (dfg.x + dfg.y) - 1.0f));
+      const glm::vec3 diffuse =
+          metal ? glm::vec3(0.0f) : albedo * sampleBilinear(a.irradiance, 0, n) * dfg.z;
       img.at(px, py) = diffuse + specular;
     }
   });
@@ -62,7 +68,8 @@ Image toneMapAces(const Image& image, float exposure) {
   Image out(image.width, image.height);
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     const glm::vec3 x = image.pixels[i] * scale;
-    out.pixels[i] = glm::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+    out.pixels[i] =
+        glm::clamp((x * (2.51f * x + 0.03f)) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
   }
   return out;
 }

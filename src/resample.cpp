@@ -38,7 +38,8 @@ double cubeDensity(int size) {
 class Source {
  public:
   Source(const Environment& env, double outputDensity, float rotateDegrees)
-      : inverseRotation_(glm::transpose(rotationY(rotateDegrees))) {
+      : inverseRotation_(glm::transpose(rotationY(rotateDegrees))),
+        rotated_(rotateDegrees != 0.0f) {
     if (!env.isCube()) {
       const Image* img = &env.equirect;
       while (equirectDensity(img->height) > 2.0 * outputDensity && img->width % 2 == 0 &&
@@ -76,7 +77,7 @@ class Source {
   }
 
   glm::vec3 operator()(glm::vec3 dir) const {
-    const glm::vec3 d = inverseRotation_ * dir;
+    const glm::vec3 d = rotated_ ? inverseRotation_ * dir : dir;
     if (equirect_) {
       const glm::vec2 uv = directionToEquirect(d);
       return sampleEquirectCubic(*equirect_, uv.x, uv.y);
@@ -92,6 +93,7 @@ class Source {
 
  private:
   glm::mat3 inverseRotation_;
+  bool rotated_;
   std::optional<Image> reduced_;
   std::optional<CubeMap> reducedCube_;
   const Image* equirect_ = nullptr;

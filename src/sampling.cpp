@@ -1,7 +1,7 @@
 #include "ibl/sampling.hpp"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -52,14 +52,6 @@ GgxVisibleNormalSampler::GgxVisibleNormalSampler(glm::vec3 v, float alpha) : alp
   t1_ = lensq > 0.0f ? glm::vec3(-vh_.y, vh_.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1, 0, 0);
   t2_ = glm::cross(vh_, t1_);
   s_ = 0.5f * (1.0f + vh_.z);
-}
-
-glm::vec3 GgxVisibleNormalSampler::sample(glm::vec2 disk) const {
-  // Warp the disk onto the projection of the visible hemisphere, lift, unstretch.
-  const float p1 = disk.x;
-  const float p2 = (1.0f - s_) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s_ * disk.y;
-  const glm::vec3 nh = p1 * t1_ + p2 * t2_ + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh_;
-  return glm::normalize(glm::vec3(alpha_ * nh.x, alpha_ * nh.y, std::max(0.0f, nh.z)));
 }
 
 glm::vec3 sampleGgxVisibleNormal(glm::vec3 v, glm::vec2 xi, float alpha) {

@@ -3,8 +3,8 @@
 
 #include <tbb/global_control.h>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "helpers.hpp"
@@ -26,7 +26,9 @@ BakeOptions smallBake() {
   return o;
 }
 
-Environment sunsetEnvironment() { return loadEnvironment(hdriPath("sunset").string()).environment; }
+Environment sunsetEnvironment() {
+  return loadEnvironment(hdriPath("sunset").string()).environment;
+}
 
 }  // namespace
 
@@ -56,9 +58,11 @@ TEST(Bake, SameResultForAnyThreadCount) {
   for (int m = 0; m < one.specular.levelCount(); ++m)
     for (int f = 0; f < 6; ++f) {
       EXPECT_EQ(one.specular.levels[m][f].pixels, many.specular.levels[m][f].pixels) << m;
-      EXPECT_EQ(one.specularF0Zero->levels[m][f].pixels, many.specularF0Zero->levels[m][f].pixels) << m;
+      EXPECT_EQ(one.specularF0Zero->levels[m][f].pixels, many.specularF0Zero->levels[m][f].pixels)
+          << m;
     }
-  for (int f = 0; f < 6; ++f) EXPECT_EQ(one.irradiance.levels[0][f].pixels, many.irradiance.levels[0][f].pixels);
+  for (int f = 0; f < 6; ++f)
+    EXPECT_EQ(one.irradiance.levels[0][f].pixels, many.irradiance.levels[0][f].pixels);
   EXPECT_EQ(one.dfg.pixels, many.dfg.pixels);
   for (int k = 0; k < 9; ++k) EXPECT_EQ(one.sh[k], many.sh[k]);
 }
@@ -70,7 +74,8 @@ TEST(Bake, WritesEveryOutputAndAManifest) {
   BakeOutputOptions out;
   out.exr = true;
   out.layout = FlatLayout::Faces;
-  const auto files = writeBakeOutputs(r, o, out, {"sunset.exr", "exr", "equirect", 512, 256, {}}, dir / "assets");
+  const auto files =
+      writeBakeOutputs(r, o, out, {"sunset.exr", "exr", "equirect", 512, 256, {}}, dir / "assets");
   for (const auto& f : files) EXPECT_TRUE(std::filesystem::exists(f)) << f;
   const auto manifestBytes = readFileBytes(dir / "assets" / "manifest.json");
   const auto m = nlohmann::json::parse(manifestBytes.begin(), manifestBytes.end());
@@ -79,11 +84,13 @@ TEST(Bake, WritesEveryOutputAndAManifest) {
   std::set<std::string> roles;
   for (const auto& o2 : m["outputs"]) {
     roles.insert(o2["role"].get<std::string>());
-    EXPECT_TRUE(std::filesystem::exists(dir / "assets" / o2["path"].get<std::string>())) << o2["path"];
+    EXPECT_TRUE(std::filesystem::exists(dir / "assets" / o2["path"].get<std::string>()))
+        << o2["path"];
     EXPECT_TRUE(o2.contains("format"));
     EXPECT_TRUE(o2.contains("size"));
   }
-  EXPECT_EQ(roles, (std::set<std::string>{"specular", "irradiance", "sh", "dfg", "preview", "source"}));
+  EXPECT_EQ(roles,
+            (std::set<std::string>{"specular", "irradiance", "sh", "dfg", "preview", "source"}));
   const auto& spec = m["outputs"][0];
   EXPECT_EQ(spec["role"], "specular");
   EXPECT_EQ(spec["levels"], 3);  // 32, 16, 8

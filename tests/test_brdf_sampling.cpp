@@ -1,8 +1,8 @@
 #include <cmath>
 #include <numbers>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "ibl/brdf.hpp"
 #include "ibl/dfg.hpp"
@@ -73,14 +73,16 @@ TEST(Brdf, GgxIsNormalized) {
     const int steps = 200000;
     for (int i = 0; i < steps; ++i) {
       const double theta = (i + 0.5) / steps * kPi / 2;
-      sum += ggxDistribution(float(std::cos(theta)), alpha) * std::cos(theta) * std::sin(theta) * 2 * kPi * (kPi / 2 / steps);
+      sum += ggxDistribution(float(std::cos(theta)), alpha) * std::cos(theta) * std::sin(theta) *
+             2 * kPi * (kPi / 2 / steps);
     }
     EXPECT_NEAR(sum, 1.0, 2e-3) << alpha;
   }
 }
 
 TEST(Brdf, HeightCorrelatedSmithMatchesLambdaForm) {
-  // V = G2 / (4 NoV NoL), G2 = 1 / (1 + Lambda(v) + Lambda(l)), Lambda = (-1 + sqrt(1 + a^2 tan^2)) / 2.
+  // V = G2 / (4 NoV NoL), G2 = 1 / (1 + Lambda(v) + Lambda(l)), Lambda = (-1 + sqrt(1 + a^2 tan^2))
+  // / 2.
   const auto lambda = [](double c, double a) {
     const double t2 = (1 - c * c) / (c * c);
     return 0.5 * (-1 + std::sqrt(1 + a * a * t2));
@@ -89,7 +91,8 @@ TEST(Brdf, HeightCorrelatedSmithMatchesLambdaForm) {
     for (float nv : {0.1f, 0.5f, 0.99f})
       for (float nl : {0.2f, 0.7f}) {
         const double g2 = 1.0 / (1.0 + lambda(nv, a) + lambda(nl, a));
-        EXPECT_NEAR(smithGgxCorrelatedVisibility(nv, nl, a), g2 / (4 * nv * nl), 1e-5 * g2 / (4 * nv * nl));
+        EXPECT_NEAR(smithGgxCorrelatedVisibility(nv, nl, a), g2 / (4 * nv * nl),
+                    1e-5 * g2 / (4 * nv * nl));
       }
 }
 
@@ -97,7 +100,8 @@ TEST(Brdf, DisneyDiffuseLimits) {
   EXPECT_FLOAT_EQ(disneyDiffuseRenormalized(1.0f, 1.0f, 1.0f, 0.0f), 1.0f);
   // Rough surfaces are scaled by 1 / 1.51 and get retro-reflection at grazing angles.
   EXPECT_NEAR(disneyDiffuseRenormalized(1.0f, 1.0f, 1.0f, 1.0f), 1.0f / 1.51f, 1e-6f);
-  EXPECT_GT(disneyDiffuseRenormalized(0.1f, 0.1f, 1.0f, 1.0f), disneyDiffuseRenormalized(1.0f, 1.0f, 1.0f, 1.0f));
+  EXPECT_GT(disneyDiffuseRenormalized(0.1f, 0.1f, 1.0f, 1.0f),
+            disneyDiffuseRenormalized(1.0f, 1.0f, 1.0f, 1.0f));
   EXPECT_FLOAT_EQ(schlickWeight(1.0f), 0.0f);
   EXPECT_FLOAT_EQ(schlickWeight(0.0f), 1.0f);
 }

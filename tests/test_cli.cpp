@@ -133,11 +133,12 @@ TEST(Cli, BadInputsFailCleanlyAndWriteNothing) {
 
 TEST(Cli, BakeDefaultEnvironment) {
   TempDir dir;
-  const CliRun r = runIbl("bake -o " + quote(dir / "out") + " --size 32 --dfg-size 16 --dfg-samples 64 --hdr --layout vcross");
+  const CliRun r = runIbl("bake -o " + quote(dir / "out") +
+                          " --size 32 --dfg-size 16 --dfg-samples 64 --hdr --layout vcross");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("baked sunset.exr (bundled)"), std::string::npos) << r.output;
-  for (const char* f : {"manifest.json", "specular.ktx2", "irradiance.ktx2", "source.ktx2", "dfg.ktx2", "sh.json",
-                        "preview.png", "specular_m0.hdr", "irradiance.hdr"})
+  for (const char* f : {"manifest.json", "specular.ktx2", "irradiance.ktx2", "source.ktx2",
+                        "dfg.ktx2", "sh.json", "preview.png", "specular_m0.hdr", "irradiance.hdr"})
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
   const auto bytes = readFileBytes(dir / "out" / "manifest.json");
   const auto m = nlohmann::json::parse(bytes.begin(), bytes.end());

@@ -1,8 +1,8 @@
 #include <cmath>
 #include <numbers>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "ibl/brdf.hpp"
 #include "ibl/dfg.hpp"
@@ -19,10 +19,12 @@ glm::dvec3 bruteForceDfg(float NoV, float r) {
   glm::dvec3 sum(0.0);
   for (int i = 0; i < nt; ++i) {
     const double theta = (i + 0.5) / nt * std::numbers::pi / 2;
-    const double dOmega = std::sin(theta) * (std::numbers::pi / 2 / nt) * (std::numbers::pi / np) * 2.0;
+    const double dOmega =
+        std::sin(theta) * (std::numbers::pi / 2 / nt) * (std::numbers::pi / np) * 2.0;
     for (int j = 0; j < np; ++j) {
       const double phi = (j + 0.5) / np * std::numbers::pi;
-      const glm::dvec3 l(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      const glm::dvec3 l(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                         std::cos(theta));
       const glm::dvec3 h = glm::normalize(v + l);
       const double D = ggxDistribution(float(h.z), float(alpha));
       const double V = smithGgxCorrelatedVisibility(NoV, float(l.z), float(alpha));
@@ -30,7 +32,8 @@ glm::dvec3 bruteForceDfg(float NoV, float r) {
       const double spec = D * V * l.z * dOmega;
       sum.x += spec * (1 - fc);
       sum.y += spec * fc;
-      sum.z += disneyDiffuseRenormalized(NoV, float(l.z), float(glm::dot(l, h)), r) / std::numbers::pi * l.z * dOmega;
+      sum.z += disneyDiffuseRenormalized(NoV, float(l.z), float(glm::dot(l, h)), r) /
+               std::numbers::pi * l.z * dOmega;
     }
   }
   return sum;

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <numbers>
 #include <random>
 
@@ -22,6 +23,20 @@ TEST(Equirect, ConventionOfDesign) {
   // the panorama is not mirrored.
   const glm::vec3 right = glm::cross(glm::vec3(1, 0, 0), glm::vec3(0, 1, 0));
   EXPECT_GT(glm::dot(equirectToDirection(0.51f, 0.5f), right), 0.0f);
+}
+
+TEST(Equirect, Atan2ApproximationIsAccurate) {
+  std::mt19937 rng(4);
+  std::normal_distribution<float> g;
+  double worst = 0.0;
+  for (int i = 0; i < 200000; ++i) {
+    const float y = g(rng), x = g(rng);
+    worst = std::max(worst, std::abs(double(atan2Approx(y, x)) - std::atan2(double(y), double(x))));
+  }
+  EXPECT_LT(worst, 5e-7);
+  EXPECT_FLOAT_EQ(atan2Approx(0.0f, 1.0f), 0.0f);
+  EXPECT_NEAR(atan2Approx(1.0f, 0.0f), std::numbers::pi / 2, 1e-7);
+  EXPECT_NEAR(atan2Approx(0.0f, -1.0f), std::numbers::pi, 1e-7);
 }
 
 TEST(Equirect, DirectionRoundTrip) {

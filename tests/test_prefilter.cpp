@@ -1,8 +1,8 @@
 #include <cmath>
 #include <numbers>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "helpers.hpp"
 #include "ibl/color.hpp"
@@ -25,7 +25,9 @@ CubeMap sunSource(int size) {
   const glm::vec3 sunDir = glm::normalize(glm::vec3(0.5f, 0.4f, -0.7f));
   CubeMap cube = cubeFromFunction(size, [&](glm::vec3 d) {
     const float sky = 0.2f + 0.3f * std::max(0.0f, d.y);
-    return glm::vec3(sky) + (glm::dot(d, sunDir) > std::cos(0.045f) ? glm::vec3(3000.0f, 2500.0f, 2000.0f) : glm::vec3(0.0f));
+    return glm::vec3(sky) + (glm::dot(d, sunDir) > std::cos(0.045f)
+                                 ? glm::vec3(3000.0f, 2500.0f, 2000.0f)
+                                 : glm::vec3(0.0f));
   });
   buildMipChain(cube);
   return cube;
@@ -57,7 +59,8 @@ TEST(Prefilter, ConstantEnvironmentStaysConstant) {
   const glm::vec3 L(1.5f, 0.75f, 3.0f);
   const CubeMap source = constantSource(64, L);
   for (auto method : {PrefilterMethod::Direct, PrefilterMethod::Sampled})
-    for (auto weight : {PrefilterWeight::Standard, PrefilterWeight::FresnelF0Zero, PrefilterWeight::FresnelF0One}) {
+    for (auto weight : {PrefilterWeight::Standard, PrefilterWeight::FresnelF0Zero,
+                        PrefilterWeight::FresnelF0One}) {
       PrefilterOptions o;
       o.size = 64;
       o.levels = 4;
@@ -95,7 +98,8 @@ TEST(Prefilter, LevelsAgainstBruteForceReference) {
   std::vector<LevelMethod> methods;
   const CubeMap out = prefilterGgx(source, o, &methods);
   for (int m = 1; m < 4; ++m) {
-    const auto ref = prefilterLevelDirect(source, 0, 64 >> m, methods[m].roughness, PrefilterWeight::Standard);
+    const auto ref =
+        prefilterLevelDirect(source, 0, 64 >> m, methods[m].roughness, PrefilterWeight::Standard);
     const double e = relativeRmseLuminance(out.levels[m], ref);
     RecordProperty("level" + std::to_string(m) + "_relative_rmse", std::to_string(e));
     EXPECT_LT(e, 0.01) << "level " << m << " (" << methods[m].method << ")";
@@ -104,7 +108,8 @@ TEST(Prefilter, LevelsAgainstBruteForceReference) {
   o.method = PrefilterMethod::Sampled;
   o.samples = 64;
   const CubeMap sampled = prefilterGgx(source, o, &methods);
-  const auto ref = prefilterLevelDirect(source, 0, 32, methods[1].roughness, PrefilterWeight::Standard);
+  const auto ref =
+      prefilterLevelDirect(source, 0, 32, methods[1].roughness, PrefilterWeight::Standard);
   EXPECT_LT(relativeRmseLuminance(sampled.levels[1], ref), 0.15);
 }
 

@@ -2,8 +2,8 @@
 #include <numbers>
 #include <random>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "helpers.hpp"
 #include "ibl/sh.hpp"
@@ -58,7 +58,8 @@ TEST(Sh, ConstantEnvironmentGivesPiL) {
 TEST(Sh, IrradianceOfALinearEnvironmentIsExact) {
   // L(w) = 1 + a.w has E(n) = pi + (2 pi / 3) a.n exactly: bands 0 and 1 only.
   const glm::vec3 a(0.3f, -0.5f, 0.2f);
-  const CubeMap cube = cubeFromFunction(64, [&](glm::vec3 d) { return glm::vec3(1.0f + glm::dot(a, d)); });
+  const CubeMap cube =
+      cubeFromFunction(64, [&](glm::vec3 d) { return glm::vec3(1.0f + glm::dot(a, d)); });
   const Sh9 sh = projectSh9(cube);
   for (glm::vec3 n : {glm::vec3(0, 0, 1), glm::normalize(glm::vec3(1, 1, -1))})
     EXPECT_NEAR(irradianceSh9(sh, n).x, kPi + 2.0f * kPi / 3.0f * glm::dot(a, n), 2e-3f);
@@ -67,7 +68,8 @@ TEST(Sh, IrradianceOfALinearEnvironmentIsExact) {
 TEST(Sh, SkyIrradianceClosedForm) {
   // Upper hemisphere of radiance 1: E(n) = pi (1 + n.y) / 2. SH9 misses it by a few percent
   // near the horizon (its truncation), which is why the bake convolves the cube directly.
-  const CubeMap cube = cubeFromFunction(64, [](glm::vec3 d) { return glm::vec3(d.y > 0 ? 1.0f : 0.0f); });
+  const CubeMap cube =
+      cubeFromFunction(64, [](glm::vec3 d) { return glm::vec3(d.y > 0 ? 1.0f : 0.0f); });
   const Sh9 sh = projectSh9(cube);
   for (float ny : {-0.9f, -0.3f, 0.0f, 0.5f, 1.0f}) {
     const glm::vec3 n(std::sqrt(1 - ny * ny), ny, 0);

@@ -16,7 +16,7 @@
 namespace ibl {
 
 struct BakeOptions {
-  PrefilterOptions specular;    // size (also the source cube's), levels, mapping, method
+  PrefilterOptions specular;     // size (also the source cube's), levels, mapping, method
   bool fresnelWeighted = false;  // also bake the C(n, l)-weighted pair (F0 = 0 and F0 = 1)
   int irradianceSize = 32;
   int dfgSize = 128;
@@ -30,9 +30,9 @@ struct BakeResult {
   CubeMap specular;
   std::vector<LevelMethod> specularLevels;
   std::optional<CubeMap> specularF0Zero, specularF0One;  // with fresnelWeighted
-  CubeMap irradiance;  // E / pi
-  Sh9 sh;              // radiance coefficients (windowed if asked)
-  Image dfg;           // RGB = A, B, diffuse
+  CubeMap irradiance;                                    // E / pi
+  Sh9 sh;                                   // radiance coefficients (windowed if asked)
+  Image dfg;                                // RGB = A, B, diffuse
   std::map<std::string, double> timingsMs;  // per stage
 };
 

@@ -63,7 +63,13 @@ glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir);
 
 // Weights of the uniform cubic B-spline for the taps at -1, 0, 1, 2 around a sample that lies
 // a fraction t past tap 0.
-void cubicBSplineWeights(float t, float w[4]);
+inline void cubicBSplineWeights(float t, float w[4]) {
+  const float t2 = t * t, t3 = t2 * t, s = 1.0f - t;
+  w[0] = s * s * s / 6.0f;
+  w[1] = (3.0f * t3 - 6.0f * t2 + 4.0f) / 6.0f;
+  w[2] = (-3.0f * t3 + 3.0f * t2 + 3.0f * t + 1.0f) / 6.0f;
+  w[3] = t3 / 6.0f;
+}
 
 // Trilinear lookup: bilinear in the two levels around `lod`, blended.
 glm::vec3 sampleTrilinear(const CubeMap& cube, float lod, glm::vec3 dir);

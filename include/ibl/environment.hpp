@@ -1,8 +1,8 @@
 #pragma once
 // An HDR environment as loaded from disk (equirectangular or cube map), and the cross and
 // six-face layouts of cube maps.
-#include <filesystem>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <span>
 #include <string>
@@ -70,8 +70,8 @@ InvalidPixelCounts sanitizeEnvironment(Environment& env);
 
 // Decodes an environment from memory (any format, one file), replacing NaN, infinite and
 // negative pixel components by 0.
-LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes, std::string_view name,
-                                            const LoadOptions& options = {});
+LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes,
+                                            std::string_view name, const LoadOptions& options = {});
 
 // Reads an environment in any supported format and layout; NaN, infinite and negative pixel
 // components are replaced by 0 and counted. Throws Error naming the file on any problem.

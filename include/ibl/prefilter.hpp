@@ -19,7 +19,7 @@ float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping);
 
 // What each specular level averages the environment with (the split sum's first factor).
 enum class PrefilterWeight {
-  Standard,  // D(h) (n.l): Karis 2013, n = v = r
+  Standard,       // D(h) (n.l): Karis 2013, n = v = r
   FresnelF0Zero,  // D V F (n.l) with F0 = 0: keeps the Fresnel/visibility weight C(n, l)
   FresnelF0One,   // D V F (n.l) with F0 = 1 (F = 1)
 };
@@ -56,8 +56,7 @@ using ProgressFn = std::function<void(const std::string& stage)>;
 // roughness roughnessForLevel(m) around n = v = r. Level 0 (r = 0) is the source itself.
 // `source` must hold a full mip chain (buildMipChain) of a power-of-two size.
 CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& options,
-                     std::vector<LevelMethod>* methods = nullptr,
-                     const ProgressFn& progress = {});
+                     std::vector<LevelMethod>* methods = nullptr, const ProgressFn& progress = {});
 
 // Direct convolution of one specular level over every texel of source level `sourceLevel`:
 // sum L w / sum w with w = weight(n.l) x texel solid angle. The reference for the tests and

@@ -1,7 +1,11 @@
 #pragma once
 // Low-discrepancy sequences and the importance sampling of BRDF lobes, shared by the bake,
 // the reference renderer and (as constants) the GPU shaders.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+
+#include <glm/geometric.hpp>
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
@@ -33,7 +37,14 @@ glm::vec2 uniformDiskPoint(glm::vec2 xi);
 class GgxVisibleNormalSampler {
  public:
   GgxVisibleNormalSampler(glm::vec3 v, float alpha);
-  glm::vec3 sample(glm::vec2 disk) const;
+  // Warps the disk onto the projection of the visible hemisphere, lifts it, unstretches.
+  glm::vec3 sample(glm::vec2 disk) const {
+    const float p1 = disk.x;
+    const float p2 = (1.0f - s_) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s_ * disk.y;
+    const glm::vec3 nh =
+        p1 * t1_ + p2 * t2_ + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh_;
+    return glm::normalize(glm::vec3(alpha_ * nh.x, alpha_ * nh.y, std::max(0.0f, nh.z)));
+  }
 
  private:
   glm::vec3 vh_, t1_, t2_;
