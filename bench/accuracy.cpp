@@ -1,31 +1,45 @@
-// Accuracy report: each prefiltered specular level and the irradiance cube of the default
-// bake, against brute-force references (direct quadrature over every texel of the 256^2
-// source cube), as relative RMSE of luminance over texels, for the bundled HDRIs.
+// Accuracy report of the default bake, for the bundled HDRIs (sunset has a visible sun):
+//  - each prefiltered specular level and the irradiance cube against brute-force references
+//    (direct quadrature over every texel of the 256^2 source), as relative RMSE of luminance
+//    over texels (all texels, or 3000 fixed random ones on large levels), for the default
+//    direct method and for filtered importance sampling (64 samples);
+//  - the C(n, l)-weighted prefilter (F0 = 1) against the standard one;
+//  - SH9 irradiance, plain and windowed, against the exact irradiance cube;
+//  - the analytic DFG fits against the 128^2 table.
 //   ibl_accuracy [hdri ...]     (default: sunset park studio)
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
+#include <numbers>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <fmt/core.h>
 
+#include "ibl/brdf.hpp"
 #include "ibl/color.hpp"
+#include "ibl/dfg.hpp"
 #include "ibl/environment.hpp"
 #include "ibl/prefilter.hpp"
 #include "ibl/resample.hpp"
+#include "ibl/sh.hpp"
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Texel directions of a level: all of them, or a fixed random subset of `limit`.
-std::vector<std::pair<int, glm::ivec2>> pickTexels(int size, std::size_t limit) {
-  std::vector<std::pair<int, glm::ivec2>> all;
+struct TexelRef {
+  int face;
+  int x, y;
+};
+
+// All texels of a level, or a fixed random subset of `limit`.
+std::vector<TexelRef> pickTexels(int size, std::size_t limit) {
+  std::vector<TexelRef> all;
   for (int f = 0; f < 6; ++f)
     for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) all.push_back({f, {x, y}});
+      for (int x = 0; x < size; ++x) all.push_back({f, x, y});
   if (all.size() <= limit) return all;
   std::mt19937 rng(12345);
   std::shuffle(all.begin(), all.end(), rng);
@@ -42,21 +56,85 @@ double relativeRmse(const std::vector<float>& a, const std::vector<float>& ref) 
   return std::sqrt(num / den);
 }
 
+// Relative RMSE of luminance of `level` against a brute-force reference over `source`.
 double levelError(const std::array<ibl::Image, 6>& level, const std::array<ibl::Image, 6>& source,
                   float roughness, bool irradiance) {
   const int size = level[0].width;
   const auto texels = pickTexels(size, 3000);
   std::vector<glm::vec3> dirs;
-  for (const auto& [f, p] : texels) dirs.push_back(ibl::texelDirection(f, p.x, p.y, size));
+  for (const auto& t : texels) dirs.push_back(ibl::texelDirection(t.face, t.x, t.y, size));
   const auto ref = irradiance ? ibl::irradianceDirections(source, dirs)
-                              : ibl::prefilterDirections(source, dirs, roughness,
-                                                         ibl::PrefilterWeight::Standard);
+                              : ibl::prefilterDirections(source, dirs, roughness, ibl::PrefilterWeight::Standard);
   std::vector<float> a, b;
   for (std::size_t i = 0; i < texels.size(); ++i) {
-    a.push_back(ibl::luminance(level[texels[i].first].at(texels[i].second.x, texels[i].second.y)));
+    a.push_back(ibl::luminance(level[texels[i].face].at(texels[i].x, texels[i].y)));
     b.push_back(ibl::luminance(ref[i]));
   }
   return relativeRmse(a, b);
+}
+
+double imageDifference(const std::array<ibl::Image, 6>& a, const std::array<ibl::Image, 6>& ref) {
+  std::vector<float> x, y;
+  for (int f = 0; f < 6; ++f)
+    for (std::size_t i = 0; i < a[f].pixels.size(); ++i) {
+      x.push_back(ibl::luminance(a[f].pixels[i]));
+      y.push_back(ibl::luminance(ref[f].pixels[i]));
+    }
+  return relativeRmse(x, y);
+}
+
+double ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+
+void reportEnvironment(const std::string& name) {
+  const auto env = ibl::loadEnvironment(std::string(IBL_BENCH_DATA) + "/hdri/" + name + ".exr").environment;
+  ibl::CubeMap source = ibl::resampleToCube(env, 256);
+  ibl::buildMipChain(source);
+  fmt::print("{}: relative RMSE of luminance against brute-force quadrature over the 256^2 source\n", name);
+  ibl::CubeMap standard;
+  for (auto method : {ibl::PrefilterMethod::Direct, ibl::PrefilterMethod::Sampled}) {
+    ibl::PrefilterOptions options;
+    options.method = method;
+    std::vector<ibl::LevelMethod> levels;
+    const auto t0 = Clock::now();
+    ibl::CubeMap specular = ibl::prefilterGgx(source, options, &levels);
+    const double t = ms(t0);
+    fmt::print("  specular, {} ({:.0f} ms)\n",
+               method == ibl::PrefilterMethod::Direct ? "direct quadrature (default)"
+                                                      : "filtered importance sampling, 64 samples",
+               t);
+    for (int m = 1; m < specular.levelCount(); ++m)
+      fmt::print("    level {}  {:3}^2  r = {:.1f}  {:7} source {:3}^2  {:7.3f} %\n", m, specular.levels[m][0].width,
+                 levels[m].roughness, levels[m].method, levels[m].sourceSize,
+                 100.0 * levelError(specular.levels[m], source.levels[0], levels[m].roughness, false));
+    if (method == ibl::PrefilterMethod::Direct) standard = std::move(specular);
+  }
+  const auto t1 = Clock::now();
+  const ibl::CubeMap irradiance = ibl::convolveIrradiance(source, 32, ibl::levelOfSize(source, 32));
+  const double tIrr = ms(t1);
+  fmt::print("  irradiance 32^2, direct over the 32^2 level ({:.0f} ms)     {:7.3f} %\n", tIrr,
+             100.0 * levelError(irradiance.levels[0], source.levels[0], 0.0f, true));
+
+  ibl::PrefilterOptions variant;
+  variant.weight = ibl::PrefilterWeight::FresnelF0One;
+  const ibl::CubeMap fresnel = ibl::prefilterGgx(source, variant);
+  fmt::print("  C(n,l)-weighted prefilter (F0 = 1) vs standard, per level:");
+  for (int m = 1; m < fresnel.levelCount(); ++m)
+    fmt::print(" {:.2f} %", 100.0 * imageDifference(fresnel.levels[m], standard.levels[m]));
+  fmt::print("\n");
+
+  const ibl::Sh9 sh = ibl::projectSh9(source, 0);
+  for (bool windowed : {false, true}) {
+    const ibl::Sh9 coefficients = windowed ? ibl::windowSh9(sh) : sh;
+    std::array<ibl::Image, 6> fromSh;
+    for (int f = 0; f < 6; ++f) {
+      fromSh[f] = ibl::Image(32, 32);
+      for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x)
+          fromSh[f].at(x, y) = ibl::irradianceSh9(coefficients, ibl::texelDirection(f, x, y, 32)) / std::numbers::pi_v<float>;
+    }
+    fmt::print("  SH9 irradiance{} vs exact irradiance cube              {:7.3f} %\n", windowed ? " (windowed)" : "           ",
+               100.0 * imageDifference(fromSh, irradiance.levels[0]));
+  }
 }
 
 }  // namespace
@@ -65,39 +143,24 @@ int main(int argc, char** argv) {
   std::vector<std::string> names;
   for (int i = 1; i < argc; ++i) names.push_back(argv[i]);
   if (names.empty()) names = {"sunset", "park", "studio"};
-  for (const auto& name : names) {
-    const auto env =
-        ibl::loadEnvironment(std::string(IBL_BENCH_DATA) + "/hdri/" + name + ".exr").environment;
-    ibl::CubeMap source = ibl::resampleToCube(env, 256);
-    ibl::buildMipChain(source);
-    fmt::print("{} (256^2 source, relative RMSE of luminance against the brute-force reference)\n",
-               name);
-    for (auto method : {ibl::PrefilterMethod::Direct, ibl::PrefilterMethod::Sampled}) {
-      ibl::PrefilterOptions options;
-      options.method = method;
-      std::vector<ibl::LevelMethod> methods;
-      const auto t0 = Clock::now();
-      const ibl::CubeMap specular = ibl::prefilterGgx(source, options, &methods);
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-      fmt::print("  specular, {} ({:.0f} ms)\n",
-                 method == ibl::PrefilterMethod::Direct
-                     ? "direct (default)"
-                     : "filtered importance sampling, 64 samples",
-                 ms);
-      for (int m = 1; m < specular.levelCount(); ++m) {
-        const double e =
-            levelError(specular.levels[m], source.levels[0], methods[m].roughness, false);
-        fmt::print("    level {}  {:3}^2  r = {:.3f}  {:8} source {:3}^2  {:7.3f} %\n", m,
-                   specular.levels[m][0].width, methods[m].roughness, methods[m].method,
-                   methods[m].sourceSize, 100.0 * e);
+  for (const auto& name : names) reportEnvironment(name);
+
+  // Analytic DFG fits against the table (A, B).
+  const ibl::Image lut = ibl::integrateDfgLut(128, 128, 512);
+  for (auto [label, fit] : {std::pair{"UE4 mobile (Karis 2014)", &ibl::dfgUe4Mobile},
+                            std::pair{"Black Ops II (Lazarov 2013)", &ibl::dfgBlackOps2}}) {
+    double sq = 0.0, worst = 0.0;
+    for (int j = 0; j < 128; ++j)
+      for (int i = 0; i < 128; ++i) {
+        const glm::vec2 ref(lut.at(i, j).x, lut.at(i, j).y);
+        const glm::vec2 v = fit((j + 0.5f) / 128.0f, (i + 0.5f) / 128.0f);
+        for (int c = 0; c < 2; ++c) {
+          sq += (v[c] - ref[c]) * (v[c] - ref[c]);
+          worst = std::max(worst, double(std::abs(v[c] - ref[c])));
+        }
       }
-    }
-    const auto t1 = Clock::now();
-    const ibl::CubeMap irradiance =
-        ibl::convolveIrradiance(source, 32, ibl::levelOfSize(source, 32));
-    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t1).count();
-    fmt::print("  irradiance 32^2, direct over the 32^2 level ({:.0f} ms)  {:7.3f} %\n", ms,
-               100.0 * levelError(irradiance.levels[0], source.levels[0], 0.0f, true));
+    fmt::print("DFG fit {}: RMS error {:.4f}, max {:.4f} (A and B, over the 128^2 table)\n", label,
+               std::sqrt(sq / (2.0 * 128 * 128)), worst);
   }
   return 0;
 }

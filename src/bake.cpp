@@ -397,9 +397,6 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
                           {"negative", src.replaced.negative}}}};
   manifest["conventions"] = conventionsJson(o, r);
   manifest["outputs"] = outputs;
-  Json timings;
-  for (const auto& [stage, ms] : r.timingsMs) timings[stage] = ms;
-  manifest["timings_ms"] = timings;
   const std::string text = manifest.dump(2) + "\n";
   files.push_back({"manifest.json",
                    [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); },

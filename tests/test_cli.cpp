@@ -158,3 +158,16 @@ TEST(Cli, BakeFailsCleanly) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));
   EXPECT_EQ(countFiles(dir.path()), 1);  // bad.hdr only: no staging directory
 }
+
+TEST(Cli, BakeBytesDoNotDependOnThreads) {
+  TempDir dir;
+  const std::string args = " --size 32 --dfg-size 16 --dfg-samples 64 --exr --quiet";
+  ASSERT_EQ(runIbl("bake -o " + quote(dir / "one") + args + " --threads 1").status, 0);
+  ASSERT_EQ(runIbl("bake -o " + quote(dir / "two") + args + " --threads 2").status, 0);
+  int compared = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "one")) {
+    EXPECT_EQ(readFileBytes(e.path()), readFileBytes(dir / "two" / e.path().filename())) << e.path();
+    ++compared;
+  }
+  EXPECT_GT(compared, 10);
+}
