@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Builds the release tree and prints every benchmark figure: I/O and conversion, the default
+# bake stage by stage, and the accuracy report. Usage: bash bench/run.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+ninja -C build ibl_bench_io ibl_bench_bake ibl_accuracy >/dev/null
+echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+echo "== I/O and conversion (2048x1024 EXR -> 256^2 cube with mips -> KTX2)"
+./build/bench/ibl_bench_io --benchmark_min_time=1
+echo "== default bake (2048x1024 HDR -> 256^2 specular chain, 32^2 irradiance, SH9, 128^2 DFG)"
+./build/bench/ibl_bench_bake --benchmark_min_time=1
+echo "== accuracy"
+./build/bench/ibl_accuracy
