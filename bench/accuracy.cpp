@@ -64,7 +64,8 @@ double levelError(const std::array<ibl::Image, 6>& level, const std::array<ibl::
   std::vector<glm::vec3> dirs;
   for (const auto& t : texels) dirs.push_back(ibl::texelDirection(t.face, t.x, t.y, size));
   const auto ref = irradiance ? ibl::irradianceDirections(source, dirs)
-                              : ibl::prefilterDirections(source, dirs, roughness, ibl::PrefilterWeight::Standard);
+                              : ibl::prefilterDirections(source, dirs, roughness,
+                                                         ibl::PrefilterWeight::Standard);
   std::vector<float> a, b;
   for (std::size_t i = 0; i < texels.size(); ++i) {
     a.push_back(ibl::luminance(level[texels[i].face].at(texels[i].x, texels[i].y)));
@@ -83,13 +84,18 @@ double imageDifference(const std::array<ibl::Image, 6>& a, const std::array<ibl:
   return relativeRmse(x, y);
 }
 
-double ms(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+double ms(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
 void reportEnvironment(const std::string& name) {
-  const auto env = ibl::loadEnvironment(std::string(IBL_BENCH_DATA) + "/hdri/" + name + ".exr").environment;
+  const auto env =
+      ibl::loadEnvironment(std::string(IBL_BENCH_DATA) + "/hdri/" + name + ".exr").environment;
   ibl::CubeMap source = ibl::resampleToCube(env, 256);
   ibl::buildMipChain(source);
-  fmt::print("{}: relative RMSE of luminance against brute-force quadrature over the 256^2 source\n", name);
+  fmt::print(
+      "{}: relative RMSE of luminance against brute-force quadrature over the 256^2 source\n",
+      name);
   ibl::CubeMap standard;
   for (auto method : {ibl::PrefilterMethod::Direct, ibl::PrefilterMethod::Sampled}) {
     ibl::PrefilterOptions options;
@@ -103,9 +109,10 @@ void reportEnvironment(const std::string& name) {
                                                       : "filtered importance sampling, 64 samples",
                t);
     for (int m = 1; m < specular.levelCount(); ++m)
-      fmt::print("    level {}  {:3}^2  r = {:.1f}  {:7} source {:3}^2  {:7.3f} %\n", m, specular.levels[m][0].width,
-                 levels[m].roughness, levels[m].method, levels[m].sourceSize,
-                 100.0 * levelError(specular.levels[m], source.levels[0], levels[m].roughness, false));
+      fmt::print(
+          "    level {}  {:3}^2  r = {:.1f}  {:7} source {:3}^2  {:7.3f} %\n", m,
+          specular.levels[m][0].width, levels[m].roughness, levels[m].method, levels[m].sourceSize,
+          100.0 * levelError(specular.levels[m], source.levels[0], levels[m].roughness, false));
     if (method == ibl::PrefilterMethod::Direct) standard = std::move(specular);
   }
   const auto t1 = Clock::now();
@@ -130,9 +137,11 @@ void reportEnvironment(const std::string& name) {
       fromSh[f] = ibl::Image(32, 32);
       for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 32; ++x)
-          fromSh[f].at(x, y) = ibl::irradianceSh9(coefficients, ibl::texelDirection(f, x, y, 32)) / std::numbers::pi_v<float>;
+          fromSh[f].at(x, y) = ibl::irradianceSh9(coefficients, ibl::texelDirection(f, x, y, 32)) /
+                               std::numbers::pi_v<float>;
     }
-    fmt::print("  SH9 irradiance{} vs exact irradiance cube              {:7.3f} %\n", windowed ? " (windowed)" : "           ",
+    fmt::print("  SH9 irradiance{} vs exact irradiance cube              {:7.3f} %\n",
+               windowed ? " (windowed)" : "           ",
                100.0 * imageDifference(fromSh, irradiance.levels[0]));
   }
 }

@@ -166,7 +166,8 @@ TEST(Cli, BakeBytesDoNotDependOnThreads) {
   ASSERT_EQ(runIbl("bake -o " + quote(dir / "two") + args + " --threads 2").status, 0);
   int compared = 0;
   for (const auto& e : std::filesystem::directory_iterator(dir / "one")) {
-    EXPECT_EQ(readFileBytes(e.path()), readFileBytes(dir / "two" / e.path().filename())) << e.path();
+    EXPECT_EQ(readFileBytes(e.path()), readFileBytes(dir / "two" / e.path().filename()))
+        << e.path();
     ++compared;
   }
   EXPECT_GT(compared, 10);
