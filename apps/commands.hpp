@@ -11,5 +11,7 @@ struct GlobalOptions {
 void addConvertCommand(CLI::App& app, const GlobalOptions& global);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global);
 void addBakeCommand(CLI::App& app, const GlobalOptions& global);
+void addRenderCommand(CLI::App& app, const GlobalOptions& global);
+void addCompareCommand(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace ibl::cli

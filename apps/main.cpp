@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
   });
   ibl::cli::addBakeCommand(app, global);
   ibl::cli::addConvertCommand(app, global);
+  ibl::cli::addRenderCommand(app, global);
+  ibl::cli::addCompareCommand(app, global);
   ibl::cli::addInfoCommand(app, global);
   try {
     app.parse(argc, argv);

@@ -8,7 +8,7 @@ packages=(
   cmake ninja-build g++ clang-14 libclang-rt-14-dev clang-format pkg-config
   # libraries
   libopenexr-dev libimath-dev libstb-dev libglm-dev libcli11-dev libfmt-dev
-  nlohmann-json3-dev libtbb-dev
+  nlohmann-json3-dev libtbb-dev libtinygltf-dev libembree-dev libdraco-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3
 )

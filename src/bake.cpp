@@ -407,4 +407,49 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   return written;
 }
 
+BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
+  const fs::path manifestPath = dir / "manifest.json";
+  const auto bytes = readFileBytes(manifestPath);
+  Json manifest;
+  try {
+    manifest = Json::parse(bytes.begin(), bytes.end());
+  } catch (const std::exception& e) {
+    fail(manifestPath.string(), fmt::format("not valid JSON: {}", e.what()));
+  }
+  BakeResult r;
+  const auto cube = [&](const std::string& file) {
+    const DecodedFile d = readImageFile(dir / file);
+    if (d.levels[0].size() != kFaceCount) fail((dir / file).string(), "is not a cube map");
+    CubeMap c;
+    for (const auto& level : d.levels) {
+      c.levels.emplace_back();
+      for (int f = 0; f < kFaceCount; ++f) c.levels.back()[f] = level[f];
+    }
+    return c;
+  };
+  try {
+    r.specular = cube("specular.ktx2");
+    r.irradiance = cube("irradiance.ktx2");
+    r.source = cube("source.ktx2");
+    r.dfg = readImageFile(dir / "dfg.ktx2").levels.at(0).at(0);
+    for (const auto& o : manifest.at("outputs")) {
+      if (o.at("role") == "sh")
+        for (int k = 0; k < 9; ++k)
+          for (int c = 0; c < 3; ++c) r.sh[k][c] = o.at("coefficients").at(k).at(c).get<float>();
+      if (o.at("role") == "specular" && o.value("variant", "") == "standard" &&
+          o.at("format") == "ktx2") {
+        for (const auto& v : o.at("roughness"))
+          r.specularLevels.push_back({v.get<float>(), "loaded", 0, 0});
+        if (options)
+          options->specular.mapping = o.at("mapping") == "frostbite" ? RoughnessMapping::Frostbite
+                                                                     : RoughnessMapping::Linear;
+      }
+    }
+  } catch (const nlohmann::json::exception& e) {
+    fail(manifestPath.string(), fmt::format("unexpected content: {}", e.what()));
+  }
+  if (options) options->specular.size = r.specular.size();
+  return r;
+}
+
 }  // namespace ibl

@@ -185,12 +185,15 @@ Image decodeExr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
   }
 }
 
-std::vector<std::uint8_t> encodeExr(const Image& img, ExrPixelType type) {
+std::vector<std::uint8_t> encodeExr(const Image& img, ExrPixelType type,
+                                    const std::vector<float>* alpha) {
   useAllCores();
   Imf::Header header(img.width, img.height);
   header.compression() = Imf::ZIP_COMPRESSION;
   const Imf::PixelType pt = type == ExrPixelType::Half ? Imf::HALF : Imf::FLOAT;
   for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(pt));
+  if (alpha) header.channels().insert("A", Imf::Channel(pt));
+  std::vector<Imath::half> alphaHalves;
   header.insert("writer", Imf::StringAttribute(fmt::format("ibl {}", kVersion)));
   MemoryOutput out;
   {
@@ -210,6 +213,17 @@ std::vector<std::uint8_t> encodeExr(const Image& img, ExrPixelType type) {
       const std::size_t xs = sizeof(glm::vec3), ys = xs * img.width;
       for (int c = 0; c < 3; ++c)
         fb.insert(std::string(1, "RGB"[c]), Imf::Slice(Imf::FLOAT, base + 4 * c, xs, ys));
+    }
+    if (alpha) {
+      if (type == ExrPixelType::Half) {
+        alphaHalves.assign(alpha->begin(), alpha->end());
+        fb.insert("A", Imf::Slice(Imf::HALF, reinterpret_cast<char*>(alphaHalves.data()),
+                                  sizeof(Imath::half), sizeof(Imath::half) * img.width));
+      } else {
+        fb.insert("A",
+                  Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(alpha->data())),
+                             sizeof(float), sizeof(float) * img.width));
+      }
     }
     file.setFrameBuffer(fb);
     file.writePixels(img.height);

@@ -426,6 +426,12 @@ float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping) {
   return mapping == RoughnessMapping::Linear ? t : t * t;
 }
 
+float specularLodForRoughness(float roughness, int levelCount, RoughnessMapping mapping) {
+  const float t =
+      mapping == RoughnessMapping::Linear ? roughness : std::sqrt(std::max(roughness, 0.0f));
+  return t * static_cast<float>(std::max(levelCount - 1, 0));
+}
+
 int defaultSpecularLevels(int size) {
   int levels = 1;
   while ((size >> levels) >= kMinSpecularSize) ++levels;

@@ -67,4 +67,8 @@ std::vector<std::filesystem::path> writeBakeOutputs(const BakeResult& result,
                                                     const BakeSource& source,
                                                     const std::filesystem::path& outDir);
 
+// Reads a bake written by writeBakeOutputs back (specular, irradiance, source, DFG, SH9 and the
+// roughness mapping from its manifest), for rendering without baking again.
+BakeResult loadBake(const std::filesystem::path& dir, BakeOptions* options);
+
 }  // namespace ibl

@@ -39,8 +39,9 @@ Image decodeLdr(std::span<const std::uint8_t> bytes, std::string_view name,
 // Encoders. Radiance HDR is written with run-length encoded scanlines, "-Y H +X W".
 std::vector<std::uint8_t> encodeHdr(const Image& image);
 enum class ExrPixelType { Half, Float };
-// OpenEXR, RGB, ZIP compression.
-std::vector<std::uint8_t> encodeExr(const Image& image, ExrPixelType type = ExrPixelType::Half);
+// OpenEXR, RGB (and A when `alpha` is given: one value per pixel), ZIP compression.
+std::vector<std::uint8_t> encodeExr(const Image& image, ExrPixelType type = ExrPixelType::Half,
+                                    const std::vector<float>* alpha = nullptr);
 // 8-bit sRGB PNG of the image scaled by 2^exposure (for looking at, not for data).
 std::vector<std::uint8_t> encodePng(const Image& image, float exposure = 0.0f);
 

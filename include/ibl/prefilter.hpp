@@ -16,6 +16,8 @@ enum class RoughnessMapping {
   Frostbite,  // r = (m / (L - 1))^2, i.e. level = sqrt(r) (L - 1) (Lagarde & de Rousiers 2014)
 };
 float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping);
+// The mip level (fractional) that holds roughness r: the inverse of roughnessForLevel.
+float specularLodForRoughness(float roughness, int levelCount, RoughnessMapping mapping);
 
 // What each specular level averages the environment with (the split sum's first factor).
 enum class PrefilterWeight {

@@ -1,0 +1,102 @@
+// `ibl compare`: how far an image is from a reference.
+#include <cstdio>
+#include <string>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "ibl/color.hpp"
+#include "ibl/error.hpp"
+#include "ibl/file_io.hpp"
+#include "ibl/image_io.hpp"
+#include "ibl/stats.hpp"
+
+namespace ibl::cli {
+
+namespace {
+
+struct CompareOptions {
+  std::string a, b, mask, errorPng;
+  double maxRelError = -1.0;
+  double errorScale = 0.1;
+  bool json = false;
+};
+
+Image readFlat(const std::string& path) {
+  DecodedFile d = readImageFile(path);
+  if (d.levels[0].size() != 1) fail(path, "is a cube map; compare flat images");
+  return std::move(d.levels[0][0]);
+}
+
+nlohmann::ordered_json errorsJson(const ChannelErrors& e) {
+  return {{"rmse", e.rmse},
+          {"relative_mse", e.relativeMse},
+          {"mean_relative_error", e.meanRelativeError},
+          {"max_error", e.maxError},
+          {"psnr_db", e.psnr}};
+}
+
+int runCompare(const CompareOptions& o) {
+  const Image a = readFlat(o.a), b = readFlat(o.b);
+  if (a.width != b.width || a.height != b.height)
+    fail(o.a, fmt::format("is {}x{} but {} is {}x{}", a.width, a.height, o.b, b.width, b.height));
+  std::vector<float> mask;
+  if (!o.mask.empty()) {
+    const Image m = readFlat(o.mask);
+    if (m.width != a.width || m.height != a.height)
+      fail(o.mask, "mask size differs from the images");
+    for (const auto& p : m.pixels) mask.push_back(p.x);
+  }
+  const ImageComparison c = compareImages(a, b, o.mask.empty() ? nullptr : &mask);
+  if (!o.errorPng.empty())
+    writeFileAtomic(o.errorPng, encodePng(errorFalseColor(a, b, o.errorScale)));
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["pixels"] = c.pixels;
+    j["overall"] = errorsJson(c.overall);
+    j["r"] = errorsJson(c.channel[0]);
+    j["g"] = errorsJson(c.channel[1]);
+    j["b"] = errorsJson(c.channel[2]);
+    fmt::print("{}\n", j.dump(2));
+  } else {
+    fmt::print("compared {} pixels of {} against {}\n", c.pixels, o.a, o.b);
+    fmt::print("{:8} {:>12} {:>12} {:>12} {:>12} {:>9}\n", "channel", "RMSE", "rel. MSE",
+               "mean rel.", "max", "PSNR dB");
+    const char* names[4] = {"R", "G", "B", "overall"};
+    for (int k = 0; k < 4; ++k) {
+      const ChannelErrors& e = k < 3 ? c.channel[k] : c.overall;
+      fmt::print("{:8} {:12.6g} {:12.6g} {:12.6g} {:12.6g} {:9.2f}\n", names[k], e.rmse,
+                 e.relativeMse, e.meanRelativeError, e.maxError, e.psnr);
+    }
+  }
+  if (o.maxRelError >= 0.0 && c.overall.meanRelativeError > o.maxRelError) {
+    fmt::print(stderr, "ibl: mean relative error {:.6g} exceeds --max-rel-error {:.6g}\n",
+               c.overall.meanRelativeError, o.maxRelError);
+    return 2;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void addCompareCommand(CLI::App& app, const GlobalOptions&) {
+  auto opts = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Error of an image against a reference (RMSE, relative MSE, PSNR)");
+  cmd->add_option("image", opts->a, "Image to judge")->required();
+  cmd->add_option("reference", opts->b, "Reference image")->required();
+  cmd->add_option("--mask", opts->mask, "Compare only where this image's red channel is > 0.5");
+  cmd->add_option("--error-png", opts->errorPng, "Write a false-color map of the relative error");
+  cmd->add_option("--error-scale", opts->errorScale, "Relative error shown as red in --error-png")
+      ->capture_default_str();
+  cmd->add_option("--max-rel-error", opts->maxRelError,
+                  "Exit with status 2 if the mean relative error is above");
+  cmd->add_flag("--json", opts->json, "Print JSON");
+  cmd->callback([opts] {
+    const int status = runCompare(*opts);
+    if (status != 0) throw CLI::RuntimeError(status);
+  });
+}
+
+}  // namespace ibl::cli
