@@ -328,6 +328,7 @@ struct Brdf {
     if (only == ShadingTerms::Diffuse) return 0.0f;
     if (only == ShadingTerms::Specular) return 1.0f;
     const float s = luminance(f0) + 0.04f, d = luminance(diffuseColor);
+    if (d <= 0.0f) return 1.0f;  // a metal: no diffuse lobe to sample
     return std::clamp(s / (s + d), 0.1f, 0.9f);
   }
 
@@ -420,8 +421,9 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   }
   if (o.only != ShadingTerms::Specular) {
     glm::vec3 dir = n;
-    if (o.dominantDirections) {
-      // Frostbite listing 23: the diffuse lobe leans toward the view at grazing angles.
+    if (o.dominantDirections && o.diffuse == DiffuseModel::Disney) {
+      // Frostbite listing 23: Disney's diffuse lobe leans toward the view at grazing angles
+      // (retro-reflection); a Lambertian lobe does not.
       const float a = 1.02341f * alpha - 1.51174f, b = -0.511705f * alpha + 0.755868f;
       dir = glm::normalize(glm::mix(n, view, std::clamp((NoV * a + b) * alpha, 0.0f, 1.0f)));
     }

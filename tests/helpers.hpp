@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <glm/geometric.hpp>
 
 #include "ibl/cubemap.hpp"

@@ -172,3 +172,28 @@ TEST(Cli, BakeBytesDoNotDependOnThreads) {
   }
   EXPECT_GT(compared, 10);
 }
+
+TEST(Cli, RenderAndCompare) {
+  TempDir dir;
+  CliRun r = runIbl("render sphere -o " + quote(dir / "a.exr") +
+                    " --size 24x16 --spp 1 --roughness 0.4 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl("render sphere -o " + quote(dir / "b.exr") +
+             " --size 24x16 --spp 1 --roughness 0.6 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const DecodedFile a = readImageFile(dir / "a.exr");
+  EXPECT_EQ(a.channels, 4);  // RGB + alpha
+  EXPECT_EQ(a.levels[0][0].width, 24);
+  r = runIbl("compare " + quote(dir / "a.exr") + " " + quote(dir / "a.exr") + " --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(nlohmann::json::parse(r.output)["overall"]["rmse"], 0.0);
+  r = runIbl("compare " + quote(dir / "a.exr") + " " + quote(dir / "b.exr") +
+             " --max-rel-error 1e-6 --error-png " + quote(dir / "err.png"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("exceeds"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "err.png"));
+  r = runIbl("render " + quote(dir / "missing.glb") + " -o " + quote(dir / "c.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("missing.glb: no such file"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
+}
