@@ -1,8 +1,8 @@
 #include <fstream>
 #include <string>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "helpers.hpp"
@@ -64,22 +64,33 @@ void writeTexturedQuad(const std::filesystem::path& path) {
       {"nodes", {{{"mesh", 0}, {"translation", {0.0, 0.0, 0.5}}}}},
       {"meshes",
        {{{"primitives",
-          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
+          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}},
+            {"indices", 2},
+            {"material", 0}}}}}}},
       {"materials",
        {{{"pbrMetallicRoughness",
-          {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.8}}},
+          {{"baseColorTexture", {{"index", 0}}},
+           {"metallicFactor", 0.0},
+           {"roughnessFactor", 0.8}}},
          {"normalTexture", {{"index", 1}}}}}},
       {"textures", {{{"source", 0}}, {{"source", 1}}}},
       {"images",
        {{{"uri", "data:image/png;base64," + base64(encodePng(tex))}},
         {{"uri", "data:image/png;base64," + base64(encodePng(flat))}}}},
-      {"buffers", {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
+      {"buffers",
+       {{{"byteLength", buffer.size()},
+         {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
       {"bufferViews",
        {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
         {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
         {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 12}}}},
       {"accessors",
-       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}, {"min", {-1, -1, 0}}, {"max", {1, 1, 0}}},
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", 4},
+         {"type", "VEC3"},
+         {"min", {-1, -1, 0}},
+         {"max", {1, 1, 0}}},
         {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
         {{"bufferView", 2}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}}};
   std::ofstream(path) << j.dump();
@@ -94,9 +105,9 @@ TEST(Gltf, LoadsATexturedQuad) {
   ASSERT_EQ(s.meshes.size(), 1u);
   const Mesh& m = s.meshes[0];
   EXPECT_EQ(m.indices.size(), 6u);
-  EXPECT_NEAR(m.positions[2].z, 0.5f, 1e-6f);  // node translation applied
+  EXPECT_NEAR(m.positions[2].z, 0.5f, 1e-6f);                         // node translation applied
   EXPECT_LT(glm::distance(m.normals[0], glm::vec3(0, 0, 1)), 1e-5f);  // generated
-  ASSERT_EQ(m.tangents.size(), 4u);                                    // generated for the normal map
+  ASSERT_EQ(m.tangents.size(), 4u);  // generated for the normal map
   EXPECT_LT(glm::distance(glm::vec3(m.tangents[0]), glm::vec3(1, 0, 0)), 1e-5f);
   const Material& mat = s.materials[m.material];
   EXPECT_FLOAT_EQ(mat.roughness, 0.8f);
