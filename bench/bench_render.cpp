@@ -33,7 +33,8 @@ void BM_SplitSumGrid512(benchmark::State& state) {
   const ibl::Scene scene = ibl::makeSphereGrid(glm::vec3(0.9f, 0.7f, 0.5f));
   ibl::RenderOptions o;
   o.spp = 4;
-  for (auto _ : state) benchmark::DoNotOptimize(ibl::renderScene(scene, gridCamera(512), f.bake, f.options, o));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(ibl::renderScene(scene, gridCamera(512), f.bake, f.options, o));
 }
 
 void BM_ReferenceSphere128(benchmark::State& state) {
