@@ -197,3 +197,17 @@ TEST(Cli, RenderAndCompare) {
   EXPECT_NE(r.output.find("missing.glb: no such file"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
 }
+
+TEST(Cli, RenderFromAnExistingBake) {
+  TempDir dir;
+  ASSERT_EQ(
+      runIbl("bake -o " + quote(dir / "bake") + " --size 32 --dfg-size 16 --dfg-samples 64 --quiet")
+          .status,
+      0);
+  const CliRun r =
+      runIbl("render grid --bake " + quote(dir / "bake") + " -o " + quote(dir / "g.png") +
+             " --size 64x32 --spp 1 --tonemap filmic --ev100 2");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("EV100 2.00"), std::string::npos) << r.output;
+  EXPECT_EQ(readImageFile(dir / "g.png").levels[0][0].width, 64);
+}

@@ -169,6 +169,29 @@ TEST(Render, ReferenceIsReproducibleAndConverges) {
   EXPECT_LT(adaptive.samples, 25.0 * (1 << 16));  // stopped early
 }
 
+TEST(Render, ShadowsDarkenTheReference) {
+  // Two spheres side by side under a sky: with visibility, each hides part of the sky from
+  // the other.
+  const Baked b = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
+  Scene s = makeSphereGrid(glm::vec3(0.8f), 2);
+  Camera cam = sphereCamera(16);
+  cam.orthoWidth = 8.0f;
+  RenderOptions o;
+  o.mode = RenderMode::Reference;
+  o.spp = 64;
+  const RenderResult open = renderScene(s, cam, b.result, b.options, o);
+  o.shadows = true;
+  const RenderResult shadowed = renderScene(s, cam, b.result, b.options, o);
+  const auto sum = [](const RenderResult& r) {
+    double total = 0.0;
+    for (std::size_t i = 0; i < r.alpha.size(); ++i)
+      if (r.alpha[i] == 1.0f) total += luminance(r.color.pixels[i]);
+    return total;
+  };
+  EXPECT_LT(sum(shadowed), 0.97 * sum(open));
+  EXPECT_GT(sum(shadowed), 0.5 * sum(open));
+}
+
 TEST(Camera, ExposureMath) {
   // Sunny 16: f/16, 1/100 s, ISO 100 is EV 14.6.
   EXPECT_NEAR(ev100FromSettings(16.0f, 0.01f, 100.0f), std::log2(25600.0f), 1e-5f);
