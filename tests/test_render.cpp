@@ -56,6 +56,20 @@ std::vector<float> interiorMask(const RenderResult& a, const RenderResult& b) {
   return m;
 }
 
+// The split sum (1 sample at each pixel center) against the reference (1024 samples) over
+// the pixels fully on the model.
+ImageComparison splitSumAgainstReference(const Scene& s, const Camera& cam, const Baked& b,
+                                         RenderOptions o) {
+  o.mode = RenderMode::SplitSum;
+  o.spp = 1;
+  const RenderResult split = renderScene(s, cam, b.result, b.options, o);
+  o.mode = RenderMode::Reference;
+  o.spp = 1024;
+  const RenderResult ref = renderScene(s, cam, b.result, b.options, o);
+  const auto mask = interiorMask(split, ref);
+  return compareImages(split.color, ref.color, &mask);
+}
+
 glm::vec3 smoothSky(glm::vec3 d) {
   return glm::vec3(1.0f + 0.5f * d.z, 1.0f + 0.3f * d.x, 1.0f + 0.2f * d.y);
 }
@@ -122,13 +136,7 @@ TEST(Render, LambertianAgreesInBothModes) {
   RenderOptions o;
   o.diffuse = DiffuseModel::Lambert;
   o.only = ShadingTerms::Diffuse;
-  o.spp = 1;
-  const RenderResult split = renderScene(s, cam, b.result, b.options, o);
-  o.mode = RenderMode::Reference;
-  o.spp = 1024;
-  const RenderResult ref = renderScene(s, cam, b.result, b.options, o);
-  const auto mask = interiorMask(split, ref);
-  const ImageComparison c = compareImages(split.color, ref.color, &mask);
+  const ImageComparison c = splitSumAgainstReference(s, cam, b, o);
   EXPECT_GT(c.pixels, 150u);
   EXPECT_LT(c.overall.meanRelativeError, 0.01);
 }
@@ -140,14 +148,7 @@ TEST(Render, SplitSumNearReferenceOnSmoothEnvironments) {
     const Scene s = sphere(glm::vec3(0.9f, 0.6f, 0.3f), 0.5f, r);
     RenderOptions o;
     o.multipleScattering = false;  // the reference is single scattering
-    o.dominantDirections = true;
-    o.spp = 1;
-    const RenderResult split = renderScene(s, cam, b.result, b.options, o);
-    o.mode = RenderMode::Reference;
-    o.spp = 1024;
-    const RenderResult ref = renderScene(s, cam, b.result, b.options, o);
-    const auto mask = interiorMask(split, ref);
-    const ImageComparison c = compareImages(split.color, ref.color, &mask);
+    const ImageComparison c = splitSumAgainstReference(s, cam, b, o);
     RecordProperty("mean_relative_error_r" + std::to_string(r),
                    std::to_string(c.overall.meanRelativeError));
     EXPECT_LT(c.overall.meanRelativeError, 0.03) << "r " << r;  // the split sum's own error
