@@ -11,6 +11,7 @@
 #include "ibl/bake.hpp"
 #include "ibl/default_environment.hpp"
 #include "ibl/error.hpp"
+#include "ibl/gpu.hpp"
 
 namespace ibl::cli {
 
@@ -36,9 +37,32 @@ struct BakeCliOptions {
   bool hdr = false;
   std::string layout = "hcross";
   bool noPreview = false;
+  std::string device = "cpu";
+  bool listDevices = false;
 };
 
+// The GPU context for --device gpu (required) or auto (a real GPU if there is one; the
+// software device is slower than the CPU path, so auto does not pick it).
+std::unique_ptr<gpu::Context> openDevice(const std::string& choice) {
+  if (choice == "cpu") return nullptr;
+  if (choice == "auto") {
+    bool realGpu = false;
+    for (const auto& d : gpu::listDevices()) realGpu |= d.type != "cpu";
+    if (!realGpu) return nullptr;
+  }
+  return gpu::Context::create();
+}
+
 void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
+  if (o.listDevices) {
+    const auto devices = gpu::listDevices();
+    if (devices.empty()) fmt::print("no Vulkan device\n");
+    for (const auto& d : devices)
+      fmt::print("{} ({}, Vulkan {}.{})\n", d.name, d.type, d.apiVersion >> 22,
+                 (d.apiVersion >> 12) & 0x3ff);
+    return;
+  }
+  if (o.output.empty()) fail("--output", "an output directory is required");
   const auto start = std::chrono::steady_clock::now();
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
   const auto elapsed = [&] {
@@ -78,7 +102,9 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
   const ProgressFn progress = [&](const std::string& stage) {
     if (showProgress) fmt::print(stderr, "[{:6.2f} s] {}\n", elapsed(), stage);
   };
-  const BakeResult result = bakeEnvironment(loaded.environment, options, progress);
+  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
+  if (device) progress(fmt::format("GPU stages on {}", device->device().name));
+  const BakeResult result = bakeEnvironment(loaded.environment, options, progress, device.get());
 
   BakeOutputOptions output;
   output.format = *parsePixelFormat(o.format);
@@ -111,7 +137,13 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
       "bake", "Bake an HDR environment into IBL assets (specular, irradiance, SH9, DFG)");
   cmd->add_option("input", opts->input,
                   "Environment (any `ibl convert` input); default: the bundled sunset.exr");
-  cmd->add_option("-o,--output", opts->output, "Output directory")->required();
+  cmd->add_option("-o,--output", opts->output, "Output directory (required)");
+  cmd->add_option("--device", opts->device,
+                  "cpu, gpu (Vulkan compute for the DFG table, irradiance and SH9), or auto (a "
+                  "real GPU if present)")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}))
+      ->capture_default_str();
+  cmd->add_flag("--list-devices", opts->listDevices, "List the Vulkan devices and exit");
   cmd->add_option("--input-layout", opts->inputLayout,
                   "Input layout (default: from the image shape)")
       ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "faces"}));

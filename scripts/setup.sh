@@ -9,6 +9,7 @@ packages=(
   # libraries
   libopenexr-dev libimath-dev libstb-dev libglm-dev libcli11-dev libfmt-dev
   nlohmann-json3-dev libtbb-dev libtinygltf-dev libembree-dev libdraco-dev
+  libvulkan-dev glslc mesa-vulkan-drivers
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3
 )

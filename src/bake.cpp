@@ -13,6 +13,7 @@
 #include "ibl/dfg.hpp"
 #include "ibl/error.hpp"
 #include "ibl/file_io.hpp"
+#include "ibl/gpu.hpp"
 #include "ibl/image_io.hpp"
 #include "ibl/ktx2.hpp"
 #include "ibl/preview.hpp"
@@ -46,9 +47,10 @@ class StageTimer {
 
 }  // namespace
 
-BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o,
-                           const ProgressFn& progress) {
+BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const ProgressFn& progress,
+                           gpu::Context* device) {
   BakeResult r;
+  if (device) r.device = device->device().name;
   StageTimer time(r.timingsMs);
   const auto start = std::chrono::steady_clock::now();
   const int size = o.specular.size;
@@ -77,18 +79,24 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o,
         if (progress)
           progress(fmt::format("irradiance {}x{} and SH9", o.irradianceSize, o.irradianceSize));
         r.irradiance = time("irradiance", [&] {
-          return convolveIrradiance(r.source, o.irradianceSize,
-                                    levelOfSize(r.source, o.irradianceSize));
+          const int level = levelOfSize(r.source, o.irradianceSize);
+          return device ? gpu::convolveIrradiance(*device, r.source, o.irradianceSize, level)
+                        : convolveIrradiance(r.source, o.irradianceSize, level);
         });
         r.sh = time("sh", [&] {
           // The 64^2 level integrates like level 0 (box-filtered mips keep every texel's
           // integral), and bands 0-2 vary slowly across its texels: 16x less work.
-          const Sh9 sh = projectSh9(r.source, levelOfSize(r.source, 64));
+          const int level = levelOfSize(r.source, 64);
+          const Sh9 sh =
+              device ? gpu::projectSh9(*device, r.source, level) : projectSh9(r.source, level);
           return o.shWindow ? windowSh9(sh) : sh;
         });
       },
       [&] {
-        r.dfg = time("dfg", [&] { return integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples); });
+        r.dfg = time("dfg", [&] {
+          return device ? gpu::integrateDfgLut(*device, o.dfgSize, o.dfgSize, o.dfgSamples)
+                        : integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples);
+        });
       });
   r.timingsMs["total"] =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -387,6 +395,7 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
 
   Json manifest;
   manifest["generator"] = fmt::format("ibl {}", kVersion);
+  manifest["device"] = r.device;
   manifest["source"] = {{"path", src.path.empty() ? "(bundled default: sunset.exr)" : src.path},
                         {"format", src.format},
                         {"layout", src.layout},

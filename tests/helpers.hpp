@@ -7,7 +7,11 @@
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <array>
+#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -101,6 +105,28 @@ inline double maxRelativeError(glm::vec3 a, glm::vec3 ref) {
   for (int c = 0; c < 3; ++c)
     e = std::max(e, std::abs(double(a[c]) - ref[c]) / std::max(1e-30, std::abs(double(ref[c]))));
   return e;
+}
+
+// Runs the `ibl` executable with `args`; status and combined output.
+struct CliRun {
+  int status;
+  std::string output;  // stdout and stderr
+};
+
+inline CliRun runIbl(const std::string& args) {
+  const std::string cmd = std::string(IBL_CLI) + " " + args + " 2>&1";
+  CliRun r{-1, ""};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  while (fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline std::string quote(const std::filesystem::path& p) {
+  return "'" + p.string() + "'";
 }
 
 }  // namespace ibl::test

@@ -16,27 +16,6 @@ using namespace ibl::test;
 
 namespace {
 
-struct CliRun {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-CliRun runIbl(const std::string& args) {
-  const std::string cmd = std::string(IBL_CLI) + " " + args + " 2>&1";
-  CliRun r{-1, ""};
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  while (fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::string quote(const std::filesystem::path& p) {
-  return "'" + p.string() + "'";
-}
-
 int countFiles(const std::filesystem::path& dir) {
   int n = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++n;

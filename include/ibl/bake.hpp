@@ -34,11 +34,18 @@ struct BakeResult {
   Sh9 sh;                                   // radiance coefficients (windowed if asked)
   Image dfg;                                // RGB = A, B, diffuse
   std::map<std::string, double> timingsMs;  // per stage
+  std::string device = "cpu";               // "cpu", or the Vulkan device's name
 };
 
-// Runs every stage on all cores. The result does not depend on the number of threads.
+namespace gpu {
+class Context;
+}
+
+// Runs every stage on all cores. The result does not depend on the number of threads. With a
+// GPU context, the DFG table, the irradiance cube and SH9 are computed by compute shaders (the
+// source cube, its mips and the specular levels stay on the CPU).
 BakeResult bakeEnvironment(const Environment& env, const BakeOptions& options,
-                           const ProgressFn& progress = {});
+                           const ProgressFn& progress = {}, gpu::Context* device = nullptr);
 
 enum class FlatLayout { HCross, VCross, Faces };
 

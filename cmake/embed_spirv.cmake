@@ -1,0 +1,17 @@
+# Writes OUTPUT, a C++ source defining ibl::gpu::spirvFor(name) over the SPIR-V files given in
+# SHADERS (name=path entries separated by |). Run by the build after glslc.
+string(REPLACE "|" ";" SHADERS "${SHADERS}")
+set(body "// Generated from shaders/*.comp by cmake/embed_spirv.cmake.\n#include \"gpu/spirv.hpp\"\n\nnamespace ibl::gpu {\n\nnamespace {\n")
+set(table "")
+foreach(entry ${SHADERS})
+  string(REPLACE "=" ";" parts "${entry}")
+  list(GET parts 0 name)
+  list(GET parts 1 path)
+  file(READ "${path}" hex HEX)
+  string(REGEX REPLACE "([0-9a-f][0-9a-f])([0-9a-f][0-9a-f])([0-9a-f][0-9a-f])([0-9a-f][0-9a-f])" "0x\\4\\3\\2\\1u," words "${hex}")
+  string(APPEND body "const std::uint32_t k_${name}[] = {${words}};\n")
+  string(APPEND table "  if (name == \"${name}\") return k_${name};\n")
+endforeach()
+string(APPEND body "}  // namespace\n\nstd::span<const std::uint32_t> spirvFor(std::string_view name) {\n${table}  return {};\n}\n\n}  // namespace ibl::gpu\n")
+file(WRITE "${OUTPUT}.tmp" "${body}")
+file(RENAME "${OUTPUT}.tmp" "${OUTPUT}")

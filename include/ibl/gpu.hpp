@@ -1,0 +1,48 @@
+#pragma once
+// The bake's stages as Vulkan compute shaders (shaders/*.comp), sharing the math of the CPU
+// path: the same formulas (shaders/common.glsl mirrors sampling.hpp and brdf.hpp) and the same
+// Hammersley points. Runs on any Vulkan 1.1 device, Mesa's software device (lavapipe)
+// included.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ibl/cubemap.hpp"
+#include "ibl/image.hpp"
+#include "ibl/sh.hpp"
+
+namespace ibl::gpu {
+
+struct DeviceInfo {
+  std::string name;
+  std::string type;  // "discrete", "integrated", "virtual", "cpu", "other"
+  std::uint32_t apiVersion = 0;
+};
+
+// Vulkan devices with a compute queue; empty when there is no Vulkan loader or device.
+std::vector<DeviceInfo> listDevices();
+
+// A Vulkan device, queue and the compiled pipelines. Prefers a discrete GPU, then an
+// integrated one, then anything (lavapipe).
+class Context {
+ public:
+  // Throws Error("vulkan: ...") when no device can be used.
+  static std::unique_ptr<Context> create();
+  ~Context();
+  const DeviceInfo& device() const;
+
+  struct Impl;
+  Impl& impl() { return *impl_; }
+
+ private:
+  explicit Context(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+// GPU versions of integrateDfgLut, convolveIrradiance and projectSh9.
+Image integrateDfgLut(Context& context, int width, int height, int samples);
+CubeMap convolveIrradiance(Context& context, const CubeMap& source, int size, int sourceLevel);
+Sh9 projectSh9(Context& context, const CubeMap& cube, int level);
+
+}  // namespace ibl::gpu

@@ -1,0 +1,86 @@
+// The bake stages on the GPU: the host side of shaders/*.comp.
+#include <fmt/format.h>
+#include <glm/vec4.hpp>
+
+#include "gpu/compute.hpp"
+#include "ibl/error.hpp"
+#include "ibl/gpu.hpp"
+
+namespace ibl::gpu {
+
+namespace {
+
+// A cube level as the shaders read it: (direction, solid angle) and radiance per texel.
+struct TexelBuffers {
+  std::vector<glm::vec4> dirOmega, radiance;
+  explicit TexelBuffers(const std::array<Image, kFaceCount>& level) {
+    const int n = level[0].width;
+    for (int f = 0; f < kFaceCount; ++f)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          dirOmega.emplace_back(texelDirection(f, x, y, n),
+                                static_cast<float>(texelSolidAngle(x, y, n)));
+          radiance.emplace_back(level[f].at(x, y), 1.0f);
+        }
+  }
+};
+
+std::uint32_t groups(std::size_t count, std::uint32_t size) {
+  return static_cast<std::uint32_t>((count + size - 1) / size);
+}
+
+}  // namespace
+
+Image integrateDfgLut(Context& context, int width, int height, int samples) {
+  Buffer lut(context, static_cast<std::size_t>(width) * height * sizeof(glm::vec4));
+  const struct {
+    std::uint32_t width, height, samples;
+  } params{static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height),
+           static_cast<std::uint32_t>(samples)};
+  dispatch(context, "dfg", {&lut}, bytesOf(params), groups(width, 8), groups(height, 8));
+  const auto texels = lut.read<glm::vec4>(static_cast<std::size_t>(width) * height);
+  Image out(width, height);
+  for (std::size_t i = 0; i < texels.size(); ++i) out.pixels[i] = glm::vec3(texels[i]);
+  return out;
+}
+
+CubeMap convolveIrradiance(Context& context, const CubeMap& source, int size, int sourceLevel) {
+  const TexelBuffers src(source.levels[sourceLevel]);
+  std::vector<glm::vec4> targets;
+  for (int f = 0; f < kFaceCount; ++f)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) targets.emplace_back(texelDirection(f, x, y, size), 0.0f);
+  Buffer dirs = Buffer::of(context, src.dirOmega), radiance = Buffer::of(context, src.radiance),
+         normals = Buffer::of(context, targets),
+         result(context, targets.size() * sizeof(glm::vec4));
+  const struct {
+    std::uint32_t sourceCount, targetCount;
+  } params{static_cast<std::uint32_t>(src.dirOmega.size()),
+           static_cast<std::uint32_t>(targets.size())};
+  dispatch(context, "irradiance", {&dirs, &radiance, &normals, &result}, bytesOf(params),
+           groups(targets.size(), 64));
+  const auto values = result.read<glm::vec4>(targets.size());
+  CubeMap out(size, 1);
+  std::size_t i = 0;
+  for (int f = 0; f < kFaceCount; ++f)
+    for (auto& p : out.levels[0][f].pixels) p = glm::vec3(values[i++]);
+  return out;
+}
+
+Sh9 projectSh9(Context& context, const CubeMap& cube, int level) {
+  const TexelBuffers src(cube.levels[level]);
+  const std::uint32_t workgroups = groups(src.dirOmega.size(), 64);
+  Buffer dirs = Buffer::of(context, src.dirOmega), radiance = Buffer::of(context, src.radiance),
+         partials(context, static_cast<std::size_t>(workgroups) * 9 * sizeof(glm::vec4));
+  const std::uint32_t count = static_cast<std::uint32_t>(src.dirOmega.size());
+  dispatch(context, "sh_project", {&dirs, &radiance, &partials}, bytesOf(count), workgroups);
+  const auto sums = partials.read<glm::vec4>(static_cast<std::size_t>(workgroups) * 9);
+  std::array<glm::dvec3, 9> total{};
+  for (std::uint32_t g = 0; g < workgroups; ++g)  // a fixed order: the same bits every run
+    for (int k = 0; k < 9; ++k) total[k] += glm::dvec3(sums[g * 9 + k]);
+  Sh9 sh;
+  for (int k = 0; k < 9; ++k) sh[k] = glm::vec3(total[k]);
+  return sh;
+}
+
+}  // namespace ibl::gpu
