@@ -60,14 +60,21 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
                        ? CubeMap()
                        : resampleToCube(env, size, o.rotateDegrees);
     if (cube.levels.empty()) cube.levels = {env.cube.levels[0]};
-    buildMipChain(cube);
+    if (device) {
+      gpu::buildMipChain(*device, cube);
+    } else {
+      buildMipChain(cube);
+    }
     return cube;
   });
   // The DFG table does not depend on the environment: compute it beside the convolutions.
   tbb::parallel_invoke(
       [&] {
         r.specular = time("specular", [&] {
-          return prefilterGgx(r.source, o.specular, &r.specularLevels, progress);
+          // The GPU path filters by importance sampling; direct quadrature stays on the CPU.
+          return device && o.specular.method == PrefilterMethod::Sampled
+                     ? gpu::prefilterGgxSampled(*device, r.source, o.specular, &r.specularLevels)
+                     : prefilterGgx(r.source, o.specular, &r.specularLevels, progress);
         });
         if (o.fresnelWeighted) {
           PrefilterOptions variant = o.specular;

@@ -449,20 +449,15 @@ std::array<Image, kFaceCount> prefilterLevelDirect(const CubeMap& source, int so
   return convolveLevel(source.levels[sourceLevel], size, LobeWeight::forLevel(roughness, weight));
 }
 
-std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int size,
-                                                    float roughness, int samples,
-                                                    PrefilterWeight weight) {
+std::vector<FisSample> filteredImportanceSamples(int sourceSize, int sourceLevels, float roughness,
+                                                 int samples, PrefilterWeight weight) {
   const float alpha = alphaFromRoughness(roughness);
-  const int n0 = source.size();
+  const int n0 = sourceSize;
   const float texelSolidAngle0 =
       4.0f * kPi / (6.0f * static_cast<float>(n0) * static_cast<float>(n0));
-  const float maxLod = static_cast<float>(source.levelCount() - 1);
+  const float maxLod = static_cast<float>(sourceLevels - 1);
   // One set of samples in the tangent frame, shared by every texel: no noise.
-  struct Sample {
-    glm::vec3 l;
-    float lod, weight;
-  };
-  std::vector<Sample> set;
+  std::vector<FisSample> set;
   for (int k = 0; k < samples; ++k) {
     const glm::vec3 h = sampleGgxHalfVector(
         hammersley(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(samples)), alpha);
@@ -481,6 +476,14 @@ std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int s
     }
     set.push_back({l, lod, w});
   }
+  return set;
+}
+
+std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int size,
+                                                    float roughness, int samples,
+                                                    PrefilterWeight weight) {
+  const std::vector<FisSample> set =
+      filteredImportanceSamples(source.size(), source.levelCount(), roughness, samples, weight);
   std::array<Image, kFaceCount> out;
   for (auto& f : out) f = Image(size, size);
   tbb::parallel_for(0, kFaceCount * size, [&](int row) {
@@ -489,7 +492,7 @@ std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int s
       const glm::mat3 frame = tangentFrame(texelDirection(face, x, y, size));
       glm::vec3 sum(0.0f);
       float wsum = 0.0f;
-      for (const Sample& s : set) {
+      for (const FisSample& s : set) {
         sum += sampleTrilinear(source, s.lod, frame * s.l) * s.weight;
         wsum += s.weight;
       }

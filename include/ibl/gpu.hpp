@@ -10,6 +10,7 @@
 
 #include "ibl/cubemap.hpp"
 #include "ibl/image.hpp"
+#include "ibl/prefilter.hpp"
 #include "ibl/sh.hpp"
 
 namespace ibl::gpu {
@@ -40,7 +41,12 @@ class Context {
   std::unique_ptr<Impl> impl_;
 };
 
-// GPU versions of integrateDfgLut, convolveIrradiance and projectSh9.
+// GPU versions of buildMipChain (full chain), prefilterGgx with PrefilterMethod::Sampled,
+// integrateDfgLut, convolveIrradiance and projectSh9.
+void buildMipChain(Context& context, CubeMap& cube);
+CubeMap prefilterGgxSampled(Context& context, const CubeMap& source,
+                            const PrefilterOptions& options,
+                            std::vector<LevelMethod>* methods = nullptr);
 Image integrateDfgLut(Context& context, int width, int height, int samples);
 CubeMap convolveIrradiance(Context& context, const CubeMap& source, int size, int sourceLevel);
 Sh9 projectSh9(Context& context, const CubeMap& cube, int level);

@@ -82,6 +82,18 @@ std::vector<glm::vec3> prefilterDirections(const std::array<Image, kFaceCount>& 
 std::vector<glm::vec3> irradianceDirections(const std::array<Image, kFaceCount>& sourceLevel,
                                             std::span<const glm::vec3> directions);
 
+// The sample set of filtered importance sampling for one level, in the tangent frame (z = n):
+// reflected directions of `samples` Hammersley GGX half vectors, the source lod each reads
+// (0.5 log2(sample solid angle / level-0 texel solid angle) + 1), and weights (n.l, times V F
+// for the C(n, l) variants). Shared by the CPU and GPU paths.
+struct FisSample {
+  glm::vec3 l;
+  float lod;
+  float weight;
+};
+std::vector<FisSample> filteredImportanceSamples(int sourceSize, int sourceLevels, float roughness,
+                                                 int samples, PrefilterWeight weight);
+
 // Filtered importance sampling of one specular level (Krivanek & Colbert 2008): `samples`
 // Hammersley GGX samples per texel, each read from the source mip whose texel solid angle
 // matches the sample's.

@@ -52,7 +52,7 @@ class Buffer {
 // Runs `shader` once with the buffers bound at 0, 1, ... and waits for it.
 void dispatch(Context& context, std::string_view shader, std::initializer_list<Buffer*> buffers,
               std::span<const std::uint8_t> pushConstants, std::uint32_t groupsX,
-              std::uint32_t groupsY = 1);
+              std::uint32_t groupsY = 1, std::uint32_t groupsZ = 1);
 
 template <typename T>
 std::span<const std::uint8_t> bytesOf(const T& value) {

@@ -244,7 +244,7 @@ Buffer::~Buffer() {
 
 void dispatch(Context& context, std::string_view shader, std::initializer_list<Buffer*> buffers,
               std::span<const std::uint8_t> pushConstants, std::uint32_t groupsX,
-              std::uint32_t groupsY) {
+              std::uint32_t groupsY, std::uint32_t groupsZ) {
   auto& c = context.impl();
   const std::lock_guard lock(c.mutex);
   const auto& p = c.pipeline(shader, static_cast<std::uint32_t>(buffers.size()),
@@ -292,7 +292,7 @@ void dispatch(Context& context, std::string_view shader, std::initializer_list<B
   if (!pushConstants.empty())
     vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
                        static_cast<std::uint32_t>(pushConstants.size()), pushConstants.data());
-  vkCmdDispatch(cmd, groupsX, groupsY, 1);
+  vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
   // Make the shader's writes visible to the host's reads of the mapped memory.
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;

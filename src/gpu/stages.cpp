@@ -1,5 +1,6 @@
 // The bake stages on the GPU: the host side of shaders/*.comp.
 #include <fmt/format.h>
+#include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "gpu/compute.hpp"
@@ -81,6 +82,96 @@ Sh9 projectSh9(Context& context, const CubeMap& cube, int level) {
   Sh9 sh;
   for (int k = 0; k < 9; ++k) sh[k] = glm::vec3(total[k]);
   return sh;
+}
+
+namespace {
+
+// Every level of a cube, flattened: faces, rows, texels; levels one after another.
+std::vector<glm::vec4> flatten(const CubeMap& cube, std::vector<glm::uvec2>* levels) {
+  std::vector<glm::vec4> out;
+  for (const auto& level : cube.levels) {
+    if (levels)
+      levels->push_back(
+          {static_cast<std::uint32_t>(level[0].width), static_cast<std::uint32_t>(out.size())});
+    for (const auto& face : level)
+      for (const auto& p : face.pixels) out.emplace_back(p, 1.0f);
+  }
+  return out;
+}
+
+std::array<Image, kFaceCount> unflatten(const std::vector<glm::vec4>& texels, int n) {
+  std::array<Image, kFaceCount> out;
+  std::size_t i = 0;
+  for (auto& face : out) {
+    face = Image(n, n);
+    for (auto& p : face.pixels) p = glm::vec3(texels[i++]);
+  }
+  return out;
+}
+
+}  // namespace
+
+void buildMipChain(Context& context, CubeMap& cube) {
+  const int size = cube.size();
+  if (size <= 0 || (size & (size - 1)) != 0)
+    fail("mip chain", "cube map size must be a power of two");
+  cube.levels.resize(1);
+  std::vector<glm::vec4> parent = flatten(cube, nullptr);
+  for (int np = size; np > 1; np /= 2) {
+    const int n = np / 2;
+    std::vector<float> omega(static_cast<std::size_t>(np) * np);
+    for (int y = 0; y < np; ++y)
+      for (int x = 0; x < np; ++x)
+        omega[static_cast<std::size_t>(y) * np + x] = static_cast<float>(texelSolidAngle(x, y, np));
+    Buffer in = Buffer::of(context, parent), weights = Buffer::of(context, omega),
+           out(context, static_cast<std::size_t>(6) * n * n * sizeof(glm::vec4));
+    const std::uint32_t childSize = static_cast<std::uint32_t>(n);
+    dispatch(context, "cube_mip", {&in, &weights, &out}, bytesOf(childSize), groups(n, 8),
+             groups(n, 8), 6);
+    parent = out.read<glm::vec4>(static_cast<std::size_t>(6) * n * n);
+    cube.levels.push_back(unflatten(parent, n));
+  }
+}
+
+CubeMap prefilterGgxSampled(Context& context, const CubeMap& source, const PrefilterOptions& o,
+                            std::vector<LevelMethod>* methods) {
+  if (source.levelCount() != fullMipCount(source.size()))
+    fail("prefilter", "the source cube map needs its full mip chain");
+  const int levels =
+      o.levels > 0 ? std::min(o.levels, fullMipCount(o.size)) : defaultSpecularLevels(o.size);
+  std::vector<glm::uvec2> levelTable;
+  Buffer texels = Buffer::of(context, flatten(source, &levelTable));
+  Buffer levelBuffer = Buffer::of(context, levelTable);
+  CubeMap out;
+  out.levels.resize(levels);
+  if (methods) methods->assign(levels, {});
+  for (int m = 0; m < levels; ++m) {
+    const int size = o.size >> m;
+    const float r = roughnessForLevel(m, levels, o.mapping);
+    if (r == 0.0f) {
+      out.levels[m] = source.levels[levelOfSize(source, size)];
+      if (methods) (*methods)[m] = {r, "source", out.levels[m][0].width, 0};
+      continue;
+    }
+    std::vector<glm::vec4> samples;
+    for (const FisSample& s :
+         filteredImportanceSamples(source.size(), source.levelCount(), r, o.samples, o.weight)) {
+      samples.emplace_back(s.l, s.lod);
+      samples.emplace_back(s.weight, 0.0f, 0.0f, 0.0f);
+    }
+    Buffer sampleBuffer = Buffer::of(context, samples),
+           result(context, static_cast<std::size_t>(6) * size * size * sizeof(glm::vec4));
+    const struct {
+      std::uint32_t size, sampleCount, levelCount;
+    } params{static_cast<std::uint32_t>(size), static_cast<std::uint32_t>(samples.size() / 2),
+             static_cast<std::uint32_t>(source.levelCount())};
+    dispatch(context, "prefilter_fis", {&texels, &levelBuffer, &sampleBuffer, &result},
+             bytesOf(params), groups(size, 8), groups(size, 8), 6);
+    out.levels[m] =
+        unflatten(result.read<glm::vec4>(static_cast<std::size_t>(6) * size * size), size);
+    if (methods) (*methods)[m] = {r, "sampled", source.size(), o.samples};
+  }
+  return out;
 }
 
 }  // namespace ibl::gpu

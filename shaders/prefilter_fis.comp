@@ -1,0 +1,71 @@
+#version 450
+// One specular level by filtered importance sampling (prefilterLevelSampled in
+// src/prefilter.cpp): the host's sample set (tangent-frame directions, source lods, weights),
+// rotated into each texel's frame and read with seam-aware trilinear lookups.
+#extension GL_GOOGLE_include_directive : require
+#include "cube.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 0) readonly buffer Source { vec4 texels[]; };  // every level
+layout(std430, binding = 1) readonly buffer Levels { uvec2 levels[]; };  // (size, first texel)
+layout(std430, binding = 2) readonly buffer Samples { vec4 samples[]; };  // (l, lod), then (weight)
+layout(std430, binding = 3) writeonly buffer Result { vec4 result[]; };
+layout(push_constant) uniform Params { uint size; uint sampleCount; uint levelCount; } params;
+
+vec3 texel(int level, int face, int x, int y) {
+  int n = int(levels[level].x);
+  return texels[levels[level].y + uint((face * n + y) * n + x)].rgb;
+}
+
+// fetchTexelAcrossEdges: past an edge, the extended texel center projected onto the
+// neighbouring face, interpolated there.
+vec3 fetch(int level, int face, int x, int y) {
+  int n = int(levels[level].x);
+  if (x >= 0 && y >= 0 && x < n && y < n) return texel(level, face, x, y);
+  float inv = 2.0 / float(n);
+  vec3 p = directionToFace(faceToDirection(face, (float(x) + 0.5) * inv - 1.0, (float(y) + 0.5) * inv - 1.0));
+  int f = int(p.x);
+  float fx = clamp(p.y * float(n) - 0.5, 0.0, float(n - 1)), fy = clamp(p.z * float(n) - 0.5, 0.0, float(n - 1));
+  int x0 = min(int(fx), n - 1), y0 = min(int(fy), n - 1);
+  int x1 = min(x0 + 1, n - 1), y1 = min(y0 + 1, n - 1);
+  float wx = fx - float(x0), wy = fy - float(y0);
+  return mix(mix(texel(level, f, x0, y0), texel(level, f, x1, y0), wx),
+             mix(texel(level, f, x0, y1), texel(level, f, x1, y1), wx), wy);
+}
+
+vec3 sampleBilinear(int level, vec3 dir) {
+  int n = int(levels[level].x);
+  vec3 p = directionToFace(dir);
+  int face = int(p.x);
+  float fx = p.y * float(n) - 0.5, fy = p.z * float(n) - 0.5;
+  float flx = floor(fx), fly = floor(fy);
+  int x0 = int(flx), y0 = int(fly);
+  float wx = fx - flx, wy = fy - fly;
+  return mix(mix(fetch(level, face, x0, y0), fetch(level, face, x0 + 1, y0), wx),
+             mix(fetch(level, face, x0, y0 + 1), fetch(level, face, x0 + 1, y0 + 1), wx), wy);
+}
+
+vec3 sampleTrilinear(float lod, vec3 dir) {
+  lod = clamp(lod, 0.0, float(params.levelCount - 1u));
+  int l0 = int(floor(lod));
+  int l1 = min(l0 + 1, int(params.levelCount) - 1);
+  float w = lod - float(l0);
+  vec3 a = sampleBilinear(l0, dir);
+  if (w == 0.0 || l1 == l0) return a;
+  return a * (1.0 - w) + sampleBilinear(l1, dir) * w;
+}
+
+void main() {
+  uint x = gl_GlobalInvocationID.x, y = gl_GlobalInvocationID.y, face = gl_GlobalInvocationID.z;
+  uint n = params.size;
+  if (x >= n || y >= n) return;
+  mat3 frame = tangentFrame(texelDirection(int(face), int(x), int(y), int(n)));
+  vec3 sum = vec3(0.0);
+  float wsum = 0.0;
+  for (uint k = 0u; k < params.sampleCount; ++k) {
+    vec4 s = samples[2u * k];
+    float w = samples[2u * k + 1u].x;
+    sum += sampleTrilinear(s.w, frame * s.xyz) * w;
+    wsum += w;
+  }
+  result[(face * n + y) * n + x] = vec4(wsum > 0.0 ? sum / wsum : vec3(0.0), 1.0);
+}
