@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-ninja -C build ibl_bench_io ibl_bench_bake ibl_bench_render ibl_accuracy >/dev/null
+ninja -C build ibl_bench_io ibl_bench_bake ibl_bench_render ibl_bench_gpu ibl_accuracy >/dev/null
 echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "== I/O and conversion (2048x1024 EXR -> 256^2 cube with mips -> KTX2)"
 ./build/bench/ibl_bench_io --benchmark_min_time=1
@@ -12,5 +12,7 @@ echo "== default bake (2048x1024 HDR -> 256^2 specular chain, 32^2 irradiance, S
 ./build/bench/ibl_bench_bake --benchmark_min_time=1
 echo "== rendering (512^2 sphere grid, split sum, 4 spp; reference throughput)"
 ./build/bench/ibl_bench_render --benchmark_min_time=1
+echo "== GPU stages (Vulkan; the software device without a GPU)"
+./build/bench/ibl_bench_gpu --benchmark_min_time=1
 echo "== accuracy"
 ./build/bench/ibl_accuracy

@@ -1,0 +1,83 @@
+// The GPU bake's stages on the Vulkan device (Mesa's software device when there is no GPU),
+// from data already on the host: mips of a 256^2 cube, FIS prefilter (64 samples), irradiance
+// 32^2, SH9, DFG 128^2; and the default bake with --device gpu.
+#include <memory>
+
+#include <benchmark/benchmark.h>
+
+#include "ibl/bake.hpp"
+#include "ibl/gpu.hpp"
+#include "ibl/resample.hpp"
+
+namespace {
+
+ibl::gpu::Context& context() {
+  static const std::unique_ptr<ibl::gpu::Context> c = ibl::gpu::Context::create();
+  return *c;
+}
+
+const ibl::Environment& environment() {
+  static const ibl::Environment env =
+      ibl::loadEnvironment(IBL_BENCH_DATA "/hdri/sunset.exr").environment;
+  return env;
+}
+
+const ibl::CubeMap& source() {
+  static const ibl::CubeMap cube = [] {
+    ibl::CubeMap c = ibl::resampleToCube(environment(), 256);
+    ibl::buildMipChain(c);
+    return c;
+  }();
+  return cube;
+}
+
+void BM_GpuMips256(benchmark::State& state) {
+  for (auto _ : state) {
+    ibl::CubeMap c;
+    c.levels = {source().levels[0]};
+    ibl::gpu::buildMipChain(context(), c);
+    benchmark::DoNotOptimize(c);
+  }
+}
+
+void BM_GpuPrefilterFis256(benchmark::State& state) {
+  ibl::PrefilterOptions o;
+  o.method = ibl::PrefilterMethod::Sampled;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(ibl::gpu::prefilterGgxSampled(context(), source(), o));
+}
+
+void BM_GpuIrradiance32(benchmark::State& state) {
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        ibl::gpu::convolveIrradiance(context(), source(), 32, ibl::levelOfSize(source(), 32)));
+}
+
+void BM_GpuSh9(benchmark::State& state) {
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        ibl::gpu::projectSh9(context(), source(), ibl::levelOfSize(source(), 64)));
+}
+
+void BM_GpuDfg128(benchmark::State& state) {
+  for (auto _ : state)
+    benchmark::DoNotOptimize(ibl::gpu::integrateDfgLut(context(), 128, 128, 512));
+}
+
+void BM_BakeDeviceGpu(benchmark::State& state) {
+  ibl::BakeOptions o;
+  o.specular.method = ibl::PrefilterMethod::Sampled;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(ibl::bakeEnvironment(environment(), o, {}, &context()));
+  state.SetLabel(context().device().name);
+}
+
+}  // namespace
+
+BENCHMARK(BM_GpuMips256)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GpuPrefilterFis256)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GpuIrradiance32)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GpuSh9)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GpuDfg128)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BakeDeviceGpu)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_MAIN();
