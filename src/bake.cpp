@@ -367,10 +367,9 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   }
 
   if (out.preview) {
-    const PreviewAssets assets{r.specular, o.specular.mapping, r.irradiance, r.dfg};
     files.push_back({"preview.png",
-                     [assets] {
-                       const Image grid = renderMaterialGrid(assets, kPreviewColumns, kPreviewCell);
+                     [&r, &o] {
+                       const Image grid = renderMaterialGrid(r, o, kPreviewColumns, kPreviewCell);
                        return encodePng(toneMapAces(grid, autoExposure(grid) + 0.5f));
                      },
                      {}});

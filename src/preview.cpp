@@ -7,24 +7,16 @@
 #include <glm/geometric.hpp>
 
 #include "ibl/color.hpp"
-#include "ibl/dfg.hpp"
+#include "ibl/render.hpp"
 
 namespace ibl {
 
-namespace {
-
-// Mip level holding roughness r, the inverse of roughnessForLevel.
-float lodForRoughness(float r, int levelCount, RoughnessMapping mapping) {
-  const float t = mapping == RoughnessMapping::Linear ? r : std::sqrt(r);
-  return t * static_cast<float>(levelCount - 1);
-}
-
-}  // namespace
-
-Image renderMaterialGrid(const PreviewAssets& a, int columns, int cell) {
+Image renderMaterialGrid(const BakeResult& bake, const BakeOptions& options, int columns,
+                         int cell) {
   const int rows = 2;
   Image img(columns * cell, rows * cell);
   const glm::vec3 view(0.0f, 0.0f, 1.0f);  // orthographic camera on +Z looking toward -Z
+  const RenderOptions shading;
   tbb::parallel_for(0, img.height, [&](int py) {
     for (int px = 0; px < img.width; ++px) {
       const int col = px / cell, row = py / cell;
@@ -38,26 +30,15 @@ Image renderMaterialGrid(const PreviewAssets& a, int columns, int cell) {
         const glm::vec3 dir = glm::normalize(glm::vec3(
             (static_cast<float>(px) / static_cast<float>(img.width) - 0.5f) * 1.6f,
             (0.5f - static_cast<float>(py) / static_cast<float>(img.height)) * 0.6f, -1.0f));
-        img.at(px, py) = sampleTrilinear(a.specular, 1.0f, dir) * 0.5f;
+        img.at(px, py) = sampleTrilinear(bake.specular, 1.0f, dir) * 0.5f;
         continue;
       }
-      const glm::vec3 n(dx, dy, std::sqrt(1.0f - d2));
-      const float r =
-          columns > 1 ? static_cast<float>(col) / static_cast<float>(columns - 1) : 0.5f;
-      const bool metal = row == 1;
-      const glm::vec3 albedo(0.8f);
-      const glm::vec3 f0 = metal ? glm::vec3(0.95f) : glm::vec3(0.04f);
-      const float NoV = std::max(glm::dot(n, view), 1e-4f);
-      const glm::vec3 refl = 2.0f * glm::dot(n, view) * n - view;
-      const glm::vec3 dfg = sampleDfgLut(a.dfg, NoV, r);
-      const glm::vec3 ld =
-          sampleTrilinear(a.specular, lodForRoughness(r, a.specular.levelCount(), a.mapping), refl);
-      // Split sum with multiple-scattering compensation (dfg.hpp).
-      const glm::vec3 specular =
-          ld * (f0 * dfg.x + dfg.y) * (1.0f + f0 * (1.0f / (dfg.x + dfg.y) - 1.0f));
-      const glm::vec3 diffuse =
-          metal ? glm::vec3(0.0f) : albedo * sampleBilinear(a.irradiance, 0, n) * dfg.z;
-      img.at(px, py) = diffuse + specular;
+      SurfacePoint p{};
+      p.normal = glm::vec3(dx, dy, std::sqrt(1.0f - d2));
+      p.roughness = columns > 1 ? static_cast<float>(col) / static_cast<float>(columns - 1) : 0.5f;
+      p.metallic = row == 1 ? 1.0f : 0.0f;
+      p.baseColor = glm::vec3(row == 1 ? 0.95f : 0.8f);
+      img.at(px, py) = shadeSplitSum(p, view, bake, options, shading);
     }
   });
   return img;

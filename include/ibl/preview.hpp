@@ -1,23 +1,16 @@
 #pragma once
 // The picture a user looks at first: spheres of roughness 0..1 (columns), dielectric and metal
 // (rows), lit by the baked assets with the split-sum model, over the environment, tone-mapped.
-#include "ibl/cubemap.hpp"
+#include "ibl/bake.hpp"
 #include "ibl/image.hpp"
-#include "ibl/prefilter.hpp"
 
 namespace ibl {
 
-struct PreviewAssets {
-  const CubeMap& specular;
-  RoughnessMapping mapping;
-  const CubeMap& irradiance;  // E / pi
-  const Image& dfg;
-};
-
 // Linear HDR image of the material grid (`columns` roughness steps, 2 rows, `cell` pixels per
-// sphere). Dielectric: albedo 0.8, F0 0.04, renormalized Disney diffuse; metal: F0 0.95
-// (aluminium-like). Multiple scattering compensated (see dfg.hpp).
-Image renderMaterialGrid(const PreviewAssets& assets, int columns = 6, int cell = 96);
+// sphere, orthographic, seen from +Z), shaded by shadeSplitSum (render.hpp) with its defaults.
+// Dielectric: base color 0.8; metal: base color 0.95 (aluminium-like).
+Image renderMaterialGrid(const BakeResult& bake, const BakeOptions& options, int columns = 6,
+                         int cell = 96);
 
 // ACES filmic tone curve (Narkowicz 2015 fit) after scaling by 2^exposure, then sRGB-ready
 // (linear values in [0, 1]).
