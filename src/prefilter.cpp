@@ -438,6 +438,10 @@ int defaultSpecularLevels(int size) {
   return levels;
 }
 
+int specularLevelCount(const PrefilterOptions& o) {
+  return o.levels > 0 ? std::min(o.levels, fullMipCount(o.size)) : defaultSpecularLevels(o.size);
+}
+
 int levelOfSize(const CubeMap& cube, int size) {
   for (int m = 0; m < cube.levelCount(); ++m)
     if (cube.levels[m][0].width <= size) return m;
@@ -508,8 +512,7 @@ CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& o,
     fail("prefilter", fmt::format("specular size must be a power of two, not {}", o.size));
   if (source.levelCount() != fullMipCount(source.size()))
     fail("prefilter", "the source cube map needs its full mip chain");
-  const int levels =
-      o.levels > 0 ? std::min(o.levels, fullMipCount(o.size)) : defaultSpecularLevels(o.size);
+  const int levels = specularLevelCount(o);
   CubeMap out;
   out.levels.resize(levels);
   if (methods) methods->assign(levels, {});

@@ -51,6 +51,8 @@ struct PrefilterOptions {
 inline constexpr int kMinSpecularSize = 8;
 // Levels from `size` down to kMinSpecularSize (or 1 level if size is smaller).
 int defaultSpecularLevels(int size);
+// The number of specular levels `options` asks for (options.levels, or the default).
+int specularLevelCount(const PrefilterOptions& options);
 
 using ProgressFn = std::function<void(const std::string& stage)>;
 

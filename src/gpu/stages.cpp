@@ -137,8 +137,7 @@ CubeMap prefilterGgxSampled(Context& context, const CubeMap& source, const Prefi
                             std::vector<LevelMethod>* methods) {
   if (source.levelCount() != fullMipCount(source.size()))
     fail("prefilter", "the source cube map needs its full mip chain");
-  const int levels =
-      o.levels > 0 ? std::min(o.levels, fullMipCount(o.size)) : defaultSpecularLevels(o.size);
+  const int levels = specularLevelCount(o);
   std::vector<glm::uvec2> levelTable;
   Buffer texels = Buffer::of(context, flatten(source, &levelTable));
   Buffer levelBuffer = Buffer::of(context, levelTable);
