@@ -1,6 +1,6 @@
 // The GPU bake's stages on the Vulkan device (Mesa's software device when there is no GPU),
-// from data already on the host: mips of a 256^2 cube, FIS prefilter (64 samples), irradiance
-// 32^2, SH9, DFG 128^2; and the default bake with --device gpu.
+// from data already on the host: equirect -> 256^2 cube, its mips, FIS prefilter (64 samples),
+// irradiance 32^2, SH9, DFG 128^2; and the default bake with --device gpu.
 #include <memory>
 
 #include <benchmark/benchmark.h>
@@ -29,6 +29,11 @@ const ibl::CubeMap& source() {
     return c;
   }();
   return cube;
+}
+
+void BM_GpuEquirectToCube256(benchmark::State& state) {
+  for (auto _ : state)
+    benchmark::DoNotOptimize(ibl::gpu::resampleToCube(context(), environment(), 256));
 }
 
 void BM_GpuMips256(benchmark::State& state) {
@@ -74,6 +79,7 @@ void BM_BakeDeviceGpu(benchmark::State& state) {
 
 }  // namespace
 
+BENCHMARK(BM_GpuEquirectToCube256)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GpuMips256)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GpuPrefilterFis256)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GpuIrradiance32)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -1,3 +1,5 @@
+const float kPiCube = 3.14159265358979;
+
 // Cube maps in storage buffers (faces +X..-Z, rows, texels; levels one after another), with
 // the face table and seam-aware bilinear / trilinear lookups of src/cubemap.cpp.
 

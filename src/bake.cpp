@@ -56,9 +56,9 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
   const int size = o.specular.size;
   if (progress) progress(fmt::format("source cube {}x{} with mips", size, size));
   r.source = time("source", [&] {
-    CubeMap cube = env.isCube() && env.cube.size() == size && o.rotateDegrees == 0.0f
-                       ? CubeMap()
-                       : resampleToCube(env, size, o.rotateDegrees);
+    CubeMap cube = env.isCube() && env.cube.size() == size && o.rotateDegrees == 0.0f ? CubeMap()
+                   : device ? gpu::resampleToCube(*device, env, size, o.rotateDegrees)
+                            : resampleToCube(env, size, o.rotateDegrees);
     if (cube.levels.empty()) cube.levels = {env.cube.levels[0]};
     if (device) {
       gpu::buildMipChain(*device, cube);

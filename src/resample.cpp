@@ -85,6 +85,8 @@ class Source {
     return sampleCubic(*cube_, level_, d);
   }
 
+  const Image* equirect() const { return equirect_; }
+
   // Samples per output texel side: at most half a source texel apart. The cubic B-spline's
   // spectrum (sinc^4) then keeps the error of integrating it with these samples below 1e-3.
   int samplesPerSide(double outputDensity) const {
@@ -104,13 +106,7 @@ class Source {
 
 }  // namespace
 
-CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
-  if (size <= 0) fail("resample", "cube size must be positive");
-  const double density = cubeDensity(size);
-  const Source source(env, density, rotateDegrees);
-  const int k = source.samplesPerSide(density);
-  // Exact solid angles of the k x k sub-cells of every texel of one face (the same on all six).
-  const int sub = size * k;
+std::vector<float> subcellSolidAngles(int sub) {
   std::vector<float> weights(static_cast<std::size_t>(sub) * sub);
   tbb::parallel_for(0, sub, [&](int j) {
     const double inv = 2.0 / sub;
@@ -118,6 +114,28 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
       weights[static_cast<std::size_t>(j) * sub + i] = static_cast<float>(faceRectSolidAngle(
           i * inv - 1.0, j * inv - 1.0, (i + 1) * inv - 1.0, (j + 1) * inv - 1.0));
   });
+  return weights;
+}
+
+CubeResamplePlan planEquirectToCube(const Image& equirect, int size) {
+  Environment env;
+  env.equirect = equirect;
+  const double density = cubeDensity(size);
+  const Source source(env, density, 0.0f);
+  CubeResamplePlan plan;
+  plan.equirect = *source.equirect();
+  plan.samplesPerSide = source.samplesPerSide(density);
+  plan.weights = subcellSolidAngles(size * plan.samplesPerSide);
+  return plan;
+}
+
+CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
+  if (size <= 0) fail("resample", "cube size must be positive");
+  const double density = cubeDensity(size);
+  const Source source(env, density, rotateDegrees);
+  const int k = source.samplesPerSide(density);
+  const int sub = size * k;
+  const std::vector<float> weights = subcellSolidAngles(sub);
   CubeMap out(size, 1);
   tbb::parallel_for(0, kFaceCount * size, [&](int row) {
     const int face = row / size, y = row % size;

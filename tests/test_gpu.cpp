@@ -72,6 +72,16 @@ TEST(Gpu, Sh9MatchesTheCpu) {
       EXPECT_NEAR(g[k][ch], c[k][ch], 1e-5f * std::max(1.0f, std::abs(c[k][ch]))) << k;
 }
 
+TEST(Gpu, EquirectToCubeMatchesTheCpu) {
+  const Environment env = loadEnvironment(hdriPath("sunset").string()).environment;
+  const CubeMap g = gpu::resampleToCube(context(), env, 64), c = resampleToCube(env, 64);
+  double worst = 0.0;
+  for (int f = 0; f < 6; ++f)
+    for (std::size_t i = 0; i < c.levels[0][f].pixels.size(); ++i)
+      worst = std::max(worst, maxRelativeError(g.levels[0][f].pixels[i], c.levels[0][f].pixels[i]));
+  EXPECT_LT(worst, 1e-3);  // float sums, and the GPU's atan against the CPU's polynomial
+}
+
 TEST(Gpu, MipChainMatchesTheCpu) {
   CubeMap c = resampleToCube(loadEnvironment(hdriPath("sunset").string()).environment, 64);
   CubeMap g = c;
@@ -125,20 +135,20 @@ TEST(Gpu, BakeOnTheDeviceMatchesTheCpuBake) {
       for (std::size_t i = 0; i < cpu.source.levels[m][f].pixels.size(); ++i)
         ASSERT_LT(
             maxRelativeError(gpu.source.levels[m][f].pixels[i], cpu.source.levels[m][f].pixels[i]),
-            1e-5);
+            1e-3);  // the GPU resamples the panorama too: see EquirectToCubeMatchesTheCpu
   for (std::size_t i = 0; i < cpu.dfg.pixels.size(); ++i)
     for (int k = 0; k < 3; ++k) ASSERT_NEAR(gpu.dfg.pixels[i][k], cpu.dfg.pixels[i][k], 1e-5f);
   for (int f = 0; f < 6; ++f)
     for (std::size_t i = 0; i < cpu.irradiance.levels[0][f].pixels.size(); ++i)
       ASSERT_LT(maxRelativeError(gpu.irradiance.levels[0][f].pixels[i],
                                  cpu.irradiance.levels[0][f].pixels[i]),
-                1e-5);
-  // Direct quadrature (the default) runs on the CPU in both bakes, from mips equal to 1e-5.
+                1e-3);
+  // Direct quadrature (the default) runs on the CPU in both bakes, from sources equal to 1e-3.
   for (int f = 0; f < 6; ++f)
     for (std::size_t i = 0; i < cpu.specular.levels[1][f].pixels.size(); ++i)
       ASSERT_LT(maxRelativeError(gpu.specular.levels[1][f].pixels[i],
                                  cpu.specular.levels[1][f].pixels[i]),
-                1e-4);
+                1e-3);
 }
 
 TEST(Gpu, CliBakesOnTheDevice) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ibl/cubemap.hpp"
+#include "ibl/environment.hpp"
 #include "ibl/image.hpp"
 #include "ibl/prefilter.hpp"
 #include "ibl/sh.hpp"
@@ -44,6 +45,9 @@ class Context {
 // GPU versions of buildMipChain (full chain), prefilterGgx with PrefilterMethod::Sampled,
 // integrateDfgLut, convolveIrradiance and projectSh9.
 void buildMipChain(Context& context, CubeMap& cube);
+// resampleToCube; on the GPU for unrotated equirect sources, else on the CPU.
+CubeMap resampleToCube(Context& context, const Environment& source, int size,
+                       float rotateDegrees = 0.0f);
 CubeMap prefilterGgxSampled(Context& context, const CubeMap& source,
                             const PrefilterOptions& options,
                             std::vector<LevelMethod>* methods = nullptr);

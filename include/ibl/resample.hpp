@@ -1,6 +1,8 @@
 #pragma once
 // Area-filtered resampling between equirectangular maps and cube maps, with an optional
 // rotation about +Y.
+#include <vector>
+
 #include <glm/mat3x3.hpp>
 
 #include "ibl/environment.hpp"
@@ -18,6 +20,19 @@ glm::mat3 rotationY(float degrees);
 // source texel apart) weighted by their exact solid angles. Energy over the
 // sphere is preserved (tested to 0.1 %), and a 4K panorama becomes a 64^2 cube without aliasing.
 CubeMap resampleToCube(const Environment& source, int size, float rotateDegrees = 0.0f);
+
+// Solid angles of the sub x sub equal cells of a cube face (row by row), exact.
+std::vector<float> subcellSolidAngles(int sub);
+
+// What resampleToCube integrates for an unrotated equirect source, for the GPU path: the
+// reduced source, the samples per texel side k, and the solid angles of the (size k)^2
+// sub-cells of a face.
+struct CubeResamplePlan {
+  Image equirect;
+  int samplesPerSide = 1;
+  std::vector<float> weights;
+};
+CubeResamplePlan planEquirectToCube(const Image& equirect, int size);
 
 // Resamples any environment to an equirectangular map of width x width/2, with the same
 // area filtering.

@@ -6,6 +6,7 @@
 #include "gpu/compute.hpp"
 #include "ibl/error.hpp"
 #include "ibl/gpu.hpp"
+#include "ibl/resample.hpp"
 
 namespace ibl::gpu {
 
@@ -110,6 +111,26 @@ std::array<Image, kFaceCount> unflatten(const std::vector<glm::vec4>& texels, in
 }
 
 }  // namespace
+
+CubeMap resampleToCube(Context& context, const Environment& env, int size, float rotateDegrees) {
+  if (env.isCube() || rotateDegrees != 0.0f) return ibl::resampleToCube(env, size, rotateDegrees);
+  const CubeResamplePlan plan = planEquirectToCube(env.equirect, size);
+  std::vector<glm::vec4> panorama;
+  for (const auto& p : plan.equirect.pixels) panorama.emplace_back(p, 1.0f);
+  Buffer source = Buffer::of(context, panorama), weights = Buffer::of(context, plan.weights),
+         result(context, static_cast<std::size_t>(6) * size * size * sizeof(glm::vec4));
+  const struct {
+    std::uint32_t size, k, width, height;
+  } params{static_cast<std::uint32_t>(size), static_cast<std::uint32_t>(plan.samplesPerSide),
+           static_cast<std::uint32_t>(plan.equirect.width),
+           static_cast<std::uint32_t>(plan.equirect.height)};
+  dispatch(context, "equirect_to_cube", {&source, &weights, &result}, bytesOf(params),
+           groups(size, 8), groups(size, 8), 6);
+  CubeMap out;
+  out.levels.push_back(
+      unflatten(result.read<glm::vec4>(static_cast<std::size_t>(6) * size * size), size));
+  return out;
+}
 
 void buildMipChain(Context& context, CubeMap& cube) {
   const int size = cube.size();

@@ -1,0 +1,63 @@
+#version 450
+// Equirect -> cube (resampleToCube in src/resample.cpp, unrotated): each texel integrates the
+// cubic B-spline reconstruction of the (reduced) panorama with k x k samples weighted by the
+// exact sub-cell solid angles the host computed.
+#extension GL_GOOGLE_include_directive : require
+#include "cube.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 0) readonly buffer Panorama { vec4 panorama[]; };
+layout(std430, binding = 1) readonly buffer Weights { float weights[]; };
+layout(std430, binding = 2) writeonly buffer Result { vec4 result[]; };
+layout(push_constant) uniform Params { uint size; uint k; uint width; uint height; } params;
+
+// cubicBSplineWeights in cubemap.hpp.
+vec4 bspline(float t) {
+  float t2 = t * t, t3 = t2 * t, s = 1.0 - t;
+  return vec4(s * s * s, 3.0 * t3 - 6.0 * t2 + 4.0, -3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0, t3) / 6.0;
+}
+
+// sampleEquirectCubic in equirect.cpp: wraps in u, clamps at the poles.
+vec3 sampleEquirectCubic(float u, float v) {
+  int w = int(params.width), h = int(params.height);
+  float fx = u * float(w) - 0.5, fy = v * float(h) - 0.5;
+  float flx = floor(fx), fly = floor(fy);
+  vec4 wx = bspline(fx - flx), wy = bspline(fy - fly);
+  int x0 = int(flx) - 1, y0 = int(fly) - 1;
+  vec3 sum = vec3(0.0);
+  for (int j = 0; j < 4; ++j) {
+    int y = clamp(y0 + j, 0, h - 1);
+    vec3 row = vec3(0.0);
+    for (int i = 0; i < 4; ++i) {
+      int x = (x0 + i) % w;
+      if (x < 0) x += w;
+      row += panorama[y * w + x].rgb * wx[i];
+    }
+    sum += row * wy[j];
+  }
+  return sum;
+}
+
+void main() {
+  uint x = gl_GlobalInvocationID.x, y = gl_GlobalInvocationID.y, face = gl_GlobalInvocationID.z;
+  uint n = params.size, k = params.k, sub = n * k;
+  if (x >= n || y >= n) return;
+  float inv = 2.0 / float(sub);
+  vec3 sum = vec3(0.0);
+  float wsum = 0.0;
+  for (uint b = 0u; b < k; ++b) {
+    uint j = y * k + b;
+    float tc = (float(j) + 0.5) * inv - 1.0;
+    for (uint a = 0u; a < k; ++a) {
+      uint i = x * k + a;
+      float sc = (float(i) + 0.5) * inv - 1.0;
+      vec3 d = faceToDirection(int(face), sc, tc);
+      // directionToEquirect: u = 0.5 + atan2(z, x) / 2 pi, v = atan2(sqrt(x^2 + z^2), y) / pi.
+      float u = 0.5 + atan(d.z, d.x) / (2.0 * kPiCube);
+      float v = atan(sqrt(d.x * d.x + d.z * d.z), d.y) / kPiCube;
+      float w = weights[j * sub + i];
+      sum += sampleEquirectCubic(u, v) * w;
+      wsum += w;
+    }
+  }
+  result[(face * n + y) * n + x] = vec4(sum / wsum, 1.0);
+}
