@@ -506,8 +506,9 @@ std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int s
   return out;
 }
 
-CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& o,
-                     std::vector<LevelMethod>* methods, const ProgressFn& progress) {
+CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& o,
+                           const SpecularLevelFn& level, std::vector<LevelMethod>* methods,
+                           const ProgressFn& progress) {
   if (!std::has_single_bit(static_cast<unsigned>(o.size)))
     fail("prefilter", fmt::format("specular size must be a power of two, not {}", o.size));
   if (source.levelCount() != fullMipCount(source.size()))
@@ -524,22 +525,31 @@ CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& o,
                            size, r));
     LevelMethod method{r, "", 0, 0};
     if (r == 0.0f) {
-      // Mirror reflection: the source itself (area-resampled if sizes differ).
+      // Mirror reflection: the source itself.
       const int sl = levelOfSize(source, size);
       method.method = "source";
       method.sourceSize = source.levels[sl][0].width;
       out.levels[m] = source.levels[sl];
-    } else if (o.method == PrefilterMethod::Sampled) {
-      method.method = "sampled";
-      method.sourceSize = source.size();
-      method.samples = o.samples;
-      out.levels[m] = prefilterLevelSampled(source, size, r, o.samples, o.weight);
     } else {
-      out.levels[m] = prefilterLevelRings(source, size, r, o.weight, &method);
+      out.levels[m] = level(size, r, method);
     }
     if (methods) (*methods)[m] = method;
   }
   return out;
+}
+
+CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& o,
+                     std::vector<LevelMethod>* methods, const ProgressFn& progress) {
+  const auto level = [&](int size, float r, LevelMethod& method) {
+    if (o.method == PrefilterMethod::Sampled) {
+      method.method = "sampled";
+      method.sourceSize = source.size();
+      method.samples = o.samples;
+      return prefilterLevelSampled(source, size, r, o.samples, o.weight);
+    }
+    return prefilterLevelRings(source, size, r, o.weight, &method);
+  };
+  return buildSpecularChain(source, o, level, methods, progress);
 }
 
 CubeMap convolveIrradiance(const CubeMap& source, int size, int sourceLevel) {

@@ -62,6 +62,15 @@ using ProgressFn = std::function<void(const std::string& stage)>;
 CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& options,
                      std::vector<LevelMethod>* methods = nullptr, const ProgressFn& progress = {});
 
+// The chain of `options`: level 0 (r = 0) taken from the source (the mirror reflection), every
+// other level computed by `level(size, roughness, method)`, which also fills in how. The loop
+// shared by prefilterGgx and its GPU twin; checks the source's mip chain and the size.
+using SpecularLevelFn =
+    std::function<std::array<Image, kFaceCount>(int size, float roughness, LevelMethod& method)>;
+CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& options,
+                           const SpecularLevelFn& level, std::vector<LevelMethod>* methods,
+                           const ProgressFn& progress = {});
+
 // Direct convolution of one specular level over every texel of source level `sourceLevel`:
 // sum L w / sum w with w = weight(n.l) x texel solid angle. The reference for the tests and
 // the accuracy benchmark, and the method for rough levels.

@@ -156,23 +156,10 @@ void buildMipChain(Context& context, CubeMap& cube) {
 
 CubeMap prefilterGgxSampled(Context& context, const CubeMap& source, const PrefilterOptions& o,
                             std::vector<LevelMethod>* methods) {
-  if (source.levelCount() != fullMipCount(source.size()))
-    fail("prefilter", "the source cube map needs its full mip chain");
-  const int levels = specularLevelCount(o);
   std::vector<glm::uvec2> levelTable;
   Buffer texels = Buffer::of(context, flatten(source, &levelTable));
   Buffer levelBuffer = Buffer::of(context, levelTable);
-  CubeMap out;
-  out.levels.resize(levels);
-  if (methods) methods->assign(levels, {});
-  for (int m = 0; m < levels; ++m) {
-    const int size = o.size >> m;
-    const float r = roughnessForLevel(m, levels, o.mapping);
-    if (r == 0.0f) {
-      out.levels[m] = source.levels[levelOfSize(source, size)];
-      if (methods) (*methods)[m] = {r, "source", out.levels[m][0].width, 0};
-      continue;
-    }
+  const auto level = [&](int size, float r, LevelMethod& method) {
     std::vector<glm::vec4> samples;
     for (const FisSample& s :
          filteredImportanceSamples(source.size(), source.levelCount(), r, o.samples, o.weight)) {
@@ -187,11 +174,10 @@ CubeMap prefilterGgxSampled(Context& context, const CubeMap& source, const Prefi
              static_cast<std::uint32_t>(source.levelCount())};
     dispatch(context, "prefilter_fis", {&texels, &levelBuffer, &sampleBuffer, &result},
              bytesOf(params), groups(size, 8), groups(size, 8), 6);
-    out.levels[m] =
-        unflatten(result.read<glm::vec4>(static_cast<std::size_t>(6) * size * size), size);
-    if (methods) (*methods)[m] = {r, "sampled", source.size(), o.samples};
-  }
-  return out;
+    method = {r, "sampled", source.size(), o.samples};
+    return unflatten(result.read<glm::vec4>(static_cast<std::size_t>(6) * size * size), size);
+  };
+  return buildSpecularChain(source, o, level, methods);
 }
 
 }  // namespace ibl::gpu
