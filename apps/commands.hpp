@@ -13,5 +13,6 @@ void addInfoCommand(CLI::App& app, const GlobalOptions& global);
 void addBakeCommand(CLI::App& app, const GlobalOptions& global);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global);
 void addCompareCommand(CLI::App& app, const GlobalOptions& global);
+void addViewCommand(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace ibl::cli

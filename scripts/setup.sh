@@ -9,7 +9,9 @@ packages=(
   # libraries
   libopenexr-dev libimath-dev libstb-dev libglm-dev libcli11-dev libfmt-dev
   nlohmann-json3-dev libtbb-dev libtinygltf-dev libembree-dev libdraco-dev
-  libvulkan-dev glslc mesa-vulkan-drivers
+  libvulkan-dev glslc mesa-vulkan-drivers libglfw3-dev
+  # the viewer's window in tests, on a virtual X display
+  xvfb xauth
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3
 )

@@ -51,3 +51,22 @@ float disneyDiffuseRenormalized(float NoV, float NoL, float LoH, float roughness
   float viewScatter = 1.0 + (fd90 - 1.0) * schlickWeight(NoV);
   return lightScatter * viewScatter * energyFactor;
 }
+
+// Real SH basis up to band 2 (shBasis9 in src/sh.cpp).
+void shBasis9(vec3 d, out float basis[9]) {
+  basis = float[9](0.282095, 0.488603 * d.y, 0.488603 * d.z, 0.488603 * d.x, 1.092548 * d.x * d.y,
+                   1.092548 * d.y * d.z, 0.315392 * (3.0 * d.z * d.z - 1.0), 1.092548 * d.x * d.z,
+                   0.546274 * (d.x * d.x - d.y * d.y));
+}
+
+// sRGB transfer functions (srgbToLinear / linearToSrgb in src/color.cpp).
+float srgbToLinear(float e) {
+  e = clamp(e, 0.0, 1.0);
+  return e <= 0.04045 ? e / 12.92 : pow((e + 0.055) / 1.055, 2.4);
+}
+vec3 srgbToLinear(vec3 e) { return vec3(srgbToLinear(e.r), srgbToLinear(e.g), srgbToLinear(e.b)); }
+float linearToSrgb(float l) {
+  if (!(l > 0.0)) return 0.0;
+  if (l >= 1.0) return 1.0;
+  return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1.0 / 2.4) - 0.055;
+}

@@ -1,4 +1,6 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
 // SH9 projection (projectSh9 in src/sh.cpp): each workgroup sums L Y_lm omega over 64 texels
 // in shared memory and writes one partial sum per coefficient; the host adds the partials in
 // a fixed order.
@@ -17,9 +19,7 @@ void main() {
   if (i < params.sourceCount) {
     vec3 d = dirOmega[i].xyz;
     l = radiance[i].rgb * dirOmega[i].w;
-    basis = float[9](0.282095, 0.488603 * d.y, 0.488603 * d.z, 0.488603 * d.x, 1.092548 * d.x * d.y,
-                     1.092548 * d.y * d.z, 0.315392 * (3.0 * d.z * d.z - 1.0), 1.092548 * d.x * d.z,
-                     0.546274 * (d.x * d.x - d.y * d.y));
+    shBasis9(d, basis);
   } else {
     basis = float[9](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
   }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <numbers>
 
 #include <draco/compression/decode.h>
 #include <fmt/format.h>
@@ -51,6 +52,35 @@ std::pair<glm::vec3, glm::vec3> Scene::bounds() const {
   }
   if (lo.x > hi.x) return {glm::vec3(-1.0f), glm::vec3(1.0f)};
   return {lo, hi};
+}
+
+Mesh tessellateSphere(const Sphere& sphere, int segments) {
+  const int rings = std::max(segments / 2, 2);
+  segments = std::max(segments, 3);
+  Mesh m;
+  m.material = sphere.material;
+  for (int i = 0; i <= rings; ++i) {
+    const float theta =
+        std::numbers::pi_v<float> * static_cast<float>(i) / static_cast<float>(rings);
+    for (int j = 0; j <= segments; ++j) {
+      const float phi =
+          2.0f * std::numbers::pi_v<float> * static_cast<float>(j) / static_cast<float>(segments);
+      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                        std::sin(theta) * std::sin(phi));
+      m.normals.push_back(n);
+      m.positions.push_back(sphere.center + sphere.radius * n);
+    }
+  }
+  const auto index = [&](int i, int j) {
+    return static_cast<std::uint32_t>(i * (segments + 1) + j);
+  };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      if (i > 0) m.indices.insert(m.indices.end(), {index(i, j), index(i, j + 1), index(i + 1, j)});
+      if (i + 1 < rings)
+        m.indices.insert(m.indices.end(), {index(i, j + 1), index(i + 1, j + 1), index(i + 1, j)});
+    }
+  return m;
 }
 
 Scene makeSphereScene(const Material& material) {

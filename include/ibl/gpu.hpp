@@ -25,12 +25,18 @@ struct DeviceInfo {
 // Vulkan devices with a compute queue; empty when there is no Vulkan loader or device.
 std::vector<DeviceInfo> listDevices();
 
+struct ContextOptions {
+  std::vector<std::string> instanceExtensions;  // e.g. the window system's surface extensions
+  bool graphics = false;                        // a queue that also rasterizes (the viewer)
+  bool swapchain = false;                       // VK_KHR_swapchain, to present to a window
+};
+
 // A Vulkan device, queue and the compiled pipelines. Prefers a discrete GPU, then an
 // integrated one, then anything (lavapipe).
 class Context {
  public:
   // Throws Error("vulkan: ...") when no device can be used.
-  static std::unique_ptr<Context> create();
+  static std::unique_ptr<Context> create(const ContextOptions& options = {});
   ~Context();
   const DeviceInfo& device() const;
 

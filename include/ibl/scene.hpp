@@ -77,6 +77,10 @@ Scene makeSphereScene(const Material& material);
 // radius 1, 2.5 apart, centered on the origin in the XY plane.
 Scene makeSphereGrid(glm::vec3 baseColor, int columns = 6);
 
+// A sphere as triangles for a rasterizer: `segments` around, segments / 2 from pole to pole,
+// vertices on the sphere with exact normals.
+Mesh tessellateSphere(const Sphere& sphere, int segments);
+
 // Reads a glTF 2.0 file (.gltf with external or embedded buffers, .glb), applying node
 // transforms; KHR_draco_mesh_compression primitives are decoded; missing normals and tangents
 // are generated. Throws Error("<path>: ...") for anything it cannot read.

@@ -1,5 +1,6 @@
 #pragma once
-// Internal: host-visible storage buffers and one-shot compute dispatches.
+// Internal: host-visible buffers (storage, uniform, vertex, index, transfer) and one-shot
+// compute dispatches.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -32,6 +33,8 @@ class Buffer {
     return out;
   }
   void* handle() const { return buffer_; }
+  void* mapped() const { return mapped_; }
+  std::size_t size() const { return size_; }
   Buffer(Buffer&& other) noexcept
       : context_(other.context_),
         size_(other.size_),

@@ -1,24 +1,23 @@
-// Vulkan compute: instance, device, host-visible storage buffers, cached pipelines, dispatch.
+// Vulkan: instance, device, host-visible buffers, device images, cached compute pipelines,
+// one-shot submissions.
+#include <algorithm>
 #include <cstring>
-#include <map>
-#include <mutex>
 
 #include <fmt/format.h>
-#include <vulkan/vulkan.h>
 
 #include "gpu/compute.hpp"
 #include "gpu/spirv.hpp"
+#include "gpu/vulkan.hpp"
 #include "ibl/error.hpp"
-#include "ibl/gpu.hpp"
 
 namespace ibl::gpu {
-
-namespace {
 
 void check(VkResult r, const char* what) {
   if (r != VK_SUCCESS)
     fail("vulkan", fmt::format("{} failed (VkResult {})", what, static_cast<int>(r)));
 }
+
+namespace {
 
 std::string typeName(VkPhysicalDeviceType t) {
   switch (t) {
@@ -35,22 +34,42 @@ std::string typeName(VkPhysicalDeviceType t) {
   }
 }
 
-int computeQueueFamily(VkPhysicalDevice device) {
+// The queue family to use: one that computes, preferably one that also rasterizes; -1 if none
+// (or, when `graphics`, none that rasterizes).
+int queueFamily(VkPhysicalDevice device, bool graphics) {
   std::uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
   std::vector<VkQueueFamilyProperties> families(count);
   vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
-  for (std::uint32_t i = 0; i < count; ++i)
-    if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) return static_cast<int>(i);
-  return -1;
+  int computeOnly = -1;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const VkQueueFlags f = families[i].queueFlags;
+    if ((f & VK_QUEUE_COMPUTE_BIT) && (f & VK_QUEUE_GRAPHICS_BIT)) return static_cast<int>(i);
+    if ((f & VK_QUEUE_COMPUTE_BIT) && computeOnly < 0) computeOnly = static_cast<int>(i);
+  }
+  return graphics ? -1 : computeOnly;
 }
 
-VkInstance createInstance() {
+bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
+  std::uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+  return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+    return std::strcmp(e.extensionName, name) == 0;
+  });
+}
+
+VkInstance createInstance(const std::vector<std::string>& extensions) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "ibl";
   app.apiVersion = VK_API_VERSION_1_1;
+  std::vector<const char*> names;
+  for (const auto& e : extensions) names.push_back(e.c_str());
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
+  info.enabledExtensionCount = static_cast<std::uint32_t>(names.size());
+  info.ppEnabledExtensionNames = names.data();
   VkInstance instance = VK_NULL_HANDLE;
   if (vkCreateInstance(&info, nullptr, &instance) != VK_SUCCESS) return VK_NULL_HANDLE;
   return instance;
@@ -72,93 +91,110 @@ DeviceInfo describe(VkPhysicalDevice device) {
 
 }  // namespace
 
-struct Context::Impl {
-  VkInstance instance = VK_NULL_HANDLE;
-  VkPhysicalDevice physical = VK_NULL_HANDLE;
-  VkDevice device = VK_NULL_HANDLE;
-  VkQueue queue = VK_NULL_HANDLE;
-  std::uint32_t family = 0;
-  VkCommandPool pool = VK_NULL_HANDLE;
-  DeviceInfo info;
-  struct Pipeline {
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    VkPipelineLayout layout = VK_NULL_HANDLE;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    VkShaderModule module = VK_NULL_HANDLE;
-  };
-  std::map<std::string, Pipeline, std::less<>> pipelines;
-  std::mutex mutex;  // the queue, command pool and pipeline cache are used by one thread at a time
-
-  ~Impl() {
-    if (device) {
-      vkDeviceWaitIdle(device);
-      for (auto& [name, p] : pipelines) {
-        vkDestroyPipeline(device, p.pipeline, nullptr);
-        vkDestroyPipelineLayout(device, p.layout, nullptr);
-        vkDestroyDescriptorSetLayout(device, p.setLayout, nullptr);
-        vkDestroyShaderModule(device, p.module, nullptr);
-      }
-      vkDestroyCommandPool(device, pool, nullptr);
-      vkDestroyDevice(device, nullptr);
+Context::Impl::~Impl() {
+  if (device) {
+    vkDeviceWaitIdle(device);
+    for (auto& [name, p] : pipelines) {
+      vkDestroyPipeline(device, p.pipeline, nullptr);
+      vkDestroyPipelineLayout(device, p.layout, nullptr);
+      vkDestroyDescriptorSetLayout(device, p.setLayout, nullptr);
+      vkDestroyShaderModule(device, p.module, nullptr);
     }
-    if (instance) vkDestroyInstance(instance, nullptr);
+    vkDestroyCommandPool(device, pool, nullptr);
+    vkDestroyDevice(device, nullptr);
   }
+  if (instance) vkDestroyInstance(instance, nullptr);
+}
 
-  std::uint32_t memoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
-    VkPhysicalDeviceMemoryProperties props;
-    vkGetPhysicalDeviceMemoryProperties(physical, &props);
-    for (std::uint32_t i = 0; i < props.memoryTypeCount; ++i)
-      if ((bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags) return i;
-    fail("vulkan", "no host-visible memory type for storage buffers");
-  }
+std::uint32_t Context::Impl::memoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
+  VkPhysicalDeviceMemoryProperties props;
+  vkGetPhysicalDeviceMemoryProperties(physical, &props);
+  for (std::uint32_t i = 0; i < props.memoryTypeCount; ++i)
+    if ((bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags) return i;
+  fail("vulkan", fmt::format("no memory type with properties {:#x}", flags));
+}
 
-  const Pipeline& pipeline(std::string_view name, std::uint32_t bindings, std::uint32_t pushBytes) {
-    const auto found = pipelines.find(name);
-    if (found != pipelines.end()) return found->second;
-    const auto code = spirvFor(name);
-    if (code.empty()) fail("vulkan", fmt::format("no shader named {}", name));
-    Pipeline p;
-    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = code.size_bytes();
-    moduleInfo.pCode = code.data();
-    check(vkCreateShaderModule(device, &moduleInfo, nullptr, &p.module), "vkCreateShaderModule");
-    std::vector<VkDescriptorSetLayoutBinding> b(bindings);
-    for (std::uint32_t i = 0; i < bindings; ++i)
-      b[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    setInfo.bindingCount = bindings;
-    setInfo.pBindings = b.data();
-    check(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &p.setLayout),
-          "vkCreateDescriptorSetLayout");
-    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes};
-    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    layoutInfo.setLayoutCount = 1;
-    layoutInfo.pSetLayouts = &p.setLayout;
-    layoutInfo.pushConstantRangeCount = pushBytes ? 1 : 0;
-    layoutInfo.pPushConstantRanges = &push;
-    check(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &p.layout),
-          "vkCreatePipelineLayout");
-    VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                          nullptr,
-                          0,
-                          VK_SHADER_STAGE_COMPUTE_BIT,
-                          p.module,
-                          "main",
-                          nullptr};
-    pipelineInfo.layout = p.layout;
-    check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &p.pipeline),
-          "vkCreateComputePipelines");
-    return pipelines.emplace(std::string(name), p).first->second;
-  }
-};
+VkShaderModule Context::Impl::shaderModule(std::string_view name) const {
+  const auto code = spirvFor(name);
+  if (code.empty()) fail("vulkan", fmt::format("no shader named {}", name));
+  VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  moduleInfo.codeSize = code.size_bytes();
+  moduleInfo.pCode = code.data();
+  VkShaderModule module;
+  check(vkCreateShaderModule(device, &moduleInfo, nullptr, &module), "vkCreateShaderModule");
+  return module;
+}
+
+const Context::Impl::Pipeline& Context::Impl::computePipeline(std::string_view name,
+                                                              std::uint32_t bindings,
+                                                              std::uint32_t pushBytes) {
+  const auto found = pipelines.find(name);
+  if (found != pipelines.end()) return found->second;
+  Pipeline p;
+  p.module = shaderModule(name);
+  std::vector<VkDescriptorSetLayoutBinding> b(bindings);
+  for (std::uint32_t i = 0; i < bindings; ++i)
+    b[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  setInfo.bindingCount = bindings;
+  setInfo.pBindings = b.data();
+  check(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &p.setLayout),
+        "vkCreateDescriptorSetLayout");
+  VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes};
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.setLayoutCount = 1;
+  layoutInfo.pSetLayouts = &p.setLayout;
+  layoutInfo.pushConstantRangeCount = pushBytes ? 1 : 0;
+  layoutInfo.pPushConstantRanges = &push;
+  check(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &p.layout), "vkCreatePipelineLayout");
+  VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                        nullptr,
+                        0,
+                        VK_SHADER_STAGE_COMPUTE_BIT,
+                        p.module,
+                        "main",
+                        nullptr};
+  pipelineInfo.layout = p.layout;
+  check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &p.pipeline),
+        "vkCreateComputePipelines");
+  return pipelines.emplace(std::string(name), p).first->second;
+}
+
+void Context::Impl::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+  const std::lock_guard lock(mutex);
+  VkCommandBufferAllocateInfo cmdAlloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  cmdAlloc.commandPool = pool;
+  cmdAlloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  cmdAlloc.commandBufferCount = 1;
+  VkCommandBuffer cmd;
+  check(vkAllocateCommandBuffers(device, &cmdAlloc, &cmd), "vkAllocateCommandBuffers");
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vkBeginCommandBuffer(cmd, &begin);
+  record(cmd);
+  vkEndCommandBuffer(cmd);
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence;
+  check(vkCreateFence(device, &fenceInfo, nullptr, &fence), "vkCreateFence");
+  const VkResult submitted = vkQueueSubmit(queue, 1, &submit, fence);
+  const VkResult waited =
+      submitted == VK_SUCCESS ? vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX) : submitted;
+  vkDestroyFence(device, fence, nullptr);
+  vkFreeCommandBuffers(device, pool, 1, &cmd);
+  check(submitted, "vkQueueSubmit");
+  check(waited, "vkWaitForFences");
+}
 
 std::vector<DeviceInfo> listDevices() {
   std::vector<DeviceInfo> out;
-  VkInstance instance = createInstance();
+  VkInstance instance = createInstance({});
   if (!instance) return out;
   for (VkPhysicalDevice d : physicalDevices(instance))
-    if (computeQueueFamily(d) >= 0) out.push_back(describe(d));
+    if (queueFamily(d, false) >= 0) out.push_back(describe(d));
   vkDestroyInstance(instance, nullptr);
   return out;
 }
@@ -169,16 +205,17 @@ const DeviceInfo& Context::device() const {
   return impl_->info;
 }
 
-std::unique_ptr<Context> Context::create() {
+std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   auto impl = std::make_unique<Impl>();
-  impl->instance = createInstance();
+  impl->instance = createInstance(options.instanceExtensions);
   if (!impl->instance)
     fail("vulkan",
          "no Vulkan loader or driver (install mesa-vulkan-drivers for the software device)");
-  // Prefer a discrete GPU, then an integrated one, then any device with a compute queue.
+  // Prefer a discrete GPU, then an integrated one, then any device that can do the job.
   int best = -1;
   for (VkPhysicalDevice d : physicalDevices(impl->instance)) {
-    if (computeQueueFamily(d) < 0) continue;
+    if (queueFamily(d, options.graphics) < 0) continue;
+    if (options.swapchain && !hasDeviceExtension(d, VK_KHR_SWAPCHAIN_EXTENSION_NAME)) continue;
     const std::string type = describe(d).type;
     const int rank = type == "discrete" ? 3 : type == "integrated" ? 2 : 1;
     if (rank > best) {
@@ -186,17 +223,29 @@ std::unique_ptr<Context> Context::create() {
       impl->physical = d;
     }
   }
-  if (!impl->physical) fail("vulkan", "no Vulkan device with a compute queue");
+  if (!impl->physical)
+    fail("vulkan", options.graphics ? "no Vulkan device with a graphics and compute queue"
+                                    : "no Vulkan device with a compute queue");
   impl->info = describe(impl->physical);
-  impl->family = static_cast<std::uint32_t>(computeQueueFamily(impl->physical));
+  impl->family = static_cast<std::uint32_t>(queueFamily(impl->physical, options.graphics));
+  {
+    std::uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(impl->physical, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(impl->physical, &count, families.data());
+    impl->graphics = (families[impl->family].queueFlags & VK_QUEUE_GRAPHICS_BIT) != 0;
+  }
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   queueInfo.queueFamilyIndex = impl->family;
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
+  const char* swapchain = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;
+  deviceInfo.enabledExtensionCount = options.swapchain ? 1 : 0;
+  deviceInfo.ppEnabledExtensionNames = &swapchain;
   check(vkCreateDevice(impl->physical, &deviceInfo, nullptr, &impl->device), "vkCreateDevice");
   vkGetDeviceQueue(impl->device, impl->family, 0, &impl->queue);
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -212,7 +261,9 @@ Buffer::Buffer(Context& context, std::size_t bytes) : context_(&context), size_(
   auto& c = context.impl();
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = std::max<std::size_t>(bytes, 16);
-  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+               VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
+               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkBuffer buffer;
   check(vkCreateBuffer(c.device, &info, nullptr, &buffer), "vkCreateBuffer");
@@ -246,9 +297,12 @@ void dispatch(Context& context, std::string_view shader, std::initializer_list<B
               std::span<const std::uint8_t> pushConstants, std::uint32_t groupsX,
               std::uint32_t groupsY, std::uint32_t groupsZ) {
   auto& c = context.impl();
-  const std::lock_guard lock(c.mutex);
-  const auto& p = c.pipeline(shader, static_cast<std::uint32_t>(buffers.size()),
-                             static_cast<std::uint32_t>(pushConstants.size()));
+  const Context::Impl::Pipeline* p;
+  {
+    const std::lock_guard lock(c.mutex);
+    p = &c.computePipeline(shader, static_cast<std::uint32_t>(buffers.size()),
+                           static_cast<std::uint32_t>(pushConstants.size()));
+  }
   VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                             static_cast<std::uint32_t>(buffers.size())};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -257,10 +311,15 @@ void dispatch(Context& context, std::string_view shader, std::initializer_list<B
   poolInfo.pPoolSizes = &size;
   VkDescriptorPool pool;
   check(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
+  struct PoolGuard {
+    VkDevice device;
+    VkDescriptorPool pool;
+    ~PoolGuard() { vkDestroyDescriptorPool(device, pool, nullptr); }
+  } guard{c.device, pool};
   VkDescriptorSetAllocateInfo setAlloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   setAlloc.descriptorPool = pool;
   setAlloc.descriptorSetCount = 1;
-  setAlloc.pSetLayouts = &p.setLayout;
+  setAlloc.pSetLayouts = &p->setLayout;
   VkDescriptorSet set;
   check(vkAllocateDescriptorSets(c.device, &setAlloc, &set), "vkAllocateDescriptorSets");
   std::vector<VkDescriptorBufferInfo> infos;
@@ -277,44 +336,113 @@ void dispatch(Context& context, std::string_view shader, std::initializer_list<B
   }
   vkUpdateDescriptorSets(c.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
                          nullptr);
+  c.submitAndWait([&](VkCommandBuffer cmd) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->layout, 0, 1, &set, 0, nullptr);
+    if (!pushConstants.empty())
+      vkCmdPushConstants(cmd, p->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                         static_cast<std::uint32_t>(pushConstants.size()), pushConstants.data());
+    vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
+    // Make the shader's writes visible to the host's reads of the mapped memory.
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0,
+                         1, &barrier, 0, nullptr, 0, nullptr);
+  });
+}
 
-  VkCommandBufferAllocateInfo cmdAlloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  cmdAlloc.commandPool = c.pool;
-  cmdAlloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  cmdAlloc.commandBufferCount = 1;
-  VkCommandBuffer cmd;
-  check(vkAllocateCommandBuffers(c.device, &cmdAlloc, &cmd), "vkAllocateCommandBuffers");
-  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  vkBeginCommandBuffer(cmd, &begin);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &set, 0, nullptr);
-  if (!pushConstants.empty())
-    vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                       static_cast<std::uint32_t>(pushConstants.size()), pushConstants.data());
-  vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
-  // Make the shader's writes visible to the host's reads of the mapped memory.
-  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-  barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
-                       &barrier, 0, nullptr, 0, nullptr);
-  vkEndCommandBuffer(cmd);
-  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-  submit.commandBufferCount = 1;
-  submit.pCommandBuffers = &cmd;
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence fence;
-  check(vkCreateFence(c.device, &fenceInfo, nullptr, &fence), "vkCreateFence");
-  const VkResult submitted = vkQueueSubmit(c.queue, 1, &submit, fence);
-  const VkResult waited = submitted == VK_SUCCESS
-                              ? vkWaitForFences(c.device, 1, &fence, VK_TRUE, UINT64_MAX)
-                              : submitted;
-  vkDestroyFence(c.device, fence, nullptr);
-  vkFreeCommandBuffers(c.device, c.pool, 1, &cmd);
-  vkDestroyDescriptorPool(c.device, pool, nullptr);
-  check(submitted, "vkQueueSubmit");
-  check(waited, "vkWaitForFences");
+// ---- vulkan.hpp ----
+
+DeviceImage::DeviceImage(Context& context, const Description& d)
+    : c_(&context.impl()), description_(d) {
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.flags = d.cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = d.format;
+  info.extent = {d.width, d.height, 1};
+  info.mipLevels = d.levels;
+  info.arrayLayers = d.layers;
+  info.samples = d.samples;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = d.usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  check(vkCreateImage(c_->device, &info, nullptr, &image_), "vkCreateImage");
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(c_->device, image_, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = c_->memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  if (vkAllocateMemory(c_->device, &alloc, nullptr, &memory_) != VK_SUCCESS) {
+    vkDestroyImage(c_->device, image_, nullptr);
+    fail("vulkan", fmt::format("cannot allocate a {}x{} image", d.width, d.height));
+  }
+  vkBindImageMemory(c_->device, image_, memory_, 0);
+  VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  viewInfo.image = image_;
+  viewInfo.viewType = d.cube ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_2D;
+  viewInfo.format = d.format;
+  viewInfo.subresourceRange = {d.aspect, 0, d.levels, 0, d.layers};
+  const VkResult r = vkCreateImageView(c_->device, &viewInfo, nullptr, &view_);
+  if (r != VK_SUCCESS) {
+    vkDestroyImage(c_->device, image_, nullptr);
+    vkFreeMemory(c_->device, memory_, nullptr);
+    check(r, "vkCreateImageView");
+  }
+}
+
+DeviceImage::~DeviceImage() {
+  vkDestroyImageView(c_->device, view_, nullptr);
+  vkDestroyImage(c_->device, image_, nullptr);
+  vkFreeMemory(c_->device, memory_, nullptr);
+}
+
+void transitionImage(VkCommandBuffer cmd, const DeviceImage& image, VkImageLayout oldLayout,
+                     VkImageLayout newLayout, VkPipelineStageFlags fromStage,
+                     VkAccessFlags fromAccess, VkPipelineStageFlags toStage,
+                     VkAccessFlags toAccess) {
+  const auto& d = image.description();
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.srcAccessMask = fromAccess;
+  b.dstAccessMask = toAccess;
+  b.oldLayout = oldLayout;
+  b.newLayout = newLayout;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image.image();
+  b.subresourceRange = {d.aspect, 0, d.levels, 0, d.layers};
+  vkCmdPipelineBarrier(cmd, fromStage, toStage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+void uploadImage(Context& context, const DeviceImage& image, std::span<const std::uint8_t> texels,
+                 std::size_t texelBytes) {
+  const auto& d = image.description();
+  Buffer staging(context, texels.size());
+  std::memcpy(staging.mapped(), texels.data(), texels.size());
+  std::vector<VkBufferImageCopy> regions;
+  VkDeviceSize offset = 0;
+  for (std::uint32_t level = 0; level < d.levels; ++level) {
+    const std::uint32_t w = std::max(d.width >> level, 1u), h = std::max(d.height >> level, 1u);
+    VkBufferImageCopy r{};
+    r.bufferOffset = offset;
+    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, d.layers};
+    r.imageExtent = {w, h, 1};
+    regions.push_back(r);
+    offset += VkDeviceSize{w} * h * d.layers * texelBytes;
+  }
+  if (offset != texels.size()) fail("vulkan", "image upload of the wrong size");
+  context.impl().submitAndWait([&](VkCommandBuffer cmd) {
+    transitionImage(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdCopyBufferToImage(cmd, static_cast<VkBuffer>(staging.handle()), image.image(),
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           static_cast<std::uint32_t>(regions.size()), regions.data());
+    transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                    VK_ACCESS_SHADER_READ_BIT);
+  });
 }
 
 }  // namespace ibl::gpu

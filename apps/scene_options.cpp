@@ -1,0 +1,202 @@
+#include "scene_options.hpp"
+
+#include <sstream>
+
+#include <fmt/core.h>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "ibl/default_environment.hpp"
+#include "ibl/error.hpp"
+#include "ibl/file_io.hpp"
+#include "ibl/image_io.hpp"
+
+namespace ibl::cli {
+
+void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
+  cmd->add_option("scene", o.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'")->required();
+  cmd->add_option("--env", o.env,
+                  "Environment to bake and light with (default: the bundled sunset.exr)");
+  cmd->add_option("--bake", o.bakeDir, "Use an existing bake directory instead of baking --env");
+  cmd->add_option("--camera", o.camera, "perspective or ortho")
+      ->check(CLI::IsMember({"perspective", "ortho"}))
+      ->capture_default_str();
+  cmd->add_option("--fov", o.fov, "Vertical field of view in degrees")
+      ->check(CLI::Range(1.0f, 179.0f))
+      ->capture_default_str();
+  cmd->add_option("--ortho-width", o.orthoWidth,
+                  "Width of the orthographic view (default: fits the scene)");
+  cmd->add_option("--look-from", o.lookFrom,
+                  "Camera position X,Y,Z (default: in front of the scene, +Z)");
+  cmd->add_option("--look-at", o.lookAt, "Point looked at X,Y,Z (default: the scene's center)");
+  cmd->add_option("--up", o.up, "Up vector X,Y,Z")->capture_default_str();
+  cmd->add_option("--size", o.size, "Image size WxH")->capture_default_str();
+  cmd->add_option("--base-color", o.baseColor, "Built-in scenes: linear base color R,G,B")
+      ->capture_default_str();
+  cmd->add_option("--metallic", o.metallic, "Built-in sphere: metallic")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--roughness", o.roughness, "Built-in sphere: perceptual roughness")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--diffuse", o.diffuse, "disney (Frostbite renormalized) or lambert")
+      ->check(CLI::IsMember({"disney", "lambert"}))
+      ->capture_default_str();
+  cmd->add_option("--only", o.only, "Isolate a term: diffuse or specular")
+      ->check(CLI::IsMember({"diffuse", "specular"}));
+  cmd->add_flag("--no-multiscatter", o.noMultiscatter,
+                "Split sum: no multiple-scattering compensation");
+  cmd->add_flag("--no-dominant", o.noDominant,
+                "Split sum: sample along n and r, not the dominant directions");
+  cmd->add_option("--irradiance", o.irradiance,
+                  "Split sum: diffuse from the irradiance cube or SH9")
+      ->check(CLI::IsMember({"cube", "sh"}))
+      ->capture_default_str();
+  cmd->add_option("--background", o.background, "'env' (the environment) or a color R,G,B")
+      ->capture_default_str();
+  cmd->add_option("--ev100", o.ev100,
+                  "Exposure value at ISO 100 (default: automatic, average log luminance)");
+  cmd->add_option("--aperture", o.aperture, "f-number (with --shutter and --iso)");
+  cmd->add_option("--shutter", o.shutter, "Shutter time in seconds");
+  cmd->add_option("--iso", o.iso, "Sensitivity");
+  cmd->add_option("--exposure-compensation", o.compensation, "Stops added to the exposure")
+      ->capture_default_str();
+  cmd->add_option("--tonemap", o.tonemap, "none, aces or filmic")
+      ->check(CLI::IsMember({"none", "aces", "filmic"}))
+      ->capture_default_str();
+}
+
+glm::vec3 parseVec3(const std::string& text, const char* option) {
+  glm::vec3 v;
+  char c1, c2;
+  std::istringstream in(text);
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof())
+    fail(option, fmt::format("expected X,Y,Z, got '{}'", text));
+  return v;
+}
+
+std::pair<int, int> parseSize(const std::string& text) {
+  int width = 0, height = 0;
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> width >> x >> height) || x != 'x' || width < 1 || height < 1 || width > 16384 ||
+      height > 16384)
+    fail("--size", fmt::format("expected WxH (1 to 16384), got '{}'", text));
+  return {width, height};
+}
+
+Scene loadScene(const SceneCliOptions& o) {
+  if (o.scene != "sphere" && o.scene != "grid") return loadGltf(o.scene);
+  const glm::vec3 base = parseVec3(o.baseColor, "--base-color");
+  if (o.scene == "grid") return makeSphereGrid(base);
+  Material m;
+  m.baseColor = base;
+  m.metallic = o.metallic;
+  m.roughness = o.roughness;
+  return makeSphereScene(m);
+}
+
+LoadedBake loadOrBake(const SceneCliOptions& o) {
+  LoadedBake out;
+  if (!o.bakeDir.empty()) {
+    out.bake = loadBake(o.bakeDir, &out.options);
+    return out;
+  }
+  const LoadedEnvironment env =
+      o.env.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), kDefaultEnvironmentName)
+                    : loadEnvironment(o.env);
+  out.options.dfgSamples = 256;
+  out.bake = bakeEnvironment(env.environment, out.options);
+  return out;
+}
+
+Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height) {
+  Camera camera;
+  camera.width = width;
+  camera.height = height;
+  camera.perspective = o.camera == "perspective";
+  camera.yfovDegrees = o.fov;
+  const auto [lo, hi] = scene.bounds();
+  const glm::vec3 center = 0.5f * (lo + hi);
+  const float radius = 0.5f * glm::length(hi - lo);
+  if (scene.camera && o.lookFrom.empty() && o.lookAt.empty()) {
+    const CameraDescription& d = *scene.camera;
+    camera.perspective = d.perspective;
+    camera.yfovDegrees = glm::degrees(d.yfovRadians);
+    camera.orthoWidth = 2.0f * d.xmag;
+    camera.from = glm::vec3(d.world[3]);
+    camera.at = camera.from - glm::vec3(d.world[2]);
+    camera.up = glm::vec3(d.world[1]);
+  } else {
+    camera.at = o.lookAt.empty() ? center : parseVec3(o.lookAt, "--look-at");
+    // Frame the bounds seen from +Z: fit their width and height, then back off by their depth.
+    const glm::vec3 half = 0.5f * (hi - lo);
+    const float t = std::tan(0.5f * glm::radians(camera.yfovDegrees));
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    const float distance = 1.1f * std::max(half.y / t, half.x / (t * aspect)) + half.z;
+    camera.from = o.lookFrom.empty() ? camera.at + glm::vec3(0.0f, 0.0f, distance)
+                                     : parseVec3(o.lookFrom, "--look-from");
+    camera.up = parseVec3(o.up, "--up");
+    camera.orthoWidth =
+        2.2f * radius * std::max(1.0f, static_cast<float>(width) / static_cast<float>(height));
+  }
+  if (o.orthoWidth > 0.0f) camera.orthoWidth = o.orthoWidth;
+  return camera;
+}
+
+RenderOptions shadingOptions(const SceneCliOptions& o) {
+  RenderOptions r;
+  r.diffuse = o.diffuse == "lambert" ? DiffuseModel::Lambert : DiffuseModel::Disney;
+  r.only = o.only == "diffuse"    ? ShadingTerms::Diffuse
+           : o.only == "specular" ? ShadingTerms::Specular
+                                  : ShadingTerms::Both;
+  r.multipleScattering = !o.noMultiscatter;
+  r.dominantDirections = !o.noDominant;
+  r.irradiance = o.irradiance == "sh" ? IrradianceSource::Sh : IrradianceSource::Cube;
+  if (o.background != "env") {
+    r.backgroundEnvironment = false;
+    r.backgroundColor = parseVec3(o.background, "--background");
+  }
+  return r;
+}
+
+float chooseEv100(const SceneCliOptions& o, const Image& linear) {
+  if (!o.ev100.empty()) {
+    try {
+      return std::stof(o.ev100);
+    } catch (const std::exception&) {
+      fail("--ev100", fmt::format("expected a number, got '{}'", o.ev100));
+    }
+  }
+  if (o.aperture > 0.0f && o.shutter > 0.0f && o.iso > 0.0f)
+    return ev100FromSettings(o.aperture, o.shutter, o.iso);
+  return ev100FromAverageLuminance(averageLogLuminance(linear));
+}
+
+ToneMap toneCurve(const SceneCliOptions& o) {
+  return o.tonemap == "none"     ? ToneMap::None
+         : o.tonemap == "filmic" ? ToneMap::Filmic
+                                 : ToneMap::Aces;
+}
+
+void checkRenderedImagePath(const std::string& path) {
+  const auto format = fileFormatFromExtension(path);
+  if (format != FileFormat::Exr && format != FileFormat::Png)
+    fail(path, "output must be .exr or .png");
+}
+
+void writeRenderedImage(const std::string& path, const RenderResult& result, float ev100,
+                        ToneMap curve, bool exrExposed) {
+  checkRenderedImagePath(path);
+  const float exposure = exposureFromEv100(ev100);
+  Image exposed(result.color.width, result.color.height);
+  for (std::size_t i = 0; i < exposed.pixels.size(); ++i)
+    exposed.pixels[i] = toneMap(result.color.pixels[i] * exposure, curve);
+  if (fileFormatFromExtension(path) == FileFormat::Exr)
+    writeFileAtomic(
+        path, encodeExr(exrExposed ? exposed : result.color, ExrPixelType::Float, &result.alpha));
+  else
+    writeFileAtomic(path, encodePng(exposed));
+}
+
+}  // namespace ibl::cli

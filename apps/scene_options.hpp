@@ -1,0 +1,74 @@
+#pragma once
+// The options `ibl render` and `ibl view` share: the scene, the environment or bake, the camera,
+// the built-in scenes' material, the split sum's switches and the exposure.
+#include <string>
+#include <utility>
+
+#include <CLI/CLI.hpp>
+
+#include "ibl/bake.hpp"
+#include "ibl/camera.hpp"
+#include "ibl/render.hpp"
+#include "ibl/scene.hpp"
+
+namespace ibl::cli {
+
+struct SceneCliOptions {
+  std::string scene;
+  std::string env;  // empty: bundled default
+  std::string bakeDir;
+  std::string camera = "perspective";
+  float fov = 40.0f;
+  float orthoWidth = 0.0f;
+  std::string lookFrom, lookAt, up = "0,1,0";
+  std::string size = "512x512";
+  int spp = 0;  // 0: the command's default
+  std::string baseColor = "1,1,1";
+  float metallic = 0.0f;
+  float roughness = 0.5f;
+  std::string diffuse = "disney";
+  std::string only;
+  bool noMultiscatter = false;
+  bool noDominant = false;
+  std::string irradiance = "cube";
+  std::string background = "env";
+  std::string ev100;  // empty: automatic
+  float aperture = 0.0f, shutter = 0.0f, iso = 0.0f;
+  float compensation = 0.0f;
+  std::string tonemap = "aces";
+};
+
+// Registers the shared options on `cmd` (the scene positional argument included).
+void addSceneOptions(CLI::App* cmd, SceneCliOptions& o);
+
+glm::vec3 parseVec3(const std::string& text, const char* option);
+// --size as (width, height), 1 to 16384 each.
+std::pair<int, int> parseSize(const std::string& text);
+
+Scene loadScene(const SceneCliOptions& o);
+
+struct LoadedBake {
+  BakeResult bake;
+  BakeOptions options;
+};
+// The --bake directory, or a bake of --env (or the bundled environment) on the CPU.
+LoadedBake loadOrBake(const SceneCliOptions& o);
+
+// The camera: the options, else the scene file's, else one framing the scene from +Z.
+Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height);
+
+// The shading switches (mode, spp and the reference's options left at their defaults).
+RenderOptions shadingOptions(const SceneCliOptions& o);
+
+// EV100 from --ev100, else --aperture/--shutter/--iso, else the image's average luminance.
+float chooseEv100(const SceneCliOptions& o, const Image& linear);
+ToneMap toneCurve(const SceneCliOptions& o);
+
+// Writes a rendered image: .exr (linear radiance and coverage, or the exposed image) or .png
+// (exposed, tone-mapped, sRGB). Throws for other extensions.
+void writeRenderedImage(const std::string& path, const RenderResult& result, float ev100,
+                        ToneMap curve, bool exrExposed);
+// Throws unless `path` ends in .exr or .png.
+void checkRenderedImagePath(const std::string& path);
+
+}  // namespace ibl::cli

@@ -1,0 +1,36 @@
+// The per-frame inputs of the viewer's shaders: camera, shading switches and the baked
+// environment. Mirrors FrameUniforms in src/gpu/scene_renderer.cpp (std140).
+layout(std140, set = 0, binding = 0) uniform Frame {
+  mat4 viewProjection;
+  vec4 cameraPosition;  // w: 1 perspective, 0 orthographic
+  vec4 cameraForward;   // unit
+  vec4 cameraRight;     // scaled by aspect * tan(fov / 2), orthographic: by the half width
+  vec4 cameraUp;        // scaled by tan(fov / 2), orthographic: by the half height
+  vec4 viewport;        // width, height
+  vec4 background;      // rgb; w: 1 the environment, 0 this color
+  vec4 lods;            // specular levels - 1, 1 for the Frostbite roughness mapping, skybox lod
+  ivec4 terms;          // only (0 both, 1 diffuse, 2 specular), multiple scattering, dominant
+                        // directions, specular occlusion
+  ivec4 models;         // diffuse (0 Disney, 1 Lambert), irradiance (0 cube, 1 SH9), samples
+                        // per pixel at the standard locations (0: unknown locations)
+  vec4 sh[9];           // radiance SH9 times the cosine lobe's A_l / pi: irradiance / pi
+} frame;
+layout(set = 0, binding = 1) uniform samplerCube specularMap;
+layout(set = 0, binding = 2) uniform samplerCube irradianceMap;
+layout(set = 0, binding = 3) uniform sampler2D dfgLut;
+layout(set = 0, binding = 4) uniform samplerCube sourceMap;
+
+struct Ray {
+  vec3 origin, direction;
+};
+
+// The primary ray through framebuffer point p (Camera::generateRay).
+Ray primaryRay(vec2 p) {
+  float x = 2.0 * p.x / frame.viewport.x - 1.0;
+  float y = 1.0 - 2.0 * p.y / frame.viewport.y;
+  if (frame.cameraPosition.w == 0.0)
+    return Ray(frame.cameraPosition.xyz + x * frame.cameraRight.xyz + y * frame.cameraUp.xyz,
+               frame.cameraForward.xyz);
+  return Ray(frame.cameraPosition.xyz,
+             normalize(frame.cameraForward.xyz + x * frame.cameraRight.xyz + y * frame.cameraUp.xyz));
+}

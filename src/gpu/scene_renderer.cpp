@@ -1,0 +1,653 @@
+// The viewer's rasterizer: uploads, pipelines and the frame (gpu_view.hpp).
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstring>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "gpu/scene_renderer.hpp"
+#include "ibl/error.hpp"
+#include "ibl/pixel_formats.hpp"
+
+namespace ibl::gpu {
+
+namespace {
+
+// shaders/frame.glsl, std140.
+struct FrameUniforms {
+  glm::mat4 viewProjection;
+  glm::vec4 cameraPosition, cameraForward, cameraRight, cameraUp, viewport, background, lods;
+  glm::ivec4 terms, models;
+  std::array<glm::vec4, 9> sh;
+};
+static_assert(sizeof(FrameUniforms) == 64 + 9 * 16 + 9 * 16);
+
+// The push constants of shaders/scene.frag.
+struct MaterialConstants {
+  glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
+  std::uint32_t textureMask;
+};
+
+// Segments around the polyhedron drawn for a sphere (the fragment shader ray traces the sphere
+// inside it, so that silhouettes and normals are exact).
+constexpr int kSphereProxySegments = 48;
+
+// A polyhedron that contains `sphere`: its tessellation pushed out so that every facet lies
+// outside (a facet of angular size d x d is at least r cos^2(d / 2) from the center).
+Mesh sphereProxy(const Sphere& sphere) {
+  const float half = std::numbers::pi_v<float> / static_cast<float>(kSphereProxySegments);
+  Sphere outer = sphere;
+  outer.radius = sphere.radius * 1.002f / (std::cos(half) * std::cos(half));
+  return tessellateSphere(outer, kSphereProxySegments);
+}
+
+// Vertex layout of shaders/scene.vert: position, normal, tangent, uv.
+constexpr std::uint32_t kVertexFloats = 3 + 3 + 4 + 2;
+
+std::vector<std::uint8_t> bytesOfFloats(const std::vector<float>& v) {
+  std::vector<std::uint8_t> out(v.size() * sizeof(float));
+  std::memcpy(out.data(), v.data(), out.size());
+  return out;
+}
+
+// Every level and face of a cube map as RGBA32F texels, in upload order.
+std::unique_ptr<DeviceImage> uploadCube(Context& context, const CubeMap& cube) {
+  std::vector<float> texels;
+  for (const auto& level : cube.levels)
+    for (const Image& face : level)
+      for (const glm::vec3& p : face.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
+  DeviceImage::Description d;
+  d.width = d.height = static_cast<std::uint32_t>(cube.size());
+  d.levels = static_cast<std::uint32_t>(cube.levelCount());
+  d.layers = kFaceCount;
+  d.cube = true;
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  auto image = std::make_unique<DeviceImage>(context, d);
+  uploadImage(context, *image, bytesOfFloats(texels), 4 * sizeof(float));
+  return image;
+}
+
+std::unique_ptr<DeviceImage> uploadImage2d(Context& context, const Image& image) {
+  std::vector<float> texels;
+  for (const glm::vec3& p : image.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
+  DeviceImage::Description d;
+  d.width = static_cast<std::uint32_t>(image.width);
+  d.height = static_cast<std::uint32_t>(image.height);
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  auto out = std::make_unique<DeviceImage>(context, d);
+  uploadImage(context, *out, bytesOfFloats(texels), 4 * sizeof(float));
+  return out;
+}
+
+// A material texture as RGBA16F (values in [0, 1] as stored; the shader decodes sRGB).
+std::unique_ptr<DeviceImage> uploadTexture(Context& context, const Texture& t) {
+  std::vector<std::uint16_t> halves;
+  halves.reserve(t.texels.size() * 4);
+  for (const glm::vec4& p : t.texels)
+    for (int c = 0; c < 4; ++c) halves.push_back(floatToHalf(p[c]));
+  DeviceImage::Description d;
+  d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  d.width = static_cast<std::uint32_t>(t.width);
+  d.height = static_cast<std::uint32_t>(t.height);
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  auto out = std::make_unique<DeviceImage>(context, d);
+  uploadImage(context, *out,
+              {reinterpret_cast<const std::uint8_t*>(halves.data()), halves.size() * 2},
+              4 * sizeof(std::uint16_t));
+  return out;
+}
+
+VkSampler createSampler(VkDevice device, VkSamplerAddressMode address, bool mipmaps) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = info.minFilter = VK_FILTER_LINEAR;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  info.addressModeU = info.addressModeV = info.addressModeW = address;
+  info.minLod = 0.0f;
+  info.maxLod = mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
+  VkSampler sampler;
+  check(vkCreateSampler(device, &info, nullptr, &sampler), "vkCreateSampler");
+  return sampler;
+}
+
+VkDescriptorSetLayout createSetLayout(VkDevice device,
+                                      const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
+  VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  info.bindingCount = static_cast<std::uint32_t>(bindings.size());
+  info.pBindings = bindings.data();
+  VkDescriptorSetLayout layout;
+  check(vkCreateDescriptorSetLayout(device, &info, nullptr, &layout),
+        "vkCreateDescriptorSetLayout");
+  return layout;
+}
+
+VkWriteDescriptorSet imageWrite(VkDescriptorSet set, std::uint32_t binding,
+                                const VkDescriptorImageInfo* info) {
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w.pImageInfo = info;
+  return w;
+}
+
+// World to clip space of `camera` (Vulkan: y down, depth 0..1), with depth planes around the
+// scene's bounds. Matches Camera::generateRay: same basis, field of view and aspect.
+glm::mat4 viewProjectionOf(const Camera& camera, std::pair<glm::vec3, glm::vec3> bounds) {
+  const glm::mat4 view = glm::lookAtRH(camera.from, camera.at, camera.up);
+  const glm::vec3 center = 0.5f * (bounds.first + bounds.second);
+  const float radius = std::max(0.5f * glm::length(bounds.second - bounds.first), 1e-3f);
+  const float distance = glm::length(center - camera.from);
+  const float aspect = static_cast<float>(camera.width) / static_cast<float>(camera.height);
+  const float far = 1.5f * (distance + radius);
+  glm::mat4 projection;
+  if (camera.perspective) {
+    const float near = std::max(0.5f * (distance - radius), 1e-4f * far);
+    projection = glm::perspectiveRH_ZO(glm::radians(camera.yfovDegrees), aspect, near, far);
+  } else {
+    const float hw = 0.5f * camera.orthoWidth, hh = hw / aspect;
+    projection = glm::orthoRH_ZO(-hw, hw, -hh, hh, 0.0f, far);  // rays start on the camera plane
+  }
+  projection[1][1] = -projection[1][1];
+  return projection * view;
+}
+
+}  // namespace
+
+SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake,
+                          const BakeOptions& bakeOptions)
+    : context(c), device(c.impl().device) {
+  if (!c.impl().graphics) fail("vulkan", "the device's queue cannot rasterize");
+  bounds = scene.bounds();
+  // Meshes: the scene's, then polyhedra around its spheres.
+  const auto addMesh = [&](const Mesh& m, glm::vec4 sphere) {
+    if (m.indices.empty()) return;
+    std::vector<float> v;
+    v.reserve(m.positions.size() * kVertexFloats);
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      const glm::vec3 p = m.positions[i], n = m.normals[i];
+      const glm::vec4 t = m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[i];
+      const glm::vec2 uv = m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i];
+      v.insert(v.end(), {p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y, t.z, t.w, uv.x, uv.y});
+    }
+    DrawMesh d;
+    d.vertices = std::make_unique<Buffer>(Buffer::of(context, v));
+    d.indices = std::make_unique<Buffer>(Buffer::of(context, m.indices));
+    d.indexCount = static_cast<std::uint32_t>(m.indices.size());
+    d.material = m.material;
+    d.sphere = sphere;
+    meshes.push_back(std::move(d));
+  };
+  for (const Mesh& m : scene.meshes) addMesh(m, glm::vec4(0.0f));
+  for (const Sphere& s : scene.spheres) addMesh(sphereProxy(s), glm::vec4(s.center, s.radius));
+  materials = scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
+  for (const Texture& t : scene.textures)
+    textures.push_back(t.texels.empty() ? nullptr : uploadTexture(context, t));
+  textures.push_back(uploadTexture(context, Texture{1, 1, {glm::vec4(1.0f)}}));
+
+  // The bake.
+  specular = uploadCube(context, bake.specular);
+  irradiance = uploadCube(context, bake.irradiance);
+  source = uploadCube(context, bake.source);
+  dfg = uploadImage2d(context, bake.dfg);
+  specularMaxLod = static_cast<float>(bake.specular.levelCount() - 1);
+  skyboxMaxLod = static_cast<float>(bake.source.levelCount() - 1);
+  frostbiteMapping = bakeOptions.specular.mapping == RoughnessMapping::Frostbite;
+  for (int k = 0; k < 9; ++k) {
+    const int band = k == 0 ? 0 : (k < 4 ? 1 : 2);
+    shIrradianceOverPi[k] = bake.sh[k] * (kShCosineLobe[band] / std::numbers::pi_v<float>);
+  }
+
+  cubeSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, true);
+  lutSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
+  textureSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_REPEAT, false);
+  const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  std::vector<VkDescriptorSetLayoutBinding> frameBindings{
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, both, nullptr}};
+  for (std::uint32_t b = 1; b <= 4; ++b)
+    frameBindings.push_back(
+        {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  frameLayout = createSetLayout(device, frameBindings);
+  std::vector<VkDescriptorSetLayoutBinding> materialBindings;
+  for (std::uint32_t b = 0; b < 5; ++b)
+    materialBindings.push_back(
+        {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  materialLayout = createSetLayout(device, materialBindings);
+  const std::array<VkDescriptorSetLayout, 2> setLayouts{frameLayout, materialLayout};
+  const VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(MaterialConstants)};
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.setLayoutCount = 2;
+  layoutInfo.pSetLayouts = setLayouts.data();
+  layoutInfo.pushConstantRangeCount = 1;
+  layoutInfo.pPushConstantRanges = &push;
+  check(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &pipelineLayout),
+        "vkCreatePipelineLayout");
+
+  const auto materialCount = static_cast<std::uint32_t>(materials.size());
+  const std::array<VkDescriptorPoolSize, 2> sizes{
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 + 5 * materialCount}};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1 + materialCount;
+  poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+  poolInfo.pPoolSizes = sizes.data();
+  check(vkCreateDescriptorPool(device, &poolInfo, nullptr, &descriptorPool),
+        "vkCreateDescriptorPool");
+  std::vector<VkDescriptorSetLayout> layouts(1, frameLayout);
+  layouts.insert(layouts.end(), materialCount, materialLayout);
+  std::vector<VkDescriptorSet> sets(layouts.size());
+  VkDescriptorSetAllocateInfo setAlloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  setAlloc.descriptorPool = descriptorPool;
+  setAlloc.descriptorSetCount = static_cast<std::uint32_t>(layouts.size());
+  setAlloc.pSetLayouts = layouts.data();
+  check(vkAllocateDescriptorSets(device, &setAlloc, sets.data()), "vkAllocateDescriptorSets");
+  frameSet = sets[0];
+  materialSets.assign(sets.begin() + 1, sets.end());
+
+  frameUniforms = std::make_unique<Buffer>(context, sizeof(FrameUniforms));
+  const VkDescriptorBufferInfo uniformInfo{static_cast<VkBuffer>(frameUniforms->handle()), 0,
+                                           sizeof(FrameUniforms)};
+  const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  const std::array<VkDescriptorImageInfo, 4> frameImages{
+      VkDescriptorImageInfo{cubeSampler, specular->view(), readable},
+      VkDescriptorImageInfo{cubeSampler, irradiance->view(), readable},
+      VkDescriptorImageInfo{lutSampler, dfg->view(), readable},
+      VkDescriptorImageInfo{cubeSampler, source->view(), readable}};
+  std::vector<VkWriteDescriptorSet> writes;
+  {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = frameSet;
+    w.dstBinding = 0;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    w.pBufferInfo = &uniformInfo;
+    writes.push_back(w);
+  }
+  for (std::uint32_t b = 0; b < 4; ++b)
+    writes.push_back(imageWrite(frameSet, b + 1, &frameImages[b]));
+  std::vector<std::array<VkDescriptorImageInfo, 5>> materialImages(materials.size());
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    const Material& mat = materials[m];
+    const std::array<int, 5> indices{mat.baseColorTexture, mat.metallicRoughnessTexture,
+                                     mat.normalTexture, mat.occlusionTexture, mat.emissiveTexture};
+    for (std::size_t b = 0; b < 5; ++b) {
+      const int i = indices[b];
+      const bool valid = i >= 0 && static_cast<std::size_t>(i) + 1 < textures.size() && textures[i];
+      materialImages[m][b] = {textureSampler, (valid ? textures[i] : textures.back())->view(),
+                              readable};
+      writes.push_back(
+          imageWrite(materialSets[m], static_cast<std::uint32_t>(b), &materialImages[m][b]));
+    }
+  }
+  vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
+                         nullptr);
+
+  sceneVert = c.impl().shaderModule("scene_vert");
+  sceneFrag = c.impl().shaderModule("scene_frag");
+  fullscreenVert = c.impl().shaderModule("fullscreen_vert");
+  skyboxFrag = c.impl().shaderModule("skybox_frag");
+  for (VkFormat f : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D16_UNORM}) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(c.impl().physical, f, &props);
+    if (props.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
+      depthFormat = f;
+      break;
+    }
+  }
+  if (depthFormat == VK_FORMAT_UNDEFINED) fail("vulkan", "no depth format");
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(c.impl().physical, &props);
+  standardSampleLocations = props.limits.standardSampleLocations == VK_TRUE;
+}
+
+SceneRenderer::Impl::~Impl() {
+  vkDeviceWaitIdle(device);
+  destroyTargets();
+  for (VkShaderModule m : {sceneVert, sceneFrag, fullscreenVert, skyboxFrag})
+    vkDestroyShaderModule(device, m, nullptr);
+  vkDestroyDescriptorPool(device, descriptorPool, nullptr);
+  vkDestroyPipelineLayout(device, pipelineLayout, nullptr);
+  vkDestroyDescriptorSetLayout(device, frameLayout, nullptr);
+  vkDestroyDescriptorSetLayout(device, materialLayout, nullptr);
+  for (VkSampler s : {cubeSampler, lutSampler, textureSampler})
+    vkDestroySampler(device, s, nullptr);
+}
+
+void SceneRenderer::Impl::destroyTargets() {
+  if (!targets) return;
+  vkDestroyPipeline(device, targets->scenePipeline, nullptr);
+  vkDestroyPipeline(device, targets->skyboxPipeline, nullptr);
+  vkDestroyFramebuffer(device, targets->framebuffer, nullptr);
+  vkDestroyRenderPass(device, targets->renderPass, nullptr);
+  targets.reset();
+}
+
+int SceneRenderer::Impl::supportedSamples(int requested) const {
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(context.impl().physical, &props);
+  VkImageFormatProperties formatProps;
+  VkSampleCountFlags formatCounts = VK_SAMPLE_COUNT_1_BIT;
+  if (vkGetPhysicalDeviceImageFormatProperties(
+          context.impl().physical, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_TYPE_2D,
+          VK_IMAGE_TILING_OPTIMAL, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, 0,
+          &formatProps) == VK_SUCCESS)
+    formatCounts = formatProps.sampleCounts;
+  const VkSampleCountFlags counts = props.limits.framebufferColorSampleCounts &
+                                    props.limits.framebufferDepthSampleCounts & formatCounts;
+  int samples = 1;
+  for (int s = 2; s <= std::min(requested, 8); s *= 2)
+    if (counts & static_cast<VkSampleCountFlags>(s)) samples = s;
+  return samples;
+}
+
+void SceneRenderer::Impl::prepare(int width, int height, int samples) {
+  if (targets && targets->width == width && targets->height == height &&
+      targets->samples == samples)
+    return;
+  vkDeviceWaitIdle(device);
+  destroyTargets();
+  Targets t;
+  t.width = width;
+  t.height = height;
+  t.samples = samples;
+  const auto sampleBits = static_cast<VkSampleCountFlagBits>(samples);
+  const bool msaa = samples > 1;
+  DeviceImage::Description d;
+  d.width = static_cast<std::uint32_t>(width);
+  d.height = static_cast<std::uint32_t>(height);
+  d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+            VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  t.resolved = std::make_unique<DeviceImage>(context, d);
+  if (msaa) {
+    d.samples = sampleBits;
+    d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+    t.color = std::make_unique<DeviceImage>(context, d);
+  }
+  d.samples = sampleBits;
+  d.format = depthFormat;
+  d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+  t.depth = std::make_unique<DeviceImage>(context, d);
+
+  // Attachments: color (multisampled, or the output itself), depth, and the resolved output.
+  const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  std::vector<VkAttachmentDescription> attachments;
+  VkAttachmentDescription color{};
+  color.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  color.samples = sampleBits;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  color.finalLayout = msaa ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : readable;
+  attachments.push_back(color);
+  VkAttachmentDescription depth = color;
+  depth.format = depthFormat;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  attachments.push_back(depth);
+  if (msaa) {
+    VkAttachmentDescription resolve = color;
+    resolve.samples = VK_SAMPLE_COUNT_1_BIT;
+    resolve.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    resolve.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    resolve.finalLayout = readable;
+    attachments.push_back(resolve);
+  }
+  const VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference resolveRef{2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 1;
+  subpass.pColorAttachments = &colorRef;
+  subpass.pResolveAttachments = msaa ? &resolveRef : nullptr;
+  subpass.pDepthStencilAttachment = &depthRef;
+  const std::array<VkSubpassDependency, 2> dependencies{
+      VkSubpassDependency{
+          VK_SUBPASS_EXTERNAL, 0,
+          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+          VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+              VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT,
+          VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0},
+      VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT, 0}};
+  VkRenderPassCreateInfo passInfo{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  passInfo.attachmentCount = static_cast<std::uint32_t>(attachments.size());
+  passInfo.pAttachments = attachments.data();
+  passInfo.subpassCount = 1;
+  passInfo.pSubpasses = &subpass;
+  passInfo.dependencyCount = static_cast<std::uint32_t>(dependencies.size());
+  passInfo.pDependencies = dependencies.data();
+  check(vkCreateRenderPass(device, &passInfo, nullptr, &t.renderPass), "vkCreateRenderPass");
+  std::vector<VkImageView> views{msaa ? t.color->view() : t.resolved->view(), t.depth->view()};
+  if (msaa) views.push_back(t.resolved->view());
+  VkFramebufferCreateInfo fbInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  fbInfo.renderPass = t.renderPass;
+  fbInfo.attachmentCount = static_cast<std::uint32_t>(views.size());
+  fbInfo.pAttachments = views.data();
+  fbInfo.width = d.width;
+  fbInfo.height = d.height;
+  fbInfo.layers = 1;
+  check(vkCreateFramebuffer(device, &fbInfo, nullptr, &t.framebuffer), "vkCreateFramebuffer");
+
+  // The two pipelines: meshes (depth tested, both faces) and the skybox (a full-screen triangle).
+  const VkVertexInputBindingDescription binding{0, kVertexFloats * sizeof(float),
+                                                VK_VERTEX_INPUT_RATE_VERTEX};
+  const std::array<VkVertexInputAttributeDescription, 4> attributes{
+      VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+      VkVertexInputAttributeDescription{1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
+      VkVertexInputAttributeDescription{2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 6 * sizeof(float)},
+      VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, 10 * sizeof(float)}};
+  const auto makePipeline = [&](VkShaderModule vert, VkShaderModule frag, bool forMeshes) {
+    const std::array<VkPipelineShaderStageCreateInfo, 2> stages{
+        VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                        nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main",
+                                        nullptr},
+        VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                        nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main",
+                                        nullptr}};
+    VkPipelineVertexInputStateCreateInfo input{
+        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    if (forMeshes) {
+      input.vertexBindingDescriptionCount = 1;
+      input.pVertexBindingDescriptions = &binding;
+      input.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(attributes.size());
+      input.pVertexAttributeDescriptions = attributes.data();
+    }
+    VkPipelineInputAssemblyStateCreateInfo assembly{
+        VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo viewport{
+        VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = viewport.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo raster{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = VK_CULL_MODE_NONE;  // the CPU renderer sees both sides too
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{
+        VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = sampleBits;
+    VkPipelineDepthStencilStateCreateInfo depthState{
+        VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depthState.depthTestEnable = forMeshes ? VK_TRUE : VK_FALSE;
+    depthState.depthWriteEnable = forMeshes ? VK_TRUE : VK_FALSE;
+    depthState.depthCompareOp = VK_COMPARE_OP_LESS;
+    VkPipelineColorBlendAttachmentState blendAttachment{};
+    blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                                     VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    VkPipelineColorBlendStateCreateInfo blend{
+        VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = 1;
+    blend.pAttachments = &blendAttachment;
+    const std::array<VkDynamicState, 2> dynamic{VK_DYNAMIC_STATE_VIEWPORT,
+                                                VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dynamicState{
+        VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dynamicState.dynamicStateCount = static_cast<std::uint32_t>(dynamic.size());
+    dynamicState.pDynamicStates = dynamic.data();
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.stageCount = static_cast<std::uint32_t>(stages.size());
+    info.pStages = stages.data();
+    info.pVertexInputState = &input;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depthState;
+    info.pColorBlendState = &blend;
+    info.pDynamicState = &dynamicState;
+    info.layout = pipelineLayout;
+    info.renderPass = t.renderPass;
+    VkPipeline pipeline;
+    check(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+          "vkCreateGraphicsPipelines");
+    return pipeline;
+  };
+  targets = std::move(t);  // from here on, destroyTargets() frees what exists
+  targets->scenePipeline = makePipeline(sceneVert, sceneFrag, true);
+  targets->skyboxPipeline = makePipeline(fullscreenVert, skyboxFrag, false);
+}
+
+void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& o,
+                                 float skyboxLod) {
+  const Targets& t = *targets;
+  FrameUniforms u{};
+  u.viewProjection = viewProjectionOf(camera, bounds);
+  const glm::vec3 forward = glm::normalize(camera.at - camera.from);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  const glm::vec3 up = glm::cross(right, forward);
+  const float aspect = static_cast<float>(t.width) / static_cast<float>(t.height);
+  // Half the view's extent at unit distance (perspective) or in world units (orthographic).
+  const float halfHeight = camera.perspective ? std::tan(0.5f * glm::radians(camera.yfovDegrees))
+                                              : 0.5f * camera.orthoWidth / aspect;
+  u.cameraPosition = glm::vec4(camera.from, camera.perspective ? 1.0f : 0.0f);
+  u.cameraForward = glm::vec4(forward, 0.0f);
+  u.cameraRight = glm::vec4(right * (aspect * halfHeight), 0.0f);
+  u.cameraUp = glm::vec4(up * halfHeight, 0.0f);
+  u.viewport = glm::vec4(static_cast<float>(t.width), static_cast<float>(t.height), 0.0f, 0.0f);
+  u.background = glm::vec4(o.backgroundColor, o.backgroundEnvironment ? 1.0f : 0.0f);
+  u.lods = glm::vec4(specularMaxLod, frostbiteMapping ? 1.0f : 0.0f,
+                     std::clamp(skyboxLod, 0.0f, skyboxMaxLod), 0.0f);
+  u.terms = glm::ivec4(o.only == ShadingTerms::Both      ? 0
+                       : o.only == ShadingTerms::Diffuse ? 1
+                                                         : 2,
+                       o.multipleScattering, o.dominantDirections, o.specularOcclusion);
+  u.models = glm::ivec4(o.diffuse == DiffuseModel::Disney ? 0 : 1,
+                        o.irradiance == IrradianceSource::Cube ? 0 : 1,
+                        standardSampleLocations ? t.samples : 0, 0);
+  for (int k = 0; k < 9; ++k) u.sh[k] = glm::vec4(shIrradianceOverPi[k], 0.0f);
+  std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
+
+  std::array<VkClearValue, 3> clears{};
+  clears[1].depthStencil = {1.0f, 0};
+  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  begin.renderPass = t.renderPass;
+  begin.framebuffer = t.framebuffer;
+  begin.renderArea = {{0, 0},
+                      {static_cast<std::uint32_t>(t.width), static_cast<std::uint32_t>(t.height)}};
+  begin.clearValueCount = static_cast<std::uint32_t>(clears.size());
+  begin.pClearValues = clears.data();
+  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(t.width), static_cast<float>(t.height),
+                            0.0f, 1.0f};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &begin.renderArea);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &frameSet, 0,
+                          nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t.skyboxPipeline);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t.scenePipeline);
+  for (const DrawMesh& m : meshes) {
+    const int mi = std::clamp(m.material, 0, static_cast<int>(materials.size()) - 1);
+    const Material& mat = materials[static_cast<std::size_t>(mi)];
+    MaterialConstants mc{};
+    mc.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
+    mc.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
+    mc.scales = glm::vec4(mat.normalScale, mat.occlusionStrength, 0.0f, 0.0f);
+    mc.sphere = m.sphere;
+    const std::array<int, 5> indices{mat.baseColorTexture, mat.metallicRoughnessTexture,
+                                     mat.normalTexture, mat.occlusionTexture, mat.emissiveTexture};
+    for (std::uint32_t b = 0; b < 5; ++b) {
+      const int i = indices[b];
+      if (i >= 0 && static_cast<std::size_t>(i) + 1 < textures.size() && textures[i])
+        mc.textureMask |= 1u << b;
+    }
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 1, 1,
+                            &materialSets[static_cast<std::size_t>(mi)], 0, nullptr);
+    vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(mc), &mc);
+    const VkBuffer vertexBuffer = static_cast<VkBuffer>(m.vertices->handle());
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+    vkCmdBindIndexBuffer(cmd, static_cast<VkBuffer>(m.indices->handle()), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, m.indexCount, 1, 0, 0, 0);
+  }
+  vkCmdEndRenderPass(cmd);
+}
+
+SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const BakeResult& bake,
+                             const BakeOptions& bakeOptions)
+    : impl_(std::make_unique<Impl>(context, scene, bake, bakeOptions)) {}
+SceneRenderer::~SceneRenderer() = default;
+
+int SceneRenderer::samples() const {
+  return impl_->targets ? impl_->targets->samples : 0;
+}
+
+RenderResult SceneRenderer::render(const Camera& camera, const RenderOptions& options,
+                                   float skyboxLod) {
+  const auto start = std::chrono::steady_clock::now();
+  Impl& r = *impl_;
+  r.prepare(camera.width, camera.height, r.supportedSamples(std::max(options.spp, 1)));
+  const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
+  Buffer readback(r.context, count * sizeof(glm::vec4));
+  r.context.impl().submitAndWait([&](VkCommandBuffer cmd) {
+    r.record(cmd, camera, options, skyboxLod);
+    const DeviceImage& out = r.output();
+    transitionImage(cmd, out, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {static_cast<std::uint32_t>(camera.width),
+                          static_cast<std::uint32_t>(camera.height), 1};
+    vkCmdCopyImageToBuffer(cmd, out.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           static_cast<VkBuffer>(readback.handle()), 1, &region);
+    transitionImage(cmd, out, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                    VK_ACCESS_SHADER_READ_BIT);
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                         &barrier, 0, nullptr, 0, nullptr);
+  });
+  const auto texels = readback.read<glm::vec4>(count);
+  RenderResult result;
+  result.color = Image(camera.width, camera.height);
+  result.alpha.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    result.color.pixels[i] = glm::vec3(texels[i]);
+    result.alpha[i] = texels[i].w;
+  }
+  result.samples = static_cast<double>(count) * r.targets->samples;
+  result.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace ibl::gpu

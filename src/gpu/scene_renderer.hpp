@@ -1,0 +1,72 @@
+#pragma once
+// Internal: the state behind gpu::SceneRenderer, shared with the window (which records a frame
+// of the scene into its own command buffer before tone mapping it to the swapchain).
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "gpu/compute.hpp"
+#include "gpu/vulkan.hpp"
+#include "ibl/gpu_view.hpp"
+
+namespace ibl::gpu {
+
+struct SceneRenderer::Impl {
+  Context& context;
+  VkDevice device;
+  // The scene.
+  struct DrawMesh {
+    std::unique_ptr<Buffer> vertices, indices;
+    std::uint32_t indexCount = 0;
+    int material = 0;
+    glm::vec4 sphere{0.0f};  // center, radius of the sphere this mesh bounds (radius 0: none)
+  };
+  std::vector<DrawMesh> meshes;
+  std::vector<Material> materials;
+  std::vector<std::unique_ptr<DeviceImage>> textures;  // the scene's, then a 1x1 white one
+  // The bake.
+  std::unique_ptr<DeviceImage> specular, irradiance, source, dfg;
+  float specularMaxLod = 0.0f, skyboxMaxLod = 0.0f;
+  bool frostbiteMapping = false;
+  Sh9 shIrradianceOverPi{};
+  // Samplers, layouts, descriptors.
+  VkSampler cubeSampler = VK_NULL_HANDLE, lutSampler = VK_NULL_HANDLE,
+            textureSampler = VK_NULL_HANDLE;
+  VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE, materialLayout = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+  VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
+  VkDescriptorSet frameSet = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSet> materialSets;
+  std::unique_ptr<Buffer> frameUniforms;
+  VkShaderModule sceneVert = VK_NULL_HANDLE, sceneFrag = VK_NULL_HANDLE,
+                 fullscreenVert = VK_NULL_HANDLE, skyboxFrag = VK_NULL_HANDLE;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  bool standardSampleLocations = false;
+  // Size-dependent: attachments, render pass, framebuffer, pipelines.
+  struct Targets {
+    int width = 0, height = 0, samples = 0;
+    std::unique_ptr<DeviceImage> color, depth, resolved;  // color: multisampled (samples > 1)
+    VkRenderPass renderPass = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    VkPipeline scenePipeline = VK_NULL_HANDLE, skyboxPipeline = VK_NULL_HANDLE;
+  };
+  std::optional<Targets> targets;
+  std::pair<glm::vec3, glm::vec3> bounds;
+
+  Impl(Context& context, const Scene& scene, const BakeResult& bake,
+       const BakeOptions& bakeOptions);
+  ~Impl();
+  // The largest power-of-two multisample count <= `requested` the device renders RGBA32F with.
+  int supportedSamples(int requested) const;
+  // (Re)creates the attachments and pipelines for this size and multisample count.
+  void prepare(int width, int height, int samples);
+  // Records the frame into `cmd`; the output image ends shader-readable.
+  void record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& options,
+              float skyboxLod);
+  const DeviceImage& output() const { return *targets->resolved; }
+
+ private:
+  void destroyTargets();
+};
+
+}  // namespace ibl::gpu

@@ -1,0 +1,90 @@
+#pragma once
+// Internal: the Vulkan objects behind gpu::Context and the small helpers the compute stages and
+// the rasterizer share (checked calls, one-shot submissions, device images, barriers).
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <vulkan/vulkan.h>
+
+#include "ibl/gpu.hpp"
+
+namespace ibl::gpu {
+
+// Throws Error("vulkan: <what> failed (VkResult n)") unless r is VK_SUCCESS.
+void check(VkResult r, const char* what);
+
+struct Context::Impl {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  std::uint32_t family = 0;
+  bool graphics = false;  // the queue also does graphics
+  VkCommandPool pool = VK_NULL_HANDLE;
+  DeviceInfo info;
+  struct Pipeline {
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkShaderModule module = VK_NULL_HANDLE;
+  };
+  std::map<std::string, Pipeline, std::less<>> pipelines;
+  std::mutex mutex;  // the queue, command pool and pipeline cache are used by one thread at a time
+
+  ~Impl();
+  std::uint32_t memoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const;
+  // A module of the embedded SPIR-V named `name` (the caller destroys it).
+  VkShaderModule shaderModule(std::string_view name) const;
+  // The compute pipeline of shader `name` with `bindings` storage buffers (cached).
+  const Pipeline& computePipeline(std::string_view name, std::uint32_t bindings,
+                                  std::uint32_t pushBytes);
+  // Records a command buffer with `record`, submits it and waits for it. Takes the mutex.
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+};
+
+// A device-local image and a view of all its levels and layers.
+class DeviceImage {
+ public:
+  struct Description {
+    VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    std::uint32_t width = 1, height = 1, levels = 1, layers = 1;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+    bool cube = false;
+  };
+  DeviceImage(Context& context, const Description& description);
+  ~DeviceImage();
+  DeviceImage(const DeviceImage&) = delete;
+  DeviceImage& operator=(const DeviceImage&) = delete;
+
+  VkImage image() const { return image_; }
+  VkImageView view() const { return view_; }
+  const Description& description() const { return description_; }
+
+ private:
+  Context::Impl* c_;
+  Description description_;
+  VkImage image_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkImageView view_ = VK_NULL_HANDLE;
+};
+
+// A layout transition of every level and layer of `image`, ordered after the `from` stage and
+// access masks and before the `to` ones.
+void transitionImage(VkCommandBuffer cmd, const DeviceImage& image, VkImageLayout oldLayout,
+                     VkImageLayout newLayout, VkPipelineStageFlags fromStage,
+                     VkAccessFlags fromAccess, VkPipelineStageFlags toStage,
+                     VkAccessFlags toAccess);
+
+// Copies texels of `texelBytes` bytes each (levels one after another, layers one after another
+// within a level, rows within a layer) into a sampled image and leaves it shader-readable.
+void uploadImage(Context& context, const DeviceImage& image, std::span<const std::uint8_t> texels,
+                 std::size_t texelBytes);
+
+}  // namespace ibl::gpu

@@ -1,0 +1,565 @@
+// The interactive viewer: a GLFW window, a swapchain, the scene renderer and a tone-mapping pass.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+
+#include "gpu/scene_renderer.hpp"
+#include "ibl/error.hpp"
+
+namespace ibl::gpu {
+
+namespace {
+
+// What the user changes with the mouse and keys.
+struct Interaction {
+  glm::vec3 target{0.0f};
+  float yaw = 0.0f, pitch = 0.0f, distance = 1.0f;  // camera = target + distance * dir(yaw, pitch)
+  float compensation = 0.0f;
+  float skyboxLod = 0.0f;
+  bool diffuse = true, specular = true;
+  ToneMap toneMap = ToneMap::Aces;
+  bool dragging = false;
+  double lastX = 0.0, lastY = 0.0;
+  Camera initial;
+  float maxSkyboxLod = 0.0f;
+
+  void orbitFrom(const Camera& c) {
+    target = c.at;
+    const glm::vec3 offset = c.from - c.at;
+    distance = std::max(glm::length(offset), 1e-4f);
+    yaw = std::atan2(offset.x, offset.z);
+    pitch = std::asin(std::clamp(offset.y / distance, -1.0f, 1.0f));
+  }
+  Camera camera(int width, int height) const {
+    Camera c = initial;
+    c.width = width;
+    c.height = height;
+    c.at = target;
+    c.from = target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
+                                           std::cos(pitch) * std::cos(yaw));
+    c.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    return c;
+  }
+};
+
+const char* toneMapName(ToneMap t) {
+  return t == ToneMap::None ? "no tone curve" : t == ToneMap::Aces ? "ACES" : "filmic";
+}
+
+void onKey(GLFWwindow* window, int key, int, int action, int) {
+  if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+  auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
+  switch (key) {
+    case GLFW_KEY_ESCAPE:
+    case GLFW_KEY_Q:
+      glfwSetWindowShouldClose(window, GLFW_TRUE);
+      break;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_KP_ADD:
+      s.compensation += 0.5f;
+      break;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT:
+      s.compensation -= 0.5f;
+      break;
+    case GLFW_KEY_RIGHT_BRACKET:
+      s.skyboxLod = std::min(s.skyboxLod + 0.5f, s.maxSkyboxLod);
+      break;
+    case GLFW_KEY_LEFT_BRACKET:
+      s.skyboxLod = std::max(s.skyboxLod - 0.5f, 0.0f);
+      break;
+    case GLFW_KEY_D:
+      if (s.specular) s.diffuse = !s.diffuse;  // never both off
+      break;
+    case GLFW_KEY_S:
+      if (s.diffuse) s.specular = !s.specular;
+      break;
+    case GLFW_KEY_T:
+      s.toneMap = s.toneMap == ToneMap::Aces     ? ToneMap::Filmic
+                  : s.toneMap == ToneMap::Filmic ? ToneMap::None
+                                                 : ToneMap::Aces;
+      break;
+    case GLFW_KEY_R:
+      s.orbitFrom(s.initial);
+      break;
+    default:
+      break;
+  }
+}
+
+void onMouseButton(GLFWwindow* window, int button, int action, int) {
+  auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
+  if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+  s.dragging = action == GLFW_PRESS;
+  glfwGetCursorPos(window, &s.lastX, &s.lastY);
+}
+
+void onCursor(GLFWwindow* window, double x, double y) {
+  auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
+  if (!s.dragging) return;
+  s.yaw -= 0.006f * static_cast<float>(x - s.lastX);
+  s.pitch = std::clamp(s.pitch + 0.006f * static_cast<float>(y - s.lastY), -1.55f, 1.55f);
+  s.lastX = x;
+  s.lastY = y;
+}
+
+void onScroll(GLFWwindow* window, double, double dy) {
+  auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
+  s.distance *= std::pow(0.9f, static_cast<float>(dy));
+}
+
+// The swapchain and what hangs off it: the tone-mapping pass's framebuffers.
+struct Swapchain {
+  VkDevice device = VK_NULL_HANDLE;
+  VkSwapchainKHR handle = VK_NULL_HANDLE;
+  VkExtent2D extent{};
+  std::vector<VkImage> images;
+  std::vector<VkImageView> views;
+  std::vector<VkFramebuffer> framebuffers;
+
+  void destroy() {
+    for (VkFramebuffer f : framebuffers) vkDestroyFramebuffer(device, f, nullptr);
+    for (VkImageView v : views) vkDestroyImageView(device, v, nullptr);
+    framebuffers.clear();
+    views.clear();
+    images.clear();
+    if (handle) vkDestroySwapchainKHR(device, handle, nullptr);
+    handle = VK_NULL_HANDLE;
+  }
+};
+
+// Everything the window owns, destroyed in reverse order whatever happens.
+struct WindowResources {
+  GLFWwindow* window = nullptr;
+  std::unique_ptr<Context> context;
+  VkSurfaceKHR surface = VK_NULL_HANDLE;
+  std::unique_ptr<SceneRenderer> renderer;
+  Swapchain swapchain;
+  VkRenderPass pass = VK_NULL_HANDLE;
+  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkShaderModule vert = VK_NULL_HANDLE, frag = VK_NULL_HANDLE;
+  VkSampler sampler = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkSemaphore acquired = VK_NULL_HANDLE, rendered = VK_NULL_HANDLE;
+  VkFence done = VK_NULL_HANDLE;
+
+  ~WindowResources() {
+    if (context) {
+      VkDevice d = context->impl().device;
+      vkDeviceWaitIdle(d);
+      renderer.reset();
+      swapchain.destroy();
+      vkDestroyFence(d, done, nullptr);
+      vkDestroySemaphore(d, acquired, nullptr);
+      vkDestroySemaphore(d, rendered, nullptr);
+      vkDestroyDescriptorPool(d, pool, nullptr);
+      vkDestroySampler(d, sampler, nullptr);
+      vkDestroyPipeline(d, pipeline, nullptr);
+      vkDestroyPipelineLayout(d, pipelineLayout, nullptr);
+      vkDestroyDescriptorSetLayout(d, setLayout, nullptr);
+      vkDestroyShaderModule(d, vert, nullptr);
+      vkDestroyShaderModule(d, frag, nullptr);
+      vkDestroyRenderPass(d, pass, nullptr);
+      if (surface) vkDestroySurfaceKHR(context->impl().instance, surface, nullptr);
+      context.reset();
+    }
+    if (window) glfwDestroyWindow(window);
+    glfwTerminate();
+  }
+};
+
+VkSurfaceFormatKHR chooseSurfaceFormat(VkPhysicalDevice physical, VkSurfaceKHR surface) {
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceSurfaceFormatsKHR(physical, surface, &count, nullptr);
+  std::vector<VkSurfaceFormatKHR> formats(count);
+  vkGetPhysicalDeviceSurfaceFormatsKHR(physical, surface, &count, formats.data());
+  if (formats.empty()) fail("window", "the surface offers no formats");
+  for (const auto& f : formats)
+    if ((f.format == VK_FORMAT_B8G8R8A8_SRGB || f.format == VK_FORMAT_R8G8B8A8_SRGB) &&
+        f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
+      return f;
+  return formats[0];
+}
+
+bool encodesSrgb(VkFormat f) {
+  return f == VK_FORMAT_B8G8R8A8_SRGB || f == VK_FORMAT_R8G8B8A8_SRGB ||
+         f == VK_FORMAT_A8B8G8R8_SRGB_PACK32;
+}
+
+void createSwapchain(WindowResources& r, VkSurfaceFormatKHR format) {
+  auto& c = r.context->impl();
+  VkSurfaceCapabilitiesKHR caps;
+  check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(c.physical, r.surface, &caps),
+        "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
+  VkExtent2D extent = caps.currentExtent;
+  if (extent.width == 0xffffffffu) {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(r.window, &w, &h);
+    extent = {std::clamp(static_cast<std::uint32_t>(w), caps.minImageExtent.width,
+                         caps.maxImageExtent.width),
+              std::clamp(static_cast<std::uint32_t>(h), caps.minImageExtent.height,
+                         caps.maxImageExtent.height)};
+  }
+  VkSwapchainCreateInfoKHR info{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
+  info.surface = r.surface;
+  info.minImageCount = caps.maxImageCount > 0 ? std::min(caps.minImageCount + 1, caps.maxImageCount)
+                                              : caps.minImageCount + 1;
+  info.imageFormat = format.format;
+  info.imageColorSpace = format.colorSpace;
+  info.imageExtent = extent;
+  info.imageArrayLayers = 1;
+  info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+  info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.preTransform = caps.currentTransform;
+  info.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
+  info.presentMode = VK_PRESENT_MODE_FIFO_KHR;  // always available
+  info.clipped = VK_TRUE;
+  info.oldSwapchain = VK_NULL_HANDLE;
+  Swapchain& s = r.swapchain;
+  s.device = c.device;
+  s.extent = extent;
+  check(vkCreateSwapchainKHR(c.device, &info, nullptr, &s.handle), "vkCreateSwapchainKHR");
+  std::uint32_t count = 0;
+  vkGetSwapchainImagesKHR(c.device, s.handle, &count, nullptr);
+  s.images.resize(count);
+  vkGetSwapchainImagesKHR(c.device, s.handle, &count, s.images.data());
+  for (VkImage image : s.images) {
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image;
+    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = format.format;
+    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView view;
+    check(vkCreateImageView(c.device, &viewInfo, nullptr, &view), "vkCreateImageView");
+    s.views.push_back(view);
+    VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fb.renderPass = r.pass;
+    fb.attachmentCount = 1;
+    fb.pAttachments = &view;
+    fb.width = extent.width;
+    fb.height = extent.height;
+    fb.layers = 1;
+    VkFramebuffer framebuffer;
+    check(vkCreateFramebuffer(c.device, &fb, nullptr, &framebuffer), "vkCreateFramebuffer");
+    s.framebuffers.push_back(framebuffer);
+  }
+}
+
+void createTonemapPass(WindowResources& r, VkFormat format) {
+  auto& c = r.context->impl();
+  VkAttachmentDescription attachment{};
+  attachment.format = format;
+  attachment.samples = VK_SAMPLE_COUNT_1_BIT;
+  attachment.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  attachment.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  attachment.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  attachment.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  attachment.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  const VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 1;
+  subpass.pColorAttachments = &ref;
+  // The swapchain image is acquired at the color output stage (the submission waits there).
+  const VkSubpassDependency dependency{VK_SUBPASS_EXTERNAL,
+                                       0,
+                                       VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                       VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                       0,
+                                       VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                                       0};
+  VkRenderPassCreateInfo passInfo{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  passInfo.attachmentCount = 1;
+  passInfo.pAttachments = &attachment;
+  passInfo.subpassCount = 1;
+  passInfo.pSubpasses = &subpass;
+  passInfo.dependencyCount = 1;
+  passInfo.pDependencies = &dependency;
+  check(vkCreateRenderPass(c.device, &passInfo, nullptr, &r.pass), "vkCreateRenderPass");
+
+  const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  setInfo.bindingCount = 1;
+  setInfo.pBindings = &binding;
+  check(vkCreateDescriptorSetLayout(c.device, &setInfo, nullptr, &r.setLayout),
+        "vkCreateDescriptorSetLayout");
+  const VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 12};
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.setLayoutCount = 1;
+  layoutInfo.pSetLayouts = &r.setLayout;
+  layoutInfo.pushConstantRangeCount = 1;
+  layoutInfo.pPushConstantRanges = &push;
+  check(vkCreatePipelineLayout(c.device, &layoutInfo, nullptr, &r.pipelineLayout),
+        "vkCreatePipelineLayout");
+  r.vert = c.shaderModule("fullscreen_vert");
+  r.frag = c.shaderModule("tonemap_frag");
+  const std::array<VkPipelineShaderStageCreateInfo, 2> stages{
+      VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr,
+                                      0, VK_SHADER_STAGE_VERTEX_BIT, r.vert, "main", nullptr},
+      VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr,
+                                      0, VK_SHADER_STAGE_FRAGMENT_BIT, r.frag, "main", nullptr}};
+  VkPipelineVertexInputStateCreateInfo input{
+      VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{
+      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{
+      VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{
+      VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineColorBlendAttachmentState blendAttachment{};
+  blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                                   VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  VkPipelineColorBlendStateCreateInfo blend{
+      VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blend.attachmentCount = 1;
+  blend.pAttachments = &blendAttachment;
+  const std::array<VkDynamicState, 2> dynamic{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamicState{
+      VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamicState.dynamicStateCount = static_cast<std::uint32_t>(dynamic.size());
+  dynamicState.pDynamicStates = dynamic.data();
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  info.stageCount = static_cast<std::uint32_t>(stages.size());
+  info.pStages = stages.data();
+  info.pVertexInputState = &input;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pColorBlendState = &blend;
+  info.pDynamicState = &dynamicState;
+  info.layout = r.pipelineLayout;
+  info.renderPass = r.pass;
+  check(vkCreateGraphicsPipelines(c.device, VK_NULL_HANDLE, 1, &info, nullptr, &r.pipeline),
+        "vkCreateGraphicsPipelines");
+  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
+  samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW =
+      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  check(vkCreateSampler(c.device, &samplerInfo, nullptr, &r.sampler), "vkCreateSampler");
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &size;
+  check(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &r.pool), "vkCreateDescriptorPool");
+}
+
+}  // namespace
+
+WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
+                            const BakeOptions& bakeOptions, const WindowOptions& o) {
+  WindowResources r;
+  if (!glfwInit()) fail("window", "cannot open a window (no display?); use --screenshot");
+  if (!glfwVulkanSupported()) fail("window", "GLFW finds no Vulkan loader for windows");
+  ContextOptions co;
+  std::uint32_t extensionCount = 0;
+  const char** extensions = glfwGetRequiredInstanceExtensions(&extensionCount);
+  for (std::uint32_t i = 0; i < extensionCount; ++i)
+    co.instanceExtensions.emplace_back(extensions[i]);
+  co.graphics = true;
+  co.swapchain = true;
+  r.context = Context::create(co);
+  auto& c = r.context->impl();
+  glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+  r.window = glfwCreateWindow(o.camera.width, o.camera.height, o.title.c_str(), nullptr, nullptr);
+  if (!r.window) fail("window", "cannot create a window");
+  check(glfwCreateWindowSurface(c.instance, r.window, nullptr, &r.surface),
+        "glfwCreateWindowSurface");
+  VkBool32 presentable = VK_FALSE;
+  vkGetPhysicalDeviceSurfaceSupportKHR(c.physical, c.family, r.surface, &presentable);
+  if (!presentable) fail("window", fmt::format("{} cannot present to this window", c.info.name));
+  const VkSurfaceFormatKHR format = chooseSurfaceFormat(c.physical, r.surface);
+  createTonemapPass(r, format.format);
+  createSwapchain(r, format);
+  r.renderer = std::make_unique<SceneRenderer>(*r.context, scene, bake, bakeOptions);
+  auto& renderer = r.renderer->impl();
+  const int samples = renderer.supportedSamples(std::max(o.render.spp, 1));
+
+  Interaction state;
+  state.initial = o.camera;
+  state.orbitFrom(o.camera);
+  state.compensation = o.compensation;
+  state.skyboxLod = o.skyboxLod;
+  state.toneMap = o.toneMap;
+  state.maxSkyboxLod = renderer.skyboxMaxLod;
+  state.diffuse = o.render.only != ShadingTerms::Specular;
+  state.specular = o.render.only != ShadingTerms::Diffuse;
+  const float ev100 =
+      o.ev100
+          ? *o.ev100
+          : ev100FromAverageLuminance(averageLogLuminance(
+                r.renderer
+                    ->render(state.camera(o.camera.width, o.camera.height), o.render, o.skyboxLod)
+                    .color));
+  glfwSetWindowUserPointer(r.window, &state);
+  glfwSetKeyCallback(r.window, onKey);
+  glfwSetMouseButtonCallback(r.window, onMouseButton);
+  glfwSetCursorPosCallback(r.window, onCursor);
+  glfwSetScrollCallback(r.window, onScroll);
+
+  VkDescriptorSet set;
+  VkDescriptorSetAllocateInfo setAlloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  setAlloc.descriptorPool = r.pool;
+  setAlloc.descriptorSetCount = 1;
+  setAlloc.pSetLayouts = &r.setLayout;
+  check(vkAllocateDescriptorSets(c.device, &setAlloc, &set), "vkAllocateDescriptorSets");
+  VkCommandBufferAllocateInfo cmdAlloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  cmdAlloc.commandPool = c.pool;
+  cmdAlloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  cmdAlloc.commandBufferCount = 1;
+  check(vkAllocateCommandBuffers(c.device, &cmdAlloc, &r.cmd), "vkAllocateCommandBuffers");
+  VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  check(vkCreateSemaphore(c.device, &semaphoreInfo, nullptr, &r.acquired), "vkCreateSemaphore");
+  check(vkCreateSemaphore(c.device, &semaphoreInfo, nullptr, &r.rendered), "vkCreateSemaphore");
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+  check(vkCreateFence(c.device, &fenceInfo, nullptr, &r.done), "vkCreateFence");
+
+  WindowStats stats;
+  stats.device = c.info.name;
+  using Clock = std::chrono::steady_clock;
+  auto last = Clock::now(), lastTitle = last;
+  double windowMs = 0.0, totalMs = 0.0;
+  int windowFrames = 0;
+  const auto recreate = [&] {
+    vkDeviceWaitIdle(c.device);
+    r.swapchain.destroy();
+    createSwapchain(r, format);
+  };
+  while (!glfwWindowShouldClose(r.window) && (o.frames <= 0 || stats.frames < o.frames)) {
+    glfwPollEvents();
+    int fbWidth = 0, fbHeight = 0;
+    glfwGetFramebufferSize(r.window, &fbWidth, &fbHeight);
+    if (fbWidth == 0 || fbHeight == 0) {  // minimized
+      glfwWaitEvents();
+      continue;
+    }
+    check(vkWaitForFences(c.device, 1, &r.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    std::uint32_t imageIndex = 0;
+    const VkResult acquired = vkAcquireNextImageKHR(c.device, r.swapchain.handle, UINT64_MAX,
+                                                    r.acquired, VK_NULL_HANDLE, &imageIndex);
+    if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+      recreate();
+      continue;
+    }
+    if (acquired != VK_SUBOPTIMAL_KHR) check(acquired, "vkAcquireNextImageKHR");
+    vkResetFences(c.device, 1, &r.done);
+
+    const VkExtent2D extent = r.swapchain.extent;
+    const int width = static_cast<int>(extent.width), height = static_cast<int>(extent.height);
+    renderer.prepare(width, height, samples);
+    const VkDescriptorImageInfo hdrInfo{r.sampler, renderer.output().view(),
+                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = 0;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    write.pImageInfo = &hdrInfo;
+    vkUpdateDescriptorSets(c.device, 1, &write, 0, nullptr);
+
+    RenderOptions shading = o.render;
+    shading.only = state.diffuse && state.specular ? ShadingTerms::Both
+                   : state.diffuse                 ? ShadingTerms::Diffuse
+                                                   : ShadingTerms::Specular;
+    const struct {
+      float exposure;
+      std::int32_t curve, encode;
+    } push{exposureFromEv100(ev100 - state.compensation),
+           state.toneMap == ToneMap::None   ? 0
+           : state.toneMap == ToneMap::Aces ? 1
+                                            : 2,
+           encodesSrgb(format.format) ? 0 : 1};
+    vkResetCommandBuffer(r.cmd, 0);
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkBeginCommandBuffer(r.cmd, &begin);
+    renderer.record(r.cmd, state.camera(width, height), shading, state.skyboxLod);
+    VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    passBegin.renderPass = r.pass;
+    passBegin.framebuffer = r.swapchain.framebuffers[imageIndex];
+    passBegin.renderArea = {{0, 0}, extent};
+    vkCmdBeginRenderPass(r.cmd, &passBegin, VK_SUBPASS_CONTENTS_INLINE);
+    const VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height),
+                              0.0f, 1.0f};
+    vkCmdSetViewport(r.cmd, 0, 1, &viewport);
+    vkCmdSetScissor(r.cmd, 0, 1, &passBegin.renderArea);
+    vkCmdBindPipeline(r.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.pipeline);
+    vkCmdBindDescriptorSets(r.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.pipelineLayout, 0, 1, &set, 0,
+                            nullptr);
+    vkCmdPushConstants(r.cmd, r.pipelineLayout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
+                       &push);
+    vkCmdDraw(r.cmd, 3, 1, 0, 0);
+    vkCmdEndRenderPass(r.cmd);
+    vkEndCommandBuffer(r.cmd);
+    const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.waitSemaphoreCount = 1;
+    submit.pWaitSemaphores = &r.acquired;
+    submit.pWaitDstStageMask = &waitStage;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &r.cmd;
+    submit.signalSemaphoreCount = 1;
+    submit.pSignalSemaphores = &r.rendered;
+    check(vkQueueSubmit(c.queue, 1, &submit, r.done), "vkQueueSubmit");
+    VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+    present.waitSemaphoreCount = 1;
+    present.pWaitSemaphores = &r.rendered;
+    present.swapchainCount = 1;
+    present.pSwapchains = &r.swapchain.handle;
+    present.pImageIndices = &imageIndex;
+    const VkResult presented = vkQueuePresentKHR(c.queue, &present);
+    if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR ||
+        fbWidth != width || fbHeight != height)
+      recreate();
+    else
+      check(presented, "vkQueuePresentKHR");
+
+    const auto now = Clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last).count();
+    last = now;
+    ++stats.frames;
+    totalMs += ms;
+    windowMs += ms;
+    ++windowFrames;
+    if (now - lastTitle > std::chrono::milliseconds(500) || stats.frames == 1) {
+      const double mean = windowMs / windowFrames;
+      glfwSetWindowTitle(
+          r.window,
+          fmt::format("{} - {:.2f} ms/frame ({:.0f} fps) - EV100 {:.1f} - skybox mip {:.1f} - {} - "
+                      "{} - {}x MSAA - {}",
+                      o.title, mean, 1000.0 / mean, ev100 - state.compensation, state.skyboxLod,
+                      shading.only == ShadingTerms::Both      ? "diffuse + specular"
+                      : shading.only == ShadingTerms::Diffuse ? "diffuse only"
+                                                              : "specular only",
+                      toneMapName(state.toneMap), samples, c.info.name)
+              .c_str());
+      lastTitle = now;
+      windowMs = 0.0;
+      windowFrames = 0;
+    }
+  }
+  stats.meanFrameMs = stats.frames > 0 ? totalMs / stats.frames : 0.0;
+  return stats;
+}
+
+}  // namespace ibl::gpu
