@@ -1,12 +1,14 @@
 // The GPU bake's stages on the Vulkan device (Mesa's software device when there is no GPU),
 // from data already on the host: equirect -> 256^2 cube, its mips, FIS prefilter (64 samples),
-// irradiance 32^2, SH9, DFG 128^2; and the default bake with --device gpu.
+// irradiance 32^2, SH9, DFG 128^2; the default bake with --device gpu; and the viewer's frame
+// (1280x720 sphere grid, split sum, 4x MSAA, read back to the host).
 #include <memory>
 
 #include <benchmark/benchmark.h>
 
 #include "ibl/bake.hpp"
 #include "ibl/gpu.hpp"
+#include "ibl/gpu_view.hpp"
 #include "ibl/resample.hpp"
 
 namespace {
@@ -77,6 +79,26 @@ void BM_BakeDeviceGpu(benchmark::State& state) {
   state.SetLabel(context().device().name);
 }
 
+void BM_ViewerFrame1280x720(benchmark::State& state) {
+  static const std::unique_ptr<ibl::gpu::Context> graphics = [] {
+    ibl::gpu::ContextOptions o;
+    o.graphics = true;
+    return ibl::gpu::Context::create(o);
+  }();
+  ibl::BakeOptions o;
+  const ibl::BakeResult bake = ibl::bakeEnvironment(environment(), o);
+  const ibl::Scene scene = ibl::makeSphereGrid(glm::vec3(1.0f));
+  ibl::gpu::SceneRenderer viewer(*graphics, scene, bake, o);
+  ibl::Camera camera;
+  camera.from = {0.0f, 0.0f, 20.0f};
+  camera.width = 1280;
+  camera.height = 720;
+  ibl::RenderOptions shading;
+  shading.spp = static_cast<int>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(viewer.render(camera, shading));
+  state.SetLabel(graphics->device().name + ", " + std::to_string(viewer.samples()) + "x MSAA");
+}
+
 }  // namespace
 
 BENCHMARK(BM_GpuEquirectToCube256)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -86,4 +108,5 @@ BENCHMARK(BM_GpuIrradiance32)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GpuSh9)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GpuDfg128)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BakeDeviceGpu)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ViewerFrame1280x720)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

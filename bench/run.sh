@@ -12,7 +12,7 @@ echo "== default bake (2048x1024 HDR -> 256^2 specular chain, 32^2 irradiance, S
 ./build/bench/ibl_bench_bake --benchmark_min_time=1
 echo "== rendering (512^2 sphere grid, split sum, 4 spp; reference throughput)"
 ./build/bench/ibl_bench_render --benchmark_min_time=1
-echo "== GPU stages (Vulkan; the software device without a GPU)"
+echo "== GPU stages and the viewer's frame (Vulkan; the software device without a GPU)"
 ./build/bench/ibl_bench_gpu --benchmark_min_time=1
 echo "== accuracy"
 ./build/bench/ibl_accuracy

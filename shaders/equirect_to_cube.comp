@@ -1,5 +1,5 @@
 #version 450
-// Equirect -> cube (resampleToCube in src/resample.cpp, unrotated): each texel integrates the
+// Equirect -> cube (resampleToCube in src/resample.cpp): each texel integrates the
 // cubic B-spline reconstruction of the (reduced) panorama with k x k samples weighted by the
 // exact sub-cell solid angles the host computed.
 #extension GL_GOOGLE_include_directive : require
@@ -8,7 +8,10 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) readonly buffer Panorama { vec4 panorama[]; };
 layout(std430, binding = 1) readonly buffer Weights { float weights[]; };
 layout(std430, binding = 2) writeonly buffer Result { vec4 result[]; };
-layout(push_constant) uniform Params { uint size; uint k; uint width; uint height; } params;
+layout(push_constant) uniform Params {
+  uint size, k, width, height;
+  vec4 toSource[3];  // columns of the inverse rotation about +Y (rotationY in resample.cpp)
+} params;
 
 // cubicBSplineWeights in cubemap.hpp.
 vec4 bspline(float t) {
@@ -50,7 +53,8 @@ void main() {
     for (uint a = 0u; a < k; ++a) {
       uint i = x * k + a;
       float sc = (float(i) + 0.5) * inv - 1.0;
-      vec3 d = faceToDirection(int(face), sc, tc);
+      vec3 d = mat3(params.toSource[0].xyz, params.toSource[1].xyz, params.toSource[2].xyz) *
+               faceToDirection(int(face), sc, tc);
       // directionToEquirect: u = 0.5 + atan2(z, x) / 2 pi, v = atan2(sqrt(x^2 + z^2), y) / pi.
       float u = 0.5 + atan(d.z, d.x) / (2.0 * kPiCube);
       float v = atan(sqrt(d.x * d.x + d.z * d.z), d.y) / kPiCube;

@@ -51,7 +51,7 @@ class Context {
 // GPU versions of buildMipChain (full chain), prefilterGgx with PrefilterMethod::Sampled,
 // integrateDfgLut, convolveIrradiance and projectSh9.
 void buildMipChain(Context& context, CubeMap& cube);
-// resampleToCube; on the GPU for unrotated equirect sources, else on the CPU.
+// resampleToCube; on the GPU for equirect sources (cube sources are resampled on the CPU).
 CubeMap resampleToCube(Context& context, const Environment& source, int size,
                        float rotateDegrees = 0.0f);
 CubeMap prefilterGgxSampled(Context& context, const CubeMap& source,

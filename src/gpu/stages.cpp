@@ -113,17 +113,23 @@ std::array<Image, kFaceCount> unflatten(const std::vector<glm::vec4>& texels, in
 }  // namespace
 
 CubeMap resampleToCube(Context& context, const Environment& env, int size, float rotateDegrees) {
-  if (env.isCube() || rotateDegrees != 0.0f) return ibl::resampleToCube(env, size, rotateDegrees);
+  if (env.isCube()) return ibl::resampleToCube(env, size, rotateDegrees);
   const CubeResamplePlan plan = planEquirectToCube(env.equirect, size);
   std::vector<glm::vec4> panorama;
   for (const auto& p : plan.equirect.pixels) panorama.emplace_back(p, 1.0f);
   Buffer source = Buffer::of(context, panorama), weights = Buffer::of(context, plan.weights),
          result(context, static_cast<std::size_t>(6) * size * size * sizeof(glm::vec4));
+  // Directions are looked up in the source's frame: the inverse of the rotation about +Y.
+  const glm::mat3 toSource = glm::transpose(rotationY(rotateDegrees));
   const struct {
     std::uint32_t size, k, width, height;
-  } params{static_cast<std::uint32_t>(size), static_cast<std::uint32_t>(plan.samplesPerSide),
-           static_cast<std::uint32_t>(plan.equirect.width),
-           static_cast<std::uint32_t>(plan.equirect.height)};
+    glm::vec4 toSource[3];  // columns
+  } params{
+      static_cast<std::uint32_t>(size),
+      static_cast<std::uint32_t>(plan.samplesPerSide),
+      static_cast<std::uint32_t>(plan.equirect.width),
+      static_cast<std::uint32_t>(plan.equirect.height),
+      {glm::vec4(toSource[0], 0.0f), glm::vec4(toSource[1], 0.0f), glm::vec4(toSource[2], 0.0f)}};
   dispatch(context, "equirect_to_cube", {&source, &weights, &result}, bytesOf(params),
            groups(size, 8), groups(size, 8), 6);
   CubeMap out;
