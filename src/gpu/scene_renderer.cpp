@@ -126,17 +126,6 @@ VkDescriptorSetLayout createSetLayout(VkDevice device,
   return layout;
 }
 
-VkWriteDescriptorSet imageWrite(VkDescriptorSet set, std::uint32_t binding,
-                                const VkDescriptorImageInfo* info) {
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = set;
-  w.dstBinding = binding;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w.pImageInfo = info;
-  return w;
-}
-
 // World to clip space of `camera` (Vulkan: y down, depth 0..1), with depth planes around the
 // scene's bounds. Matches Camera::generateRay: same basis, field of view and aspect.
 glm::mat4 viewProjectionOf(const Camera& camera, std::pair<glm::vec3, glm::vec3> bounds) {
@@ -441,7 +430,8 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
   fbInfo.layers = 1;
   check(vkCreateFramebuffer(device, &fbInfo, nullptr, &t.framebuffer), "vkCreateFramebuffer");
 
-  // The two pipelines: meshes (depth tested, both faces) and the skybox (a full-screen triangle).
+  // The two pipelines: meshes (depth tested, both faces: the CPU renderer sees both sides too)
+  // and the skybox (a full-screen triangle).
   const VkVertexInputBindingDescription binding{0, kVertexFloats * sizeof(float),
                                                 VK_VERTEX_INPUT_RATE_VERTEX};
   const std::array<VkVertexInputAttributeDescription, 4> attributes{
@@ -449,76 +439,20 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
       VkVertexInputAttributeDescription{1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
       VkVertexInputAttributeDescription{2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 6 * sizeof(float)},
       VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, 10 * sizeof(float)}};
-  const auto makePipeline = [&](VkShaderModule vert, VkShaderModule frag, bool forMeshes) {
-    const std::array<VkPipelineShaderStageCreateInfo, 2> stages{
-        VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                                        nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main",
-                                        nullptr},
-        VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                                        nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main",
-                                        nullptr}};
-    VkPipelineVertexInputStateCreateInfo input{
-        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    if (forMeshes) {
-      input.vertexBindingDescriptionCount = 1;
-      input.pVertexBindingDescriptions = &binding;
-      input.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(attributes.size());
-      input.pVertexAttributeDescriptions = attributes.data();
-    }
-    VkPipelineInputAssemblyStateCreateInfo assembly{
-        VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkPipelineViewportStateCreateInfo viewport{
-        VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewport.viewportCount = viewport.scissorCount = 1;
-    VkPipelineRasterizationStateCreateInfo raster{
-        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;  // the CPU renderer sees both sides too
-    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    raster.lineWidth = 1.0f;
-    VkPipelineMultisampleStateCreateInfo multisample{
-        VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    multisample.rasterizationSamples = sampleBits;
-    VkPipelineDepthStencilStateCreateInfo depthState{
-        VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    depthState.depthTestEnable = forMeshes ? VK_TRUE : VK_FALSE;
-    depthState.depthWriteEnable = forMeshes ? VK_TRUE : VK_FALSE;
-    depthState.depthCompareOp = VK_COMPARE_OP_LESS;
-    VkPipelineColorBlendAttachmentState blendAttachment{};
-    blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                                     VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    VkPipelineColorBlendStateCreateInfo blend{
-        VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blend.attachmentCount = 1;
-    blend.pAttachments = &blendAttachment;
-    const std::array<VkDynamicState, 2> dynamic{VK_DYNAMIC_STATE_VIEWPORT,
-                                                VK_DYNAMIC_STATE_SCISSOR};
-    VkPipelineDynamicStateCreateInfo dynamicState{
-        VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dynamicState.dynamicStateCount = static_cast<std::uint32_t>(dynamic.size());
-    dynamicState.pDynamicStates = dynamic.data();
-    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    info.stageCount = static_cast<std::uint32_t>(stages.size());
-    info.pStages = stages.data();
-    info.pVertexInputState = &input;
-    info.pInputAssemblyState = &assembly;
-    info.pViewportState = &viewport;
-    info.pRasterizationState = &raster;
-    info.pMultisampleState = &multisample;
-    info.pDepthStencilState = &depthState;
-    info.pColorBlendState = &blend;
-    info.pDynamicState = &dynamicState;
-    info.layout = pipelineLayout;
-    info.renderPass = t.renderPass;
-    VkPipeline pipeline;
-    check(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
-          "vkCreateGraphicsPipelines");
-    return pipeline;
-  };
   targets = std::move(t);  // from here on, destroyTargets() frees what exists
-  targets->scenePipeline = makePipeline(sceneVert, sceneFrag, true);
-  targets->skyboxPipeline = makePipeline(fullscreenVert, skyboxFrag, false);
+  GraphicsPipelineDescription p;
+  p.layout = pipelineLayout;
+  p.renderPass = targets->renderPass;
+  p.samples = sampleBits;
+  p.vertex = fullscreenVert;
+  p.fragment = skyboxFrag;
+  targets->skyboxPipeline = createGraphicsPipeline(device, p);
+  p.vertex = sceneVert;
+  p.fragment = sceneFrag;
+  p.bindings = {&binding, 1};
+  p.attributes = attributes;
+  p.depth = true;
+  targets->scenePipeline = createGraphicsPipeline(device, p);
 }
 
 void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& o,

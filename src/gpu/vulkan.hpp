@@ -82,6 +82,31 @@ void transitionImage(VkCommandBuffer cmd, const DeviceImage& image, VkImageLayou
                      VkAccessFlags fromAccess, VkPipelineStageFlags toStage,
                      VkAccessFlags toAccess);
 
+// A graphics pipeline drawing triangles with both faces, no blending, dynamic viewport and
+// scissor.
+struct GraphicsPipelineDescription {
+  VkShaderModule vertex = VK_NULL_HANDLE, fragment = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkRenderPass renderPass = VK_NULL_HANDLE;
+  std::span<const VkVertexInputBindingDescription> bindings;  // empty: no vertex buffers
+  std::span<const VkVertexInputAttributeDescription> attributes;
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  bool depth = false;  // depth test (less) and write
+};
+VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescription& d);
+
+// A descriptor write of one combined image sampler.
+inline VkWriteDescriptorSet imageWrite(VkDescriptorSet set, std::uint32_t binding,
+                                       const VkDescriptorImageInfo* info) {
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w.pImageInfo = info;
+  return w;
+}
+
 // Copies texels of `texelBytes` bytes each (levels one after another, layers one after another
 // within a level, rows within a layer) into a sampled image and leaves it shader-readable.
 void uploadImage(Context& context, const DeviceImage& image, std::span<const std::uint8_t> texels,
