@@ -1,5 +1,6 @@
 // The GPU bake's stages on the Vulkan device (Mesa's software device when there is no GPU),
-// from data already on the host: equirect -> 256^2 cube, its mips, FIS prefilter (64 samples),
+// from data already on the host: equirect -> 256^2 cube, its mips, the ring prefilter and the
+// FIS prefilter (64 samples),
 // irradiance 32^2, SH9, DFG 128^2; the default bake with --device gpu; and the viewer's frame
 // (1280x720 sphere grid, split sum, 4x MSAA, read back to the host).
 #include <memory>
@@ -54,6 +55,11 @@ void BM_GpuPrefilterFis256(benchmark::State& state) {
     benchmark::DoNotOptimize(ibl::gpu::prefilterGgxSampled(context(), source(), o));
 }
 
+void BM_GpuPrefilterRings256(benchmark::State& state) {
+  ibl::PrefilterOptions o;  // the default: direct quadrature, in rings for sharp lobes
+  for (auto _ : state) benchmark::DoNotOptimize(ibl::gpu::prefilterGgx(context(), source(), o));
+}
+
 void BM_GpuIrradiance32(benchmark::State& state) {
   for (auto _ : state)
     benchmark::DoNotOptimize(
@@ -73,7 +79,7 @@ void BM_GpuDfg128(benchmark::State& state) {
 
 void BM_BakeDeviceGpu(benchmark::State& state) {
   ibl::BakeOptions o;
-  o.specular.method = ibl::PrefilterMethod::Sampled;
+  if (state.range(0) == 1) o.specular.method = ibl::PrefilterMethod::Sampled;
   for (auto _ : state)
     benchmark::DoNotOptimize(ibl::bakeEnvironment(environment(), o, {}, &context()));
   state.SetLabel(context().device().name);
@@ -107,6 +113,8 @@ BENCHMARK(BM_GpuPrefilterFis256)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GpuIrradiance32)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GpuSh9)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GpuDfg128)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_BakeDeviceGpu)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GpuPrefilterRings256)->Unit(benchmark::kMillisecond)->UseRealTime();
+// 0: the default bake (rings), 1: --method sampled.
+BENCHMARK(BM_BakeDeviceGpu)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ViewerFrame1280x720)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

@@ -48,3 +48,13 @@ mat3 tangentFrame(vec3 n) {
   float b = n.x * n.y * a;
   return mat3(vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x), vec3(b, s + n.y * n.y * a, -n.y), n);
 }
+
+// Face axes of the face table: major axis, direction of growing s, of growing t (kFaceAxes in
+// src/prefilter.cpp).
+vec3 faceAxis(int face, int which) {
+  const vec3 axes[18] = vec3[18](
+      vec3(1, 0, 0), vec3(0, 0, -1), vec3(0, -1, 0), vec3(-1, 0, 0), vec3(0, 0, 1), vec3(0, -1, 0),
+      vec3(0, 1, 0), vec3(1, 0, 0), vec3(0, 0, 1), vec3(0, -1, 0), vec3(1, 0, 0), vec3(0, 0, -1),
+      vec3(0, 0, 1), vec3(1, 0, 0), vec3(0, -1, 0), vec3(0, 0, -1), vec3(-1, 0, 0), vec3(0, -1, 0));
+  return axes[face * 3 + which];
+}

@@ -71,17 +71,20 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
   tbb::parallel_invoke(
       [&] {
         r.specular = time("specular", [&] {
-          // The GPU path filters by importance sampling; direct quadrature stays on the CPU.
-          return device && o.specular.method == PrefilterMethod::Sampled
-                     ? gpu::prefilterGgxSampled(*device, r.source, o.specular, &r.specularLevels)
+          return device
+                     ? gpu::prefilterGgx(*device, r.source, o.specular, &r.specularLevels, progress)
                      : prefilterGgx(r.source, o.specular, &r.specularLevels, progress);
         });
         if (o.fresnelWeighted) {
           PrefilterOptions variant = o.specular;
           variant.weight = PrefilterWeight::FresnelF0Zero;
-          r.specularF0Zero = time("specular_f0_0", [&] { return prefilterGgx(r.source, variant); });
+          const auto prefilter = [&] {
+            return device ? gpu::prefilterGgx(*device, r.source, variant)
+                          : prefilterGgx(r.source, variant);
+          };
+          r.specularF0Zero = time("specular_f0_0", prefilter);
           variant.weight = PrefilterWeight::FresnelF0One;
-          r.specularF0One = time("specular_f0_1", [&] { return prefilterGgx(r.source, variant); });
+          r.specularF0One = time("specular_f0_1", prefilter);
         }
         if (progress)
           progress(fmt::format("irradiance {}x{} and SH9", o.irradianceSize, o.irradianceSize));

@@ -63,14 +63,6 @@ struct LobeWeight {
   }
 };
 
-// A radial window in c = cos(theta): smoothstep(outer) - smoothstep(inner), each smoothstep
-// rising from 0 at c = lo to 1 at c = lo + 1 / inv. The windows of consecutive rings add up
-// to 1, so every direction is counted once whatever level each ring reads.
-struct Window {
-  float outerLo = -3.0f, outerInv = 1.0f;  // default: 1 everywhere
-  float innerLo = 2.0f, innerInv = 1.0f;   // default: 0 everywhere
-};
-
 inline float smoothRise(float c, float lo, float inv) {
   const float t = std::clamp((c - lo) * inv, 0.0f, 1.0f);
   return t * t * (3.0f - 2.0f * t);
@@ -93,7 +85,7 @@ struct DestTile {
 template <int kWindow>
 [[gnu::always_inline]] inline void accumulateTileBody(const TexelArrays& t, std::size_t begin,
                                                       std::size_t end, DestTile& tile,
-                                                      LobeWeight lobe, Window win) {
+                                                      LobeWeight lobe, RadialWindow win) {
   const float a2m1 = lobe.a2 - 1.0f, a2 = lobe.a2;
   const auto run = [&](auto weight) IBL_INLINE {
     for (std::size_t i = begin; i < end; ++i) {
@@ -148,20 +140,20 @@ template <int kWindow>
 #define IBL_SIMD_CLONES
 #endif
 IBL_SIMD_CLONES void accumulateTileAll(const TexelArrays& t, std::size_t begin, std::size_t end,
-                                       DestTile& tile, LobeWeight lobe, Window win) {
+                                       DestTile& tile, LobeWeight lobe, RadialWindow win) {
   accumulateTileBody<0>(t, begin, end, tile, lobe, win);
 }
 IBL_SIMD_CLONES void accumulateTileCore(const TexelArrays& t, std::size_t begin, std::size_t end,
-                                        DestTile& tile, LobeWeight lobe, Window win) {
+                                        DestTile& tile, LobeWeight lobe, RadialWindow win) {
   accumulateTileBody<1>(t, begin, end, tile, lobe, win);
 }
 IBL_SIMD_CLONES void accumulateTileRing(const TexelArrays& t, std::size_t begin, std::size_t end,
-                                        DestTile& tile, LobeWeight lobe, Window win) {
+                                        DestTile& tile, LobeWeight lobe, RadialWindow win) {
   accumulateTileBody<2>(t, begin, end, tile, lobe, win);
 }
 
 void accumulateTile(const TexelArrays& t, std::size_t begin, std::size_t end, DestTile& tile,
-                    LobeWeight lobe, Window win, bool windowed) {
+                    LobeWeight lobe, RadialWindow win, bool windowed) {
   if (!windowed)
     accumulateTileAll(t, begin, end, tile, lobe, win);
   else if (win.innerLo > 1.5f)
@@ -184,7 +176,7 @@ glm::vec3 faceAxis(int face, int which) {
 // into the tile. Each face row is searched only over the columns the cap can reach: on the
 // row at tc, n.d >= k |d| with d = a + sc s + tc t is a quadratic inequality in sc.
 void accumulateCap(const TexelArrays& t, glm::vec3 n, float cosCap, DestTile& tile, LobeWeight lobe,
-                   Window win, bool windowed) {
+                   RadialWindow win, bool windowed) {
   if (cosCap <= 0.0f) {
     accumulateTile(t, 0, t.size(), tile, lobe, win, windowed);
     return;
@@ -221,20 +213,14 @@ void accumulateCap(const TexelArrays& t, glm::vec3 n, float cosCap, DestTile& ti
   }
 }
 
-// One convolution pass: for every texel of an output level of `size`, (L w, w) summed over the
-// source texels within the cap around it, as a (sum, weight) pair of images. Output texels
-// are processed in square tiles of up to 16 sharing one cap that covers them all.
-struct LevelSums {
-  std::array<Image, kFaceCount> sum;
-  std::array<Image, kFaceCount> weight;  // in x
-};
-
-LevelSums convolvePass(const TexelArrays& texels, int size, LobeWeight lobe, Window win,
-                       float cosCap) {
+// convolvePass over texel arrays: output texels are processed in square tiles of up to 16
+// sharing one cap that covers them all.
+ConvolutionSums convolveTexels(const TexelArrays& texels, int size, LobeWeight lobe,
+                               RadialWindow win, float cosCap) {
   const bool windowed = win.outerLo > -2.0f || win.innerLo < 1.5f;
   const int side = std::min(size, 4);  // tile side in texels
   const int tilesPerRow = (size + side - 1) / side;
-  LevelSums out;
+  ConvolutionSums out;
   for (int f = 0; f < kFaceCount; ++f) {
     out.sum[f] = Image(size, size);
     out.weight[f] = Image(size, size);
@@ -284,7 +270,7 @@ LevelSums convolvePass(const TexelArrays& texels, int size, LobeWeight lobe, Win
   return out;
 }
 
-std::array<Image, kFaceCount> normalize(const LevelSums& s) {
+std::array<Image, kFaceCount> normalize(const ConvolutionSums& s) {
   std::array<Image, kFaceCount> out;
   for (int f = 0; f < kFaceCount; ++f) {
     out[f] = Image(s.sum[f].width, s.sum[f].height);
@@ -298,7 +284,7 @@ std::array<Image, kFaceCount> normalize(const LevelSums& s) {
 
 std::array<Image, kFaceCount> convolveLevel(const std::array<Image, kFaceCount>& sourceLevel,
                                             int size, LobeWeight lobe) {
-  return normalize(convolvePass(TexelArrays(sourceLevel), size, lobe, Window{}, 0.0f));
+  return normalize(convolveTexels(TexelArrays(sourceLevel), size, lobe, RadialWindow{}, 0.0f));
 }
 
 std::vector<glm::vec3> convolveDirections(const std::array<Image, kFaceCount>& sourceLevel,
@@ -315,7 +301,7 @@ std::vector<glm::vec3> convolveDirections(const std::array<Image, kFaceCount>& s
       tile.y[j] = d.y;
       tile.z[j] = d.z;
     }
-    accumulateTile(texels, 0, texels.size(), tile, lobe, Window{}, false);
+    accumulateTile(texels, 0, texels.size(), tile, lobe, RadialWindow{}, false);
     for (std::size_t j = 0; j < kTileLanes && first + j < dirs.size(); ++j)
       out[first + j] = tile.w[j] > 0.0f ? glm::vec3(tile.r[j], tile.g[j], tile.b[j]) / tile.w[j]
                                         : glm::vec3(0.0f);
@@ -344,9 +330,17 @@ float lobeHalfWidth(float alpha) {
 
 }  // namespace
 
+ConvolutionSums convolvePass(const std::array<Image, kFaceCount>& sourceLevel, int size,
+                             float roughness, PrefilterWeight weight, RadialWindow window,
+                             float cosCap) {
+  return convolveTexels(TexelArrays(sourceLevel), size, LobeWeight::forLevel(roughness, weight),
+                        window, cosCap);
+}
+
 std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int size, float roughness,
-                                                  PrefilterWeight weight, LevelMethod* info) {
-  const LobeWeight lobe = LobeWeight::forLevel(roughness, weight);
+                                                  PrefilterWeight weight, LevelMethod* info,
+                                                  const ConvolutionPassFn& passFn) {
+  const ConvolutionPassFn& pass = passFn ? passFn : ConvolutionPassFn(convolvePass);
   const float theta = lobeHalfWidth(alphaFromRoughness(roughness));
   constexpr float kPiF = std::numbers::pi_v<float>;
   // Ring 0, the lobe's core: texels at most a third of its half width, cap 2 b1.
@@ -358,7 +352,7 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
       info->method = "direct";
       info->sourceSize = source.levels[level][0].width;
     }
-    return normalize(convolvePass(TexelArrays(source.levels[level]), size, lobe, Window{}, 0.0f));
+    return normalize(pass(source.levels[level], size, roughness, weight, RadialWindow{}, 0.0f));
   }
   // The core reads texels a third of the lobe's half width, and no coarser than the output.
   const int core =
@@ -369,22 +363,22 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
     const float lo = std::cos(thetaZero), hi = std::cos(thetaOne);
     return std::pair{lo, 1.0f / (hi - lo)};
   };
-  Window w0;
+  RadialWindow w0;
   std::tie(w0.outerLo, w0.outerInv) = rise(b1, 2.0f * b1);
-  LevelSums total =
-      convolvePass(TexelArrays(source.levels[core]), size, lobe, w0, std::cos(2.0f * b1));
+  ConvolutionSums total =
+      pass(source.levels[core], size, roughness, weight, w0, std::cos(2.0f * b1));
   if (info) info->method = "rings";
   // Ring k covers [b_k, 4 b_k], where the lobe is smooth on the scale of b_k: it reads, and is
   // computed at, a level with texels of b_k / 3, then is interpolated up and added.
   for (float bk = b1;; bk *= 2.0f) {
     const bool last = 4.0f * bk >= kPiF;
-    Window win;
+    RadialWindow win;
     if (!last) std::tie(win.outerLo, win.outerInv) = rise(2.0f * bk, 4.0f * bk);
     std::tie(win.innerLo, win.innerInv) = rise(bk, 2.0f * bk);
     const int level = levelForTexelAngle(source, bk / 3.0f);
     const int ringSize = std::min(size, source.levels[level][0].width);
-    const LevelSums ring = convolvePass(TexelArrays(source.levels[level]), ringSize, lobe, win,
-                                        last ? 0.0f : std::cos(4.0f * bk));
+    const ConvolutionSums ring = pass(source.levels[level], ringSize, roughness, weight, win,
+                                      last ? 0.0f : std::cos(4.0f * bk));
     if (ringSize == size) {
       for (int f = 0; f < kFaceCount; ++f)
         for (std::size_t i = 0; i < total.sum[f].pixels.size(); ++i) {

@@ -48,12 +48,20 @@ class Context {
   std::unique_ptr<Impl> impl_;
 };
 
-// GPU versions of buildMipChain (full chain), prefilterGgx with PrefilterMethod::Sampled,
+// GPU versions of buildMipChain (full chain), resampleToCube, prefilterGgx (both methods),
 // integrateDfgLut, convolveIrradiance and projectSh9.
 void buildMipChain(Context& context, CubeMap& cube);
 // resampleToCube; on the GPU for equirect sources (cube sources are resampled on the CPU).
 CubeMap resampleToCube(Context& context, const Environment& source, int size,
                        float rotateDegrees = 0.0f);
+// prefilterGgx with either method: direct quadrature in rings (the passes on the device, their
+// combination on the host, exactly as the CPU combines them) or filtered importance sampling.
+CubeMap prefilterGgx(Context& context, const CubeMap& source, const PrefilterOptions& options,
+                     std::vector<LevelMethod>* methods = nullptr, const ProgressFn& progress = {});
+// One pass of the direct / ring prefilter (convolvePass in prefilter.hpp).
+ConvolutionSums convolvePass(Context& context, const std::array<Image, kFaceCount>& sourceLevel,
+                             int size, float roughness, PrefilterWeight weight, RadialWindow window,
+                             float cosCap);
 CubeMap prefilterGgxSampled(Context& context, const CubeMap& source,
                             const PrefilterOptions& options,
                             std::vector<LevelMethod>* methods = nullptr);

@@ -77,13 +77,41 @@ CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& option
 std::array<Image, kFaceCount> prefilterLevelDirect(const CubeMap& source, int sourceLevel, int size,
                                                    float roughness, PrefilterWeight weight);
 
+// A radial window in c = cos(theta) around each output direction: smoothstep(outer) -
+// smoothstep(inner), each smoothstep rising from 0 at c = lo to 1 at c = lo + 1 / inv. The
+// windows of consecutive rings add up to 1, so every direction is counted once whatever level
+// each ring reads. The default is 1 everywhere.
+struct RadialWindow {
+  float outerLo = -3.0f, outerInv = 1.0f;
+  float innerLo = 2.0f, innerInv = 1.0f;
+};
+
+// Per output texel, the sums of L w and of w (in x) of one convolution pass.
+struct ConvolutionSums {
+  std::array<Image, kFaceCount> sum;
+  std::array<Image, kFaceCount> weight;
+};
+
+// One convolution pass: every texel n of an output level of `size` against the texels l of
+// `sourceLevel` within angle acos(cosCap) of it (all of them when cosCap <= 0), weighted by
+// w = lobe(n.l) x window(n.l) x texel solid angle, the lobe of `roughness` and `weight`. The
+// unit of work of prefilterLevelRings; gpu::convolvePass is its twin.
+ConvolutionSums convolvePass(const std::array<Image, kFaceCount>& sourceLevel, int size,
+                             float roughness, PrefilterWeight weight, RadialWindow window,
+                             float cosCap);
+using ConvolutionPassFn = std::function<ConvolutionSums(
+    const std::array<Image, kFaceCount>& sourceLevel, int size, float roughness,
+    PrefilterWeight weight, RadialWindow window, float cosCap)>;
+
 // The same integral, computed in rings for sharp lobes: the lobe's core over a fine source
 // level, then rings [b, 4b] of growing radius (b doubling) over ever coarser levels, at ever
 // coarser output resolution, blended by smooth radial windows that add up to 1. The cost no
-// longer grows with the source resolution times the output resolution.
+// longer grows with the source resolution times the output resolution. The passes run with
+// `pass` (default: convolvePass, on the CPU).
 std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int size, float roughness,
                                                   PrefilterWeight weight,
-                                                  LevelMethod* info = nullptr);
+                                                  LevelMethod* info = nullptr,
+                                                  const ConvolutionPassFn& pass = {});
 
 // The same convolution for arbitrary directions (brute-force references: pass level 0).
 std::vector<glm::vec3> prefilterDirections(const std::array<Image, kFaceCount>& sourceLevel,

@@ -57,6 +57,11 @@ void dispatch(Context& context, std::string_view shader, std::initializer_list<B
               std::span<const std::uint8_t> pushConstants, std::uint32_t groupsX,
               std::uint32_t groupsY = 1, std::uint32_t groupsZ = 1);
 
+// convolvePass (gpu.hpp) over source texels already on the device (TexelBuffers layout).
+ConvolutionSums convolvePass(Context& context, Buffer& dirOmega, Buffer& radiance, int sourceSize,
+                             int size, float roughness, PrefilterWeight weight, RadialWindow window,
+                             float cosCap);
+
 template <typename T>
 std::span<const std::uint8_t> bytesOf(const T& value) {
   return {reinterpret_cast<const std::uint8_t*>(&value), sizeof(T)};

@@ -1,9 +1,12 @@
 // The bake stages on the GPU: the host side of shaders/*.comp.
+#include <map>
+
 #include <fmt/format.h>
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
 #include "gpu/compute.hpp"
+#include "ibl/brdf.hpp"
 #include "ibl/error.hpp"
 #include "ibl/gpu.hpp"
 #include "ibl/resample.hpp"
@@ -184,6 +187,83 @@ CubeMap prefilterGgxSampled(Context& context, const CubeMap& source, const Prefi
     return unflatten(result.read<glm::vec4>(static_cast<std::size_t>(6) * size * size), size);
   };
   return buildSpecularChain(source, o, level, methods);
+}
+
+ConvolutionSums convolvePass(Context& context, const std::array<Image, kFaceCount>& sourceLevel,
+                             int size, float roughness, PrefilterWeight weight, RadialWindow window,
+                             float cosCap) {
+  const TexelBuffers src(sourceLevel);
+  Buffer dirs = Buffer::of(context, src.dirOmega), radiance = Buffer::of(context, src.radiance);
+  return convolvePass(context, dirs, radiance, sourceLevel[0].width, size, roughness, weight,
+                      window, cosCap);
+}
+
+ConvolutionSums convolvePass(Context& context, Buffer& dirOmega, Buffer& radiance, int sourceSize,
+                             int size, float roughness, PrefilterWeight weight, RadialWindow window,
+                             float cosCap) {
+  std::vector<glm::vec4> targets;
+  for (int f = 0; f < kFaceCount; ++f)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) targets.emplace_back(texelDirection(f, x, y, size), 0.0f);
+  Buffer targetBuffer = Buffer::of(context, targets),
+         result(context, targets.size() * sizeof(glm::vec4));
+  // LobeWeight::forLevel and the window modes of accumulateTile (src/prefilter.cpp).
+  const float alpha = alphaFromRoughness(roughness);
+  const bool windowed = window.outerLo > -2.0f || window.innerLo < 1.5f;
+  const struct {
+    std::uint32_t sourceSize, targetCount, kind, windowMode;
+    float a2, outerLo, outerInv, innerLo, innerInv, cosCap;
+  } params{static_cast<std::uint32_t>(sourceSize),
+           static_cast<std::uint32_t>(targets.size()),
+           weight == PrefilterWeight::Standard       ? 1u
+           : weight == PrefilterWeight::FresnelF0One ? 2u
+                                                     : 3u,
+           !windowed ? 0u : (window.innerLo > 1.5f ? 1u : 2u),
+           alpha * alpha,
+           window.outerLo,
+           window.outerInv,
+           window.innerLo,
+           window.innerInv,
+           cosCap};
+  dispatch(context, "convolve_pass", {&dirOmega, &radiance, &targetBuffer, &result},
+           bytesOf(params), groups(targets.size(), 64));
+  const auto sums = result.read<glm::vec4>(targets.size());
+  ConvolutionSums out;
+  std::size_t i = 0;
+  for (int f = 0; f < kFaceCount; ++f) {
+    out.sum[f] = Image(size, size);
+    out.weight[f] = Image(size, size);
+    for (std::size_t p = 0; p < out.sum[f].pixels.size(); ++p, ++i) {
+      out.sum[f].pixels[p] = glm::vec3(sums[i]);
+      out.weight[f].pixels[p] = glm::vec3(sums[i].w, 0.0f, 0.0f);
+    }
+  }
+  return out;
+}
+
+CubeMap prefilterGgx(Context& context, const CubeMap& source, const PrefilterOptions& o,
+                     std::vector<LevelMethod>* methods, const ProgressFn& progress) {
+  if (o.method == PrefilterMethod::Sampled) return prefilterGgxSampled(context, source, o, methods);
+  // Each source level is uploaded once, the first time a pass reads it.
+  std::map<const Image*, std::pair<Buffer, Buffer>> uploaded;
+  const ConvolutionPassFn pass = [&](const std::array<Image, kFaceCount>& level, int size,
+                                     float roughness, PrefilterWeight weight, RadialWindow window,
+                                     float cosCap) {
+    auto found = uploaded.find(&level[0]);
+    if (found == uploaded.end()) {
+      const TexelBuffers src(level);
+      found = uploaded
+                  .emplace(&level[0], std::pair{Buffer::of(context, src.dirOmega),
+                                                Buffer::of(context, src.radiance)})
+                  .first;
+    }
+    return convolvePass(context, found->second.first, found->second.second, level[0].width, size,
+                        roughness, weight, window, cosCap);
+  };
+  const auto level = [&](int size, float r, LevelMethod& method) {
+    return prefilterLevelRings(source, size, r, o.weight, &method, pass);
+  };
+  return buildSpecularChain(source, o, level, methods, progress);
 }
 
 }  // namespace ibl::gpu
