@@ -107,14 +107,15 @@ inline double maxRelativeError(glm::vec3 a, glm::vec3 ref) {
   return e;
 }
 
-// Runs the `ibl` executable with `args`; status and combined output.
+// What a command did: exit status and combined output.
 struct CliRun {
   int status;
   std::string output;  // stdout and stderr
 };
 
-inline CliRun runIbl(const std::string& args) {
-  const std::string cmd = std::string(IBL_CLI) + " " + args + " 2>&1";
+// Runs a shell command; status (-1 if it did not exit) and combined output.
+inline CliRun runCommand(const std::string& command) {
+  const std::string cmd = command + " 2>&1";
   CliRun r{-1, ""};
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -123,6 +124,11 @@ inline CliRun runIbl(const std::string& args) {
   const int status = pclose(pipe);
   r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+// Runs the `ibl` executable with `args`.
+inline CliRun runIbl(const std::string& args) {
+  return runCommand(std::string(IBL_CLI) + " " + args);
 }
 
 inline std::string quote(const std::filesystem::path& p) {
