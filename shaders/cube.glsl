@@ -58,3 +58,10 @@ vec3 faceAxis(int face, int which) {
       vec3(0, 0, 1), vec3(1, 0, 0), vec3(0, -1, 0), vec3(0, 0, -1), vec3(-1, 0, 0), vec3(0, -1, 0));
   return axes[face * 3 + which];
 }
+
+// Cubic B-spline weights of the 4 taps around a sample at fraction t (cubicBSplineWeights in
+// cubemap.hpp).
+vec4 cubicBSplineWeights(float t) {
+  float t2 = t * t, t3 = t2 * t, s = 1.0 - t;
+  return vec4(s * s * s, 3.0 * t3 - 6.0 * t2 + 4.0, -3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0, t3) / 6.0;
+}

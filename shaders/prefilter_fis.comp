@@ -11,38 +11,7 @@ layout(std430, binding = 2) readonly buffer Samples { vec4 samples[]; };  // (l,
 layout(std430, binding = 3) writeonly buffer Result { vec4 result[]; };
 layout(push_constant) uniform Params { uint size; uint sampleCount; uint levelCount; } params;
 
-vec3 texel(int level, int face, int x, int y) {
-  int n = int(levels[level].x);
-  return texels[levels[level].y + uint((face * n + y) * n + x)].rgb;
-}
-
-// fetchTexelAcrossEdges: past an edge, the extended texel center projected onto the
-// neighbouring face, interpolated there.
-vec3 fetch(int level, int face, int x, int y) {
-  int n = int(levels[level].x);
-  if (x >= 0 && y >= 0 && x < n && y < n) return texel(level, face, x, y);
-  float inv = 2.0 / float(n);
-  vec3 p = directionToFace(faceToDirection(face, (float(x) + 0.5) * inv - 1.0, (float(y) + 0.5) * inv - 1.0));
-  int f = int(p.x);
-  float fx = clamp(p.y * float(n) - 0.5, 0.0, float(n - 1)), fy = clamp(p.z * float(n) - 0.5, 0.0, float(n - 1));
-  int x0 = min(int(fx), n - 1), y0 = min(int(fy), n - 1);
-  int x1 = min(x0 + 1, n - 1), y1 = min(y0 + 1, n - 1);
-  float wx = fx - float(x0), wy = fy - float(y0);
-  return mix(mix(texel(level, f, x0, y0), texel(level, f, x1, y0), wx),
-             mix(texel(level, f, x0, y1), texel(level, f, x1, y1), wx), wy);
-}
-
-vec3 sampleBilinear(int level, vec3 dir) {
-  int n = int(levels[level].x);
-  vec3 p = directionToFace(dir);
-  int face = int(p.x);
-  float fx = p.y * float(n) - 0.5, fy = p.z * float(n) - 0.5;
-  float flx = floor(fx), fly = floor(fy);
-  int x0 = int(flx), y0 = int(fly);
-  float wx = fx - flx, wy = fy - fly;
-  return mix(mix(fetch(level, face, x0, y0), fetch(level, face, x0 + 1, y0), wx),
-             mix(fetch(level, face, x0, y0 + 1), fetch(level, face, x0 + 1, y0 + 1), wx), wy);
-}
+#include "cube_buffer.glsl"
 
 vec3 sampleTrilinear(float lod, vec3 dir) {
   lod = clamp(lod, 0.0, float(params.levelCount - 1u));

@@ -86,6 +86,9 @@ class Source {
   }
 
   const Image* equirect() const { return equirect_; }
+  const std::array<Image, kFaceCount>* cubeLevel() const {
+    return cube_ ? &cube_->levels[level_] : nullptr;
+  }
 
   // Samples per output texel side: at most half a source texel apart. The cubic B-spline's
   // spectrum (sinc^4) then keeps the error of integrating it with these samples below 1e-3.
@@ -117,13 +120,14 @@ std::vector<float> subcellSolidAngles(int sub) {
   return weights;
 }
 
-CubeResamplePlan planEquirectToCube(const Image& equirect, int size) {
-  Environment env;
-  env.equirect = equirect;
+CubeResamplePlan planResampleToCube(const Environment& env, int size) {
   const double density = cubeDensity(size);
   const Source source(env, density, 0.0f);
   CubeResamplePlan plan;
-  plan.equirect = *source.equirect();
+  if (source.equirect())
+    plan.equirect = *source.equirect();
+  else
+    plan.cubeLevel = *source.cubeLevel();
   plan.samplesPerSide = source.samplesPerSide(density);
   plan.weights = subcellSolidAngles(size * plan.samplesPerSide);
   return plan;

@@ -86,6 +86,27 @@ TEST(Gpu, EquirectToCubeMatchesTheCpu) {
   }
 }
 
+TEST(Gpu, CubeToCubeMatchesTheCpu) {
+  // A 64^2 cube source (with a bright spot on a face edge) to 32^2 and 16^2, rotated or not.
+  CubeMap cube = cubeFromFunction(64, [](glm::vec3 d) {
+    const glm::vec3 spot = glm::normalize(glm::vec3(1.0f, 0.3f, 1.0f));
+    return glm::vec3(0.2f + d.y * d.y, 0.5f, 0.3f) +
+           glm::vec3(50.0f) * std::pow(std::max(glm::dot(d, spot), 0.0f), 400.0f);
+  });
+  const Environment env = cubeEnvironment(cube);
+  for (int size : {32, 16})
+    for (float rotate : {0.0f, 30.0f}) {
+      const CubeMap g = gpu::resampleToCube(context(), env, size, rotate),
+                    c = resampleToCube(env, size, rotate);
+      double worst = 0.0;
+      for (int f = 0; f < 6; ++f)
+        for (std::size_t i = 0; i < c.levels[0][f].pixels.size(); ++i)
+          worst =
+              std::max(worst, maxRelativeError(g.levels[0][f].pixels[i], c.levels[0][f].pixels[i]));
+      EXPECT_LT(worst, 1e-4) << size << " " << rotate;
+    }
+}
+
 TEST(Gpu, MipChainMatchesTheCpu) {
   CubeMap c = resampleToCube(loadEnvironment(hdriPath("sunset").string()).environment, 64);
   CubeMap g = c;

@@ -42,8 +42,8 @@ class Context;
 }
 
 // Runs every stage on all cores. The result does not depend on the number of threads. With a
-// GPU context, every stage runs as compute shaders (equirect sources; a cube-map source is
-// resampled on the CPU, and the ring prefilter combines its passes on the host).
+// GPU context, every stage runs as compute shaders (the ring prefilter combines its passes on
+// the host).
 BakeResult bakeEnvironment(const Environment& env, const BakeOptions& options,
                            const ProgressFn& progress = {}, gpu::Context* device = nullptr);
 

@@ -51,7 +51,7 @@ class Context {
 // GPU versions of buildMipChain (full chain), resampleToCube, prefilterGgx (both methods),
 // integrateDfgLut, convolveIrradiance and projectSh9.
 void buildMipChain(Context& context, CubeMap& cube);
-// resampleToCube; on the GPU for equirect sources (cube sources are resampled on the CPU).
+// resampleToCube, for equirect and cube-map sources.
 CubeMap resampleToCube(Context& context, const Environment& source, int size,
                        float rotateDegrees = 0.0f);
 // prefilterGgx with either method: direct quadrature in rings (the passes on the device, their

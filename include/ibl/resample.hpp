@@ -1,6 +1,7 @@
 #pragma once
 // Area-filtered resampling between equirectangular maps and cube maps, with an optional
 // rotation about +Y.
+#include <array>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -24,15 +25,16 @@ CubeMap resampleToCube(const Environment& source, int size, float rotateDegrees 
 // Solid angles of the sub x sub equal cells of a cube face (row by row), exact.
 std::vector<float> subcellSolidAngles(int sub);
 
-// What resampleToCube integrates for an unrotated equirect source, for the GPU path: the
-// reduced source, the samples per texel side k, and the solid angles of the (size k)^2
+// What resampleToCube integrates, for the GPU path: the reduced source (a panorama, or one
+// level of a cube map), the samples per texel side k, and the solid angles of the (size k)^2
 // sub-cells of a face.
 struct CubeResamplePlan {
-  Image equirect;
+  Image equirect;                           // equirect sources
+  std::array<Image, kFaceCount> cubeLevel;  // cube sources
   int samplesPerSide = 1;
   std::vector<float> weights;
 };
-CubeResamplePlan planEquirectToCube(const Image& equirect, int size);
+CubeResamplePlan planResampleToCube(const Environment& source, int size);
 
 // Resamples any environment to an equirectangular map of width x width/2, with the same
 // area filtering.

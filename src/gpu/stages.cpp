@@ -116,11 +116,20 @@ std::array<Image, kFaceCount> unflatten(const std::vector<glm::vec4>& texels, in
 }  // namespace
 
 CubeMap resampleToCube(Context& context, const Environment& env, int size, float rotateDegrees) {
-  if (env.isCube()) return ibl::resampleToCube(env, size, rotateDegrees);
-  const CubeResamplePlan plan = planEquirectToCube(env.equirect, size);
-  std::vector<glm::vec4> panorama;
-  for (const auto& p : plan.equirect.pixels) panorama.emplace_back(p, 1.0f);
-  Buffer source = Buffer::of(context, panorama), weights = Buffer::of(context, plan.weights),
+  const CubeResamplePlan plan = planResampleToCube(env, size);
+  // The source texels: the panorama, or the cube level (with its one-entry level table).
+  std::vector<glm::vec4> texels;
+  std::vector<glm::uvec2> levelTable{{0u, 0u}};
+  if (env.isCube()) {
+    CubeMap level;
+    level.levels = {plan.cubeLevel};
+    texels = flatten(level, nullptr);
+    levelTable[0].x = static_cast<std::uint32_t>(plan.cubeLevel[0].width);
+  } else {
+    for (const auto& p : plan.equirect.pixels) texels.emplace_back(p, 1.0f);
+  }
+  Buffer source = Buffer::of(context, texels), levels = Buffer::of(context, levelTable),
+         weights = Buffer::of(context, plan.weights),
          result(context, static_cast<std::size_t>(6) * size * size * sizeof(glm::vec4));
   // Directions are looked up in the source's frame: the inverse of the rotation about +Y.
   const glm::mat3 toSource = glm::transpose(rotationY(rotateDegrees));
@@ -130,10 +139,10 @@ CubeMap resampleToCube(Context& context, const Environment& env, int size, float
   } params{
       static_cast<std::uint32_t>(size),
       static_cast<std::uint32_t>(plan.samplesPerSide),
-      static_cast<std::uint32_t>(plan.equirect.width),
-      static_cast<std::uint32_t>(plan.equirect.height),
+      static_cast<std::uint32_t>(env.isCube() ? 0 : plan.equirect.width),
+      static_cast<std::uint32_t>(env.isCube() ? 0 : plan.equirect.height),
       {glm::vec4(toSource[0], 0.0f), glm::vec4(toSource[1], 0.0f), glm::vec4(toSource[2], 0.0f)}};
-  dispatch(context, "equirect_to_cube", {&source, &weights, &result}, bytesOf(params),
+  dispatch(context, "resample_to_cube", {&source, &levels, &weights, &result}, bytesOf(params),
            groups(size, 8), groups(size, 8), 6);
   CubeMap out;
   out.levels.push_back(

@@ -1,30 +1,26 @@
 #version 450
-// Equirect -> cube (resampleToCube in src/resample.cpp): each texel integrates the
-// cubic B-spline reconstruction of the (reduced) panorama with k x k samples weighted by the
-// exact sub-cell solid angles the host computed.
+// Equirect or cube -> cube (resampleToCube in src/resample.cpp): each texel integrates the
+// cubic B-spline reconstruction of the (reduced) source, a panorama or one cube level, with
+// k x k samples weighted by the exact sub-cell solid angles the host computed.
 #extension GL_GOOGLE_include_directive : require
 #include "cube.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 0) readonly buffer Panorama { vec4 panorama[]; };
-layout(std430, binding = 1) readonly buffer Weights { float weights[]; };
-layout(std430, binding = 2) writeonly buffer Result { vec4 result[]; };
+layout(std430, binding = 0) readonly buffer Source { vec4 texels[]; };  // panorama or cube level
+layout(std430, binding = 1) readonly buffer Levels { uvec2 levels[]; };  // cube: (size, 0)
+layout(std430, binding = 2) readonly buffer Weights { float weights[]; };
+layout(std430, binding = 3) writeonly buffer Result { vec4 result[]; };
 layout(push_constant) uniform Params {
-  uint size, k, width, height;
+  uint size, k, width, height;  // width 0: a cube source
   vec4 toSource[3];  // columns of the inverse rotation about +Y (rotationY in resample.cpp)
 } params;
-
-// cubicBSplineWeights in cubemap.hpp.
-vec4 bspline(float t) {
-  float t2 = t * t, t3 = t2 * t, s = 1.0 - t;
-  return vec4(s * s * s, 3.0 * t3 - 6.0 * t2 + 4.0, -3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0, t3) / 6.0;
-}
+#include "cube_buffer.glsl"
 
 // sampleEquirectCubic in equirect.cpp: wraps in u, clamps at the poles.
 vec3 sampleEquirectCubic(float u, float v) {
   int w = int(params.width), h = int(params.height);
   float fx = u * float(w) - 0.5, fy = v * float(h) - 0.5;
   float flx = floor(fx), fly = floor(fy);
-  vec4 wx = bspline(fx - flx), wy = bspline(fy - fly);
+  vec4 wx = cubicBSplineWeights(fx - flx), wy = cubicBSplineWeights(fy - fly);
   int x0 = int(flx) - 1, y0 = int(fly) - 1;
   vec3 sum = vec3(0.0);
   for (int j = 0; j < 4; ++j) {
@@ -33,11 +29,19 @@ vec3 sampleEquirectCubic(float u, float v) {
     for (int i = 0; i < 4; ++i) {
       int x = (x0 + i) % w;
       if (x < 0) x += w;
-      row += panorama[y * w + x].rgb * wx[i];
+      row += texels[y * w + x].rgb * wx[i];
     }
     sum += row * wy[j];
   }
   return sum;
+}
+
+vec3 sampleSource(vec3 d) {
+  if (params.width == 0u) return sampleCubic(0, d);
+  // directionToEquirect: u = 0.5 + atan2(z, x) / 2 pi, v = atan2(sqrt(x^2 + z^2), y) / pi.
+  float u = 0.5 + atan(d.z, d.x) / (2.0 * kPiCube);
+  float v = atan(sqrt(d.x * d.x + d.z * d.z), d.y) / kPiCube;
+  return sampleEquirectCubic(u, v);
 }
 
 void main() {
@@ -55,11 +59,8 @@ void main() {
       float sc = (float(i) + 0.5) * inv - 1.0;
       vec3 d = mat3(params.toSource[0].xyz, params.toSource[1].xyz, params.toSource[2].xyz) *
                faceToDirection(int(face), sc, tc);
-      // directionToEquirect: u = 0.5 + atan2(z, x) / 2 pi, v = atan2(sqrt(x^2 + z^2), y) / pi.
-      float u = 0.5 + atan(d.z, d.x) / (2.0 * kPiCube);
-      float v = atan(sqrt(d.x * d.x + d.z * d.z), d.y) / kPiCube;
       float w = weights[j * sub + i];
-      sum += sampleEquirectCubic(u, v) * w;
+      sum += sampleSource(d) * w;
       wsum += w;
     }
   }
