@@ -139,11 +139,12 @@ CubeMap resampleToCube(Context& context, const Environment& env, int size, float
   } params{
       static_cast<std::uint32_t>(size),
       static_cast<std::uint32_t>(plan.samplesPerSide),
-      static_cast<std::uint32_t>(env.isCube() ? 0 : plan.equirect.width),
-      static_cast<std::uint32_t>(env.isCube() ? 0 : plan.equirect.height),
+      static_cast<std::uint32_t>(plan.equirect.width),
+      static_cast<std::uint32_t>(plan.equirect.height),
       {glm::vec4(toSource[0], 0.0f), glm::vec4(toSource[1], 0.0f), glm::vec4(toSource[2], 0.0f)}};
-  dispatch(context, "resample_to_cube", {&source, &levels, &weights, &result}, bytesOf(params),
-           groups(size, 8), groups(size, 8), 6);
+  dispatch(context, env.isCube() ? "cube_to_cube" : "equirect_to_cube",
+           {&source, &levels, &weights, &result}, bytesOf(params), groups(size, 8), groups(size, 8),
+           6);
   CubeMap out;
   out.levels.push_back(
       unflatten(result.read<glm::vec4>(static_cast<std::size_t>(6) * size * size), size));

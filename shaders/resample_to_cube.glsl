@@ -1,16 +1,14 @@
-#version 450
 // Equirect or cube -> cube (resampleToCube in src/resample.cpp): each texel integrates the
 // cubic B-spline reconstruction of the (reduced) source, a panorama or one cube level, with
-// k x k samples weighted by the exact sub-cell solid angles the host computed.
-#extension GL_GOOGLE_include_directive : require
-#include "cube.glsl"
+// k x k samples weighted by the exact sub-cell solid angles the host computed. Included by
+// equirect_to_cube.comp and cube_to_cube.comp, which define CUBE_SOURCE 0 or 1. Needs cube.glsl.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) readonly buffer Source { vec4 texels[]; };  // panorama or cube level
 layout(std430, binding = 1) readonly buffer Levels { uvec2 levels[]; };  // cube: (size, 0)
 layout(std430, binding = 2) readonly buffer Weights { float weights[]; };
 layout(std430, binding = 3) writeonly buffer Result { vec4 result[]; };
 layout(push_constant) uniform Params {
-  uint size, k, width, height;  // width 0: a cube source
+  uint size, k, width, height;  // width, height: of the panorama
   vec4 toSource[3];  // columns of the inverse rotation about +Y (rotationY in resample.cpp)
 } params;
 #include "cube_buffer.glsl"
@@ -37,11 +35,14 @@ vec3 sampleEquirectCubic(float u, float v) {
 }
 
 vec3 sampleSource(vec3 d) {
-  if (params.width == 0u) return sampleCubic(0, d);
+#if CUBE_SOURCE
+  return sampleCubic(0, d);
+#else
   // directionToEquirect: u = 0.5 + atan2(z, x) / 2 pi, v = atan2(sqrt(x^2 + z^2), y) / pi.
   float u = 0.5 + atan(d.z, d.x) / (2.0 * kPiCube);
   float v = atan(sqrt(d.x * d.x + d.z * d.z), d.y) / kPiCube;
   return sampleEquirectCubic(u, v);
+#endif
 }
 
 void main() {
