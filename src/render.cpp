@@ -117,6 +117,21 @@ class EnvironmentSampler {
   float texelArea_;
 };
 
+// A ray from origin along dir, from distance 0 to infinity, seeing every geometry.
+RTCRay embreeRay(glm::vec3 origin, glm::vec3 dir) {
+  RTCRay ray{};
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.dir_x = dir.x;
+  ray.dir_y = dir.y;
+  ray.dir_z = dir.z;
+  ray.tnear = 0.0f;
+  ray.tfar = INFINITY;
+  ray.mask = 0xffffffffu;
+  return ray;
+}
+
 // Embree scene of the meshes (one geometry each) and the spheres (one geometry).
 class RayTracer {
  public:
@@ -172,15 +187,7 @@ class RayTracer {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
-    rh.ray.org_x = r.origin.x;
-    rh.ray.org_y = r.origin.y;
-    rh.ray.org_z = r.origin.z;
-    rh.ray.dir_x = r.direction.x;
-    rh.ray.dir_y = r.direction.y;
-    rh.ray.dir_z = r.direction.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = INFINITY;
-    rh.ray.mask = 0xffffffffu;
+    rh.ray = embreeRay(r.origin, r.direction);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(handle_, &context, &rh);
     Hit h;
@@ -198,16 +205,7 @@ class RayTracer {
   bool occluded(glm::vec3 origin, glm::vec3 dir) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay ray{};
-    ray.org_x = origin.x;
-    ray.org_y = origin.y;
-    ray.org_z = origin.z;
-    ray.dir_x = dir.x;
-    ray.dir_y = dir.y;
-    ray.dir_z = dir.z;
-    ray.tnear = 0.0f;
-    ray.tfar = INFINITY;
-    ray.mask = 0xffffffffu;
+    RTCRay ray = embreeRay(origin, dir);
     rtcOccluded1(handle_, &context, &ray);
     return ray.tfar < 0.0f;
   }

@@ -86,7 +86,6 @@ TEST(Render, WhiteFurnace) {
   for (float r : {0.5f, 1.0f}) {
     const Scene s = sphere(glm::vec3(1.0f), 1.0f, r);
     RenderOptions o;
-    o.spp = 1;
     o.mode = RenderMode::Reference;
     o.spp = 4096;
     const RenderResult ref = renderScene(s, cam, b.result, b.options, o);

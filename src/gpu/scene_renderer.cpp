@@ -28,12 +28,6 @@ struct FrameUniforms {
 };
 static_assert(sizeof(FrameUniforms) == 64 + 9 * 16 + 9 * 16);
 
-// The push constants of shaders/scene.frag.
-struct MaterialConstants {
-  glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
-  std::uint32_t textureMask;
-};
-
 // Segments around the polyhedron drawn for a sphere (the fragment shader ray traces the sphere
 // inside it, so that silhouettes and normals are exact).
 constexpr int kSphereProxySegments = 48;
@@ -175,10 +169,30 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake
   };
   for (const Mesh& m : scene.meshes) addMesh(m, glm::vec4(0.0f));
   for (const Sphere& s : scene.spheres) addMesh(sphereProxy(s), glm::vec4(s.center, s.radius));
-  materials = scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
   for (const Texture& t : scene.textures)
     textures.push_back(t.texels.empty() ? nullptr : uploadTexture(context, t));
   textures.push_back(uploadTexture(context, Texture{1, 1, {glm::vec4(1.0f)}}));
+  // Materials: their push constants, and per texture slot the scene's texture or white.
+  const std::vector<Material> sceneMaterials =
+      scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
+  std::vector<std::array<const DeviceImage*, 5>> materialTextures;
+  for (const Material& mat : sceneMaterials) {
+    MaterialConstants mc{};
+    mc.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
+    mc.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
+    mc.scales = glm::vec4(mat.normalScale, mat.occlusionStrength, 0.0f, 0.0f);
+    const std::array<int, 5> indices{mat.baseColorTexture, mat.metallicRoughnessTexture,
+                                     mat.normalTexture, mat.occlusionTexture, mat.emissiveTexture};
+    std::array<const DeviceImage*, 5> images{};
+    for (std::size_t b = 0; b < 5; ++b) {
+      const int i = indices[b];
+      const bool valid = i >= 0 && static_cast<std::size_t>(i) + 1 < textures.size() && textures[i];
+      images[b] = valid ? textures[i].get() : textures.back().get();
+      if (valid) mc.textureMask |= 1u << b;
+    }
+    materials.push_back(mc);
+    materialTextures.push_back(images);
+  }
 
   // The bake.
   specular = uploadCube(context, bake.specular);
@@ -262,14 +276,8 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake
     writes.push_back(imageWrite(frameSet, b + 1, &frameImages[b]));
   std::vector<std::array<VkDescriptorImageInfo, 5>> materialImages(materials.size());
   for (std::size_t m = 0; m < materials.size(); ++m) {
-    const Material& mat = materials[m];
-    const std::array<int, 5> indices{mat.baseColorTexture, mat.metallicRoughnessTexture,
-                                     mat.normalTexture, mat.occlusionTexture, mat.emissiveTexture};
     for (std::size_t b = 0; b < 5; ++b) {
-      const int i = indices[b];
-      const bool valid = i >= 0 && static_cast<std::size_t>(i) + 1 < textures.size() && textures[i];
-      materialImages[m][b] = {textureSampler, (valid ? textures[i] : textures.back())->view(),
-                              readable};
+      materialImages[m][b] = {textureSampler, materialTextures[m][b]->view(), readable};
       writes.push_back(
           imageWrite(materialSets[m], static_cast<std::uint32_t>(b), &materialImages[m][b]));
     }
@@ -505,22 +513,12 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t.scenePipeline);
   for (const DrawMesh& m : meshes) {
-    const int mi = std::clamp(m.material, 0, static_cast<int>(materials.size()) - 1);
-    const Material& mat = materials[static_cast<std::size_t>(mi)];
-    MaterialConstants mc{};
-    mc.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
-    mc.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
-    mc.scales = glm::vec4(mat.normalScale, mat.occlusionStrength, 0.0f, 0.0f);
+    const auto mi =
+        static_cast<std::size_t>(std::clamp(m.material, 0, static_cast<int>(materials.size()) - 1));
+    MaterialConstants mc = materials[mi];
     mc.sphere = m.sphere;
-    const std::array<int, 5> indices{mat.baseColorTexture, mat.metallicRoughnessTexture,
-                                     mat.normalTexture, mat.occlusionTexture, mat.emissiveTexture};
-    for (std::uint32_t b = 0; b < 5; ++b) {
-      const int i = indices[b];
-      if (i >= 0 && static_cast<std::size_t>(i) + 1 < textures.size() && textures[i])
-        mc.textureMask |= 1u << b;
-    }
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 1, 1,
-                            &materialSets[static_cast<std::size_t>(mi)], 0, nullptr);
+                            &materialSets[mi], 0, nullptr);
     vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(mc), &mc);
     const VkBuffer vertexBuffer = static_cast<VkBuffer>(m.vertices->handle());
     const VkDeviceSize offset = 0;

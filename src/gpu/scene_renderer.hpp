@@ -11,6 +11,12 @@
 
 namespace ibl::gpu {
 
+// The push constants of shaders/scene.frag: a material, and the sphere a mesh bounds.
+struct MaterialConstants {
+  glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
+  std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
+};
+
 struct SceneRenderer::Impl {
   Context& context;
   VkDevice device;
@@ -22,7 +28,7 @@ struct SceneRenderer::Impl {
     glm::vec4 sphere{0.0f};  // center, radius of the sphere this mesh bounds (radius 0: none)
   };
   std::vector<DrawMesh> meshes;
-  std::vector<Material> materials;
+  std::vector<MaterialConstants> materials;            // sphere left 0
   std::vector<std::unique_ptr<DeviceImage>> textures;  // the scene's, then a 1x1 white one
   // The bake.
   std::unique_ptr<DeviceImage> specular, irradiance, source, dfg;
