@@ -8,10 +8,10 @@
 #include <unistd.h>
 
 #include "commands.hpp"
-#include "ibl/bake.hpp"
-#include "ibl/default_environment.hpp"
-#include "ibl/error.hpp"
-#include "ibl/gpu.hpp"
+#include "ibl/bake/bake.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/env/default_environment.hpp"
+#include "ibl/gpu/compute.hpp"
 
 namespace ibl::cli {
 

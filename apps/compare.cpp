@@ -6,11 +6,11 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "ibl/color.hpp"
-#include "ibl/error.hpp"
-#include "ibl/file_io.hpp"
-#include "ibl/image_io.hpp"
-#include "ibl/stats.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/core/stats.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/math/color.hpp"
 
 namespace ibl::cli {
 

@@ -8,13 +8,13 @@
 #include <fmt/core.h>
 
 #include "commands.hpp"
-#include "ibl/cubemap.hpp"
-#include "ibl/environment.hpp"
-#include "ibl/error.hpp"
-#include "ibl/file_io.hpp"
-#include "ibl/image_io.hpp"
-#include "ibl/ktx2.hpp"
-#include "ibl/resample.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/env/cubemap.hpp"
+#include "ibl/env/environment.hpp"
+#include "ibl/env/resample.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/io/ktx2.hpp"
 
 namespace ibl::cli {
 

@@ -7,11 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "ibl/color.hpp"
-#include "ibl/environment.hpp"
-#include "ibl/error.hpp"
-#include "ibl/image_io.hpp"
-#include "ibl/stats.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/core/stats.hpp"
+#include "ibl/env/environment.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/math/color.hpp"
 
 namespace ibl::cli {
 

@@ -7,8 +7,8 @@
 #include <tbb/global_control.h>
 
 #include "commands.hpp"
-#include "ibl/error.hpp"
-#include "ibl/version.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/core/version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"ibl: image-based lighting toolkit (bake, convert and inspect HDR environments)"};

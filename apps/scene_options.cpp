@@ -6,10 +6,10 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "ibl/default_environment.hpp"
-#include "ibl/error.hpp"
-#include "ibl/file_io.hpp"
-#include "ibl/image_io.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/env/default_environment.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
 
 namespace ibl::cli {
 

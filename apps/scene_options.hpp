@@ -6,10 +6,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "ibl/bake.hpp"
-#include "ibl/camera.hpp"
-#include "ibl/render.hpp"
-#include "ibl/scene.hpp"
+#include "ibl/bake/bake.hpp"
+#include "ibl/render/camera.hpp"
+#include "ibl/render/renderer.hpp"
+#include "ibl/render/scene.hpp"
 
 namespace ibl::cli {
 

@@ -4,7 +4,7 @@
 #include <fmt/core.h>
 
 #include "commands.hpp"
-#include "ibl/gpu_view.hpp"
+#include "ibl/gpu/viewer.hpp"
 #include "scene_options.hpp"
 
 namespace ibl::cli {

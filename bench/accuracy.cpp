@@ -17,13 +17,13 @@
 
 #include <fmt/core.h>
 
-#include "ibl/brdf.hpp"
-#include "ibl/color.hpp"
-#include "ibl/dfg.hpp"
-#include "ibl/environment.hpp"
-#include "ibl/prefilter.hpp"
-#include "ibl/resample.hpp"
-#include "ibl/sh.hpp"
+#include "ibl/bake/dfg.hpp"
+#include "ibl/bake/prefilter.hpp"
+#include "ibl/env/environment.hpp"
+#include "ibl/env/resample.hpp"
+#include "ibl/math/brdf.hpp"
+#include "ibl/math/color.hpp"
+#include "ibl/math/sh.hpp"
 
 namespace {
 

@@ -4,11 +4,11 @@
 
 #include <benchmark/benchmark.h>
 
-#include "ibl/bake.hpp"
-#include "ibl/dfg.hpp"
-#include "ibl/file_io.hpp"
-#include "ibl/image_io.hpp"
-#include "ibl/resample.hpp"
+#include "ibl/bake/bake.hpp"
+#include "ibl/bake/dfg.hpp"
+#include "ibl/env/resample.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
 
 namespace {
 

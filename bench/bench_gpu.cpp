@@ -7,10 +7,10 @@
 
 #include <benchmark/benchmark.h>
 
-#include "ibl/bake.hpp"
-#include "ibl/gpu.hpp"
-#include "ibl/gpu_view.hpp"
-#include "ibl/resample.hpp"
+#include "ibl/bake/bake.hpp"
+#include "ibl/env/resample.hpp"
+#include "ibl/gpu/compute.hpp"
+#include "ibl/gpu/viewer.hpp"
 
 namespace {
 

@@ -2,8 +2,8 @@
 // reference mode's throughput (samples per second) on a sphere, on all cores.
 #include <benchmark/benchmark.h>
 
-#include "ibl/bake.hpp"
-#include "ibl/render.hpp"
+#include "ibl/bake/bake.hpp"
+#include "ibl/render/renderer.hpp"
 
 namespace {
 

@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <span>
 
-#include "ibl/error.hpp"
-#include "ibl/image_io.hpp"
-#include "ibl/ktx2.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/io/ktx2.hpp"
 
 #define IBL_FUZZ_hdr 1
 #define IBL_FUZZ_exr 2

@@ -8,9 +8,9 @@
 #include <ImfOutputFile.h>
 #include <ImfTiledOutputFile.h>
 
-#include "ibl/file_io.hpp"
-#include "ibl/image_io.hpp"
-#include "ibl/ktx2.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/io/ktx2.hpp"
 
 int main(int argc, char** argv) {
   namespace fs = std::filesystem;

@@ -16,7 +16,7 @@ ninja -C build
 ctest --test-dir build --output-on-failure -j "$jobs"
 
 echo "== clang-format" >&2
-git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run --Werror
+git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format --dry-run --Werror
 
 echo "== fuzzing the readers" >&2
 bash scripts/fuzz.sh "${IBL_FUZZ_SECONDS:-15}"

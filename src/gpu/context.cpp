@@ -6,10 +6,10 @@
 
 #include <fmt/format.h>
 
-#include "gpu/compute.hpp"
+#include "gpu/buffers.hpp"
 #include "gpu/spirv.hpp"
 #include "gpu/vulkan.hpp"
-#include "ibl/error.hpp"
+#include "ibl/core/error.hpp"
 
 namespace ibl::gpu {
 

@@ -12,14 +12,14 @@
 #include <glm/trigonometric.hpp>
 
 #include "gpu/scene_renderer.hpp"
-#include "ibl/error.hpp"
-#include "ibl/pixel_formats.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/io/pixel_formats.hpp"
 
 namespace ibl::gpu {
 
 namespace {
 
-// shaders/frame.glsl, std140.
+// shaders/view/frame.glsl, std140.
 struct FrameUniforms {
   glm::mat4 viewProjection;
   glm::vec4 cameraPosition, cameraForward, cameraRight, cameraUp, viewport, background, lods;
@@ -41,7 +41,7 @@ Mesh sphereProxy(const Sphere& sphere) {
   return tessellateSphere(outer, kSphereProxySegments);
 }
 
-// Vertex layout of shaders/scene.vert: position, normal, tangent, uv.
+// Vertex layout of shaders/view/scene.vert: position, normal, tangent, uv.
 constexpr std::uint32_t kVertexFloats = 3 + 3 + 4 + 2;
 
 std::vector<std::uint8_t> bytesOfFloats(const std::vector<float>& v) {
@@ -202,10 +202,8 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake
   specularMaxLod = static_cast<float>(bake.specular.levelCount() - 1);
   skyboxMaxLod = static_cast<float>(bake.source.levelCount() - 1);
   frostbiteMapping = bakeOptions.specular.mapping == RoughnessMapping::Frostbite;
-  for (int k = 0; k < 9; ++k) {
-    const int band = k == 0 ? 0 : (k < 4 ? 1 : 2);
-    shIrradianceOverPi[k] = bake.sh[k] * (kShCosineLobe[band] / std::numbers::pi_v<float>);
-  }
+  for (int k = 0; k < 9; ++k)
+    shIrradianceOverPi[k] = bake.sh[k] * (shCosineLobe(shBand(k)) / std::numbers::pi_v<float>);
 
   cubeSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, true);
   lutSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
@@ -483,12 +481,9 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   u.background = glm::vec4(o.backgroundColor, o.backgroundEnvironment ? 1.0f : 0.0f);
   u.lods = glm::vec4(specularMaxLod, frostbiteMapping ? 1.0f : 0.0f,
                      std::clamp(skyboxLod, 0.0f, skyboxMaxLod), 0.0f);
-  u.terms = glm::ivec4(o.only == ShadingTerms::Both      ? 0
-                       : o.only == ShadingTerms::Diffuse ? 1
-                                                         : 2,
-                       o.multipleScattering, o.dominantDirections, o.specularOcclusion);
-  u.models = glm::ivec4(o.diffuse == DiffuseModel::Disney ? 0 : 1,
-                        o.irradiance == IrradianceSource::Cube ? 0 : 1,
+  const shared::SplitSumSwitches s = splitSumSwitches(o);  // as the CPU's shadeSplitSum
+  u.terms = glm::ivec4(s.terms, s.multipleScattering, s.dominantDirections, s.specularOcclusion);
+  u.models = glm::ivec4(s.disneyDiffuse ? 0 : 1, o.irradiance == IrradianceSource::Cube ? 0 : 1,
                         standardSampleLocations ? t.samples : 0, 0);
   for (int k = 0; k < 9; ++k) u.sh[k] = glm::vec4(shIrradianceOverPi[k], 0.0f);
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));

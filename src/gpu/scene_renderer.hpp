@@ -5,13 +5,13 @@
 #include <optional>
 #include <vector>
 
-#include "gpu/compute.hpp"
+#include "gpu/buffers.hpp"
 #include "gpu/vulkan.hpp"
-#include "ibl/gpu_view.hpp"
+#include "ibl/gpu/viewer.hpp"
 
 namespace ibl::gpu {
 
-// The push constants of shaders/scene.frag: a material, and the sphere a mesh bounds.
+// The push constants of shaders/view/scene.frag: a material, and the sphere a mesh bounds.
 struct MaterialConstants {
   glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
   std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b

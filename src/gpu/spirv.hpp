@@ -1,5 +1,5 @@
 #pragma once
-// The compute shaders (shaders/*.comp), compiled to SPIR-V by glslc at build time.
+// The compute shaders (shaders/{env,bake}/*.comp), compiled to SPIR-V by glslc at build time.
 #include <cstdint>
 #include <span>
 #include <string_view>

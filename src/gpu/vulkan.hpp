@@ -11,7 +11,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "ibl/gpu.hpp"
+#include "ibl/gpu/compute.hpp"
 
 namespace ibl::gpu {
 

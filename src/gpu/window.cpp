@@ -10,7 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "gpu/scene_renderer.hpp"
-#include "ibl/error.hpp"
+#include "ibl/core/error.hpp"
 
 namespace ibl::gpu {
 

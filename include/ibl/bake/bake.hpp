@@ -1,0 +1,81 @@
+#pragma once
+// The bake: an HDR environment in, the assets of image-based lighting out (source cube with
+// mips, GGX-prefiltered specular cube, irradiance cube, SH9, DFG table), each written as KTX2
+// (and optionally EXR / HDR), a preview, and a manifest stating every convention.
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ibl/bake/prefilter.hpp"
+#include "ibl/env/environment.hpp"
+#include "ibl/io/pixel_formats.hpp"
+#include "ibl/math/sh.hpp"
+
+namespace ibl {
+
+struct BakeOptions {
+  PrefilterOptions specular;     // size (also the source cube's), levels, mapping, method
+  bool fresnelWeighted = false;  // also bake the C(n, l)-weighted pair (F0 = 0 and F0 = 1)
+  int irradianceSize = 32;
+  int dfgSize = 128;
+  int dfgSamples = 512;
+  bool shWindow = false;  // Lanczos-window the SH9 coefficients (deringing)
+  float rotateDegrees = 0.0f;
+};
+
+struct BakeResult {
+  CubeMap source;  // area-resampled source with its full mip chain
+  CubeMap specular;
+  std::vector<LevelMethod> specularLevels;
+  std::optional<CubeMap> specularF0Zero, specularF0One;  // with fresnelWeighted
+  CubeMap irradiance;                                    // E / pi
+  Sh9 sh;                                   // radiance coefficients (windowed if asked)
+  Image dfg;                                // RGB = A, B, diffuse
+  std::map<std::string, double> timingsMs;  // per stage
+  std::string device = "cpu";               // "cpu", or the Vulkan device's name
+};
+
+namespace gpu {
+class Context;
+}
+
+// Runs every stage on all cores. The result does not depend on the number of threads. With a
+// GPU context, every stage runs as compute shaders (the ring prefilter combines its passes on
+// the host).
+BakeResult bakeEnvironment(const Environment& env, const BakeOptions& options,
+                           const ProgressFn& progress = {}, gpu::Context* device = nullptr);
+
+enum class FlatLayout { HCross, VCross, Faces };
+
+struct BakeOutputOptions {
+  PixelFormat format = PixelFormat::Rgba16f;  // KTX2 cube maps (the DFG table is always RGBA16F)
+  bool exr = false;                           // also EXR files
+  bool hdr = false;                           // also Radiance HDR files
+  FlatLayout layout = FlatLayout::HCross;     // of the EXR / HDR cube maps
+  bool preview = true;                        // preview.png (material grid) and PNG views
+};
+
+// Facts about the input, recorded in the manifest.
+struct BakeSource {
+  std::string path;  // "" for the bundled default
+  std::string format;
+  std::string layout;
+  int width = 0, height = 0;
+  InvalidPixelCounts replaced;
+};
+
+// Encodes everything, then writes it into `outDir` (created if missing; when it did not exist,
+// the files appear at once, by renaming a staging directory). Returns the written paths.
+std::vector<std::filesystem::path> writeBakeOutputs(const BakeResult& result,
+                                                    const BakeOptions& options,
+                                                    const BakeOutputOptions& output,
+                                                    const BakeSource& source,
+                                                    const std::filesystem::path& outDir);
+
+// Reads a bake written by writeBakeOutputs back (specular, irradiance, source, DFG, SH9 and the
+// roughness mapping from its manifest), for rendering without baking again.
+BakeResult loadBake(const std::filesystem::path& dir, BakeOptions* options);
+
+}  // namespace ibl

@@ -1,0 +1,34 @@
+#pragma once
+// The DFG (BRDF integration) lookup table of the split-sum approximation.
+//
+// Texel (i, j) of a W x H table has n.v = (i + 0.5) / W and perceptual roughness
+// r = (j + 0.5) / H, row 0 first. For the GGX BRDF with height-correlated Smith visibility and
+// Schlick's Fresnel F = F0 + (f90 - F0) (1 - v.h)^5:
+//   R = A = integral of (1 - (1 - v.h)^5) D V (n.l) dl      (scale of F0)
+//   G = B = integral of (1 - v.h)^5 D V (n.l) dl            (bias, times f90)
+//   B = integral of Fd(v, l) / pi (n.l) dl, Fd = Frostbite's renormalized Disney diffuse
+// so that  specular = prefiltered(r) * (F0 A + f90 B)  and  diffuse = albedo * irradiance * B.
+//
+// Multiple scattering (Kulla & Conty 2017; Fdez-Aguera 2019): a single-scattering GGX lobe
+// reflects E(F0 = 1) = A + B of the energy a white furnace sends it; the missing 1 - (A + B)
+// comes back through further bounces. Scale the single-scattering specular by
+//   1 + F0 (1 / (A + B) - 1)
+// (exact for F0 = 1, and the Fdez-Aguera/Filament approximation for colored F0).
+#include <glm/vec3.hpp>
+
+#include "ibl/core/image.hpp"
+
+namespace ibl {
+
+// (A, B, diffuse) at one (n.v, r) by quasi-Monte Carlo integration over `samples` Hammersley
+// points: visible-normal GGX sampling for A and B (Heitz 2018: the weights F G2 / G1 lie in
+// [0, 1]), cosine sampling for the diffuse term. 512 points: RMS error 1e-3 over the table.
+glm::vec3 integrateDfg(float NoV, float roughness, int samples);
+
+// The whole table (RGB = A, B, diffuse).
+Image integrateDfgLut(int width, int height, int samples);
+
+// Bilinear lookup in a DFG table at (n.v, r).
+glm::vec3 sampleDfgLut(const Image& lut, float NoV, float roughness);
+
+}  // namespace ibl

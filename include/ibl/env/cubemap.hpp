@@ -1,0 +1,78 @@
+#pragma once
+// Cube maps: faces +X, -X, +Y, -Y, +Z, -Z, oriented by the major-axis table of the Vulkan /
+// OpenGL specification (docs/conventions.md), with mip levels, exact texel solid angles and
+// seam-aware filtered lookups.
+#include <array>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ibl/core/image.hpp"
+#include "ibl/shared/cube.h"
+
+namespace ibl {
+
+inline constexpr int kFaceCount = 6;
+inline constexpr std::array<std::string_view, kFaceCount> kFaceNames = {"px", "nx", "py",
+                                                                        "ny", "pz", "nz"};
+
+// The face table and its inverse, defined once for C++ and GLSL in ibl/shared/cube.h:
+// faceToDirection(face, sc, tc) (unnormalized), texelDirection(face, x, y, n) (unit, through a
+// texel center), directionToFace(dir) -> FacePoint {face, s, t} with s, t in [0, 1], and
+// faceAxis(face, which) (the major axis, the directions of growing s and t).
+using shared::directionToFace;
+using shared::faceAxis;
+using shared::FacePoint;
+using shared::faceToDirection;
+using shared::texelDirection;
+
+// Solid angle of the face rectangle [sc0, sc1] x [tc0, tc1] (face-plane coordinates).
+double faceRectSolidAngle(double sc0, double tc0, double sc1, double tc1);
+// Exact solid angle of texel (x, y) of an n x n face.
+double texelSolidAngle(int x, int y, int n);
+
+// floor(log2(size)) + 1: levels of a full chain down to 1 x 1.
+int fullMipCount(int size);
+
+struct CubeMap {
+  std::vector<std::array<Image, kFaceCount>> levels;  // level 0 is the largest
+
+  CubeMap() = default;
+  // Allocates `levelCount` levels, each half the size of the one before, filled with 0.
+  CubeMap(int size, int levelCount);
+
+  int size() const { return levels.empty() ? 0 : levels[0][0].width; }
+  int levelCount() const { return static_cast<int>(levels.size()); }
+  const Image& face(int level, int f) const { return levels[level][f]; }
+  Image& face(int level, int f) { return levels[level][f]; }
+};
+
+// Texel of a level addressed with coordinates that may lie up to a few texels outside the face:
+// those are the value at the texel center extended past the edge, projected onto the
+// neighbouring face and interpolated bilinearly there (or at a corner, on one of the faces).
+glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int face, int x, int y);
+
+// Bilinear lookup in one level, filtering across face edges (no seams).
+glm::vec3 sampleBilinear(const CubeMap& cube, int level, glm::vec3 dir);
+// Cubic B-spline reconstruction in one level (4 x 4 taps, across face edges).
+glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir);
+
+// Weights of the uniform cubic B-spline for the taps at -1, 0, 1, 2 around a sample that lies
+// a fraction t past tap 0 (ibl/shared/cube.h).
+using shared::cubicBSplineWeights;
+
+// Trilinear lookup: bilinear in the two levels around `lod`, blended.
+glm::vec3 sampleTrilinear(const CubeMap& cube, float lod, glm::vec3 dir);
+
+// Replaces levels 1.. with a chain computed from level 0: each texel is the solid-angle
+// weighted mean of its 2 x 2 children, i.e. the exact average of the radiance over the texel's
+// solid angle, so every level integrates to the same power. levelCount 0 means the full chain.
+// The size of level 0 must be a power of two.
+void buildMipChain(CubeMap& cube, int levelCount = 0);
+
+// Integral of the radiance over the sphere (per channel) of one level: sum of L * texel solid
+// angle.
+glm::dvec3 integrateCube(const CubeMap& cube, int level = 0);
+
+}  // namespace ibl

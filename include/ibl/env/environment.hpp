@@ -1,0 +1,80 @@
+#pragma once
+// An HDR environment as loaded from disk (equirectangular or cube map), and the cross and
+// six-face layouts of cube maps.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "ibl/core/image.hpp"
+#include "ibl/env/cubemap.hpp"
+
+namespace ibl {
+
+// How the pixels of an input file or files map to directions.
+enum class Layout {
+  Equirect,  // one 2:1 latitude-longitude image
+  HCross,    // 4:3 horizontal cross
+  VCross,    // 3:4 vertical cross
+  Faces,     // six square images, one per face (path contains "{face}")
+  Cube,      // a KTX2 cube map
+};
+std::string_view layoutName(Layout layout);
+std::optional<Layout> parseLayout(std::string_view name);
+
+struct Environment {
+  Layout layout = Layout::Equirect;  // how it was stored
+  Image equirect;                    // set for Layout::Equirect
+  CubeMap cube;                      // set for every cube layout
+
+  bool isCube() const { return layout != Layout::Equirect; }
+};
+
+// Infers the layout of a single image from its shape (2:1 equirect, 4:3 or 3:4 cross).
+std::optional<Layout> layoutFromShape(int width, int height);
+
+// Cross layouts (faces in their native orientation):
+//   horizontal 4:3         vertical 3:4
+//        +Y                    +Y
+//    -X  +Z  +X  -Z        -X  +Z  +X
+//        -Y                    -Y
+//                              -Z (rotated 180 degrees)
+CubeMap cubeFromCross(const Image& cross, bool vertical, std::string_view name);
+Image crossFromCube(const CubeMap& cube, int level, bool vertical);
+
+// Replaces "{face}" in a path pattern by px, nx, py, ny, pz or nz; a path without "{face}"
+// gets "_px" etc. before its extension.
+std::filesystem::path facePath(const std::filesystem::path& pattern, int face);
+
+struct LoadOptions {
+  std::optional<Layout> layout;  // overrides detection by shape
+};
+
+struct LoadedEnvironment {
+  Environment environment;
+  std::string format;           // "hdr", "exr", "png", "jpg" or "ktx2"
+  InvalidPixelCounts replaced;  // pixels that were NaN, infinite or negative (now 0)
+};
+
+struct DecodedFile;
+
+// Interprets a decoded file as an environment (a 6-face file is a cube map, a single image is
+// laid out by shape or options.layout), without sanitizing. `name` is used in errors.
+Environment environmentFromFile(DecodedFile&& file, const LoadOptions& options,
+                                std::string_view name);
+
+// Replaces NaN, infinite and negative components of every image of an environment by 0.
+InvalidPixelCounts sanitizeEnvironment(Environment& env);
+
+// Decodes an environment from memory (any format, one file), replacing NaN, infinite and
+// negative pixel components by 0.
+LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes,
+                                            std::string_view name, const LoadOptions& options = {});
+
+// Reads an environment in any supported format and layout; NaN, infinite and negative pixel
+// components are replaced by 0 and counted. Throws Error naming the file on any problem.
+LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& options = {});
+
+}  // namespace ibl

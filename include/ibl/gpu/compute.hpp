@@ -1,0 +1,71 @@
+#pragma once
+// The bake's stages as Vulkan compute shaders (shaders/{env,bake}/*.comp), sharing the math of the
+// CPU path: the same formulas (ibl/shared/*.h, compiled as C++ and as GLSL) and the same Hammersley
+// points. Runs on any Vulkan 1.1 device, Mesa's software device (lavapipe) included.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ibl/bake/prefilter.hpp"
+#include "ibl/core/image.hpp"
+#include "ibl/env/cubemap.hpp"
+#include "ibl/env/environment.hpp"
+#include "ibl/math/sh.hpp"
+
+namespace ibl::gpu {
+
+struct DeviceInfo {
+  std::string name;
+  std::string type;  // "discrete", "integrated", "virtual", "cpu", "other"
+  std::uint32_t apiVersion = 0;
+};
+
+// Vulkan devices with a compute queue; empty when there is no Vulkan loader or device.
+std::vector<DeviceInfo> listDevices();
+
+struct ContextOptions {
+  std::vector<std::string> instanceExtensions;  // e.g. the window system's surface extensions
+  bool graphics = false;                        // a queue that also rasterizes (the viewer)
+  bool swapchain = false;                       // VK_KHR_swapchain, to present to a window
+};
+
+// A Vulkan device, queue and the compiled pipelines. Prefers a discrete GPU, then an
+// integrated one, then anything (lavapipe).
+class Context {
+ public:
+  // Throws Error("vulkan: ...") when no device can be used.
+  static std::unique_ptr<Context> create(const ContextOptions& options = {});
+  ~Context();
+  const DeviceInfo& device() const;
+
+  struct Impl;
+  Impl& impl() { return *impl_; }
+
+ private:
+  explicit Context(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+// GPU versions of buildMipChain (full chain), resampleToCube, prefilterGgx (both methods),
+// integrateDfgLut, convolveIrradiance and projectSh9.
+void buildMipChain(Context& context, CubeMap& cube);
+// resampleToCube, for equirect and cube-map sources.
+CubeMap resampleToCube(Context& context, const Environment& source, int size,
+                       float rotateDegrees = 0.0f);
+// prefilterGgx with either method: direct quadrature in rings (the passes on the device, their
+// combination on the host, exactly as the CPU combines them) or filtered importance sampling.
+CubeMap prefilterGgx(Context& context, const CubeMap& source, const PrefilterOptions& options,
+                     std::vector<LevelMethod>* methods = nullptr, const ProgressFn& progress = {});
+// One pass of the direct / ring prefilter (convolvePass in prefilter.hpp).
+ConvolutionSums convolvePass(Context& context, const std::array<Image, kFaceCount>& sourceLevel,
+                             int size, float roughness, PrefilterWeight weight, RadialWindow window,
+                             float cosCap);
+CubeMap prefilterGgxSampled(Context& context, const CubeMap& source,
+                            const PrefilterOptions& options,
+                            std::vector<LevelMethod>* methods = nullptr);
+Image integrateDfgLut(Context& context, int width, int height, int samples);
+CubeMap convolveIrradiance(Context& context, const CubeMap& source, int size, int sourceLevel);
+Sh9 projectSh9(Context& context, const CubeMap& cube, int level);
+
+}  // namespace ibl::gpu

@@ -1,0 +1,48 @@
+#pragma once
+// Decoders and encoders of the image file formats: Radiance HDR, OpenEXR, PNG, JPEG, KTX2.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ibl/core/image.hpp"
+
+namespace ibl {
+
+enum class FileFormat { Hdr, Exr, Png, Jpg, Ktx2 };
+std::string_view fileFormatName(FileFormat format);
+// Detects the format from the first bytes of a file (magic numbers), not the name.
+std::optional<FileFormat> detectFileFormat(std::span<const std::uint8_t> bytes);
+std::optional<FileFormat> fileFormatFromExtension(const std::filesystem::path& path);
+
+struct DecodedFile {
+  FileFormat format = FileFormat::Hdr;
+  int channels = 3;                        // channels stored in the file
+  std::string detail;                      // e.g. "half, DWAB" or "RLE"
+  std::vector<std::vector<Image>> levels;  // [level][face]; a plain image is 1 x 1
+};
+
+// Decodes any supported file from memory; `name` is used in error messages.
+DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_view name);
+DecodedFile readImageFile(const std::filesystem::path& path);
+
+// Single-format decoders (used by decodeImageFile, and by the fuzz targets).
+Image decodeHdr(std::span<const std::uint8_t> bytes, std::string_view name);
+Image decodeExr(std::span<const std::uint8_t> bytes, std::string_view name,
+                DecodedFile* info = nullptr);
+Image decodeLdr(std::span<const std::uint8_t> bytes, std::string_view name,
+                DecodedFile* info = nullptr);
+
+// Encoders. Radiance HDR is written with run-length encoded scanlines, "-Y H +X W".
+std::vector<std::uint8_t> encodeHdr(const Image& image);
+enum class ExrPixelType { Half, Float };
+// OpenEXR, RGB (and A when `alpha` is given: one value per pixel), ZIP compression.
+std::vector<std::uint8_t> encodeExr(const Image& image, ExrPixelType type = ExrPixelType::Half,
+                                    const std::vector<float>* alpha = nullptr);
+// 8-bit sRGB PNG of the image scaled by 2^exposure (for looking at, not for data).
+std::vector<std::uint8_t> encodePng(const Image& image, float exposure = 0.0f);
+
+}  // namespace ibl

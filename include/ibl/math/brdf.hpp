@@ -1,0 +1,28 @@
+#pragma once
+// The standard material's BRDF terms (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR",
+// section 3; glTF 2.0 metallic-roughness): GGX distribution, height-correlated Smith
+// visibility, Schlick Fresnel, renormalized Disney diffuse; and the analytic fits of the DFG
+// term used by mobile renderers.
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "ibl/shared/brdf.h"
+
+namespace ibl {
+
+// Defined once for C++ and GLSL in ibl/shared/brdf.h.
+using shared::alphaFromRoughness;
+using shared::disneyDiffuseRenormalized;
+using shared::fresnelSchlick;
+using shared::ggxDistribution;
+using shared::schlickWeight;
+using shared::smithGgxCorrelatedVisibility;
+using shared::smithGgxMasking;
+
+// Analytic fits of the split-sum DFG term: (scale A, bias B) with specular = F0 A + B.
+// Lazarov 2013, "Getting More Physical in Call of Duty: Black Ops II" (gloss = 1 - roughness).
+glm::vec2 dfgBlackOps2(float roughness, float NoV);
+// Karis 2014, "Physically Based Shading on Mobile" (UE4's adaptation of Lazarov's fit).
+glm::vec2 dfgUe4Mobile(float roughness, float NoV);
+
+}  // namespace ibl

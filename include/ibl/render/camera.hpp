@@ -1,0 +1,44 @@
+#pragma once
+// Pinhole and orthographic cameras, and physically based exposure (Lagarde & de Rousiers
+// 2014, section 5.1): EV100, exposure, tone curves, sRGB output.
+#include <glm/vec3.hpp>
+
+#include "ibl/core/image.hpp"
+
+namespace ibl {
+
+struct Ray {
+  glm::vec3 origin;
+  glm::vec3 direction;  // unit
+};
+
+struct Camera {
+  bool perspective = true;
+  float yfovDegrees = 40.0f;  // perspective: vertical field of view
+  float orthoWidth = 4.0f;    // orthographic: width of the view in world units
+  glm::vec3 from{0.0f, 0.0f, 4.0f};
+  glm::vec3 at{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  int width = 512, height = 512;
+
+  // Ray through image point (px, py) in pixels, (0, 0) the top-left corner of pixel (0, 0):
+  // the center of pixel (i, j) is (i + 0.5, j + 0.5).
+  Ray generateRay(float px, float py) const;
+};
+
+// EV100 of camera settings: log2(N^2 / t * 100 / S) (aperture N, shutter time t s, ISO S).
+float ev100FromSettings(float aperture, float shutterSeconds, float iso);
+// EV100 that exposes an average luminance L for middle gray: log2(L * 100 / 12.5).
+float ev100FromAverageLuminance(float averageLuminance);
+// Scale from luminance to normalized pixel values for EV100: 1 / (1.2 * 2^EV100)
+// (saturation-based sensitivity, the sensor's maximum at 78 % of saturation).
+float exposureFromEv100(float ev100);
+// Log-average luminance (exp of the mean of log(L + 1e-4)) over pixels with weight > 0.
+float averageLogLuminance(const Image& image);
+
+enum class ToneMap { None = 0, Aces = 1, Filmic = 2 };  // the curve numbers of shared::toneMap
+// Tone curves: none (clamp to [0, 1]), ACES fitted (Narkowicz 2015), filmic (Hable 2010,
+// "Uncharted 2", white point 11.2).
+glm::vec3 toneMap(glm::vec3 c, ToneMap curve);
+
+}  // namespace ibl

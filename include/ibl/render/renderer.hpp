@@ -1,0 +1,68 @@
+#pragma once
+// A CPU renderer for materials lit by an environment, in two modes: the real-time split-sum
+// approximation reading the baked assets, and a Monte Carlo reference of the full integral.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ibl/bake/bake.hpp"
+#include "ibl/render/camera.hpp"
+#include "ibl/render/scene.hpp"
+#include "ibl/shared/split_sum.h"
+
+namespace ibl {
+
+enum class RenderMode { SplitSum, Reference };
+enum class DiffuseModel { Disney, Lambert };
+enum class ShadingTerms { Both, Diffuse, Specular };
+enum class IrradianceSource { Cube, Sh };
+
+struct RenderOptions {
+  RenderMode mode = RenderMode::SplitSum;
+  DiffuseModel diffuse = DiffuseModel::Disney;
+  ShadingTerms only = ShadingTerms::Both;
+  int spp = 4;                  // samples per pixel (reference: the maximum)
+  float noiseThreshold = 0.0f;  // reference: stop a pixel when its relative standard error is below
+  bool multipleScattering = true;  // split sum: energy compensation
+  bool dominantDirections = true;  // split sum: Frostbite's dominant directions
+  bool specularOcclusion = true;   // split sum: from the occlusion texture
+  IrradianceSource irradiance = IrradianceSource::Cube;
+  bool shadows = false;               // reference: ray-traced visibility of the environment
+  bool backgroundEnvironment = true;  // else backgroundColor
+  glm::vec3 backgroundColor{0.0f};
+  unsigned seed = 1;
+};
+
+struct RenderResult {
+  Image color;               // linear radiance
+  std::vector<float> alpha;  // coverage of the model per pixel
+  double samples = 0.0;      // path samples taken (reference) or pixel samples (split sum)
+  double milliseconds = 0.0;
+};
+
+// Renders `scene` as seen by `camera`, lit by the baked environment (split sum: specular,
+// irradiance / SH, DFG; reference and background: the source cube's level 0, taken as
+// piecewise constant over its texels).
+RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeResult& bake,
+                         const BakeOptions& bakeOptions, const RenderOptions& options,
+                         const std::function<void(float)>& progress = {});
+
+// Shading of one surface point, exposed for the tests.
+struct SurfacePoint {
+  glm::vec3 normal;     // shading normal, unit
+  glm::vec3 baseColor;  // linear
+  float metallic;
+  float roughness;  // perceptual
+  float occlusion = 1.0f;
+  glm::vec3 emissive{0.0f};
+};
+// The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
+// viewer's frame uniforms carry the same.
+shared::SplitSumSwitches splitSumSwitches(const RenderOptions& options);
+// The real-time shading of a point from the bake: the formulas of ibl/shared/split_sum.h with
+// the CPU's lookups (seam-aware trilinear in the specular chain, bilinear in the irradiance
+// cube or SH9, bilinear in the DFG table).
+glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult& bake,
+                        const BakeOptions& bakeOptions, const RenderOptions& options);
+
+}  // namespace ibl

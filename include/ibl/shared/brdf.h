@@ -1,0 +1,116 @@
+// The standard material's BRDF terms (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR",
+// section 3; glTF 2.0 metallic-roughness) and the integrands built from them: the GGX lobes
+// the specular prefilter averages with and one sample of the DFG integral. C++ and GLSL (see
+// lang.h).
+#ifndef IBL_SHARED_BRDF_H
+#define IBL_SHARED_BRDF_H
+#include "ibl/shared/lang.h"
+#include "ibl/shared/sampling.h"
+
+IBL_BEGIN
+
+// GGX parameter of a perceptual roughness r in [0, 1]: alpha = r^2.
+IBL_FN float alphaFromRoughness(float r) {
+  return r * r;
+}
+
+// GGX / Trowbridge-Reitz normal distribution D(h) (Walter et al. 2007, eq. 33).
+IBL_FN float ggxDistribution(float NoH, float alpha) {
+  float a2 = alpha * alpha;
+  float d = NoH * NoH * (a2 - 1.0f) + 1.0f;
+  return a2 / (kPi * d * d);
+}
+
+// Height-correlated Smith visibility V = G2 / (4 NoV NoL) for GGX (Heitz 2014, eq. 99;
+// Frostbite course notes, listing 2).
+IBL_FN float smithGgxCorrelatedVisibility(float NoV, float NoL, float alpha) {
+  float a2 = alpha * alpha;
+  float lambdaV = NoL * sqrt(NoV * NoV * (1.0f - a2) + a2);
+  float lambdaL = NoV * sqrt(NoL * NoL * (1.0f - a2) + a2);
+  return 0.5f / (lambdaV + lambdaL);
+}
+
+// Smith masking of one direction, G1 = 2 (n.v) / ((n.v) + sqrt(a^2 + (1 - a^2) (n.v)^2))
+// (Heitz 2014, eq. 72 with GGX's Lambda).
+IBL_FN float smithGgxMasking(float NoV, float alpha) {
+  float a2 = alpha * alpha;
+  return 2.0f * NoV / (NoV + sqrt(a2 + (1.0f - a2) * NoV * NoV));
+}
+
+// (1 - VoH)^5, the weight of f90 in Schlick's Fresnel.
+IBL_FN float schlickWeight(float VoH) {
+  float m = clamp(1.0f - VoH, 0.0f, 1.0f);
+  float m2 = m * m;
+  return m2 * m2 * m;
+}
+IBL_FN vec3 fresnelSchlick(vec3 f0, float f90, float VoH) {
+  return f0 + (vec3(f90) - f0) * schlickWeight(VoH);
+}
+
+// Burley's diffuse with Frostbite's energy renormalization (Frostbite listing 1), without the
+// 1/pi: 1 for a smooth surface at normal incidence; perceptual roughness.
+IBL_FN float disneyDiffuseRenormalized(float NoV, float NoL, float LoH, float roughness) {
+  float energyBias = 0.5f * roughness;
+  float energyFactor = 1.0f + (1.0f / 1.51f - 1.0f) * roughness;
+  float fd90 = energyBias + 2.0f * LoH * LoH * roughness;
+  float lightScatter = 1.0f + (fd90 - 1.0f) * schlickWeight(NoL);
+  float viewScatter = 1.0f + (fd90 - 1.0f) * schlickWeight(NoV);
+  return lightScatter * viewScatter * energyFactor;
+}
+
+// The prefilter's lobes, as functions of c = n.l >= 0 with n = v (the split sum's assumption),
+// where n.h = v.h = sqrt((1 + c) / 2). Each is proportional to its integrand; the prefilter
+// divides by the sum of weights, so constant factors drop out. a2 = alpha^2.
+//   D(h) (n.l), without the constant a^2 / pi:
+IBL_FN float ggxLobe(float c, float a2) {
+  float d = 0.5f * (1.0f + c) * (a2 - 1.0f) + 1.0f;
+  return c / (d * d);
+}
+//   times the height-correlated visibility at n.v = 1: V = 0.5 / (c + sqrt(c^2 (1 - a^2) + a^2))
+//   (smithGgxCorrelatedVisibility(1, c, alpha), with the lambda of n.v = 1 written exactly);
+IBL_FN float ggxVisibilityLobe(float c, float a2) {
+  return ggxLobe(c, a2) * 0.5f / (c + sqrt(c * c * (1.0f - a2) + a2) + 1e-30f);
+}
+//   times Schlick's f90 weight (1 - v.h)^5 (the F0 = 0 lobe of the Fresnel-weighted variant).
+IBL_FN float ggxVisibilityFresnelLobe(float c, float a2) {
+  float m = 1.0f - sqrt(0.5f * (1.0f + c));
+  float m2 = m * m;
+  return ggxVisibilityLobe(c, a2) * (m2 * m2 * m);
+}
+// The lobe of a prefilter kind: 0 cosine (irradiance), 1 GGX, 2 GGX x visibility,
+// 3 GGX x visibility x Fresnel (LobeWeight::Kind in src/bake/prefilter.cpp).
+IBL_FN float prefilterLobe(int kind, float c, float a2) {
+  if (kind == 0) return c;
+  if (kind == 1) return ggxLobe(c, a2);
+  if (kind == 2) return ggxVisibilityLobe(c, a2);
+  return ggxVisibilityFresnelLobe(c, a2);
+}
+
+// A smoothstep from 0 at c = lo to 1 at c = lo + 1 / inv: the radial windows that split the
+// prefilter's integral into a core and rings.
+IBL_FN float smoothRise(float c, float lo, float inv) {
+  float t = clamp((c - lo) * inv, 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+// One point of the DFG integral (the split sum's second factor) at (n.v, roughness), branch
+// free: h, a visible normal for v = (sqrt(1 - NoV^2), 0, NoV), and l, a cosine-distributed
+// direction. g1 = smithGgxMasking(NoV, alpha). Returns (A, B, diffuse) terms:
+//   specular: l = reflect(-v, h) has pdf G1(v) D / (4 n.v), so f (n.l) / pdf = F G2 / G1, a
+//   weight in [0, 1], split into (1 - Fc) and Fc with Fc = (1 - v.h)^5;
+//   diffuse: (Fd / pi) (n.l) / pdf = Fd for the cosine-distributed l.
+IBL_FN vec3 dfgIntegrand(vec3 v, float alpha, float roughness, float g1, vec3 h, vec3 l) {
+  float NoV = v.z;
+  float VoH = dot(v, h);
+  float NoL = 2.0f * VoH * h.z - v.z;  // (2 (v.h) h - v).z
+  bool above = NoL > 0.0f && VoH > 0.0f;
+  float nl = max(NoL, 1e-6f);
+  float g = above ? 4.0f * smithGgxCorrelatedVisibility(NoV, nl, alpha) * nl * NoV / g1 : 0.0f;
+  float fc = schlickWeight(VoH);
+  vec3 hd = normalize(v + l);
+  return vec3((1.0f - fc) * g, fc * g, disneyDiffuseRenormalized(NoV, l.z, dot(l, hd), roughness));
+}
+
+IBL_END
+
+#endif

@@ -1,0 +1,89 @@
+// Cube-map geometry: the face table of the Vulkan / OpenGL specification ("Cube Map Face
+// Selection"), faces +X, -X, +Y, -Y, +Z, -Z, and the cubic B-spline weights of the
+// reconstruction filter. C++ and GLSL (see lang.h).
+#ifndef IBL_SHARED_CUBE_H
+#define IBL_SHARED_CUBE_H
+#include "ibl/shared/lang.h"
+
+IBL_BEGIN
+
+// The face table (Vulkan specification, "Cube Map Face Selection"), once: the unnormalized
+// direction through the point (sc, tc) in [-1, 1]^2 of a face plane.
+//   +X: sc = -z, tc = -y   -X: sc = +z, tc = -y   +Y: sc = +x, tc = +z
+//   -Y: sc = +x, tc = -z   +Z: sc = +x, tc = -y   -Z: sc = -x, tc = -y
+IBL_FN vec3 faceToDirection(int face, float sc, float tc) {
+  if (face == 0) return vec3(1.0f, -tc, -sc);
+  if (face == 1) return vec3(-1.0f, -tc, sc);
+  if (face == 2) return vec3(sc, 1.0f, tc);
+  if (face == 3) return vec3(sc, -1.0f, -tc);
+  if (face == 4) return vec3(sc, -tc, 1.0f);
+  return vec3(-sc, -tc, -1.0f);
+}
+
+// The face's axes, read off the table: which = 0 the major axis (the face center), 1 the
+// direction in which s grows, 2 the direction in which t grows; a point of the face plane is
+// axis + sc * sAxis + tc * tAxis.
+IBL_FN vec3 faceAxis(int face, int which) {
+  vec3 center = faceToDirection(face, 0.0f, 0.0f);
+  if (which == 0) return center;
+  if (which == 1) return faceToDirection(face, 1.0f, 0.0f) - center;
+  return faceToDirection(face, 0.0f, 1.0f) - center;
+}
+
+// Unit direction through the center of texel (x, y) of a face of n x n texels.
+IBL_FN vec3 texelDirection(int face, int x, int y, int n) {
+  float inv = 2.0f / float(n);
+  return normalize(
+      faceToDirection(face, (float(x) + 0.5f) * inv - 1.0f, (float(y) + 0.5f) * inv - 1.0f));
+}
+
+// The face a direction hits and its coordinates s, t in [0, 1]: the table read backwards,
+// s = (sc / |ma| + 1) / 2, t = (tc / |ma| + 1) / 2 with ma the major axis.
+struct FacePoint {
+  int face;
+  float s;
+  float t;
+};
+IBL_FN FacePoint directionToFace(vec3 d) {
+  float ax = abs(d.x), ay = abs(d.y), az = abs(d.z);
+  FacePoint p;
+  float ma, sc, tc;
+  if (ax >= ay && ax >= az) {
+    p.face = d.x >= 0.0f ? 0 : 1;
+    ma = ax;
+    sc = d.x >= 0.0f ? -d.z : d.z;
+    tc = -d.y;
+  } else if (ay >= az) {
+    p.face = d.y >= 0.0f ? 2 : 3;
+    ma = ay;
+    sc = d.x;
+    tc = d.y >= 0.0f ? d.z : -d.z;
+  } else {
+    p.face = d.z >= 0.0f ? 4 : 5;
+    ma = az;
+    sc = d.z >= 0.0f ? d.x : -d.x;
+    tc = -d.y;
+  }
+  if (!(ma > 0.0f)) {  // zero or NaN direction: any defined answer
+    p.face = 4;
+    ma = 1.0f;
+    sc = 0.0f;
+    tc = 0.0f;
+  }
+  p.s = 0.5f * (sc / ma + 1.0f);
+  p.t = 0.5f * (tc / ma + 1.0f);
+  return p;
+}
+
+// Weights of the uniform cubic B-spline for the taps at -1, 0, 1, 2 around a sample a fraction
+// t past tap 0.
+IBL_FN vec4 cubicBSplineWeights(float t) {
+  float t2 = t * t, t3 = t2 * t, s = 1.0f - t;
+  return vec4(s * s * s, 3.0f * t3 - 6.0f * t2 + 4.0f, -3.0f * t3 + 3.0f * t2 + 3.0f * t + 1.0f,
+              t3) /
+         6.0f;
+}
+
+IBL_END
+
+#endif

@@ -1,0 +1,36 @@
+// How a glTF 2.0 material's textures enter the shading (glTF 2.0 specification, section 3.9):
+// the channels, the normal map's tangent frame, the occlusion strength. C++ and GLSL (see
+// lang.h): surfaceAt in src/render/renderer.cpp and shaders/view/scene.frag both call these.
+#ifndef IBL_SHARED_MATERIAL_H
+#define IBL_SHARED_MATERIAL_H
+#include "ibl/shared/lang.h"
+
+IBL_BEGIN
+
+// metallicRoughnessTexture: roughness in G, metalness in B, multiplying the factors.
+// Returns (metallic, roughness).
+IBL_FN vec2 applyMetallicRoughnessTexel(float metallic, float roughness, vec4 texel) {
+  return vec2(metallic * texel.z, roughness * texel.y);
+}
+
+// occlusionTexture: R, blended toward 1 by the strength: 1 + strength (R - 1).
+IBL_FN float occlusionFromTexel(float strength, vec4 texel) {
+  return 1.0f + strength * (texel.x - 1.0f);
+}
+
+// normalTexture: the texel (in [0, 1]) as a tangent-space normal, x and y scaled, in the frame
+// of the interpolated normal n and tangent (xyz; w = +-1 the bitangent's sign), the tangent
+// made orthogonal to n first (Gram-Schmidt). Returns the unit shading normal.
+IBL_FN vec3 applyNormalMap(vec3 n, vec4 tangent, vec4 texel, float scale) {
+  vec3 t = vec3(tangent.x, tangent.y, tangent.z);
+  t = normalize(t - n * dot(n, t));
+  vec3 b = cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+  vec3 ts = vec3(texel.x, texel.y, texel.z) * 2.0f - 1.0f;
+  ts.x *= scale;
+  ts.y *= scale;
+  return normalize(t * ts.x + b * ts.y + n * ts.z);
+}
+
+IBL_END
+
+#endif

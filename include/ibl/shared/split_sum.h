@@ -1,0 +1,113 @@
+// The split-sum shading of a surface point under a prefiltered environment (Karis 2013, "Real
+// Shading in Unreal Engine 4"; Lagarde & de Rousiers 2014, "Moving Frostbite to PBR", section
+// 4.9): everything but the three map lookups, which each language does its own way (the CPU's
+// seam-aware lookups in ibl::CubeMap, the GPU's samplerCube). C++ and GLSL (see lang.h):
+// shadeSplitSum in src/render/renderer.cpp and shaders/view/shading.glsl both call these.
+//
+//   SplitSumLookup look = splitSumLookup(n, v, roughness, switches);
+//   dfg        = DFG table at (look.NoV, roughness)
+//   prefiltered = specular cube at look.specularDirection, lod specularLodForRoughness(...)
+//   irradiance = irradiance cube (E / pi) at look.diffuseDirection
+//   color = splitSumRadiance(material, look.NoV, dfg, prefiltered, irradiance, switches)
+#ifndef IBL_SHARED_SPLIT_SUM_H
+#define IBL_SHARED_SPLIT_SUM_H
+#include "ibl/shared/brdf.h"
+#include "ibl/shared/lang.h"
+
+IBL_BEGIN
+
+// The shading switches (RenderOptions on the CPU, the frame's uniforms on the GPU).
+struct SplitSumSwitches {
+  int terms;                // 0 both, 1 diffuse only, 2 specular only
+  bool multipleScattering;  // Kulla & Conty 2017 energy compensation
+  bool dominantDirections;  // Frostbite listings 22 and 23
+  bool specularOcclusion;   // Frostbite listing 26
+  bool disneyDiffuse;       // Frostbite's renormalized Disney diffuse, else Lambert
+};
+
+// The material at the point: glTF metallic-roughness, linear base color, perceptual roughness.
+struct SplitSumMaterial {
+  vec3 baseColor;
+  float metallic;
+  float roughness;
+  float occlusion;  // ambient occlusion, 1 = none
+  vec3 emissive;
+};
+
+// Mip level of the prefiltered specular map that holds a roughness: level m of L holds
+// r = m / (L - 1) (linear mapping) or r = (m / (L - 1))^2 (Frostbite's, lod = sqrt(r) (L - 1)).
+// maxLod = L - 1.
+IBL_FN float specularLodForRoughness(float roughness, float maxLod, bool frostbiteMapping) {
+  float t = frostbiteMapping ? sqrt(max(roughness, 0.0f)) : roughness;
+  return t * maxLod;
+}
+
+// Frostbite listing 22: the specular lobe's peak leans from the mirror direction toward the
+// normal as roughness grows.
+IBL_FN vec3 specularDominantDirection(vec3 n, vec3 r, float alpha) {
+  float smoothness = 1.0f - alpha;
+  return normalize(mix(n, r, smoothness * (sqrt(smoothness) + alpha)));
+}
+
+// Frostbite listing 23: Disney's diffuse lobe leans toward the view at grazing angles
+// (retro-reflection).
+IBL_FN vec3 diffuseDominantDirection(vec3 n, vec3 v, float NoV, float alpha) {
+  float a = 1.02341f * alpha - 1.51174f, b = -0.511705f * alpha + 0.755868f;
+  return normalize(mix(n, v, clamp((NoV * a + b) * alpha, 0.0f, 1.0f)));
+}
+
+// Frostbite listing 26: specular occlusion from ambient occlusion, n.v and roughness.
+IBL_FN float specularOcclusion(float NoV, float ao, float alpha) {
+  return clamp(pow(NoV + ao, exp2(-16.0f * alpha - 1.0f)) - 1.0f + ao, 0.0f, 1.0f);
+}
+
+// Kulla & Conty 2017 / Fdez-Aguera 2019: a single-scattering lobe reflects A + B of the energy
+// for F0 = 1; scaling by 1 + F0 (1 / (A + B) - 1) returns what further bounces reflect.
+IBL_FN vec3 multipleScatteringCompensation(vec3 f0, vec2 dfg) {
+  return vec3(1.0f) + f0 * (1.0f / (dfg.x + dfg.y) - 1.0f);
+}
+
+// Where the maps are looked up for a point with unit normal n seen from unit direction v.
+struct SplitSumLookup {
+  float NoV;
+  vec3 specularDirection;
+  vec3 diffuseDirection;
+};
+IBL_FN SplitSumLookup splitSumLookup(vec3 n, vec3 v, float roughness, SplitSumSwitches s) {
+  SplitSumLookup look;
+  look.NoV = max(dot(n, v), 1e-4f);
+  float alpha = alphaFromRoughness(roughness);
+  look.specularDirection = 2.0f * dot(n, v) * n - v;
+  if (s.dominantDirections)
+    look.specularDirection = specularDominantDirection(n, look.specularDirection, alpha);
+  look.diffuseDirection = n;
+  if (s.dominantDirections && s.disneyDiffuse)
+    look.diffuseDirection = diffuseDominantDirection(n, v, look.NoV, alpha);
+  return look;
+}
+
+// The radiance the point reflects (plus its emission), from the looked-up values: dfg = the
+// DFG table's (A, B, Disney diffuse), prefiltered = the specular map, irradiance = E / pi.
+IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefiltered,
+                             vec3 irradiance, SplitSumSwitches s) {
+  float alpha = alphaFromRoughness(m.roughness);
+  vec3 diffuseColor = m.baseColor * (1.0f - m.metallic);
+  vec3 f0 = mix(vec3(0.04f), m.baseColor, m.metallic);
+  vec3 color = m.emissive;
+  if (s.terms != 1) {
+    vec3 specular = prefiltered * (f0 * dfg.x + dfg.y);
+    if (s.multipleScattering) specular *= multipleScatteringCompensation(f0, vec2(dfg.x, dfg.y));
+    if (s.specularOcclusion && m.occlusion < 1.0f)
+      specular *= specularOcclusion(NoV, m.occlusion, alpha);
+    color += specular;
+  }
+  if (s.terms != 2) {
+    float fd = s.disneyDiffuse ? dfg.z : 1.0f;
+    color += diffuseColor * irradiance * fd * m.occlusion;
+  }
+  return color;
+}
+
+IBL_END
+
+#endif

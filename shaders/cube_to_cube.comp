@@ -1,6 +1,0 @@
-#version 450
-// Cube map -> cube: resample_to_cube.glsl for a cube level.
-#extension GL_GOOGLE_include_directive : require
-#define CUBE_SOURCE 1
-#include "cube.glsl"
-#include "resample_to_cube.glsl"

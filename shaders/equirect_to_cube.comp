@@ -1,6 +1,0 @@
-#version 450
-// Equirect -> cube: resample_to_cube.glsl for a panorama.
-#extension GL_GOOGLE_include_directive : require
-#define CUBE_SOURCE 0
-#include "cube.glsl"
-#include "resample_to_cube.glsl"

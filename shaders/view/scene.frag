@@ -1,0 +1,128 @@
+#version 450
+// Split-sum shading of the viewer's meshes: the material's textures and normal map as in
+// surfaceAt (src/render/renderer.cpp), through ibl/shared/material.h, then shadeSplitSum
+// (view/shading.glsl).
+#extension GL_GOOGLE_include_directive : require
+#include "ibl/shared/color.h"
+#include "ibl/shared/material.h"
+#include "view/frame.glsl"
+#include "view/shading.glsl"
+layout(location = 0) in vec3 worldPosition;
+layout(location = 1) in vec3 worldNormal;
+layout(location = 2) in vec4 worldTangent;
+layout(location = 3) in vec2 texCoord;
+layout(location = 0) out vec4 outColor;
+
+layout(set = 1, binding = 0) uniform sampler2D baseColorTexture;  // sRGB values, decoded here
+layout(set = 1, binding = 1) uniform sampler2D metallicRoughnessTexture;
+layout(set = 1, binding = 2) uniform sampler2D normalTexture;
+layout(set = 1, binding = 3) uniform sampler2D occlusionTexture;
+layout(set = 1, binding = 4) uniform sampler2D emissiveTexture;  // sRGB values, decoded here
+layout(push_constant) uniform Material {
+  vec4 baseColorMetallic;
+  vec4 emissiveRoughness;
+  vec4 scales;       // normal scale, occlusion strength
+  vec4 sphere;       // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
+  uint textureMask;  // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive
+} material;
+
+// Distance along r to the sphere's nearest point in front of the origin, or -1.
+float intersectSphere(Ray r, vec4 sphere) {
+  vec3 oc = r.origin - sphere.xyz;
+  float b = dot(oc, r.direction);
+  float c = dot(oc, oc) - sphere.w * sphere.w;
+  float disc = b * b - c;
+  if (disc < 0.0) return -1.0;
+  float s = sqrt(disc);
+  return -b - s >= 0.0 ? -b - s : (-b + s >= 0.0 ? -b + s : -1.0);
+}
+
+// Standard sample locations (Vulkan, "Multisampling"), in pixel units.
+vec2 samplePosition(int count, int i) {
+  if (count == 2) return i == 0 ? vec2(0.75) : vec2(0.25);
+  if (count == 4) {
+    const vec2 p4[4] = vec2[4](vec2(0.375, 0.125), vec2(0.875, 0.375), vec2(0.125, 0.625),
+                               vec2(0.625, 0.875));
+    return p4[i];
+  }
+  if (count == 8) {
+    const vec2 p8[8] = vec2[8](vec2(0.5625, 0.3125), vec2(0.4375, 0.6875), vec2(0.8125, 0.5625),
+                               vec2(0.3125, 0.1875), vec2(0.1875, 0.8125), vec2(0.0625, 0.4375),
+                               vec2(0.6875, 0.9375), vec2(0.9375, 0.0625));
+    return p8[i];
+  }
+  return vec2(0.5);
+}
+
+// A sphere ray traced in its bounding polyhedron, as the CPU renderer intersects it: the samples
+// the sphere covers, and the hit point of the pixel's center ray (or of a covered sample's).
+// Returns false when the sphere covers none of the pixel's samples.
+bool traceSphere(out vec3 position, out vec3 normal) {
+  Ray center = primaryRay(gl_FragCoord.xy);
+  float t = intersectSphere(center, material.sphere);
+  Ray shaded = center;
+  int count = frame.models.z;
+  if (count > 1) {
+    vec2 corner = floor(gl_FragCoord.xy);
+    int mask = 0;
+    for (int i = 0; i < count; ++i) {
+      Ray r = primaryRay(corner + samplePosition(count, i));
+      float ti = intersectSphere(r, material.sphere);
+      if (ti < 0.0) continue;
+      mask |= 1 << i;
+      if (t < 0.0) {
+        t = ti;
+        shaded = r;
+      }
+    }
+    gl_SampleMask[0] = mask;
+  } else {
+    gl_SampleMask[0] = -1;
+  }
+  if (t < 0.0) return false;
+  position = shaded.origin + t * shaded.direction;
+  normal = normalize(position - material.sphere.xyz);
+  vec4 clip = frame.viewProjection * vec4(position, 1.0);
+  gl_FragDepth = clip.z / clip.w;
+  return true;
+}
+
+void main() {
+  vec3 n = normalize(worldNormal);
+  vec3 position = worldPosition;
+  if (material.sphere.w > 0.0) {
+    if (!traceSphere(position, n)) discard;
+  } else {
+    gl_SampleMask[0] = -1;
+    gl_FragDepth = gl_FragCoord.z;
+  }
+  vec3 baseColor = material.baseColorMetallic.rgb;
+  float metallic = material.baseColorMetallic.a;
+  float roughness = material.emissiveRoughness.a;
+  vec3 emissive = material.emissiveRoughness.rgb;
+  float occlusion = 1.0;
+  uint mask = material.textureMask;
+  // Textures are filtered as stored and decoded after, as Texture::sample and srgbTexel do.
+  if ((mask & 1u) != 0u) baseColor *= srgbToLinear(texture(baseColorTexture, texCoord).rgb);
+  if ((mask & 2u) != 0u) {
+    vec2 mr = applyMetallicRoughnessTexel(metallic, roughness,
+                                          texture(metallicRoughnessTexture, texCoord));
+    metallic = mr.x;
+    roughness = mr.y;
+  }
+  if ((mask & 8u) != 0u)
+    occlusion = occlusionFromTexel(material.scales.y, texture(occlusionTexture, texCoord));
+  if ((mask & 16u) != 0u) emissive *= srgbToLinear(texture(emissiveTexture, texCoord).rgb);
+  if ((mask & 4u) != 0u)
+    n = applyNormalMap(n, worldTangent, texture(normalTexture, texCoord), material.scales.x);
+  vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
+                                           : normalize(position - frame.cameraPosition.xyz);
+  if (dot(n, ray) > 0.0) n = -n;  // shade the side the camera sees
+  SplitSumMaterial m;
+  m.baseColor = baseColor;
+  m.metallic = clamp(metallic, 0.0, 1.0);
+  m.roughness = clamp(roughness, 0.0, 1.0);
+  m.occlusion = occlusion;
+  m.emissive = emissive;
+  outColor = vec4(shadeSplitSum(n, -ray, m), 1.0);
+}

@@ -1,0 +1,38 @@
+// The split-sum shading of a surface point: the formulas of ibl/shared/split_sum.h (which
+// shadeSplitSum in src/render/renderer.cpp calls too) with the GPU's lookups: samplerCube
+// trilinear filtering, the DFG table bilinear and clamped. Needs view/frame.glsl.
+#include "ibl/shared/sh.h"
+#include "ibl/shared/split_sum.h"
+
+// The frame's shading switches (splitSumSwitches in src/render/renderer.cpp fills them).
+SplitSumSwitches frameSwitches() {
+  SplitSumSwitches s;
+  s.terms = frame.terms.x;
+  s.multipleScattering = frame.terms.y != 0;
+  s.dominantDirections = frame.terms.z != 0;
+  s.specularOcclusion = frame.terms.w != 0;
+  s.disneyDiffuse = frame.models.x == 0;
+  return s;
+}
+
+// irradianceSh9 / pi (src/math/sh.cpp); the host folded A_l / pi into the coefficients.
+vec3 irradianceSh9OverPi(vec3 n) {
+  vec3 sum = vec3(0.0);
+  for (int k = 0; k < 9; ++k) sum += frame.sh[k].rgb * shBasis(k, n);
+  return sum;
+}
+
+vec3 shadeSplitSum(vec3 n, vec3 view, SplitSumMaterial m) {
+  SplitSumSwitches s = frameSwitches();
+  SplitSumLookup look = splitSumLookup(n, view, m.roughness, s);
+  vec3 dfg = textureLod(dfgLut, vec2(look.NoV, m.roughness), 0.0).rgb;
+  vec3 prefiltered = vec3(0.0), irradiance = vec3(0.0);
+  if (s.terms != 1) {
+    float lod = specularLodForRoughness(m.roughness, frame.lods.x, frame.lods.y > 0.5);
+    prefiltered = textureLod(specularMap, look.specularDirection, lod).rgb;
+  }
+  if (s.terms != 2)
+    irradiance = frame.models.y == 0 ? textureLod(irradianceMap, look.diffuseDirection, 0.0).rgb
+                                     : irradianceSh9OverPi(look.diffuseDirection);
+  return splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+}

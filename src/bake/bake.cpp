@@ -1,0 +1,473 @@
+#include "ibl/bake/bake.hpp"
+
+#include <chrono>
+#include <functional>
+#include <system_error>
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include "ibl/bake/dfg.hpp"
+#include "ibl/bake/preview.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/core/version.hpp"
+#include "ibl/env/resample.hpp"
+#include "ibl/gpu/compute.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/io/ktx2.hpp"
+
+namespace ibl {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+constexpr int kPreviewColumns = 6, kPreviewCell = 96;
+
+namespace {
+
+class StageTimer {
+ public:
+  explicit StageTimer(std::map<std::string, double>& timings) : timings_(timings) {}
+  template <typename F>
+  auto operator()(const std::string& stage, F&& f) {
+    const auto start = std::chrono::steady_clock::now();
+    auto result = f();
+    timings_[stage] =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
+
+ private:
+  std::map<std::string, double>& timings_;
+};
+
+}  // namespace
+
+BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const ProgressFn& progress,
+                           gpu::Context* device) {
+  BakeResult r;
+  if (device) r.device = device->device().name;
+  StageTimer time(r.timingsMs);
+  const auto start = std::chrono::steady_clock::now();
+  const int size = o.specular.size;
+  if (progress) progress(fmt::format("source cube {}x{} with mips", size, size));
+  r.source = time("source", [&] {
+    CubeMap cube = env.isCube() && env.cube.size() == size && o.rotateDegrees == 0.0f ? CubeMap()
+                   : device ? gpu::resampleToCube(*device, env, size, o.rotateDegrees)
+                            : resampleToCube(env, size, o.rotateDegrees);
+    if (cube.levels.empty()) cube.levels = {env.cube.levels[0]};
+    if (device) {
+      gpu::buildMipChain(*device, cube);
+    } else {
+      buildMipChain(cube);
+    }
+    return cube;
+  });
+  // The DFG table does not depend on the environment: compute it beside the convolutions.
+  tbb::parallel_invoke(
+      [&] {
+        r.specular = time("specular", [&] {
+          return device
+                     ? gpu::prefilterGgx(*device, r.source, o.specular, &r.specularLevels, progress)
+                     : prefilterGgx(r.source, o.specular, &r.specularLevels, progress);
+        });
+        if (o.fresnelWeighted) {
+          PrefilterOptions variant = o.specular;
+          variant.weight = PrefilterWeight::FresnelF0Zero;
+          const auto prefilter = [&] {
+            return device ? gpu::prefilterGgx(*device, r.source, variant)
+                          : prefilterGgx(r.source, variant);
+          };
+          r.specularF0Zero = time("specular_f0_0", prefilter);
+          variant.weight = PrefilterWeight::FresnelF0One;
+          r.specularF0One = time("specular_f0_1", prefilter);
+        }
+        if (progress)
+          progress(fmt::format("irradiance {}x{} and SH9", o.irradianceSize, o.irradianceSize));
+        r.irradiance = time("irradiance", [&] {
+          const int level = levelOfSize(r.source, o.irradianceSize);
+          return device ? gpu::convolveIrradiance(*device, r.source, o.irradianceSize, level)
+                        : convolveIrradiance(r.source, o.irradianceSize, level);
+        });
+        r.sh = time("sh", [&] {
+          // The 64^2 level integrates like level 0 (box-filtered mips keep every texel's
+          // integral), and bands 0-2 vary slowly across its texels: 16x less work.
+          const int level = levelOfSize(r.source, 64);
+          const Sh9 sh =
+              device ? gpu::projectSh9(*device, r.source, level) : projectSh9(r.source, level);
+          return o.shWindow ? windowSh9(sh) : sh;
+        });
+      },
+      [&] {
+        r.dfg = time("dfg", [&] {
+          return device ? gpu::integrateDfgLut(*device, o.dfgSize, o.dfgSize, o.dfgSamples)
+                        : integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples);
+        });
+      });
+  r.timingsMs["total"] =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+namespace {
+
+Json vec3Json(glm::vec3 v) {
+  return Json::array({v.x, v.y, v.z});
+}
+
+Json conventionsJson(const BakeOptions& o, const BakeResult& r) {
+  Json c;
+  c["world"] = {{"handedness", "right"}, {"up", "+Y"}};
+  c["cubemap"] = {
+      {"face_order", {"+X", "-X", "+Y", "-Y", "+Z", "-Z"}},
+      {"face_mapping", "Vulkan/OpenGL major-axis table; s = (sc/|ma| + 1)/2, t = (tc/|ma| + 1)/2"},
+      {"faces",
+       {{"+X", {{"sc", "-z"}, {"tc", "-y"}}},
+        {"-X", {{"sc", "+z"}, {"tc", "-y"}}},
+        {"+Y", {{"sc", "+x"}, {"tc", "+z"}}},
+        {"-Y", {{"sc", "+x"}, {"tc", "-z"}}},
+        {"+Z", {{"sc", "+x"}, {"tc", "-y"}}},
+        {"-Z", {{"sc", "-x"}, {"tc", "-y"}}}}},
+      {"row0", "t = 0"}};
+  c["equirect"] = {{"u", "0.5 + atan2(z, x) / (2 pi)"},
+                   {"v", "acos(y) / pi"},
+                   {"row0", "v = 0 (+Y, straight up)"},
+                   {"center", "+X"},
+                   {"rotate_degrees", o.rotateDegrees},
+                   {"rotation", "R_y(deg), right-handed about +Y: a feature at d appears at R d"}};
+  c["roughness"] = {{"parameter", "perceptual roughness r (glTF metallic-roughness)"},
+                    {"alpha", "r^2"}};
+  Json levels = Json::array();
+  for (const auto& l : r.specularLevels) levels.push_back(l.roughness);
+  c["specular"] = {
+      {"model", "split sum (Karis 2013), n = v = r, GGX with alpha = r^2"},
+      {"mapping", o.specular.mapping == RoughnessMapping::Linear ? "linear" : "frostbite"},
+      {"level_roughness",
+       o.specular.mapping == RoughnessMapping::Linear ? "r = m / (L - 1)" : "r = (m / (L - 1))^2"},
+      {"lod_from_roughness", o.specular.mapping == RoughnessMapping::Linear
+                                 ? "lod = r (L - 1)"
+                                 : "lod = sqrt(r) (L - 1)"},
+      {"weight", "D(h) (n.l)"},
+      {"level0", "mirror reflection: the source itself"},
+      {"roughness_per_level", levels}};
+  if (o.fresnelWeighted)
+    c["specular_fresnel_weighted"] = {
+        {"weight", "D(h) V(v, l) F(v.h) (n.l), F0 = 0 and F0 = 1, n = v"},
+        {"combine", "specular = LD_1 F0 (A + B) + LD_0 (1 - F0) B"}};
+  c["dfg"] = {{"u", "n.v = (i + 0.5) / W"},
+              {"v", "r = (j + 0.5) / H"},
+              {"row0_first", true},
+              {"r", "A: scale of F0 (single scattering, height-correlated Smith)"},
+              {"g", "B: bias, times f90"},
+              {"b", "renormalized Disney diffuse (Frostbite), integral of Fd / pi (n.l)"},
+              {"specular", "prefiltered * (F0 * A + f90 * B)"},
+              {"diffuse", "albedo * irradiance * dfg.b"},
+              {"multiple_scattering", "specular *= 1 + F0 * (1 / (A + B) - 1)"}};
+  c["irradiance"] = {{"stores", "E(n) / pi: the radiance of a white Lambertian surface"},
+                     {"constant_environment", "L stays L"}};
+  c["sh"] = {
+      {"basis", "real spherical harmonics, bands 0..2, Ramamoorthi & Hanrahan 2001 normalization"},
+      {"order",
+       {"(0,0)", "(1,-1)", "(1,0)", "(1,1)", "(2,-2)", "(2,-1)", "(2,0)", "(2,1)", "(2,2)"}},
+      {"functions",
+       {"0.282095", "0.488603 y", "0.488603 z", "0.488603 x", "1.092548 x y", "1.092548 y z",
+        "0.315392 (3 z^2 - 1)", "1.092548 x z", "0.546274 (x^2 - y^2)"}},
+      {"frame", "world (x, y, z), +Y up"},
+      {"coefficients", "radiance L_lm = integral of L Y_lm"},
+      {"irradiance",
+       "E(n) = sum A_l L_lm Y_lm(n), A = (pi, 2 pi / 3, pi / 4); divide by pi for the "
+       "irradiance cube's units"},
+      {"windowed", o.shWindow ? "Lanczos sigma factors (1, 0.827, 0.414)" : "no"}};
+  c["color"] = {{"primaries", "Rec.709 / sRGB"}, {"encoding", "linear"}};
+  return c;
+}
+
+// A file to write: encoded later, all files in parallel.
+struct PendingFile {
+  fs::path path;  // relative to the output directory
+  std::function<std::vector<std::uint8_t>()> encode;
+  std::vector<std::uint8_t> bytes;
+};
+
+Ktx2Texture cubeTexture(const CubeMap& cube, PixelFormat format) {
+  Ktx2Texture tex;
+  tex.format = format;
+  tex.faceCount = kFaceCount;
+  for (const auto& level : cube.levels) tex.levels.emplace_back(level.begin(), level.end());
+  return tex;
+}
+
+// One cube map as flat files (cross or six faces) in `format` (EXR or HDR), level by level.
+void addFlatCube(std::vector<PendingFile>& files, Json& outputs, const Json& entry,
+                 const CubeMap& cube, const std::string& stem, FileFormat format,
+                 FlatLayout layout) {
+  const std::string ext = format == FileFormat::Exr ? ".exr" : ".hdr";
+  const auto encoder = [format](const Image& img) {
+    return format == FileFormat::Exr ? encodeExr(img, ExrPixelType::Half) : encodeHdr(img);
+  };
+  for (int m = 0; m < cube.levelCount(); ++m) {
+    const std::string base = cube.levelCount() > 1 ? fmt::format("{}_m{}", stem, m) : stem;
+    Json e = entry;
+    e["format"] = fileFormatName(format);
+    e["level"] = m;
+    e["size"] = {cube.levels[m][0].width, cube.levels[m][0].width};
+    if (layout == FlatLayout::Faces) {
+      Json paths = Json::array();
+      for (int f = 0; f < kFaceCount; ++f) {
+        const std::string p = fmt::format("{}_{}{}", base, kFaceNames[f], ext);
+        files.push_back({p, [=, &cube] { return encoder(cube.levels[m][f]); }, {}});
+        paths.push_back(p);
+      }
+      e["layout"] = "faces";
+      e["path"] = paths[0];
+      e["paths"] = paths;
+    } else {
+      const std::string p = base + ext;
+      files.push_back(
+          {p,
+           [=, &cube] { return encoder(crossFromCube(cube, m, layout == FlatLayout::VCross)); },
+           {}});
+      e["layout"] = layout == FlatLayout::VCross ? "vcross" : "hcross";
+      e["path"] = p;
+    }
+    outputs.push_back(e);
+  }
+}
+
+void writeAll(std::vector<PendingFile>& files, const fs::path& outDir,
+              std::vector<fs::path>& written) {
+  tbb::parallel_for(std::size_t{0}, files.size(),
+                    [&](std::size_t i) { files[i].bytes = files[i].encode(); });
+  std::error_code ec;
+  if (!fs::exists(outDir, ec)) {
+    // Stage beside the destination and rename it into place: the directory appears complete.
+    const fs::path parent = outDir.has_parent_path() ? outDir.parent_path() : fs::path(".");
+    fs::create_directories(parent, ec);
+    const fs::path staging =
+        parent / fmt::format(".{}.ibl-staging-{}", outDir.filename().string(), ::getpid());
+    fs::remove_all(staging, ec);
+    try {
+      for (const auto& f : files) writeFileAtomic(staging / f.path, f.bytes);
+    } catch (...) {
+      fs::remove_all(staging, ec);
+      throw;
+    }
+    fs::rename(staging, outDir, ec);
+    if (ec) {
+      fs::remove_all(staging, ec);
+      fail(outDir.string(), fmt::format("cannot create the output directory: {}", ec.message()));
+    }
+  } else {
+    if (!fs::is_directory(outDir)) fail(outDir.string(), "exists and is not a directory");
+    for (const auto& f : files) writeFileAtomic(outDir / f.path, f.bytes);
+  }
+  for (const auto& f : files) written.push_back(outDir / f.path);
+}
+
+}  // namespace
+
+std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o,
+                                       const BakeOutputOptions& out, const BakeSource& src,
+                                       const fs::path& outDir) {
+  std::vector<PendingFile> files;
+  Json outputs = Json::array();
+  const std::string fmtName(formatName(out.format));
+
+  const auto addCube = [&](const std::string& role, const std::string& stem, const CubeMap& cube,
+                           Json extra) {
+    Json e = {{"role", role},
+              {"path", stem + ".ktx2"},
+              {"format", "ktx2"},
+              {"pixel_format", fmtName},
+              {"vk_format", vulkanFormatName(out.format)},
+              {"size", {cube.size(), cube.size()}},
+              {"faces", 6},
+              {"levels", cube.levelCount()}};
+    if (extra.is_object()) e.update(extra);
+    files.push_back(
+        {stem + ".ktx2", [&cube, &out] { return encodeKtx2(cubeTexture(cube, out.format)); }, {}});
+    outputs.push_back(e);
+    for (auto [enabled, format] :
+         {std::pair{out.exr, FileFormat::Exr}, std::pair{out.hdr, FileFormat::Hdr}})
+      if (enabled) {
+        Json flat = {{"role", role}};
+        if (extra.is_object()) flat.update(extra);
+        addFlatCube(files, outputs, flat, cube, stem, format, out.layout);
+      }
+  };
+
+  Json roughness = Json::array();
+  Json methods = Json::array();
+  for (const auto& l : r.specularLevels) {
+    roughness.push_back(l.roughness);
+    methods.push_back({{"roughness", l.roughness},
+                       {"method", l.method},
+                       {"source_size", l.sourceSize},
+                       {"samples", l.samples}});
+  }
+  const std::string mapping =
+      o.specular.mapping == RoughnessMapping::Linear ? "linear" : "frostbite";
+  addCube("specular", "specular", r.specular,
+          {{"variant", "standard"},
+           {"roughness", roughness},
+           {"mapping", mapping},
+           {"methods", methods}});
+  if (r.specularF0Zero) {
+    addCube("specular", "specular_f0_0", *r.specularF0Zero,
+            {{"variant", "fresnel_f0_0"}, {"roughness", roughness}, {"mapping", mapping}});
+    addCube("specular", "specular_f0_1", *r.specularF0One,
+            {{"variant", "fresnel_f0_1"}, {"roughness", roughness}, {"mapping", mapping}});
+  }
+  addCube("irradiance", "irradiance", r.irradiance, {{"stores", "E / pi"}});
+  addCube("source", "source", r.source, {});
+
+  // DFG table: 2D RGBA16F KTX2 (+ EXR).
+  {
+    Ktx2Texture tex;
+    tex.format = PixelFormat::Rgba16f;
+    tex.levels = {{r.dfg}};
+    files.push_back({"dfg.ktx2", [tex] { return encodeKtx2(tex); }, {}});
+    outputs.push_back({{"role", "dfg"},
+                       {"path", "dfg.ktx2"},
+                       {"format", "ktx2"},
+                       {"pixel_format", "rgba16f"},
+                       {"vk_format", vulkanFormatName(PixelFormat::Rgba16f)},
+                       {"size", {r.dfg.width, r.dfg.height}},
+                       {"faces", 1},
+                       {"levels", 1},
+                       {"channels", {"A", "B", "diffuse"}},
+                       {"samples", o.dfgSamples}});
+    if (out.exr) {
+      files.push_back({"dfg.exr", [&r] { return encodeExr(r.dfg, ExrPixelType::Float); }, {}});
+      outputs.push_back({{"role", "dfg"},
+                         {"path", "dfg.exr"},
+                         {"format", "exr"},
+                         {"size", {r.dfg.width, r.dfg.height}},
+                         {"channels", {"A", "B", "diffuse"}}});
+    }
+  }
+
+  // SH9: a small JSON file, and the coefficients in the manifest.
+  Json coefficients = Json::array();
+  for (const auto& c : r.sh) coefficients.push_back(vec3Json(c));
+  {
+    const Json sh = {{"generator", fmt::format("ibl {}", kVersion)},
+                     {"coefficients", coefficients},
+                     {"windowed", o.shWindow}};
+    const std::string text = sh.dump(2) + "\n";
+    files.push_back(
+        {"sh.json", [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); }, {}});
+    outputs.push_back({{"role", "sh"},
+                       {"path", "sh.json"},
+                       {"format", "json"},
+                       {"size", {9, 1}},
+                       {"coefficients", coefficients},
+                       {"windowed", o.shWindow}});
+  }
+
+  if (out.preview) {
+    files.push_back({"preview.png",
+                     [&r, &o] {
+                       const Image grid = renderMaterialGrid(r, o, kPreviewColumns, kPreviewCell);
+                       return encodePng(toneMapAces(grid, autoExposure(grid) + 0.5f));
+                     },
+                     {}});
+    outputs.push_back(
+        {{"role", "preview"},
+         {"path", "preview.png"},
+         {"format", "png"},
+         {"size", {kPreviewColumns * kPreviewCell, 2 * kPreviewCell}},
+         {"shows",
+          "spheres of roughness 0..1 (columns), dielectric (top) and metal (bottom), ACES"}});
+    files.push_back({"source.png",
+                     [&r] {
+                       const Image cross = crossFromCube(r.source, 0, false);
+                       return encodePng(toneMapAces(cross, autoExposure(cross)));
+                     },
+                     {}});
+    outputs.push_back({{"role", "preview"},
+                       {"path", "source.png"},
+                       {"format", "png"},
+                       {"size", {4 * r.source.size(), 3 * r.source.size()}},
+                       {"shows", "source cube, horizontal cross, ACES"}});
+    files.push_back({"dfg.png", [&r] { return encodePng(r.dfg); }, {}});
+    outputs.push_back({{"role", "preview"},
+                       {"path", "dfg.png"},
+                       {"format", "png"},
+                       {"size", {r.dfg.width, r.dfg.height}},
+                       {"shows", "DFG table, sRGB-encoded"}});
+  }
+
+  Json manifest;
+  manifest["generator"] = fmt::format("ibl {}", kVersion);
+  manifest["device"] = r.device;
+  manifest["source"] = {{"path", src.path.empty() ? "(bundled default: sunset.exr)" : src.path},
+                        {"format", src.format},
+                        {"layout", src.layout},
+                        {"size", {src.width, src.height}},
+                        {"replaced_pixels",
+                         {{"nan", src.replaced.nan},
+                          {"infinite", src.replaced.infinite},
+                          {"negative", src.replaced.negative}}}};
+  manifest["conventions"] = conventionsJson(o, r);
+  manifest["outputs"] = outputs;
+  const std::string text = manifest.dump(2) + "\n";
+  files.push_back({"manifest.json",
+                   [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); },
+                   {}});
+
+  std::vector<fs::path> written;
+  writeAll(files, outDir, written);
+  return written;
+}
+
+BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
+  const fs::path manifestPath = dir / "manifest.json";
+  const auto bytes = readFileBytes(manifestPath);
+  Json manifest;
+  try {
+    manifest = Json::parse(bytes.begin(), bytes.end());
+  } catch (const std::exception& e) {
+    fail(manifestPath.string(), fmt::format("not valid JSON: {}", e.what()));
+  }
+  BakeResult r;
+  const auto cube = [&](const std::string& file) {
+    const DecodedFile d = readImageFile(dir / file);
+    if (d.levels[0].size() != kFaceCount) fail((dir / file).string(), "is not a cube map");
+    CubeMap c;
+    for (const auto& level : d.levels) {
+      c.levels.emplace_back();
+      for (int f = 0; f < kFaceCount; ++f) c.levels.back()[f] = level[f];
+    }
+    return c;
+  };
+  try {
+    r.specular = cube("specular.ktx2");
+    r.irradiance = cube("irradiance.ktx2");
+    r.source = cube("source.ktx2");
+    r.dfg = readImageFile(dir / "dfg.ktx2").levels.at(0).at(0);
+    for (const auto& o : manifest.at("outputs")) {
+      if (o.at("role") == "sh")
+        for (int k = 0; k < 9; ++k)
+          for (int c = 0; c < 3; ++c) r.sh[k][c] = o.at("coefficients").at(k).at(c).get<float>();
+      if (o.at("role") == "specular" && o.value("variant", "") == "standard" &&
+          o.at("format") == "ktx2") {
+        for (const auto& v : o.at("roughness"))
+          r.specularLevels.push_back({v.get<float>(), "loaded", 0, 0});
+        if (options)
+          options->specular.mapping = o.at("mapping") == "frostbite" ? RoughnessMapping::Frostbite
+                                                                     : RoughnessMapping::Linear;
+      }
+    }
+  } catch (const nlohmann::json::exception& e) {
+    fail(manifestPath.string(), fmt::format("unexpected content: {}", e.what()));
+  }
+  if (options) options->specular.size = r.specular.size();
+  return r;
+}
+
+}  // namespace ibl

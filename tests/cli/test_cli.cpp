@@ -1,0 +1,192 @@
+// End-to-end tests of the `ibl` executable: exit codes, outputs, and error messages.
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
+#include "support/helpers.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+int countFiles(const std::filesystem::path& dir) {
+  int n = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST(Cli, Version) {
+  const CliRun r = runIbl("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("ibl 0."), std::string::npos);
+}
+
+TEST(Cli, ConvertToKtx2CubeWithMips) {
+  TempDir dir;
+  const CliRun r = runIbl("convert " + quote(hdriPath("sunset")) + " -o " + quote(dir / "s.ktx2") +
+                          " --size 64 --mips --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output, "");  // --quiet
+  const DecodedFile d = readImageFile(dir / "s.ktx2");
+  EXPECT_EQ(d.levels.size(), 7u);
+  EXPECT_EQ(d.levels[0].size(), 6u);
+  EXPECT_EQ(d.levels[0][0].width, 64);
+}
+
+TEST(Cli, ConvertToFacesAndMipFiles) {
+  TempDir dir;
+  CliRun r = runIbl("convert " + quote(hdriPath("park")) + " -o " + quote(dir / "f_{face}.png") +
+                    " --layout faces --size 16 --exposure -1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* f : {"px", "nx", "py", "ny", "pz", "nz"})
+    EXPECT_TRUE(std::filesystem::exists(dir / (std::string("f_") + f + ".png"))) << f;
+  r = runIbl("convert " + quote(hdriPath("park")) + " -o " + quote(dir / "c.exr") +
+             " --layout vcross --size 8 --mips --exr-type float");
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (int m = 0; m < 4; ++m) {
+    const DecodedFile d = readImageFile(dir / ("c_m" + std::to_string(m) + ".exr"));
+    EXPECT_EQ(d.levels[0][0].width, 3 * (8 >> m));
+  }
+  // Back from six faces to an equirect HDR, rotated.
+  r = runIbl("convert " + quote(dir / "f_{face}.png") + " -o " + quote(dir / "e.hdr") +
+             " --rotate 45");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readImageFile(dir / "e.hdr").levels[0][0].width, 64);
+}
+
+TEST(Cli, InfoJson) {
+  const CliRun r = runIbl("info --json " + quote(hdriPath("studio")));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["format"], "exr");
+  EXPECT_EQ(j["layout"], "equirect");
+  EXPECT_EQ(j["width"], 512);
+  EXPECT_EQ(j["negative"], 2028);
+  EXPECT_GT(j["radiant_integral"][0].get<double>(), 0.0);
+}
+
+TEST(Cli, InfoText) {
+  const CliRun r = runIbl("info " + quote(hdriPath("sunset")));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("exr (half, DWAB)"), std::string::npos);
+  EXPECT_NE(r.output.find("912 negative"), std::string::npos);
+}
+
+TEST(Cli, BadInputsFailCleanlyAndWriteNothing) {
+  TempDir dir;
+  std::filesystem::create_directories(dir / "out");
+  std::ofstream(dir / "corrupt.exr") << "v/1\x01garbage that is not an EXR file";
+  std::ofstream(dir / "cut.hdr") << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 64 +X 128\n\x02\x02";
+  struct Case {
+    std::string args;
+    std::string expect;  // a piece of the one-line error
+  };
+  const Case cases[] = {
+      {quote(dir / "missing.exr"), "missing.exr: no such file"},
+      {quote(dir / "corrupt.exr"), "corrupt.exr: "},
+      {quote(dir / "cut.hdr"), "cut.hdr: truncated"},
+      {quote(hdriPath("sunset")) + " --size 0", "--size"},
+      {quote(hdriPath("sunset")) + " --format rgb565", "--format"},
+      {quote(hdriPath("sunset")) + " --size 100 --mips", "power-of-two"},
+  };
+  for (const Case& c : cases) {
+    const CliRun r = runIbl("convert " + c.args + " -o " + quote(dir / "out" / "x.ktx2"));
+    EXPECT_NE(r.status, 0) << c.args;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << " -> " << r.output;
+    EXPECT_EQ(countFiles(dir / "out"), 0) << c.args;
+  }
+  const CliRun r =
+      runIbl("convert " + quote(hdriPath("sunset")) + " -o " + quote(dir / "out" / "x.jpg"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("unknown output format"), std::string::npos);
+}
+
+TEST(Cli, BakeDefaultEnvironment) {
+  TempDir dir;
+  const CliRun r = runIbl("bake -o " + quote(dir / "out") +
+                          " --size 32 --dfg-size 16 --dfg-samples 64 --hdr --layout vcross");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("baked sunset.exr (bundled)"), std::string::npos) << r.output;
+  for (const char* f : {"manifest.json", "specular.ktx2", "irradiance.ktx2", "source.ktx2",
+                        "dfg.ktx2", "sh.json", "preview.png", "specular_m0.hdr", "irradiance.hdr"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+  const auto bytes = readFileBytes(dir / "out" / "manifest.json");
+  const auto m = nlohmann::json::parse(bytes.begin(), bytes.end());
+  EXPECT_EQ(m["source"]["path"], "(bundled default: sunset.exr)");
+}
+
+TEST(Cli, BakeFailsCleanly) {
+  TempDir dir;
+  std::ofstream(dir / "bad.hdr") << "#?RADIANCE\n\n-Y 8 +X 16\n";
+  CliRun r = runIbl("bake " + quote(dir / "bad.hdr") + " -o " + quote(dir / "out"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("bad.hdr: truncated"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+  r = runIbl("bake -o " + quote(dir / "out") + " --size 100");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("power of two"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+  EXPECT_EQ(countFiles(dir.path()), 1);  // bad.hdr only: no staging directory
+}
+
+TEST(Cli, BakeBytesDoNotDependOnThreads) {
+  TempDir dir;
+  const std::string args = " --size 32 --dfg-size 16 --dfg-samples 64 --exr --quiet";
+  ASSERT_EQ(runIbl("bake -o " + quote(dir / "one") + args + " --threads 1").status, 0);
+  ASSERT_EQ(runIbl("bake -o " + quote(dir / "two") + args + " --threads 2").status, 0);
+  int compared = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "one")) {
+    EXPECT_EQ(readFileBytes(e.path()), readFileBytes(dir / "two" / e.path().filename()))
+        << e.path();
+    ++compared;
+  }
+  EXPECT_GT(compared, 10);
+}
+
+TEST(Cli, RenderAndCompare) {
+  TempDir dir;
+  CliRun r = runIbl("render sphere -o " + quote(dir / "a.exr") +
+                    " --size 24x16 --spp 1 --roughness 0.4 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl("render sphere -o " + quote(dir / "b.exr") +
+             " --size 24x16 --spp 1 --roughness 0.6 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const DecodedFile a = readImageFile(dir / "a.exr");
+  EXPECT_EQ(a.channels, 4);  // RGB + alpha
+  EXPECT_EQ(a.levels[0][0].width, 24);
+  r = runIbl("compare " + quote(dir / "a.exr") + " " + quote(dir / "a.exr") + " --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(nlohmann::json::parse(r.output)["overall"]["rmse"], 0.0);
+  r = runIbl("compare " + quote(dir / "a.exr") + " " + quote(dir / "b.exr") +
+             " --max-rel-error 1e-6 --error-png " + quote(dir / "err.png"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("exceeds"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "err.png"));
+  r = runIbl("render " + quote(dir / "missing.glb") + " -o " + quote(dir / "c.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("missing.glb: no such file"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
+}
+
+TEST(Cli, RenderFromAnExistingBake) {
+  TempDir dir;
+  ASSERT_EQ(
+      runIbl("bake -o " + quote(dir / "bake") + " --size 32 --dfg-size 16 --dfg-samples 64 --quiet")
+          .status,
+      0);
+  const CliRun r =
+      runIbl("render grid --bake " + quote(dir / "bake") + " -o " + quote(dir / "g.png") +
+             " --size 64x32 --spp 1 --tonemap filmic --ev100 2");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("EV100 2.00"), std::string::npos) << r.output;
+  EXPECT_EQ(readImageFile(dir / "g.png").levels[0][0].width, 64);
+}

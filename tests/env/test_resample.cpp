@@ -1,0 +1,157 @@
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "ibl/core/error.hpp"
+#include "ibl/env/resample.hpp"
+#include "ibl/io/image_io.hpp"
+#include "support/helpers.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+glm::vec3 smoothSky(glm::vec3 d) {
+  return glm::vec3(1.0f + 0.5f * d.x, 2.0f + d.y * d.y, 1.0f + 0.3f * d.z + 0.2f * d.x * d.y);
+}
+
+// An environment with a distinct color in each axis direction (a cap of ~10 degrees).
+glm::vec3 axisMarkers(glm::vec3 d) {
+  const glm::vec3 colors[6] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};
+  const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (int i = 0; i < 6; ++i)
+    if (glm::dot(d, axes[i]) > 0.985f) return colors[i] * 10.0f;
+  return glm::vec3(0.0f);
+}
+
+double relativeRmse(const Image& a, const Image& b) {
+  double num = 0.0, den = 0.0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    const glm::dvec3 d = glm::dvec3(a.pixels[i]) - glm::dvec3(b.pixels[i]);
+    num += glm::dot(d, d);
+    den += glm::dot(glm::dvec3(b.pixels[i]), glm::dvec3(b.pixels[i]));
+  }
+  return std::sqrt(num / den);
+}
+
+}  // namespace
+
+TEST(Resample, ConstantStaysConstant) {
+  const Environment env = equirectEnvironment(Image(256, 128, glm::vec3(3.0f, 0.5f, 1.0f)));
+  const CubeMap cube = resampleToCube(env, 16, 33.0f);
+  for (const auto& face : cube.levels[0])
+    for (const auto& p : face.pixels) ASSERT_NEAR(p.x, 3.0f, 1e-5f);
+  const Image back = resampleToEquirect(cubeEnvironment(cube), 64);
+  for (const auto& p : back.pixels) ASSERT_NEAR(p.y, 0.5f, 1e-5f);
+}
+
+TEST(Resample, FaceOrientationWithAxisMarkers) {
+  // Each face center must show the marker of its own axis: +X red, -X green, +Y blue...
+  const Environment env = equirectEnvironment(equirectFromFunction(1024, axisMarkers));
+  const CubeMap cube = resampleToCube(env, 32);
+  const glm::vec3 expected[6] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};
+  for (int f = 0; f < 6; ++f) {
+    const glm::vec3 c = cube.levels[0][f].at(16, 16) / 10.0f;
+    EXPECT_LT(glm::distance(c, expected[f]), 0.02f) << "face " << f;
+  }
+}
+
+TEST(Resample, EquirectCubeEquirectRoundTrip) {
+  const Image src = equirectFromFunction(512, smoothSky);
+  const CubeMap cube = resampleToCube(equirectEnvironment(src), 128);
+  const Image back = resampleToEquirect(cubeEnvironment(cube), 512);
+  EXPECT_LT(relativeRmse(back, src), 2e-3);
+  const glm::dvec3 a = integrateEquirect(src), b = integrateCube(cube), c = integrateEquirect(back);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(b[i] / a[i], 1.0, 1e-3);
+    EXPECT_NEAR(c[i] / a[i], 1.0, 1e-3);
+  }
+}
+
+TEST(Resample, RealHdriKeepsItsIntegral) {
+  DecodedFile file = readImageFile(hdriPath("sunset"));
+  Image img = std::move(file.levels[0][0]);
+  sanitizePixels(img);
+  const Environment env = equirectEnvironment(img);
+  const glm::dvec3 ref = integrateEquirect(img);
+  for (int size : {16, 64, 256}) {
+    const CubeMap cube = resampleToCube(env, size);
+    const glm::dvec3 v = integrateCube(cube);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c] / ref[c], 1.0, 1e-3) << size;
+  }
+}
+
+TEST(Resample, SunKeepsItsEnergyFrom4KTo64) {
+  // A 4096 x 2048 panorama, black but for a sun a few pixels across at a random spot: the
+  // 64^2 cube must hold the same energy (0.1 %) without aliasing it away.
+  std::mt19937 rng(21);
+  std::uniform_int_distribution<int> ux(0, 4093), uy(200, 1800);
+  for (int trial = 0; trial < 3; ++trial) {
+    Image img(4096, 2048);
+    const int sx = ux(rng), sy = uy(rng);
+    for (int y = sy; y < sy + 2; ++y)
+      for (int x = sx; x < sx + 3; ++x) img.at(x, y) = glm::vec3(5e4f, 4e4f, 3e4f);
+    const glm::dvec3 ref = integrateEquirect(img);
+    const CubeMap cube = resampleToCube(equirectEnvironment(std::move(img)), 64);
+    const glm::dvec3 v = integrateCube(cube);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c] / ref[c], 1.0, 1e-3) << "trial " << trial;
+    // The energy stays where the sun is: the brightest texel looks toward it.
+    const glm::vec3 sunDir = equirectToDirection((sx + 1.5f) / 4096.0f, (sy + 1.0f) / 2048.0f);
+    float best = 0.0f;
+    glm::vec3 bestDir(0.0f);
+    for (int f = 0; f < 6; ++f)
+      for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+          if (cube.levels[0][f].at(x, y).x > best) {
+            best = cube.levels[0][f].at(x, y).x;
+            bestDir = texelDirection(f, x, y, 64);
+          }
+    EXPECT_GT(glm::dot(bestDir, sunDir), std::cos(2.0f * 2.0f / 64.0f));
+  }
+}
+
+TEST(Resample, RotationAboutY) {
+  const Environment env = equirectEnvironment(equirectFromFunction(1024, axisMarkers));
+  // +90 degrees: +X turns toward -Z, so the red +X marker is seen on the -Z face.
+  const CubeMap cube = resampleToCube(env, 32, 90.0f);
+  EXPECT_LT(glm::distance(cube.levels[0][5].at(16, 16) / 10.0f, glm::vec3(1, 0, 0)), 0.02f);
+  EXPECT_LT(glm::distance(cube.levels[0][2].at(16, 16) / 10.0f, glm::vec3(0, 0, 1)), 0.02f);
+  // A full turn changes nothing.
+  const Image src = equirectFromFunction(256, smoothSky);
+  const Image turned = resampleToEquirect(equirectEnvironment(src), 256, 360.0f);
+  EXPECT_LT(relativeRmse(turned, src), 1e-3);
+}
+
+TEST(Resample, CubeToCubeUsesMipsAndKeepsEnergy) {
+  const CubeMap big = cubeFromFunction(256, [](glm::vec3 d) {
+    return glm::vec3(std::pow(std::max(0.0f, d.z), 200.0f) * 1e4f, 1.0f, 0.5f);
+  });
+  const glm::dvec3 ref = integrateCube(big);
+  const CubeMap small = resampleToCube(cubeEnvironment(big), 16, 0.0f);
+  const glm::dvec3 v = integrateCube(small);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c] / ref[c], 1.0, 1e-3);
+}
+
+TEST(Resample, CrossLayoutsRoundTripExactly) {
+  const CubeMap cube = cubeFromFunction(8, axisMarkers);
+  for (bool vertical : {false, true}) {
+    const Image cross = crossFromCube(cube, 0, vertical);
+    EXPECT_EQ(cross.width, vertical ? 24 : 32);
+    const CubeMap back = cubeFromCross(cross, vertical, "test");
+    for (int f = 0; f < 6; ++f) EXPECT_EQ(back.levels[0][f].pixels, cube.levels[0][f].pixels);
+  }
+  EXPECT_THROW(cubeFromCross(Image(30, 24), false, "test"), Error);
+}
+
+TEST(Resample, CrossNeighboursShareEdges) {
+  // In the horizontal cross, the right column of +Z continues into the left column of +X.
+  const CubeMap cube = cubeFromFunction(16, smoothSky);
+  const Image cross = crossFromCube(cube, 0, false);
+  for (int y = 16; y < 32; ++y)
+    EXPECT_LT(glm::distance(cross.at(31, y), cross.at(32, y)), 0.1f);  // +Z | +X
+  for (int x = 16; x < 32; ++x)
+    EXPECT_LT(glm::distance(cross.at(x, 15), cross.at(x, 16)), 0.1f);  // +Y above +Z
+}

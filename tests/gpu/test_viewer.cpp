@@ -1,0 +1,258 @@
+// The viewer (Vulkan rasterizer) against the CPU split-sum renderer, image by image, and the
+// `ibl view` command headless and in a window on a virtual X display. Like the other GPU tests,
+// these fail without a Vulkan device.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+
+#include "ibl/env/cubemap.hpp"
+#include "ibl/gpu/viewer.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/math/color.hpp"
+#include "support/gltf_writer.hpp"
+#include "support/helpers.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+gpu::Context& graphicsContext() {
+  static const std::unique_ptr<gpu::Context> c = [] {
+    gpu::ContextOptions o;
+    o.graphics = true;
+    return gpu::Context::create(o);
+  }();
+  return *c;
+}
+
+struct Baked {
+  BakeOptions options;
+  BakeResult bake;
+};
+
+// The sunset, baked small (the comparisons are of shading, not of the bake).
+const Baked& sunsetBake() {
+  static const Baked b = [] {
+    Baked out;
+    out.options.specular.size = 64;
+    out.options.irradianceSize = 16;
+    out.options.dfgSize = 64;
+    out.options.dfgSamples = 128;
+    out.bake =
+        bakeEnvironment(loadEnvironment(hdriPath("sunset").string()).environment, out.options);
+    return out;
+  }();
+  return b;
+}
+
+Camera lookingAt(glm::vec3 from, int width, int height) {
+  Camera c;
+  c.from = from;
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
+struct Comparison {
+  double meanRelative = 0.0;      // of luminance, over pixels covered (or not) in both
+  double fractionOver1 = 0.0;     // of those pixels, the share more than 1 % off
+  double coverageMismatch = 0.0;  // share of pixels whose coverage differs by more than 0.5
+  double coverageTotal = 0.0;     // relative difference of the summed coverage
+};
+
+Comparison compare(const RenderResult& gpu, const RenderResult& cpu) {
+  Comparison c;
+  std::size_t counted = 0, over = 0, mismatched = 0;
+  for (std::size_t i = 0; i < cpu.color.pixels.size(); ++i) {
+    if (std::abs(gpu.alpha[i] - cpu.alpha[i]) > 0.5f) {
+      ++mismatched;
+      continue;
+    }
+    const double ref = luminance(cpu.color.pixels[i]);
+    const double e = std::abs(luminance(gpu.color.pixels[i]) - ref) / std::max(ref, 1e-3);
+    c.meanRelative += e;
+    over += e > 0.01 ? 1 : 0;
+    ++counted;
+  }
+  c.meanRelative /= static_cast<double>(std::max<std::size_t>(counted, 1));
+  c.fractionOver1 =
+      static_cast<double>(over) / static_cast<double>(std::max<std::size_t>(counted, 1));
+  c.coverageMismatch = static_cast<double>(mismatched) / static_cast<double>(cpu.alpha.size());
+  double gpuCoverage = 0.0, cpuCoverage = 0.0;
+  for (std::size_t i = 0; i < cpu.alpha.size(); ++i) {
+    gpuCoverage += gpu.alpha[i];
+    cpuCoverage += cpu.alpha[i];
+  }
+  c.coverageTotal = std::abs(gpuCoverage - cpuCoverage) / std::max(cpuCoverage, 1.0);
+  return c;
+}
+
+Comparison renderBoth(const Scene& scene, const Camera& camera, const RenderOptions& options,
+                      float skyboxLod = 0.0f) {
+  const Baked& b = sunsetBake();
+  gpu::SceneRenderer viewer(graphicsContext(), scene, b.bake, b.options);
+  const RenderResult g = viewer.render(camera, options, skyboxLod);
+  const RenderResult c = renderScene(scene, camera, b.bake, b.options, options);
+  EXPECT_EQ(g.color.width, camera.width);
+  EXPECT_EQ(g.color.height, camera.height);
+  return compare(g, c);
+}
+
+}  // namespace
+
+// The tolerance the README states: at pixel centers (1 sample per pixel) the viewer's image of
+// the sphere grid is on average within 0.1 % of `ibl render --mode split-sum`, fewer than 0.5 % of
+// its pixels are more than 1 % off, and coverage differs on fewer than 0.5 % of the pixels.
+TEST(Viewer, SphereGridMatchesTheSplitSumRenderAtPixelCenters) {
+  RenderOptions o;
+  o.spp = 1;
+  const Comparison c =
+      renderBoth(makeSphereGrid(glm::vec3(1.0f)), lookingAt({0, 0, 20}, 320, 160), o);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  EXPECT_LT(c.fractionOver1, 5e-3);
+  EXPECT_LT(c.coverageMismatch, 5e-3);
+}
+
+// With 4 samples per pixel the CPU shades every jittered sample and the viewer shades each pixel
+// once (multisampling, coverage per sample): detail finer than a pixel (the mirror spheres'
+// reflections, the background) is averaged on the CPU only; coverage agrees.
+TEST(Viewer, SphereGridMatchesTheSplitSumRenderWithMultisampling) {
+  RenderOptions o;
+  o.spp = 4;
+  const Comparison c =
+      renderBoth(makeSphereGrid(glm::vec3(0.8f, 0.5f, 0.3f)), lookingAt({0, 0, 20}, 320, 160), o);
+  EXPECT_LT(c.meanRelative, 1e-2);   // measured 0.62 %, most of it on the mirror spheres
+  EXPECT_LT(c.coverageTotal, 2e-3);  // the silhouettes' coverage: measured 0.02 %
+  EXPECT_LT(c.coverageMismatch, 5e-3);
+}
+
+TEST(Viewer, ShadingSwitchesMatchTheCpu) {
+  Material m;
+  m.baseColor = glm::vec3(0.9f, 0.6f, 0.2f);
+  m.metallic = 0.5f;
+  m.roughness = 0.4f;
+  const Scene scene = makeSphereScene(m);
+  const Camera camera = lookingAt({0.5f, 1.0f, 4.0f}, 96, 96);
+  std::vector<RenderOptions> variants(7);
+  variants[0].only = ShadingTerms::Diffuse;
+  variants[1].only = ShadingTerms::Specular;
+  variants[2].irradiance = IrradianceSource::Sh;
+  variants[3].diffuse = DiffuseModel::Lambert;
+  variants[4].multipleScattering = false;
+  variants[4].dominantDirections = false;
+  variants[5].backgroundEnvironment = false;
+  variants[5].backgroundColor = glm::vec3(0.25f, 0.5f, 1.0f);
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    variants[v].spp = 1;
+    const Comparison c = renderBoth(scene, camera, variants[v]);
+    EXPECT_LT(c.meanRelative, 1e-3) << "variant " << v;
+    EXPECT_LT(c.coverageMismatch, 5e-3) << "variant " << v;
+  }
+  Camera ortho = camera;
+  ortho.perspective = false;
+  ortho.orthoWidth = 3.0f;
+  const Comparison c = renderBoth(scene, ortho, variants[6]);
+  EXPECT_LT(c.meanRelative, 2e-3);
+  EXPECT_LT(c.coverageMismatch, 5e-3);
+}
+
+TEST(Viewer, SkyboxShowsTheChosenMipLevel) {
+  const Baked& b = sunsetBake();
+  Scene empty = makeSphereScene(Material{});
+  empty.spheres[0].center = glm::vec3(0.0f, 0.0f, 100.0f);  // behind the camera
+  const Camera camera = lookingAt({0, 0, 4}, 64, 64);
+  gpu::SceneRenderer viewer(graphicsContext(), empty, b.bake, b.options);
+  RenderOptions o;
+  o.spp = 1;
+  for (int level : {0, 2, 4}) {
+    const RenderResult r = viewer.render(camera, o, static_cast<float>(level));
+    double worst = 0.0;
+    for (int y = 0; y < camera.height; ++y)
+      for (int x = 0; x < camera.width; ++x) {
+        const glm::vec3 dir = camera.generateRay(x + 0.5f, y + 0.5f).direction;
+        worst = std::max(
+            worst, maxRelativeError(r.color.at(x, y), sampleBilinear(b.bake.source, level, dir)));
+        ASSERT_EQ(r.alpha[static_cast<std::size_t>(y) * camera.width + x], 0.0f);
+      }
+    EXPECT_LT(worst, 2e-2) << "level " << level;  // the GPU filters with fixed-point weights
+  }
+}
+
+TEST(Viewer, TexturedAndCompressedMeshesMatchTheCpu) {
+  TempDir dir;
+  writeTexturedQuad(dir / "quad.gltf");
+  RenderOptions o;
+  o.spp = 1;
+  Comparison c =
+      renderBoth(loadGltf((dir / "quad.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 96, 96), o);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  EXPECT_LT(c.coverageMismatch, 5e-3);
+  const Scene bunny = loadGltf((dataDir() / "models" / "bunny.glb").string());
+  const auto [lo, hi] = bunny.bounds();
+  Camera camera =
+      lookingAt(0.5f * (lo + hi) + glm::vec3(0, 0, 2.5f * glm::length(hi - lo)), 128, 128);
+  camera.at = 0.5f * (lo + hi);
+  c = renderBoth(bunny, camera, o);
+  EXPECT_LT(c.meanRelative, 2e-3);
+  EXPECT_LT(c.fractionOver1, 2e-2);
+  EXPECT_LT(c.coverageMismatch, 1e-2);
+}
+
+TEST(Viewer, CliWritesAScreenshot) {
+  TempDir dir;
+  ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+  const auto png = dir / "grid.png";
+  CliRun r = runIbl("view grid --size 96x48 --screenshot " + quote(png));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("MSAA"), std::string::npos) << r.output;
+  const Image shot = readImageFile(png).levels[0][0];
+  EXPECT_EQ(shot.width, 96);
+  EXPECT_EQ(shot.height, 48);
+  // The same view from `ibl render` (pixel centers both), through the same exposure and curve.
+  const auto cpu = dir / "cpu.png";
+  r = runIbl("render grid --size 96x48 --spp 1 -q -o " + quote(cpu));
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl("view grid --size 96x48 --spp 1 -q --screenshot " + quote(png));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Image a = readImageFile(png).levels[0][0], b = readImageFile(cpu).levels[0][0];
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  double sum = 0.0;  // of differences in 8-bit sRGB codes
+  for (std::size_t i = 0; i < a.pixels.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      sum += std::abs(int(linearToSrgb8(a.pixels[i][k])) - int(linearToSrgb8(b.pixels[i][k])));
+  EXPECT_LT(sum / static_cast<double>(3 * a.pixels.size()), 0.1);
+
+  r = runIbl("view grid --screenshot " + quote(dir / "grid.jpg"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("output must be .exr or .png"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "grid.jpg"));
+  r = runIbl("view grid --size 0x10 --screenshot " + quote(png));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("--size"), std::string::npos) << r.output;
+}
+
+TEST(Viewer, WithoutADisplayTheWindowFailsClearly) {
+  ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+  const CliRun r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(IBL_CLI) +
+                              " view sphere --frames 1 --size 32x32");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("window: cannot open a window (no display?); use --screenshot"),
+            std::string::npos)
+      << r.output;
+}
+
+// The interactive viewer in a real window, on a virtual X server (scripts/setup.sh installs
+// xvfb): a few frames, then it closes itself.
+TEST(Viewer, WindowRunsOnAVirtualDisplay) {
+  ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+  ASSERT_EQ(std::system("command -v xvfb-run > /dev/null"), 0)
+      << "xvfb-run is missing: run scripts/setup.sh";
+  const CliRun r = runCommand("xvfb-run -a " + std::string(IBL_CLI) +
+                              " view sphere --size 96x64 --frames 3 --ev100 12");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("viewed 3 frames"), std::string::npos) << r.output;
+}

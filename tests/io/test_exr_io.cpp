@@ -1,0 +1,170 @@
+#include <cmath>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfRgbaFile.h>
+#include <ImfTiledOutputFile.h>
+#include <gtest/gtest.h>
+
+#include "ibl/core/error.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/io/pixel_formats.hpp"
+#include "support/helpers.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+// Writes an RGB float image with the OpenEXR library itself, in the given compression, as a
+// scanline or tiled file, with a data window that does not start at the origin.
+std::vector<std::uint8_t> writeWithOpenExr(const Image& img, Imf::Compression compression,
+                                           bool tiled, Imf::PixelType type, const TempDir& dir) {
+  const auto path = (dir / "ref.exr").string();
+  const Imath::Box2i dataWindow({10, 20}, {10 + img.width - 1, 20 + img.height - 1});
+  Imf::Header header(dataWindow, dataWindow);
+  header.compression() = compression;
+  for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(type));
+  std::vector<float> planes[3];
+  std::vector<Imath::half> halves[3];
+  Imf::FrameBuffer fb;
+  for (int c = 0; c < 3; ++c) {
+    planes[c].resize(img.pixels.size());
+    halves[c].resize(img.pixels.size());
+    for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+      planes[c][i] = img.pixels[i][c];
+      halves[c][i] = Imath::half(img.pixels[i][c]);
+    }
+    void* base = type == Imf::HALF ? static_cast<void*>(halves[c].data()) : planes[c].data();
+    const std::size_t size = type == Imf::HALF ? 2 : 4;
+    fb.insert(std::string(1, "RGB"[c]),
+              Imf::Slice::Make(type, base, dataWindow, size, size * img.width));
+  }
+  if (tiled) {
+    header.setTileDescription(Imf::TileDescription(16, 16, Imf::ONE_LEVEL));
+    Imf::TiledOutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writeTiles(0, file.numXTiles() - 1, 0, file.numYTiles() - 1);
+  } else {
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(img.height);
+  }
+  return readFileBytes(path);
+}
+
+}  // namespace
+
+TEST(ExrIo, RoundTripFloatIsExact) {
+  const Image img = randomImage(37, 19, 1, 1e6f);
+  const Image back = decodeExr(encodeExr(img, ExrPixelType::Float), "f.exr");
+  EXPECT_EQ(back.pixels, img.pixels);
+}
+
+TEST(ExrIo, RoundTripHalfRoundsToHalf) {
+  const Image img = randomImage(40, 20, 2);
+  const Image back = decodeExr(encodeExr(img, ExrPixelType::Half), "h.exr");
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(back.pixels[i][c], halfToFloat(floatToHalf(img.pixels[i][c])));
+}
+
+TEST(ExrIo, EveryCompressionScanlineAndTiled) {
+  TempDir dir;
+  Image img(48, 40);  // smooth, so that the lossy codecs have a meaningful bound
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      img.at(x, y) = glm::vec3(1.0f + 0.5f * std::sin(x / 5.0f), 2.0f + std::cos(y / 7.0f), 0.25f);
+  for (auto compression :
+       {Imf::NO_COMPRESSION, Imf::RLE_COMPRESSION, Imf::ZIPS_COMPRESSION, Imf::ZIP_COMPRESSION,
+        Imf::PIZ_COMPRESSION, Imf::PXR24_COMPRESSION, Imf::B44_COMPRESSION, Imf::B44A_COMPRESSION,
+        Imf::DWAA_COMPRESSION, Imf::DWAB_COMPRESSION}) {
+    for (bool tiled : {false, true}) {
+      const auto bytes = writeWithOpenExr(img, compression, tiled, Imf::HALF, dir);
+      DecodedFile info;
+      const Image back = decodeExr(bytes, "c.exr", &info);
+      ASSERT_EQ(back.width, img.width);
+      ASSERT_EQ(back.height, img.height);
+      EXPECT_EQ(info.channels, 3);
+      EXPECT_EQ(info.detail.find("tiled") != std::string::npos, tiled);
+      // Lossless codecs give the half values back; lossy ones (B44, DWA) stay close.
+      const bool lossy = compression >= Imf::B44_COMPRESSION;
+      double worst = 0.0;
+      for (std::size_t i = 0; i < img.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+          const float ref = halfToFloat(floatToHalf(img.pixels[i][c]));
+          worst =
+              std::max(worst, std::abs(double(back.pixels[i][c]) - ref) / (std::abs(ref) + 1e-3));
+        }
+      EXPECT_LE(worst, lossy ? 0.05 : 0.0) << "compression " << compression << " tiled " << tiled;
+    }
+  }
+}
+
+TEST(ExrIo, FloatScanlineFromOpenExr) {
+  TempDir dir;
+  const Image img = randomImage(20, 10, 4, 1e5f);
+  EXPECT_EQ(decodeExr(writeWithOpenExr(img, Imf::ZIP_COMPRESSION, false, Imf::FLOAT, dir), "f.exr")
+                .pixels,
+            img.pixels);
+}
+
+TEST(ExrIo, LuminanceOnlyAndLuminanceChroma) {
+  TempDir dir;
+  const auto path = (dir / "y.exr").string();
+  {
+    Imf::Header header(4, 2);
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    std::vector<float> y = {1, 2, 3, 4, 5, 6, 7, 8};
+    Imf::FrameBuffer fb;
+    fb.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(y.data()), 4, 16));
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(2);
+  }
+  DecodedFile info;
+  const Image gray = decodeExr(readFileBytes(path), path, &info);
+  EXPECT_EQ(info.channels, 1);
+  EXPECT_EQ(gray.at(2, 1), glm::vec3(7.0f));
+  // Luminance-chroma (Y, RY, BY) written through the RGBA interface.
+  {
+    std::vector<Imf::Rgba> px(16 * 8, Imf::Rgba(0.5f, 0.5f, 0.5f, 1.0f));
+    Imf::RgbaOutputFile file(path.c_str(), 16, 8, Imf::WRITE_YC);
+    file.setFrameBuffer(px.data(), 1, 16);
+    file.writePixels(8);
+  }
+  const Image yc = decodeExr(readFileBytes(path), path);
+  EXPECT_NEAR(yc.at(5, 5).x, 0.5f, 0.01f);
+  EXPECT_NEAR(yc.at(5, 5).z, 0.5f, 0.01f);
+}
+
+TEST(ExrIo, ReadsBundledDwabHdris) {
+  for (const char* name : {"apartment", "night", "park", "studio", "sunset"}) {
+    const DecodedFile d = readImageFile(hdriPath(name));
+    EXPECT_EQ(d.format, FileFormat::Exr);
+    EXPECT_EQ(d.detail, "half, DWAB") << name;
+    EXPECT_EQ(d.levels[0][0].width, 512);
+    EXPECT_EQ(d.levels[0][0].height, 256);
+  }
+  // studio.exr really holds negative pixels: the reader keeps them for the caller to count.
+  const DecodedFile studio = readImageFile(hdriPath("studio"));
+  EXPECT_EQ(countInvalidPixels(studio.levels[0][0]).negative, 2028u);
+}
+
+TEST(ExrIo, RejectsBrokenFiles) {
+  const auto good = encodeExr(randomImage(64, 32, 5));
+  for (std::size_t len : {4ul, 20ul, 300ul, good.size() / 2, good.size() - 3}) {
+    const std::span<const std::uint8_t> prefix(good.data(), len);
+    EXPECT_THROW(decodeExr(prefix, "cut.exr"), Error) << len;
+  }
+  try {
+    decodeExr(std::span<const std::uint8_t>(good.data(), 100), "named.exr");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("named.exr: ", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
+}

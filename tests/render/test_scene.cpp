@@ -1,0 +1,90 @@
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "ibl/core/error.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/math/color.hpp"
+#include "ibl/render/renderer.hpp"
+#include "ibl/render/scene.hpp"
+#include "support/gltf_writer.hpp"
+#include "support/helpers.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+TEST(Gltf, LoadsATexturedQuad) {
+  TempDir dir;
+  writeTexturedQuad(dir / "quad.gltf");
+  const Scene s = loadGltf((dir / "quad.gltf").string());
+  ASSERT_EQ(s.meshes.size(), 1u);
+  const Mesh& m = s.meshes[0];
+  EXPECT_EQ(m.indices.size(), 6u);
+  EXPECT_NEAR(m.positions[2].z, 0.5f, 1e-6f);                         // node translation applied
+  EXPECT_LT(glm::distance(m.normals[0], glm::vec3(0, 0, 1)), 1e-5f);  // generated
+  ASSERT_EQ(m.tangents.size(), 4u);  // generated for the normal map
+  EXPECT_LT(glm::distance(glm::vec3(m.tangents[0]), glm::vec3(1, 0, 0)), 1e-5f);
+  const Material& mat = s.materials[m.material];
+  EXPECT_FLOAT_EQ(mat.roughness, 0.8f);
+  ASSERT_GE(mat.baseColorTexture, 0);
+  EXPECT_NEAR(s.textures[mat.baseColorTexture].sample({0.375f, 0.5f}).x, 1.0f, 1e-6f);
+  EXPECT_NEAR(s.textures[mat.baseColorTexture].sample({0.625f, 0.5f}).z, 1.0f, 1e-6f);
+}
+
+TEST(Gltf, TexturesShowInTheRender) {
+  TempDir dir;
+  writeTexturedQuad(dir / "quad.gltf");
+  const Scene s = loadGltf((dir / "quad.gltf").string());
+  BakeOptions bo;
+  bo.specular.size = 16;
+  bo.dfgSize = 16;
+  bo.dfgSamples = 64;
+  const BakeResult bake = bakeEnvironment(equirectEnvironment(Image(64, 32, glm::vec3(1.0f))), bo);
+  Camera cam;
+  cam.perspective = false;
+  cam.orthoWidth = 2.0f;
+  cam.from = glm::vec3(0, 0, 4);
+  cam.width = cam.height = 8;
+  RenderOptions o;
+  o.spp = 1;
+  o.only = ShadingTerms::Diffuse;
+  o.diffuse = DiffuseModel::Lambert;
+  const RenderResult r = renderScene(s, cam, bake, bo, o);
+  // Constant white light, Lambert: radiance = albedo (the texture), left red, right blue.
+  // (Texture columns 1 and 2 are sampled away from the wrap-around blend at u = 0 and 1.)
+  EXPECT_LT(glm::distance(r.color.at(2, 4), glm::vec3(1, 0, 0)), 0.02f);
+  EXPECT_LT(glm::distance(r.color.at(5, 4), glm::vec3(0, 0, 1)), 0.02f);
+  EXPECT_FLOAT_EQ(r.alpha[4 * 8 + 2], 1.0f);
+}
+
+TEST(Gltf, DracoCompressedModels) {
+  const Scene s = loadGltf((dataDir() / "models" / "bunny.glb").string());
+  ASSERT_FALSE(s.meshes.empty());
+  std::size_t triangles = 0;
+  for (const auto& m : s.meshes) triangles += m.indices.size() / 3;
+  EXPECT_GT(triangles, 500u);
+  const auto [lo, hi] = s.bounds();
+  EXPECT_GT(glm::length(hi - lo), 0.0f);
+}
+
+TEST(Gltf, BadFilesAreRejectedClearly) {
+  TempDir dir;
+  std::ofstream(dir / "text.gltf") << "this is not json";
+  std::ofstream(dir / "empty.gltf") << R"({"asset": {"version": "2.0"}})";
+  std::ofstream(dir / "missing.gltf")
+      << R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":12,"uri":"nope.bin"}]})";
+  for (const char* name : {"text.gltf", "empty.gltf", "missing.gltf", "absent.glb"}) {
+    const std::string path = (dir / name).string();
+    try {
+      loadGltf(path);
+      FAIL() << name;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+  }
+}

@@ -1,0 +1,95 @@
+#pragma once
+// Writes small glTF files for the tests (embedded buffers and images).
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "ibl/core/image.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/math/color.hpp"
+
+namespace ibl::test {
+
+inline std::string base64(const std::vector<std::uint8_t>& in) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  std::size_t i = 0;
+  for (; i + 2 < in.size(); i += 3) {
+    const std::uint32_t v = (in[i] << 16) | (in[i + 1] << 8) | in[i + 2];
+    for (int k = 3; k >= 0; --k) out += table[(v >> (6 * k)) & 63];
+  }
+  if (i < in.size()) {
+    const std::uint32_t v = (in[i] << 16) | (i + 1 < in.size() ? in[i + 1] << 8 : 0);
+    out += table[(v >> 18) & 63];
+    out += table[(v >> 12) & 63];
+    out += i + 1 < in.size() ? table[(v >> 6) & 63] : '=';
+    out += '=';
+  }
+  return out;
+}
+
+template <typename T>
+void append(std::vector<std::uint8_t>& buf, const std::vector<T>& v) {
+  const auto* p = reinterpret_cast<const std::uint8_t*>(v.data());
+  buf.insert(buf.end(), p, p + v.size() * sizeof(T));
+}
+
+// A 2 x 2 quad in the XY plane facing +Z, moved by a node translation, with a textured
+// material: the left two texel columns red, the right two blue; a flat normal map (no normals and
+// no tangents in the file: both must be generated).
+inline void writeTexturedQuad(const std::filesystem::path& path) {
+  const std::vector<float> positions = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  const std::vector<float> uvs = {0, 1, 1, 1, 1, 0, 0, 0};
+  const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3};
+  std::vector<std::uint8_t> buffer;
+  append(buffer, positions);
+  append(buffer, uvs);
+  append(buffer, indices);
+  Image tex(4, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) tex.at(x, y) = x < 2 ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
+  Image flat(1, 1, glm::vec3(srgbToLinear(128 / 255.0f), srgbToLinear(128 / 255.0f), 1.0f));
+  nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}, {"translation", {0.0, 0.0, 0.5}}}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}},
+            {"indices", 2},
+            {"material", 0}}}}}}},
+      {"materials",
+       {{{"pbrMetallicRoughness",
+          {{"baseColorTexture", {{"index", 0}}},
+           {"metallicFactor", 0.0},
+           {"roughnessFactor", 0.8}}},
+         {"normalTexture", {{"index", 1}}}}}},
+      {"textures", {{{"source", 0}}, {{"source", 1}}}},
+      {"images",
+       {{{"uri", "data:image/png;base64," + base64(encodePng(tex))}},
+        {{"uri", "data:image/png;base64," + base64(encodePng(flat))}}}},
+      {"buffers",
+       {{{"byteLength", buffer.size()},
+         {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+        {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
+        {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 12}}}},
+      {"accessors",
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", 4},
+         {"type", "VEC3"},
+         {"min", {-1, -1, 0}},
+         {"max", {1, 1, 0}}},
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+        {{"bufferView", 2}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}}};
+  std::ofstream(path) << j.dump();
+}
+
+}  // namespace ibl::test
