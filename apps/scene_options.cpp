@@ -10,6 +10,7 @@
 #include "ibl/env/default_environment.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
+#include "ibl/render/gltf.hpp"
 
 namespace ibl::cli {
 

@@ -186,11 +186,23 @@ Json conventionsJson(const BakeOptions& o, const BakeResult& r) {
   return c;
 }
 
-// A file to write: encoded later, all files in parallel.
+// The files of a bake before they are written: each with a function that encodes it (run for
+// all files in parallel, before the first byte is written) and the manifest's `outputs`.
 struct PendingFile {
   fs::path path;  // relative to the output directory
   std::function<std::vector<std::uint8_t>()> encode;
   std::vector<std::uint8_t> bytes;
+};
+struct OutputPlan {
+  std::vector<PendingFile> files;
+  Json outputs = Json::array();
+
+  void add(const std::string& path, std::function<std::vector<std::uint8_t>()> encode) {
+    files.push_back({path, std::move(encode), {}});
+  }
+  void addText(const std::string& path, const std::string& text) {
+    add(path, [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); });
+  }
 };
 
 Ktx2Texture cubeTexture(const CubeMap& cube, PixelFormat format) {
@@ -202,9 +214,8 @@ Ktx2Texture cubeTexture(const CubeMap& cube, PixelFormat format) {
 }
 
 // One cube map as flat files (cross or six faces) in `format` (EXR or HDR), level by level.
-void addFlatCube(std::vector<PendingFile>& files, Json& outputs, const Json& entry,
-                 const CubeMap& cube, const std::string& stem, FileFormat format,
-                 FlatLayout layout) {
+void addFlatCube(OutputPlan& plan, const Json& entry, const CubeMap& cube, const std::string& stem,
+                 FileFormat format, FlatLayout layout) {
   const std::string ext = format == FileFormat::Exr ? ".exr" : ".hdr";
   const auto encoder = [format](const Image& img) {
     return format == FileFormat::Exr ? encodeExr(img, ExrPixelType::Half) : encodeHdr(img);
@@ -219,7 +230,7 @@ void addFlatCube(std::vector<PendingFile>& files, Json& outputs, const Json& ent
       Json paths = Json::array();
       for (int f = 0; f < kFaceCount; ++f) {
         const std::string p = fmt::format("{}_{}{}", base, kFaceNames[f], ext);
-        files.push_back({p, [=, &cube] { return encoder(cube.levels[m][f]); }, {}});
+        plan.add(p, [=, &cube] { return encoder(cube.levels[m][f]); });
         paths.push_back(p);
       }
       e["layout"] = "faces";
@@ -227,24 +238,166 @@ void addFlatCube(std::vector<PendingFile>& files, Json& outputs, const Json& ent
       e["paths"] = paths;
     } else {
       const std::string p = base + ext;
-      files.push_back(
-          {p,
-           [=, &cube] { return encoder(crossFromCube(cube, m, layout == FlatLayout::VCross)); },
-           {}});
+      plan.add(
+          p, [=, &cube] { return encoder(crossFromCube(cube, m, layout == FlatLayout::VCross)); });
       e["layout"] = layout == FlatLayout::VCross ? "vcross" : "hcross";
       e["path"] = p;
     }
-    outputs.push_back(e);
+    plan.outputs.push_back(e);
   }
 }
 
-void writeAll(std::vector<PendingFile>& files, const fs::path& outDir,
-              std::vector<fs::path>& written) {
+// A cube map as `stem`.ktx2 (all levels) and, if asked, as EXR / HDR files; `extra` joins each
+// manifest entry.
+void addCube(OutputPlan& plan, const BakeOutputOptions& out, const std::string& role,
+             const std::string& stem, const CubeMap& cube, const Json& extra) {
+  Json e = {{"role", role},
+            {"path", stem + ".ktx2"},
+            {"format", "ktx2"},
+            {"pixel_format", std::string(formatName(out.format))},
+            {"vk_format", vulkanFormatName(out.format)},
+            {"size", {cube.size(), cube.size()}},
+            {"faces", 6},
+            {"levels", cube.levelCount()}};
+  if (extra.is_object()) e.update(extra);
+  plan.add(stem + ".ktx2",
+           [&cube, format = out.format] { return encodeKtx2(cubeTexture(cube, format)); });
+  plan.outputs.push_back(e);
+  for (auto [enabled, format] :
+       {std::pair{out.exr, FileFormat::Exr}, std::pair{out.hdr, FileFormat::Hdr}})
+    if (enabled) {
+      Json flat = {{"role", role}};
+      if (extra.is_object()) flat.update(extra);
+      addFlatCube(plan, flat, cube, stem, format, out.layout);
+    }
+}
+
+// The prefiltered chain (and the Fresnel-weighted pair), with each level's roughness and method.
+void addSpecular(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
+                 const BakeOutputOptions& out) {
+  Json roughness = Json::array();
+  Json methods = Json::array();
+  for (const auto& l : r.specularLevels) {
+    roughness.push_back(l.roughness);
+    methods.push_back({{"roughness", l.roughness},
+                       {"method", l.method},
+                       {"source_size", l.sourceSize},
+                       {"samples", l.samples}});
+  }
+  const std::string mapping =
+      o.specular.mapping == RoughnessMapping::Linear ? "linear" : "frostbite";
+  addCube(plan, out, "specular", "specular", r.specular,
+          {{"variant", "standard"},
+           {"roughness", roughness},
+           {"mapping", mapping},
+           {"methods", methods}});
+  if (r.specularF0Zero) {
+    addCube(plan, out, "specular", "specular_f0_0", *r.specularF0Zero,
+            {{"variant", "fresnel_f0_0"}, {"roughness", roughness}, {"mapping", mapping}});
+    addCube(plan, out, "specular", "specular_f0_1", *r.specularF0One,
+            {{"variant", "fresnel_f0_1"}, {"roughness", roughness}, {"mapping", mapping}});
+  }
+}
+
+// The DFG table: 2D RGBA16F KTX2 (and float EXR).
+void addDfg(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
+            const BakeOutputOptions& out) {
+  Ktx2Texture tex;
+  tex.format = PixelFormat::Rgba16f;
+  tex.levels = {{r.dfg}};
+  plan.add("dfg.ktx2", [tex] { return encodeKtx2(tex); });
+  plan.outputs.push_back({{"role", "dfg"},
+                          {"path", "dfg.ktx2"},
+                          {"format", "ktx2"},
+                          {"pixel_format", "rgba16f"},
+                          {"vk_format", vulkanFormatName(PixelFormat::Rgba16f)},
+                          {"size", {r.dfg.width, r.dfg.height}},
+                          {"faces", 1},
+                          {"levels", 1},
+                          {"channels", {"A", "B", "diffuse"}},
+                          {"samples", o.dfgSamples}});
+  if (out.exr) {
+    plan.add("dfg.exr", [&r] { return encodeExr(r.dfg, ExrPixelType::Float); });
+    plan.outputs.push_back({{"role", "dfg"},
+                            {"path", "dfg.exr"},
+                            {"format", "exr"},
+                            {"size", {r.dfg.width, r.dfg.height}},
+                            {"channels", {"A", "B", "diffuse"}}});
+  }
+}
+
+// SH9: a small JSON file, and the coefficients in the manifest.
+void addSh(OutputPlan& plan, const BakeResult& r, const BakeOptions& o) {
+  Json coefficients = Json::array();
+  for (const auto& c : r.sh) coefficients.push_back(vec3Json(c));
+  const Json sh = {{"generator", fmt::format("ibl {}", kVersion)},
+                   {"coefficients", coefficients},
+                   {"windowed", o.shWindow}};
+  plan.addText("sh.json", sh.dump(2) + "\n");
+  plan.outputs.push_back({{"role", "sh"},
+                          {"path", "sh.json"},
+                          {"format", "json"},
+                          {"size", {9, 1}},
+                          {"coefficients", coefficients},
+                          {"windowed", o.shWindow}});
+}
+
+// The PNG previews: the material grid shaded with the bake, the source cross, the DFG table.
+void addPreviews(OutputPlan& plan, const BakeResult& r, const BakeOptions& o) {
+  plan.add("preview.png", [&r, &o] {
+    const Image grid = renderMaterialGrid(r, o, kPreviewColumns, kPreviewCell);
+    return encodePng(toneMapAces(grid, autoExposure(grid) + 0.5f));
+  });
+  plan.outputs.push_back(
+      {{"role", "preview"},
+       {"path", "preview.png"},
+       {"format", "png"},
+       {"size", {kPreviewColumns * kPreviewCell, 2 * kPreviewCell}},
+       {"shows",
+        "spheres of roughness 0..1 (columns), dielectric (top) and metal (bottom), ACES"}});
+  plan.add("source.png", [&r] {
+    const Image cross = crossFromCube(r.source, 0, false);
+    return encodePng(toneMapAces(cross, autoExposure(cross)));
+  });
+  plan.outputs.push_back({{"role", "preview"},
+                          {"path", "source.png"},
+                          {"format", "png"},
+                          {"size", {4 * r.source.size(), 3 * r.source.size()}},
+                          {"shows", "source cube, horizontal cross, ACES"}});
+  plan.add("dfg.png", [&r] { return encodePng(r.dfg); });
+  plan.outputs.push_back({{"role", "preview"},
+                          {"path", "dfg.png"},
+                          {"format", "png"},
+                          {"size", {r.dfg.width, r.dfg.height}},
+                          {"shows", "DFG table, sRGB-encoded"}});
+}
+
+// manifest.json: generator, device, source, conventions and the outputs.
+Json manifestJson(const BakeResult& r, const BakeOptions& o, const BakeSource& src,
+                  const Json& outputs) {
+  Json manifest;
+  manifest["generator"] = fmt::format("ibl {}", kVersion);
+  manifest["device"] = r.device;
+  manifest["source"] = {{"path", src.path.empty() ? "(bundled default: sunset.exr)" : src.path},
+                        {"format", src.format},
+                        {"layout", src.layout},
+                        {"size", {src.width, src.height}},
+                        {"replaced_pixels",
+                         {{"nan", src.replaced.nan},
+                          {"infinite", src.replaced.infinite},
+                          {"negative", src.replaced.negative}}}};
+  manifest["conventions"] = conventionsJson(o, r);
+  manifest["outputs"] = outputs;
+  return manifest;
+}
+
+// Encodes every file (in parallel), then writes them: into a new directory by staging beside it
+// and renaming it into place, so that it appears complete; into an existing one file by file.
+std::vector<fs::path> writeAll(std::vector<PendingFile>& files, const fs::path& outDir) {
   tbb::parallel_for(std::size_t{0}, files.size(),
                     [&](std::size_t i) { files[i].bytes = files[i].encode(); });
   std::error_code ec;
   if (!fs::exists(outDir, ec)) {
-    // Stage beside the destination and rename it into place: the directory appears complete.
     const fs::path parent = outDir.has_parent_path() ? outDir.parent_path() : fs::path(".");
     fs::create_directories(parent, ec);
     const fs::path staging =
@@ -265,7 +418,9 @@ void writeAll(std::vector<PendingFile>& files, const fs::path& outDir,
     if (!fs::is_directory(outDir)) fail(outDir.string(), "exists and is not a directory");
     for (const auto& f : files) writeFileAtomic(outDir / f.path, f.bytes);
   }
+  std::vector<fs::path> written;
   for (const auto& f : files) written.push_back(outDir / f.path);
+  return written;
 }
 
 }  // namespace
@@ -273,156 +428,15 @@ void writeAll(std::vector<PendingFile>& files, const fs::path& outDir,
 std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o,
                                        const BakeOutputOptions& out, const BakeSource& src,
                                        const fs::path& outDir) {
-  std::vector<PendingFile> files;
-  Json outputs = Json::array();
-  const std::string fmtName(formatName(out.format));
-
-  const auto addCube = [&](const std::string& role, const std::string& stem, const CubeMap& cube,
-                           Json extra) {
-    Json e = {{"role", role},
-              {"path", stem + ".ktx2"},
-              {"format", "ktx2"},
-              {"pixel_format", fmtName},
-              {"vk_format", vulkanFormatName(out.format)},
-              {"size", {cube.size(), cube.size()}},
-              {"faces", 6},
-              {"levels", cube.levelCount()}};
-    if (extra.is_object()) e.update(extra);
-    files.push_back(
-        {stem + ".ktx2", [&cube, &out] { return encodeKtx2(cubeTexture(cube, out.format)); }, {}});
-    outputs.push_back(e);
-    for (auto [enabled, format] :
-         {std::pair{out.exr, FileFormat::Exr}, std::pair{out.hdr, FileFormat::Hdr}})
-      if (enabled) {
-        Json flat = {{"role", role}};
-        if (extra.is_object()) flat.update(extra);
-        addFlatCube(files, outputs, flat, cube, stem, format, out.layout);
-      }
-  };
-
-  Json roughness = Json::array();
-  Json methods = Json::array();
-  for (const auto& l : r.specularLevels) {
-    roughness.push_back(l.roughness);
-    methods.push_back({{"roughness", l.roughness},
-                       {"method", l.method},
-                       {"source_size", l.sourceSize},
-                       {"samples", l.samples}});
-  }
-  const std::string mapping =
-      o.specular.mapping == RoughnessMapping::Linear ? "linear" : "frostbite";
-  addCube("specular", "specular", r.specular,
-          {{"variant", "standard"},
-           {"roughness", roughness},
-           {"mapping", mapping},
-           {"methods", methods}});
-  if (r.specularF0Zero) {
-    addCube("specular", "specular_f0_0", *r.specularF0Zero,
-            {{"variant", "fresnel_f0_0"}, {"roughness", roughness}, {"mapping", mapping}});
-    addCube("specular", "specular_f0_1", *r.specularF0One,
-            {{"variant", "fresnel_f0_1"}, {"roughness", roughness}, {"mapping", mapping}});
-  }
-  addCube("irradiance", "irradiance", r.irradiance, {{"stores", "E / pi"}});
-  addCube("source", "source", r.source, {});
-
-  // DFG table: 2D RGBA16F KTX2 (+ EXR).
-  {
-    Ktx2Texture tex;
-    tex.format = PixelFormat::Rgba16f;
-    tex.levels = {{r.dfg}};
-    files.push_back({"dfg.ktx2", [tex] { return encodeKtx2(tex); }, {}});
-    outputs.push_back({{"role", "dfg"},
-                       {"path", "dfg.ktx2"},
-                       {"format", "ktx2"},
-                       {"pixel_format", "rgba16f"},
-                       {"vk_format", vulkanFormatName(PixelFormat::Rgba16f)},
-                       {"size", {r.dfg.width, r.dfg.height}},
-                       {"faces", 1},
-                       {"levels", 1},
-                       {"channels", {"A", "B", "diffuse"}},
-                       {"samples", o.dfgSamples}});
-    if (out.exr) {
-      files.push_back({"dfg.exr", [&r] { return encodeExr(r.dfg, ExrPixelType::Float); }, {}});
-      outputs.push_back({{"role", "dfg"},
-                         {"path", "dfg.exr"},
-                         {"format", "exr"},
-                         {"size", {r.dfg.width, r.dfg.height}},
-                         {"channels", {"A", "B", "diffuse"}}});
-    }
-  }
-
-  // SH9: a small JSON file, and the coefficients in the manifest.
-  Json coefficients = Json::array();
-  for (const auto& c : r.sh) coefficients.push_back(vec3Json(c));
-  {
-    const Json sh = {{"generator", fmt::format("ibl {}", kVersion)},
-                     {"coefficients", coefficients},
-                     {"windowed", o.shWindow}};
-    const std::string text = sh.dump(2) + "\n";
-    files.push_back(
-        {"sh.json", [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); }, {}});
-    outputs.push_back({{"role", "sh"},
-                       {"path", "sh.json"},
-                       {"format", "json"},
-                       {"size", {9, 1}},
-                       {"coefficients", coefficients},
-                       {"windowed", o.shWindow}});
-  }
-
-  if (out.preview) {
-    files.push_back({"preview.png",
-                     [&r, &o] {
-                       const Image grid = renderMaterialGrid(r, o, kPreviewColumns, kPreviewCell);
-                       return encodePng(toneMapAces(grid, autoExposure(grid) + 0.5f));
-                     },
-                     {}});
-    outputs.push_back(
-        {{"role", "preview"},
-         {"path", "preview.png"},
-         {"format", "png"},
-         {"size", {kPreviewColumns * kPreviewCell, 2 * kPreviewCell}},
-         {"shows",
-          "spheres of roughness 0..1 (columns), dielectric (top) and metal (bottom), ACES"}});
-    files.push_back({"source.png",
-                     [&r] {
-                       const Image cross = crossFromCube(r.source, 0, false);
-                       return encodePng(toneMapAces(cross, autoExposure(cross)));
-                     },
-                     {}});
-    outputs.push_back({{"role", "preview"},
-                       {"path", "source.png"},
-                       {"format", "png"},
-                       {"size", {4 * r.source.size(), 3 * r.source.size()}},
-                       {"shows", "source cube, horizontal cross, ACES"}});
-    files.push_back({"dfg.png", [&r] { return encodePng(r.dfg); }, {}});
-    outputs.push_back({{"role", "preview"},
-                       {"path", "dfg.png"},
-                       {"format", "png"},
-                       {"size", {r.dfg.width, r.dfg.height}},
-                       {"shows", "DFG table, sRGB-encoded"}});
-  }
-
-  Json manifest;
-  manifest["generator"] = fmt::format("ibl {}", kVersion);
-  manifest["device"] = r.device;
-  manifest["source"] = {{"path", src.path.empty() ? "(bundled default: sunset.exr)" : src.path},
-                        {"format", src.format},
-                        {"layout", src.layout},
-                        {"size", {src.width, src.height}},
-                        {"replaced_pixels",
-                         {{"nan", src.replaced.nan},
-                          {"infinite", src.replaced.infinite},
-                          {"negative", src.replaced.negative}}}};
-  manifest["conventions"] = conventionsJson(o, r);
-  manifest["outputs"] = outputs;
-  const std::string text = manifest.dump(2) + "\n";
-  files.push_back({"manifest.json",
-                   [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); },
-                   {}});
-
-  std::vector<fs::path> written;
-  writeAll(files, outDir, written);
-  return written;
+  OutputPlan plan;
+  addSpecular(plan, r, o, out);
+  addCube(plan, out, "irradiance", "irradiance", r.irradiance, {{"stores", "E / pi"}});
+  addCube(plan, out, "source", "source", r.source, {});
+  addDfg(plan, r, o, out);
+  addSh(plan, r, o);
+  if (out.preview) addPreviews(plan, r, o);
+  plan.addText("manifest.json", manifestJson(r, o, src, plan.outputs).dump(2) + "\n");
+  return writeAll(plan.files, outDir);
 }
 
 BakeResult loadBake(const fs::path& dir, BakeOptions* options) {

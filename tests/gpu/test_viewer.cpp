@@ -12,6 +12,7 @@
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/render/gltf.hpp"
 #include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
 

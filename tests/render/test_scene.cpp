@@ -9,6 +9,7 @@
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/render/gltf.hpp"
 #include "ibl/render/renderer.hpp"
 #include "ibl/render/scene.hpp"
 #include "support/gltf_writer.hpp"

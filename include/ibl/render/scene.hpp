@@ -81,9 +81,4 @@ Scene makeSphereGrid(glm::vec3 baseColor, int columns = 6);
 // vertices on the sphere with exact normals.
 Mesh tessellateSphere(const Sphere& sphere, int segments);
 
-// Reads a glTF 2.0 file (.gltf with external or embedded buffers, .glb), applying node
-// transforms; KHR_draco_mesh_compression primitives are decoded; missing normals and tangents
-// are generated. Throws Error("<path>: ...") for anything it cannot read.
-Scene loadGltf(const std::string& path);
-
 }  // namespace ibl

@@ -1,0 +1,523 @@
+// glTF 2.0 loading: tinygltf parses, stb_image decodes the images, Draco decodes compressed
+// primitives; this file turns the model into a Scene, step by step (readGltfModel,
+// readTextures, readMaterials, then NodeVisitor: readPrimitive, checkMesh, placeInWorld).
+#include "ibl/render/gltf.hpp"
+
+#include <cstring>
+#include <functional>
+#include <limits>
+
+#include <draco/compression/decode.h>
+#include <fmt/format.h>
+#include <stb_image.h>
+#include <tiny_gltf.h>
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include "ibl/core/error.hpp"
+#include "ibl/io/file_io.hpp"
+
+namespace ibl {
+
+namespace {
+
+// Images through stb_image (8-bit RGBA), whatever tinygltf was built with.
+bool loadImageWithStb(tinygltf::Image* image, const int index, std::string* err, std::string*, int,
+                      int, const unsigned char* bytes, int size, void*) {
+  int w = 0, h = 0, comp = 0;
+  unsigned char* px = stbi_load_from_memory(bytes, size, &w, &h, &comp, 4);
+  if (!px) {
+    if (err) *err += fmt::format("image {}: {}\n", index, stbi_failure_reason());
+    return false;
+  }
+  image->width = w;
+  image->height = h;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image.assign(px, px + static_cast<std::size_t>(w) * h * 4);
+  stbi_image_free(px);
+  return true;
+}
+
+std::string firstLine(const std::string& s) {
+  const auto nl = s.find('\n');
+  return nl == std::string::npos ? s : s.substr(0, nl);
+}
+
+class GltfReader {
+ public:
+  GltfReader(const tinygltf::Model& model, const std::string& path) : model_(model), path_(path) {}
+
+  // Reads accessor `index` as `n`-component floats (normalized integers scaled to [0, 1]).
+  std::vector<float> floats(int index, int n) const {
+    if (index < 0 || index >= static_cast<int>(model_.accessors.size()))
+      fail(path_, "accessor index out of range");
+    const tinygltf::Accessor& a = model_.accessors[index];
+    const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
+    if (components != n)
+      fail(path_, fmt::format("accessor {} has {} components, expected {}", index, components, n));
+    std::vector<float> out(a.count * n, 0.0f);
+    if (a.bufferView < 0) return out;  // all zeros (sparse accessors are not supported)
+    const auto [data, stride] = view(a, n);
+    for (std::size_t i = 0; i < a.count; ++i)
+      for (int c = 0; c < n; ++c)
+        out[i * n + c] = component(data + i * stride, a.componentType, c, a.normalized);
+    return out;
+  }
+
+  std::vector<std::uint32_t> indices(int index) const {
+    const tinygltf::Accessor& a = model_.accessors.at(index);
+    const auto [data, stride] = view(a, 1);
+    std::vector<std::uint32_t> out(a.count);
+    for (std::size_t i = 0; i < a.count; ++i) {
+      const unsigned char* p = data + i * stride;
+      switch (a.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          out[i] = *p;
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+          std::uint16_t v;
+          std::memcpy(&v, p, 2);
+          out[i] = v;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+          std::memcpy(&out[i], p, 4);
+          break;
+        default:
+          fail(path_, "index accessor of a non-integer type");
+      }
+    }
+    return out;
+  }
+
+  std::pair<const unsigned char*, std::size_t> bufferViewBytes(int index) const {
+    const tinygltf::BufferView& bv = model_.bufferViews.at(index);
+    const tinygltf::Buffer& b = model_.buffers.at(bv.buffer);
+    if (bv.byteOffset + bv.byteLength > b.data.size())
+      fail(path_, "buffer view past the end of its buffer");
+    return {b.data.data() + bv.byteOffset, bv.byteLength};
+  }
+
+ private:
+  std::pair<const unsigned char*, std::size_t> view(const tinygltf::Accessor& a, int n) const {
+    const tinygltf::BufferView& bv = model_.bufferViews.at(a.bufferView);
+    const tinygltf::Buffer& b = model_.buffers.at(bv.buffer);
+    const std::size_t size = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(
+                                 static_cast<std::uint32_t>(a.componentType))) *
+                             n;
+    const std::size_t stride = bv.byteStride ? bv.byteStride : size;
+    const std::size_t start = bv.byteOffset + a.byteOffset;
+    if (a.count > 0 && (start + (a.count - 1) * stride + size > b.data.size() || size == 0))
+      fail(path_, "accessor reads past the end of its buffer");
+    return {b.data.data() + start, stride};
+  }
+
+  float component(const unsigned char* p, int type, int c, bool normalized) const {
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+        float v;
+        std::memcpy(&v, p + 4 * c, 4);
+        return v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return normalized ? p[c] / 255.0f : p[c];
+      case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        const auto v = static_cast<signed char>(p[c]);
+        return normalized ? std::max(v / 127.0f, -1.0f) : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t v;
+        std::memcpy(&v, p + 2 * c, 2);
+        return normalized ? v / 65535.0f : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        std::int16_t v;
+        std::memcpy(&v, p + 2 * c, 2);
+        return normalized ? std::max(v / 32767.0f, -1.0f) : v;
+      }
+      default:
+        fail(path_, "unsupported accessor component type");
+    }
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& path_;
+};
+
+glm::mat4 nodeTransform(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    glm::mat4 m;
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(node.matrix[i]);
+    return m;
+  }
+  glm::mat4 t(1.0f), r(1.0f), s(1.0f);
+  if (node.translation.size() == 3)
+    t[3] =
+        glm::vec4(static_cast<float>(node.translation[0]), static_cast<float>(node.translation[1]),
+                  static_cast<float>(node.translation[2]), 1.0f);
+  if (node.rotation.size() == 4)
+    r = glm::mat4_cast(
+        glm::quat(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                  static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2])));
+  if (node.scale.size() == 3)
+    s = glm::scale(glm::mat4(1.0f),
+                   glm::vec3(static_cast<float>(node.scale[0]), static_cast<float>(node.scale[1]),
+                             static_cast<float>(node.scale[2])));
+  return t * r * s;
+}
+
+// Area-weighted vertex normals.
+std::vector<glm::vec3> generateNormals(const Mesh& m) {
+  std::vector<glm::vec3> n(m.positions.size(), glm::vec3(0.0f));
+  for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+    const glm::vec3 a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]],
+                    c = m.positions[m.indices[i + 2]];
+    const glm::vec3 face = glm::cross(b - a, c - a);
+    for (int k = 0; k < 3; ++k) n[m.indices[i + k]] += face;
+  }
+  for (auto& v : n) v = glm::length(v) > 0.0f ? glm::normalize(v) : glm::vec3(0, 0, 1);
+  return n;
+}
+
+// Tangents from UV derivatives per triangle, accumulated and orthogonalized per vertex
+// (Lengyel 2001), handedness in w.
+std::vector<glm::vec4> generateTangents(const Mesh& m) {
+  std::vector<glm::vec3> tan(m.positions.size(), glm::vec3(0.0f)),
+      bit(m.positions.size(), glm::vec3(0.0f));
+  for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+    const std::uint32_t i0 = m.indices[i], i1 = m.indices[i + 1], i2 = m.indices[i + 2];
+    const glm::vec3 e1 = m.positions[i1] - m.positions[i0], e2 = m.positions[i2] - m.positions[i0];
+    const glm::vec2 d1 = m.uvs[i1] - m.uvs[i0], d2 = m.uvs[i2] - m.uvs[i0];
+    const float det = d1.x * d2.y - d2.x * d1.y;
+    if (std::abs(det) < 1e-20f) continue;
+    const float r = 1.0f / det;
+    const glm::vec3 t = (e1 * d2.y - e2 * d1.y) * r, b = (e2 * d1.x - e1 * d2.x) * r;
+    for (std::uint32_t k : {i0, i1, i2}) {
+      tan[k] += t;
+      bit[k] += b;
+    }
+  }
+  std::vector<glm::vec4> out(m.positions.size());
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const glm::vec3 n = m.normals[k];
+    glm::vec3 t = tan[k] - n * glm::dot(n, tan[k]);
+    if (glm::length(t) < 1e-12f)
+      t = std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0))
+                               : glm::cross(n, glm::vec3(0, 1, 0));
+    t = glm::normalize(t);
+    out[k] = glm::vec4(t, glm::dot(glm::cross(n, t), bit[k]) < 0.0f ? -1.0f : 1.0f);
+  }
+  return out;
+}
+
+// A KHR_draco_mesh_compression primitive: attributes and triangles from the Draco stream.
+void decodeDracoPrimitive(const GltfReader& reader, const tinygltf::Value& ext, Mesh& mesh,
+                          const std::string& path) {
+  const auto [bytes, size] = reader.bufferViewBytes(ext.Get("bufferView").GetNumberAsInt());
+  draco::DecoderBuffer buffer;
+  buffer.Init(reinterpret_cast<const char*>(bytes), size);
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+  if (!decoded.ok())
+    fail(path, fmt::format("Draco decoding failed: {}", decoded.status().error_msg_string()));
+  const std::unique_ptr<draco::Mesh> dm = std::move(decoded).value();
+  const tinygltf::Value& attributes = ext.Get("attributes");
+  const auto read = [&](const char* name, int n, auto& out) {
+    if (!attributes.Has(name)) return;
+    const draco::PointAttribute* att = dm->GetAttributeByUniqueId(
+        static_cast<std::uint32_t>(attributes.Get(name).GetNumberAsInt()));
+    if (!att) fail(path, fmt::format("Draco stream has no {} attribute", name));
+    out.resize(dm->num_points());
+    for (draco::PointIndex i(0); i < dm->num_points(); ++i) {
+      float v[4] = {0, 0, 0, 0};
+      att->ConvertValue<float>(att->mapped_index(i), static_cast<std::int8_t>(n), v);
+      for (int c = 0; c < n; ++c) out[i.value()][c] = v[c];
+    }
+  };
+  read("POSITION", 3, mesh.positions);
+  read("NORMAL", 3, mesh.normals);
+  read("TEXCOORD_0", 2, mesh.uvs);
+  read("TANGENT", 4, mesh.tangents);
+  for (draco::FaceIndex f(0); f < dm->num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) mesh.indices.push_back(dm->face(f)[k].value());
+}
+
+// Debian's tinygltf is built without Draco and rejects the accessors of Draco primitives (they
+// have no buffer view). Those accessors are not needed (the Draco stream has the data), so
+// drop them from such primitives before tinygltf sees the JSON.
+void hideDracoAccessors(nlohmann::json& gltf) {
+  if (!gltf.contains("meshes")) return;
+  for (auto& mesh : gltf["meshes"]) {
+    if (!mesh.contains("primitives")) continue;
+    for (auto& prim : mesh["primitives"]) {
+      if (!prim.contains("extensions") ||
+          !prim["extensions"].contains("KHR_draco_mesh_compression"))
+        continue;
+      prim.erase("indices");
+      prim["attributes"] = nlohmann::json::object();
+    }
+  }
+}
+
+std::uint32_t readLe32(const std::vector<std::uint8_t>& b, std::size_t at) {
+  return b[at] | (b[at + 1] << 8) | (b[at + 2] << 16) |
+         (static_cast<std::uint32_t>(b[at + 3]) << 24);
+}
+void appendLe32(std::vector<std::uint8_t>& b, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+}
+
+// Loads .gltf text or a .glb container from memory, with hideDracoAccessors applied.
+bool loadGltfModel(tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err,
+                   std::string& warn, const std::string& path) {
+  const std::vector<std::uint8_t> bytes = readFileBytes(path);
+  const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  const auto parse = [&](const char* begin, const char* end) {
+    try {
+      nlohmann::json j = nlohmann::json::parse(begin, end);
+      hideDracoAccessors(j);
+      return j.dump();
+    } catch (const std::exception& e) {
+      fail(path,
+           fmt::format("not a readable glTF 2.0 file: invalid JSON ({})", firstLine(e.what())));
+    }
+  };
+  if (bytes.size() >= 12 && readLe32(bytes, 0) == 0x46546C67u) {  // "glTF": a GLB container
+    if (bytes.size() < 20 || readLe32(bytes, 16) != 0x4E4F534Au)
+      fail(path, "GLB without a JSON chunk");
+    const std::uint32_t jsonLength = readLe32(bytes, 12);
+    if (20ull + jsonLength > bytes.size()) fail(path, "truncated GLB");
+    std::string json = parse(reinterpret_cast<const char*>(bytes.data() + 20),
+                             reinterpret_cast<const char*>(bytes.data() + 20 + jsonLength));
+    while (json.size() % 4) json += ' ';
+    std::vector<std::uint8_t> glb;
+    appendLe32(glb, 0x46546C67u);
+    appendLe32(glb, 2);
+    appendLe32(glb, 0);  // total length, below
+    appendLe32(glb, static_cast<std::uint32_t>(json.size()));
+    appendLe32(glb, 0x4E4F534Au);
+    glb.insert(glb.end(), json.begin(), json.end());
+    glb.insert(glb.end(), bytes.begin() + 20 + jsonLength, bytes.end());  // the BIN chunk, as is
+    const auto total = static_cast<std::uint32_t>(glb.size());
+    for (int i = 0; i < 4; ++i) glb[8 + i] = static_cast<std::uint8_t>(total >> (8 * i));
+    return loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), total, baseDir);
+  }
+  const std::string json = parse(reinterpret_cast<const char*>(bytes.data()),
+                                 reinterpret_cast<const char*>(bytes.data() + bytes.size()));
+  return loader.LoadASCIIFromString(&model, &err, &warn, json.c_str(),
+                                    static_cast<unsigned>(json.size()), baseDir);
+}
+
+// The model, parsed; required extensions we do not implement are an error.
+tinygltf::Model readGltfModel(const std::string& path) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(loadImageWithStb, nullptr);
+  std::string err, warn;
+  if (!loadGltfModel(loader, model, err, warn, path))
+    fail(path,
+         fmt::format("not a readable glTF 2.0 file: {}", firstLine(err.empty() ? warn : err)));
+  for (const std::string& ext : model.extensionsRequired)
+    if (ext != "KHR_draco_mesh_compression" && ext != "KHR_materials_emissive_strength" &&
+        ext != "KHR_mesh_quantization")
+      fail(path, fmt::format("requires the unsupported extension {}", ext));
+  return model;
+}
+
+// The images as RGBA textures in [0, 1] (sRGB-encoded where the material says so: decoded at
+// shading time, after filtering).
+std::vector<Texture> readTextures(const tinygltf::Model& model, const std::string& path) {
+  std::vector<Texture> textures;
+  for (const tinygltf::Image& img : model.images) {
+    Texture t;
+    t.width = img.width;
+    t.height = img.height;
+    t.texels.resize(static_cast<std::size_t>(img.width) * img.height);
+    if (img.image.size() < t.texels.size() * 4) fail(path, "image data is missing or truncated");
+    for (std::size_t i = 0; i < t.texels.size(); ++i)
+      t.texels[i] = glm::vec4(img.image[4 * i], img.image[4 * i + 1], img.image[4 * i + 2],
+                              img.image[4 * i + 3]) /
+                    255.0f;
+    textures.push_back(std::move(t));
+  }
+  return textures;
+}
+
+// The metallic-roughness materials, then a default one (gray, roughness 0.5) for primitives
+// without a material; textures are indices into readTextures' list, -1 for none.
+std::vector<Material> readMaterials(const tinygltf::Model& model, int textureCount) {
+  const auto textureIndex = [&](int gltfTexture) {
+    if (gltfTexture < 0 || gltfTexture >= static_cast<int>(model.textures.size())) return -1;
+    const int source = model.textures[gltfTexture].source;
+    return source >= 0 && source < textureCount ? source : -1;
+  };
+  std::vector<Material> materials;
+  for (const tinygltf::Material& m : model.materials) {
+    Material mat;
+    const auto& pbr = m.pbrMetallicRoughness;
+    mat.baseColor = glm::vec3(static_cast<float>(pbr.baseColorFactor[0]),
+                              static_cast<float>(pbr.baseColorFactor[1]),
+                              static_cast<float>(pbr.baseColorFactor[2]));
+    mat.baseColorTexture = textureIndex(pbr.baseColorTexture.index);
+    mat.metallic = static_cast<float>(pbr.metallicFactor);
+    mat.roughness = static_cast<float>(pbr.roughnessFactor);
+    mat.metallicRoughnessTexture = textureIndex(pbr.metallicRoughnessTexture.index);
+    mat.normalTexture = textureIndex(m.normalTexture.index);
+    mat.normalScale = static_cast<float>(m.normalTexture.scale);
+    mat.occlusionTexture = textureIndex(m.occlusionTexture.index);
+    mat.occlusionStrength = static_cast<float>(m.occlusionTexture.strength);
+    if (m.emissiveFactor.size() == 3)
+      mat.emissive = glm::vec3(static_cast<float>(m.emissiveFactor[0]),
+                               static_cast<float>(m.emissiveFactor[1]),
+                               static_cast<float>(m.emissiveFactor[2]));
+    mat.emissiveTexture = textureIndex(m.emissiveTexture.index);
+    materials.push_back(mat);
+  }
+  materials.push_back(Material{glm::vec3(0.8f), -1, 0.0f, 0.5f});
+  return materials;
+}
+
+// A node's camera, placed by the node's world transform.
+CameraDescription cameraOf(const tinygltf::Camera& c, const glm::mat4& world) {
+  CameraDescription d;
+  d.perspective = c.type != "orthographic";
+  d.yfovRadians = static_cast<float>(c.perspective.yfov);
+  d.xmag = static_cast<float>(c.orthographic.xmag);
+  d.world = world;
+  return d;
+}
+
+// Accessor `index` as floats of `n` components, copied into a vector of glm vectors.
+template <typename Vec>
+std::vector<Vec> readAttribute(const GltfReader& reader, int index, int n) {
+  const auto values = reader.floats(index, n);
+  std::vector<Vec> out(values.size() / n);
+  std::memcpy(out.data(), values.data(), out.size() * sizeof(Vec));
+  return out;
+}
+
+// A triangle primitive's vertices and indices in the model's space: from the Draco stream, or
+// from its accessors.
+Mesh readPrimitive(const GltfReader& reader, const tinygltf::Primitive& prim,
+                   const std::string& path) {
+  Mesh mesh;
+  const auto draco = prim.extensions.find("KHR_draco_mesh_compression");
+  if (draco != prim.extensions.end()) {
+    decodeDracoPrimitive(reader, draco->second, mesh, path);
+    return mesh;
+  }
+  const auto attribute = [&](const char* name) {
+    const auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? -1 : it->second;
+  };
+  if (attribute("POSITION") < 0) fail(path, "a primitive has no POSITION");
+  mesh.positions = readAttribute<glm::vec3>(reader, attribute("POSITION"), 3);
+  if (attribute("NORMAL") >= 0)
+    mesh.normals = readAttribute<glm::vec3>(reader, attribute("NORMAL"), 3);
+  if (attribute("TEXCOORD_0") >= 0)
+    mesh.uvs = readAttribute<glm::vec2>(reader, attribute("TEXCOORD_0"), 2);
+  if (attribute("TANGENT") >= 0)
+    mesh.tangents = readAttribute<glm::vec4>(reader, attribute("TANGENT"), 4);
+  if (prim.indices >= 0) {
+    mesh.indices = reader.indices(prim.indices);
+  } else {
+    for (std::uint32_t i = 0; i < mesh.positions.size(); ++i) mesh.indices.push_back(i);
+  }
+  return mesh;
+}
+
+// Indices within range, a whole number of triangles, one value of each attribute per vertex.
+void checkMesh(const Mesh& mesh, const std::string& path) {
+  if (mesh.indices.size() % 3 != 0)
+    fail(path, "a triangle list whose index count is not a multiple of 3");
+  for (std::uint32_t i : mesh.indices)
+    if (i >= mesh.positions.size()) fail(path, "a vertex index is out of range");
+  if ((!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) ||
+      (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) ||
+      (!mesh.tangents.empty() && mesh.tangents.size() != mesh.positions.size()))
+    fail(path, "vertex attributes of different counts");
+}
+
+// Moves a mesh to world space; generates the normals it lacks, and the tangents it lacks when
+// it has a normal map (needsTangents).
+void placeInWorld(Mesh& mesh, const glm::mat4& world, bool needsTangents) {
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
+  for (auto& p : mesh.positions) p = glm::vec3(world * glm::vec4(p, 1.0f));
+  if (mesh.normals.empty()) {
+    mesh.normals = generateNormals(mesh);
+  } else {
+    for (auto& n : mesh.normals) n = glm::normalize(normalMatrix * n);
+  }
+  if (!mesh.uvs.empty() && needsTangents) {
+    if (mesh.tangents.empty()) {
+      mesh.tangents = generateTangents(mesh);
+    } else {
+      for (auto& t : mesh.tangents)
+        t = glm::vec4(glm::normalize(glm::mat3(world) * glm::vec3(t)), t.w);
+    }
+  }
+}
+
+// Walks the node hierarchy, accumulating transforms, and adds each node's triangle primitives
+// (points and lines are not surfaces) and the first camera to the scene.
+class NodeVisitor {
+ public:
+  NodeVisitor(const tinygltf::Model& model, const std::string& path, Scene& scene)
+      : model_(model), path_(path), scene_(scene), reader_(model, path) {}
+
+  void visit(int nodeIndex, const glm::mat4& parent, int depth) {
+    if (nodeIndex < 0 || nodeIndex >= static_cast<int>(model_.nodes.size()) || depth > 64)
+      fail(path_, "invalid or cyclic node hierarchy");
+    const tinygltf::Node& node = model_.nodes[nodeIndex];
+    const glm::mat4 world = parent * nodeTransform(node);
+    if (node.camera >= 0 && !scene_.camera && node.camera < static_cast<int>(model_.cameras.size()))
+      scene_.camera = cameraOf(model_.cameras[node.camera], world);
+    if (node.mesh >= 0) addMesh(node.mesh, world);
+    for (int child : node.children) visit(child, world, depth + 1);
+  }
+
+ private:
+  void addMesh(int meshIndex, const glm::mat4& world) {
+    if (meshIndex >= static_cast<int>(model_.meshes.size())) fail(path_, "mesh index out of range");
+    const int defaultMaterial = static_cast<int>(scene_.materials.size()) - 1;
+    for (const tinygltf::Primitive& prim : model_.meshes[meshIndex].primitives) {
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1) continue;
+      Mesh mesh = readPrimitive(reader_, prim, path_);
+      mesh.material =
+          prim.material >= 0 && prim.material < defaultMaterial ? prim.material : defaultMaterial;
+      checkMesh(mesh, path_);
+      placeInWorld(mesh, world, scene_.materials[mesh.material].normalTexture >= 0);
+      if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
+    }
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& path_;
+  Scene& scene_;
+  const GltfReader reader_;
+};
+
+}  // namespace
+
+Scene loadGltf(const std::string& path) {
+  const tinygltf::Model model = readGltfModel(path);
+  Scene scene;
+  scene.textures = readTextures(model, path);
+  scene.materials = readMaterials(model, static_cast<int>(scene.textures.size()));
+  NodeVisitor visitor(model, path, scene);
+  const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+  if (!model.scenes.empty() && sceneIndex < static_cast<int>(model.scenes.size())) {
+    for (int n : model.scenes[sceneIndex].nodes) visitor.visit(n, glm::mat4(1.0f), 0);
+  } else {
+    for (int n = 0; n < static_cast<int>(model.nodes.size()); ++n)
+      visitor.visit(n, glm::mat4(1.0f), 0);
+  }
+  if (scene.meshes.empty()) fail(path, "no triangle meshes to render");
+  return scene;
+}
+
+}  // namespace ibl
