@@ -78,11 +78,7 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
   const LoadedEnvironment loaded =
       o.input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), name, loadOptions)
                       : loadEnvironment(o.input, loadOptions);
-  if (loaded.replaced.total() > 0 && !global.quiet)
-    fmt::print(
-        stderr,
-        "ibl: warning: {}: replaced {} NaN, {} infinite and {} negative pixel components by 0\n",
-        name, loaded.replaced.nan, loaded.replaced.infinite, loaded.replaced.negative);
+  warnAboutReplacedPixels(name, loaded.replaced, global);
 
   BakeOptions options;
   options.specular.size = o.size;

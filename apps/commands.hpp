@@ -1,12 +1,20 @@
 #pragma once
 // The subcommands of the `ibl` executable: each registers its options and a callback.
+#include <string_view>
+
 #include <CLI/CLI.hpp>
+
+#include "ibl/core/image.hpp"
 
 namespace ibl::cli {
 
 struct GlobalOptions {
   bool quiet = false;
 };
+
+// The one warning about pixels replaced on loading (NaN, infinite, negative), unless quiet.
+void warnAboutReplacedPixels(std::string_view name, const InvalidPixelCounts& replaced,
+                             const GlobalOptions& global);
 
 void addConvertCommand(CLI::App& app, const GlobalOptions& global);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global);

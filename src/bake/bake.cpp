@@ -14,6 +14,7 @@
 #include "ibl/bake/preview.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/core/version.hpp"
+#include "ibl/env/export.hpp"
 #include "ibl/env/resample.hpp"
 #include "ibl/gpu/compute.hpp"
 #include "ibl/io/file_io.hpp"
@@ -204,14 +205,6 @@ struct OutputPlan {
     add(path, [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); });
   }
 };
-
-Ktx2Texture cubeTexture(const CubeMap& cube, PixelFormat format) {
-  Ktx2Texture tex;
-  tex.format = format;
-  tex.faceCount = kFaceCount;
-  for (const auto& level : cube.levels) tex.levels.emplace_back(level.begin(), level.end());
-  return tex;
-}
 
 // One cube map as flat files (cross or six faces) in `format` (EXR or HDR), level by level.
 void addFlatCube(OutputPlan& plan, const Json& entry, const CubeMap& cube, const std::string& stem,

@@ -1,0 +1,49 @@
+#pragma once
+// Writing an environment in any layout and format: what `ibl convert` does, as a library call
+// that encodes every file before anything is written.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ibl/env/environment.hpp"
+#include "ibl/io/image_io.hpp"
+#include "ibl/io/ktx2.hpp"
+
+namespace ibl {
+
+// A cube map (all its levels) as a KTX2 cube texture of the given texel format.
+Ktx2Texture cubeTexture(const CubeMap& cube, PixelFormat format);
+
+struct ExportOptions {
+  std::filesystem::path output;  // the format comes from its extension
+  // Output layout; none: Cube for .ktx2, else Equirect for panoramas and HCross for cube maps.
+  std::optional<Layout> layout;
+  int size = 0;  // cube face edge or equirect width; 0: the source's angular resolution
+  PixelFormat ktx2Format = PixelFormat::Rgba16f;
+  ExrPixelType exrType = ExrPixelType::Half;
+  float pngExposure = 0.0f;  // stops
+  float rotateDegrees = 0.0f;
+  bool mips = false;  // cube outputs: the full chain (power-of-two size)
+};
+
+struct EncodedFile {
+  std::filesystem::path path;
+  std::vector<std::uint8_t> bytes;
+};
+
+// Default output size for a source: its angular resolution (a cube's face size; a panorama's
+// width / 4, rounded down to a power of two).
+int defaultCubeSize(const Environment& env);
+
+// The output's format, after checking the options against it (Error naming the output: an
+// unknown extension, a layout the format cannot hold). Needs no source: call it first.
+FileFormat checkExportOptions(const ExportOptions& options);
+
+// Checks the options (checkExportOptions and against the source), resamples, builds mips, and
+// encodes: one file, or one per level (`_m<level>`
+// before the extension) and per face ({face} expanded, or `_px`.. appended).
+std::vector<EncodedFile> encodeEnvironment(const Environment& env, const ExportOptions& options);
+
+}  // namespace ibl
