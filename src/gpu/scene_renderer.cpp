@@ -341,36 +341,13 @@ int SceneRenderer::Impl::supportedSamples(int requested) const {
   return samples;
 }
 
-void SceneRenderer::Impl::prepare(int width, int height, int samples) {
-  if (targets && targets->width == width && targets->height == height &&
-      targets->samples == samples)
-    return;
-  vkDeviceWaitIdle(device);
-  destroyTargets();
-  Targets t;
-  t.width = width;
-  t.height = height;
-  t.samples = samples;
+namespace {
+
+// The scene's render pass: color (multisampled, or the output itself), depth, and the resolved
+// output, left readable by shaders and transfers.
+VkRenderPass createSceneRenderPass(VkDevice device, VkFormat depthFormat, int samples) {
   const auto sampleBits = static_cast<VkSampleCountFlagBits>(samples);
   const bool msaa = samples > 1;
-  DeviceImage::Description d;
-  d.width = static_cast<std::uint32_t>(width);
-  d.height = static_cast<std::uint32_t>(height);
-  d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-            VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  t.resolved = std::make_unique<DeviceImage>(context, d);
-  if (msaa) {
-    d.samples = sampleBits;
-    d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
-    t.color = std::make_unique<DeviceImage>(context, d);
-  }
-  d.samples = sampleBits;
-  d.format = depthFormat;
-  d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-  d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-  t.depth = std::make_unique<DeviceImage>(context, d);
-
-  // Attachments: color (multisampled, or the output itself), depth, and the resolved output.
   const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   std::vector<VkAttachmentDescription> attachments;
   VkAttachmentDescription color{};
@@ -424,7 +401,43 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
   passInfo.pSubpasses = &subpass;
   passInfo.dependencyCount = static_cast<std::uint32_t>(dependencies.size());
   passInfo.pDependencies = dependencies.data();
-  check(vkCreateRenderPass(device, &passInfo, nullptr, &t.renderPass), "vkCreateRenderPass");
+  VkRenderPass pass = VK_NULL_HANDLE;
+  check(vkCreateRenderPass(device, &passInfo, nullptr, &pass), "vkCreateRenderPass");
+  return pass;
+}
+
+}  // namespace
+
+void SceneRenderer::Impl::prepare(int width, int height, int samples) {
+  if (targets && targets->width == width && targets->height == height &&
+      targets->samples == samples)
+    return;
+  vkDeviceWaitIdle(device);
+  destroyTargets();
+  Targets t;
+  t.width = width;
+  t.height = height;
+  t.samples = samples;
+  const auto sampleBits = static_cast<VkSampleCountFlagBits>(samples);
+  const bool msaa = samples > 1;
+  DeviceImage::Description d;
+  d.width = static_cast<std::uint32_t>(width);
+  d.height = static_cast<std::uint32_t>(height);
+  d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+            VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  t.resolved = std::make_unique<DeviceImage>(context, d);
+  if (msaa) {
+    d.samples = sampleBits;
+    d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT;
+    t.color = std::make_unique<DeviceImage>(context, d);
+  }
+  d.samples = sampleBits;
+  d.format = depthFormat;
+  d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+  t.depth = std::make_unique<DeviceImage>(context, d);
+
+  t.renderPass = createSceneRenderPass(device, depthFormat, samples);
   std::vector<VkImageView> views{msaa ? t.color->view() : t.resolved->view(), t.depth->view()};
   if (msaa) views.push_back(t.resolved->view());
   VkFramebufferCreateInfo fbInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
