@@ -32,11 +32,13 @@ struct BakeCliOptions {
   int dfgSamples = 512;
   bool shWindow = false;
   float rotate = 0.0f;
+  float clamp = 0.0f;  // 0: no limit
   std::string format = "rgba16f";
   bool exr = false;
   bool hdr = false;
   std::string layout = "hcross";
   bool noPreview = false;
+  bool force = false;
   std::string device = "cpu";
   bool listDevices = false;
 };
@@ -75,10 +77,17 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
   if (!o.inputLayout.empty()) loadOptions.layout = parseLayout(o.inputLayout);
   const std::string name =
       o.input.empty() ? std::string(kDefaultEnvironmentName) + " (bundled)" : o.input;
-  const LoadedEnvironment loaded =
+  LoadedEnvironment loaded =
       o.input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), name, loadOptions)
                       : loadEnvironment(o.input, loadOptions);
   warnAboutReplacedPixels(name, loaded.replaced, global);
+  requireLight(loaded.environment, name);
+  RangeLoss clampLoss;
+  if (o.clamp > 0.0f) {
+    clampLoss = clampEnvironment(loaded.environment, o.clamp);
+    if (!global.quiet)
+      fmt::print(stderr, "ibl: note: {}: --clamp: {}\n", name, describe(clampLoss, o.clamp));
+  }
 
   BakeOptions options;
   options.specular.size = o.size;
@@ -110,13 +119,19 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
                   : o.layout == "vcross" ? FlatLayout::VCross
                                          : FlatLayout::HCross;
   output.preview = !o.noPreview;
+  output.force = o.force;
+  output.warn = [&](const std::string& message) {
+    if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
+  };
   const Environment& env = loaded.environment;
   BakeSource source{o.input,
                     loaded.format,
                     std::string(layoutName(env.layout)),
                     env.isCube() ? env.cube.size() : env.equirect.width,
                     env.isCube() ? env.cube.size() : env.equirect.height,
-                    loaded.replaced};
+                    loaded.replaced,
+                    o.clamp,
+                    clampLoss};
   progress("writing outputs");
   const auto files = writeBakeOutputs(result, options, output, source, o.output);
   if (!global.quiet) {
@@ -174,6 +189,10 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                 "Window the SH9 coefficients (Lanczos) against ringing");
   cmd->add_option("--rotate", opts->rotate, "Rotate the environment about +Y by DEG degrees")
       ->capture_default_str();
+  cmd->add_option("--clamp", opts->clamp,
+                  "Clamp the source's radiance to MAX before baking (the power removed is "
+                  "reported and recorded in the manifest)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--format", opts->format, "KTX2 texel format of the cube maps")
       ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}))
       ->capture_default_str();
@@ -182,6 +201,9 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--layout", opts->layout, "Layout of EXR/HDR cube maps")
       ->check(CLI::IsMember({"hcross", "vcross", "faces"}))
       ->capture_default_str();
+  cmd->add_flag("--force", opts->force,
+                "Write into an existing, non-empty OUTDIR: replace the earlier bake's files "
+                "(and remove those it listed that this bake does not write); keep others");
   cmd->add_flag("--no-preview", opts->noPreview, "Skip the PNG previews");
   cmd->callback([opts, &global] { runBake(*opts, global); });
 }

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "ibl/core/image.hpp"
+#include "ibl/env/environment.hpp"
 
 namespace ibl::cli {
 
@@ -15,6 +16,10 @@ struct GlobalOptions {
 // The one warning about pixels replaced on loading (NaN, infinite, negative), unless quiet.
 void warnAboutReplacedPixels(std::string_view name, const InvalidPixelCounts& replaced,
                              const GlobalOptions& global);
+
+// Fails, naming the file, when an environment holds no light after loading (every pixel zero,
+// NaN, infinite or negative): baking it would give black maps.
+void requireLight(const Environment& env, std::string_view name);
 
 void addConvertCommand(CLI::App& app, const GlobalOptions& global);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global);

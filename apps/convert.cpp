@@ -40,6 +40,9 @@ void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
   e.pngExposure = o.exposure;
   e.rotateDegrees = o.rotate;
   e.mips = o.mips;
+  e.warn = [&](const std::string& message) {
+    if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
+  };
   // Contradictions are reported before the input is read.
   const FileFormat format = checkExportOptions(e);
   if (format != FileFormat::Ktx2 && o.format != "rgba16f")
@@ -52,11 +55,11 @@ void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
   const LoadedEnvironment loaded = loadEnvironment(o.input, {inLayout});
   warnAboutReplacedPixels(o.input, loaded.replaced, global);
   const std::vector<EncodedFile> files = encodeEnvironment(loaded.environment, e);
-  // Everything is encoded before the first file is written: an error leaves nothing behind.
-  for (const auto& [path, bytes] : files) {
-    writeFileAtomic(path, bytes);
-    if (!global.quiet) fmt::print(stderr, "wrote {} ({} bytes)\n", path.string(), bytes.size());
-  }
+  // All files or none: an error (a full disk) leaves nothing behind.
+  writeFilesTogether(files);
+  if (!global.quiet)
+    for (const auto& [path, bytes] : files)
+      fmt::print(stderr, "wrote {} ({} bytes)\n", path.string(), bytes.size());
 }
 
 }  // namespace

@@ -68,13 +68,15 @@ void runInfo(const InfoOptions& o) {
   j["infinite"] = stats.invalid.infinite;
   j["negative"] = stats.invalid.negative;
   glm::dvec3 integral(0.0);
-  glm::vec3 brightest(0.0f);
+  std::optional<glm::vec3> brightest;
   if (env) {
     integral = radiantIntegral(*env);
     brightest = brightestDirection(*env);
     j["radiant_integral"] = {integral.x, integral.y, integral.z};
     j["radiant_integral_luminance"] = luminance(glm::vec3(integral));
-    j["brightest_direction"] = {brightest.x, brightest.y, brightest.z};
+    j["brightest_direction"] =
+        brightest ? nlohmann::ordered_json{brightest->x, brightest->y, brightest->z}
+                  : nlohmann::ordered_json(nullptr);
   }
   if (o.json) {
     fmt::print("{}\n", j.dump(2));
@@ -96,8 +98,11 @@ void runInfo(const InfoOptions& o) {
         "integral    {:.6g} {:.6g} {:.6g}  (RGB, sum of L dw over the sphere; invalid "
         "values as 0)\n",
         integral.x, integral.y, integral.z);
-    fmt::print("brightest   direction {:.3f} {:.3f} {:.3f}\n", brightest.x, brightest.y,
-               brightest.z);
+    if (brightest)
+      fmt::print("brightest   direction {:.3f} {:.3f} {:.3f}\n", brightest->x, brightest->y,
+                 brightest->z);
+    else
+      fmt::print("brightest   none (no pixel has a positive luminance)\n");
   }
 }
 

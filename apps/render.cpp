@@ -26,8 +26,8 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   checkRenderedImagePath(o.output);
   const auto [width, height] = parseSize(o.scene.size);
   const Scene scene = loadScene(o.scene);
+  const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const LoadedBake baked = loadOrBake(o.scene);
-  const Camera camera = frameCamera(o.scene, scene, width, height);
   RenderOptions r = shadingOptions(o.scene);
   r.mode = o.mode == "reference" ? RenderMode::Reference : RenderMode::SplitSum;
   r.spp = o.scene.spp > 0 ? o.scene.spp : (r.mode == RenderMode::Reference ? 256 : 4);

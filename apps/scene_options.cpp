@@ -1,5 +1,7 @@
 #include "scene_options.hpp"
 
+#include "commands.hpp"
+
 #include <sstream>
 
 #include <fmt/core.h>
@@ -73,7 +75,17 @@ glm::vec3 parseVec3(const std::string& text, const char* option) {
   std::istringstream in(text);
   if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof())
     fail(option, fmt::format("expected X,Y,Z, got '{}'", text));
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    fail(option, fmt::format("'{}' is not finite", text));
   return v;
+}
+
+// A camera position or target: finite and within the range rays can be traced from.
+glm::vec3 parsePoint(const std::string& text, const char* option) {
+  const glm::vec3 p = parseVec3(text, option);
+  if (glm::max(glm::abs(p.x), glm::max(glm::abs(p.y), glm::abs(p.z))) > 1e8f)
+    fail(option, fmt::format("'{}' is too far from the origin (at most 1e8 per coordinate)", text));
+  return p;
 }
 
 std::pair<int, int> parseSize(const std::string& text) {
@@ -106,6 +118,7 @@ LoadedBake loadOrBake(const SceneCliOptions& o) {
   const LoadedEnvironment env =
       o.env.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), kDefaultEnvironmentName)
                     : loadEnvironment(o.env);
+  requireLight(env.environment, o.env.empty() ? kDefaultEnvironmentName : o.env);
   out.options.dfgSamples = 256;
   out.bake = bakeEnvironment(env.environment, out.options);
   return out;
@@ -129,19 +142,28 @@ Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int 
     camera.at = camera.from - glm::vec3(d.world[2]);
     camera.up = glm::vec3(d.world[1]);
   } else {
-    camera.at = o.lookAt.empty() ? center : parseVec3(o.lookAt, "--look-at");
+    camera.at = o.lookAt.empty() ? center : parsePoint(o.lookAt, "--look-at");
     // Frame the bounds seen from +Z: fit their width and height, then back off by their depth.
     const glm::vec3 half = 0.5f * (hi - lo);
     const float t = std::tan(0.5f * glm::radians(camera.yfovDegrees));
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     const float distance = 1.1f * std::max(half.y / t, half.x / (t * aspect)) + half.z;
     camera.from = o.lookFrom.empty() ? camera.at + glm::vec3(0.0f, 0.0f, distance)
-                                     : parseVec3(o.lookFrom, "--look-from");
+                                     : parsePoint(o.lookFrom, "--look-from");
+    if (camera.from == camera.at)
+      fail("--look-from", fmt::format("equals --look-at ({}, {}, {}): no view direction",
+                                      camera.at.x, camera.at.y, camera.at.z));
     camera.up = parseVec3(o.up, "--up");
+    if (camera.up == glm::vec3(0.0f)) fail("--up", "must not be the zero vector");
     camera.orthoWidth =
         2.2f * radius * std::max(1.0f, static_cast<float>(width) / static_cast<float>(height));
   }
-  if (o.orthoWidth > 0.0f) camera.orthoWidth = o.orthoWidth;
+  if (o.orthoWidth != 0.0f) {
+    if (!(o.orthoWidth > 0.0f) || !std::isfinite(o.orthoWidth))
+      fail("--ortho-width", fmt::format("must be positive, not {}", o.orthoWidth));
+    camera.orthoWidth = o.orthoWidth;
+  }
+  checkCamera(camera);
   return camera;
 }
 

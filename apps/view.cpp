@@ -22,8 +22,8 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   if (!o.screenshot.empty()) checkRenderedImagePath(o.screenshot);
   const auto [width, height] = parseSize(o.scene.size);
   const Scene scene = loadScene(o.scene);
+  const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const LoadedBake baked = loadOrBake(o.scene);
-  const Camera camera = frameCamera(o.scene, scene, width, height);
   RenderOptions shading = shadingOptions(o.scene);
   shading.spp = o.scene.spp > 0 ? o.scene.spp : 4;
 

@@ -81,10 +81,18 @@ void BM_DefaultBake(benchmark::State& state) {
 void BM_DefaultBakeEndToEnd(benchmark::State& state) {
   const ibl::BakeOptions o;
   const fs::path out = fs::temp_directory_path() / "ibl_bench_bake";
+  ibl::BakeOutputOptions output;
+  output.force = true;  // each iteration replaces the previous one's bake
+  ibl::BakeSource source;
+  source.path = inputHdr().string();
+  source.format = "hdr";
+  source.layout = "equirect";
+  source.width = 2048;
+  source.height = 1024;
   for (auto _ : state) {
     const auto loaded = ibl::loadEnvironment(inputHdr().string());
     const ibl::BakeResult r = ibl::bakeEnvironment(loaded.environment, o);
-    ibl::writeBakeOutputs(r, o, {}, {inputHdr().string(), "hdr", "equirect", 2048, 1024, {}}, out);
+    ibl::writeBakeOutputs(r, o, output, source, out);
   }
   fs::remove_all(out);
 }

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <functional>
+#include <mutex>
+#include <set>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -30,6 +32,8 @@ constexpr int kPreviewColumns = 6, kPreviewCell = 96;
 
 namespace {
 
+// Times the bake's stages into one map; stages run on several threads at once (the DFG table
+// beside the convolutions), so the map is written under a lock.
 class StageTimer {
  public:
   explicit StageTimer(std::map<std::string, double>& timings) : timings_(timings) {}
@@ -37,13 +41,16 @@ class StageTimer {
   auto operator()(const std::string& stage, F&& f) {
     const auto start = std::chrono::steady_clock::now();
     auto result = f();
-    timings_[stage] =
+    const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const std::lock_guard lock(mutex_);
+    timings_[stage] = ms;
     return result;
   }
 
  private:
   std::map<std::string, double>& timings_;
+  std::mutex mutex_;
 };
 
 }  // namespace
@@ -240,6 +247,20 @@ void addFlatCube(OutputPlan& plan, const Json& entry, const CubeMap& cube, const
   }
 }
 
+// Records in a manifest entry, and warns, what a format's range clamps of an output.
+void noteRangeLoss(Json& entry, const BakeOutputOptions& out, const std::string& file,
+                   const RangeLoss& loss, std::string_view format) {
+  if (loss.clamped == 0) return;
+  entry["clamped"] = {
+      {"values", loss.clamped}, {"brightest", loss.brightest}, {"lost_power", loss.lostPower}};
+  if (out.warn)
+    out.warn(
+        fmt::format("{}: {} values above the {} range clamped (brightest {:g}), {:.3g} % of "
+                    "the power of its worst level lost; bake with --format rgba32f, or "
+                    "--clamp MAX to choose the limit",
+                    file, loss.clamped, format, loss.brightest, 100.0 * loss.lostPower));
+}
+
 // A cube map as `stem`.ktx2 (all levels) and, if asked, as EXR / HDR files; `extra` joins each
 // manifest entry.
 void addCube(OutputPlan& plan, const BakeOutputOptions& out, const std::string& role,
@@ -253,6 +274,8 @@ void addCube(OutputPlan& plan, const BakeOutputOptions& out, const std::string& 
             {"faces", 6},
             {"levels", cube.levelCount()}};
   if (extra.is_object()) e.update(extra);
+  noteRangeLoss(e, out, stem + ".ktx2", rangeLoss(cube, largestValue(out.format)),
+                formatName(out.format));
   plan.add(stem + ".ktx2",
            [&cube, format = out.format] { return encodeKtx2(cubeTexture(cube, format)); });
   plan.outputs.push_back(e);
@@ -261,6 +284,9 @@ void addCube(OutputPlan& plan, const BakeOutputOptions& out, const std::string& 
     if (enabled) {
       Json flat = {{"role", role}};
       if (extra.is_object()) flat.update(extra);
+      if (format == FileFormat::Exr)  // half floats (Radiance HDR holds any float)
+        noteRangeLoss(flat, out, stem + " (EXR)",
+                      rangeLoss(cube, largestValue(PixelFormat::Rgba16f)), "half-float EXR");
       addFlatCube(plan, flat, cube, stem, format, out.layout);
     }
 }
@@ -379,16 +405,53 @@ Json manifestJson(const BakeResult& r, const BakeOptions& o, const BakeSource& s
                          {{"nan", src.replaced.nan},
                           {"infinite", src.replaced.infinite},
                           {"negative", src.replaced.negative}}}};
+  if (src.clamp > 0.0f)
+    manifest["source"]["clamp"] = {{"limit", src.clamp},
+                                   {"values", src.clampLoss.clamped},
+                                   {"brightest", src.clampLoss.brightest},
+                                   {"lost_power", src.clampLoss.lostPower}};
   manifest["conventions"] = conventionsJson(o, r);
   manifest["outputs"] = outputs;
   return manifest;
 }
 
-// Encodes every file (in parallel), then writes them: into a new directory by staging beside it
-// and renaming it into place, so that it appears complete; into an existing one file by file.
-std::vector<fs::path> writeAll(std::vector<PendingFile>& files, const fs::path& outDir) {
-  tbb::parallel_for(std::size_t{0}, files.size(),
-                    [&](std::size_t i) { files[i].bytes = files[i].encode(); });
+// The files an earlier bake in `dir` wrote, as its manifest lists them (relative paths inside
+// the directory only: a manifest cannot make us remove anything else). Empty without one.
+std::set<fs::path> filesOfEarlierBake(const fs::path& dir) {
+  std::set<fs::path> listed;
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / "manifest.json", ec)) return listed;
+  try {
+    const auto bytes = readFileBytes(dir / "manifest.json");
+    const Json manifest = Json::parse(bytes.begin(), bytes.end());
+    const auto add = [&](const Json& p) {
+      if (!p.is_string()) return;
+      const fs::path rel = fs::path(p.get<std::string>()).lexically_normal();
+      if (rel.empty() || rel.is_absolute() || *rel.begin() == "..") return;
+      listed.insert(rel);
+    };
+    for (const auto& o : manifest.at("outputs")) {
+      add(o.value("path", Json()));
+      if (o.contains("paths"))
+        for (const auto& p : o["paths"]) add(p);
+    }
+  } catch (const std::exception&) {
+    return {};  // not a manifest of ours: remove nothing
+  }
+  listed.insert("manifest.json");
+  return listed;
+}
+
+// Encodes every file (in parallel), then writes them all or none. A new directory is staged
+// beside its destination and renamed into place. An existing directory must be empty, or
+// `force` be given: then the new files replace the old ones together, the files the earlier
+// bake's manifest lists that this bake does not write are removed, and other files are left.
+std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path& outDir,
+                               bool force) {
+  tbb::parallel_for(std::size_t{0}, pending.size(),
+                    [&](std::size_t i) { pending[i].bytes = pending[i].encode(); });
+  std::vector<EncodedFile> files;
+  for (auto& f : pending) files.push_back({outDir / f.path, std::move(f.bytes)});
   std::error_code ec;
   if (!fs::exists(outDir, ec)) {
     const fs::path parent = outDir.has_parent_path() ? outDir.parent_path() : fs::path(".");
@@ -397,7 +460,8 @@ std::vector<fs::path> writeAll(std::vector<PendingFile>& files, const fs::path& 
         parent / fmt::format(".{}.ibl-staging-{}", outDir.filename().string(), ::getpid());
     fs::remove_all(staging, ec);
     try {
-      for (const auto& f : files) writeFileAtomic(staging / f.path, f.bytes);
+      for (const auto& f : files)
+        writeFileAtomic(staging / f.path.lexically_relative(outDir), f.bytes);
     } catch (...) {
       fs::remove_all(staging, ec);
       throw;
@@ -409,11 +473,21 @@ std::vector<fs::path> writeAll(std::vector<PendingFile>& files, const fs::path& 
     }
   } else {
     if (!fs::is_directory(outDir)) fail(outDir.string(), "exists and is not a directory");
-    for (const auto& f : files) writeFileAtomic(outDir / f.path, f.bytes);
+    const bool empty = fs::directory_iterator(outDir, ec) == fs::directory_iterator();
+    if (!empty && !force)
+      fail(outDir.string(),
+           "exists and is not empty; pass --force to replace the bake in it (files the earlier "
+           "bake's manifest lists are replaced or removed, others are kept)");
+    const std::set<fs::path> earlier = filesOfEarlierBake(outDir);
+    writeFilesTogether(files);
+    std::set<fs::path> written;
+    for (const auto& f : pending) written.insert(f.path.lexically_normal());
+    for (const auto& old : earlier)
+      if (!written.count(old)) fs::remove(outDir / old, ec);
   }
-  std::vector<fs::path> written;
-  for (const auto& f : files) written.push_back(outDir / f.path);
-  return written;
+  std::vector<fs::path> paths;
+  for (const auto& f : files) paths.push_back(f.path);
+  return paths;
 }
 
 }  // namespace
@@ -429,7 +503,7 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   addSh(plan, r, o);
   if (out.preview) addPreviews(plan, r, o);
   plan.addText("manifest.json", manifestJson(r, o, src, plan.outputs).dump(2) + "\n");
-  return writeAll(plan.files, outDir);
+  return writeAll(plan.files, outDir, out.force);
 }
 
 BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
@@ -452,7 +526,32 @@ BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
     }
     return c;
   };
+  // Every file the manifest lists must be there, and each KTX2 file hold what it says.
+  const auto checkAgainstManifest = [&](const Json& o) {
+    std::vector<std::string> paths;
+    if (o.contains("paths"))
+      for (const auto& p : o.at("paths")) paths.push_back(p.get<std::string>());
+    else
+      paths.push_back(o.at("path").get<std::string>());
+    for (const auto& p : paths) {
+      std::error_code ec;
+      if (!fs::is_regular_file(dir / p, ec))
+        fail((dir / p).string(), "is listed in manifest.json but missing");
+    }
+    if (o.at("format") != "ktx2") return;
+    const DecodedFile d = readImageFile(dir / paths[0]);
+    const int faces = o.value("faces", 1), levels = o.value("levels", 1);
+    const int width = o.at("size").at(0).get<int>();
+    if (static_cast<int>(d.levels.size()) != levels ||
+        static_cast<int>(d.levels[0].size()) != faces || d.levels[0][0].width != width)
+      fail((dir / paths[0]).string(),
+           fmt::format("holds {} level(s) of {} face(s) of width {}; manifest.json says {} of {} "
+                       "of width {}",
+                       d.levels.size(), d.levels[0].size(), d.levels[0][0].width, levels, faces,
+                       width));
+  };
   try {
+    for (const auto& o : manifest.at("outputs")) checkAgainstManifest(o);
     r.specular = cube("specular.ktx2");
     r.irradiance = cube("irradiance.ktx2");
     r.source = cube("source.ktx2");

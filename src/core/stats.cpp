@@ -38,8 +38,8 @@ glm::dvec3 radiantIntegral(const Environment& env) {
   return env.isCube() ? integrateCube(env.cube, 0) : integrateEquirect(env.equirect);
 }
 
-glm::vec3 brightestDirection(const Environment& env) {
-  float best = -1.0f;
+std::optional<glm::vec3> brightestDirection(const Environment& env) {
+  float best = 0.0f;
   glm::vec3 dir(0.0f, 1.0f, 0.0f);
   if (env.isCube()) {
     const int n = env.cube.size();
@@ -65,6 +65,7 @@ glm::vec3 brightestDirection(const Environment& env) {
         }
       }
   }
+  if (!(best > 0.0f)) return std::nullopt;
   return dir;
 }
 

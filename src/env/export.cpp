@@ -5,13 +5,42 @@
 #include <fmt/format.h>
 
 #include "ibl/core/error.hpp"
+#include "ibl/env/equirect.hpp"
 #include "ibl/env/resample.hpp"
+#include "ibl/io/pixel_formats.hpp"
+#include "ibl/math/color.hpp"
 
 namespace ibl {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+// Adds one pixel's share to a RangeLoss: weight = its solid angle.
+void accumulateLoss(RangeLoss& loss, double& total, glm::vec3 v, glm::vec3 largest, double weight) {
+  const glm::vec3 kept = glm::min(v, largest);
+  for (int c = 0; c < 3; ++c)
+    if (v[c] > largest[c]) {
+      ++loss.clamped;
+      loss.brightest = std::max(loss.brightest, v[c]);
+    }
+  total += weight * luminance(glm::max(v, glm::vec3(0.0f)));
+  loss.lostPower += weight * luminance(glm::max(v - kept, glm::vec3(0.0f)));
+}
+
+RangeLoss finish(RangeLoss loss, double total) {
+  loss.lostPower = total > 0.0 ? loss.lostPower / total : 0.0;
+  return loss;
+}
+
+// Warns about a file whose values the format clamps.
+void warnAboutRange(const ExportOptions& o, const fs::path& path, const RangeLoss& loss,
+                    std::string_view formatName, float limit) {
+  if (!o.warn || loss.clamped == 0) return;
+  o.warn(fmt::format("{}: {} by the {} format; write rgba32f or float EXR to keep it",
+                     path.string(), describe(loss, limit), formatName));
+}
+
 
 fs::path levelPath(const fs::path& p, int level, bool suffix) {
   if (!suffix) return p;
@@ -49,6 +78,12 @@ std::vector<EncodedFile> encodeEquirect(const Environment& env, FileFormat forma
   if (width % 2 != 0) fail(o.output.string(), "equirect width (--size) must be even");
   const bool same = !env.isCube() && width == env.equirect.width && o.rotateDegrees == 0.0f;
   const Image img = same ? env.equirect : resampleToEquirect(env, width, o.rotateDegrees);
+  if (format == FileFormat::Ktx2 ||
+      (format == FileFormat::Exr && o.exrType == ExrPixelType::Half)) {
+    const PixelFormat stored = format == FileFormat::Ktx2 ? o.ktx2Format : PixelFormat::Rgba16f;
+    warnAboutRange(o, o.output, rangeLoss(img, largestValue(stored)), formatName(stored),
+                   largestValue(stored).x);
+  }
   if (format == FileFormat::Ktx2) {
     Ktx2Texture tex;
     tex.format = o.ktx2Format;
@@ -70,6 +105,12 @@ std::vector<EncodedFile> encodeCube(const Environment& env, FileFormat format, L
     cube = resampleToCube(env, size, o.rotateDegrees);
   }
   if (o.mips) buildMipChain(cube);
+  if (format == FileFormat::Ktx2 ||
+      (format == FileFormat::Exr && o.exrType == ExrPixelType::Half)) {
+    const PixelFormat stored = format == FileFormat::Ktx2 ? o.ktx2Format : PixelFormat::Rgba16f;
+    warnAboutRange(o, o.output, rangeLoss(cube, largestValue(stored)), formatName(stored),
+                   largestValue(stored).x);
+  }
   if (format == FileFormat::Ktx2) return {{o.output, encodeKtx2(cubeTexture(cube, o.ktx2Format))}};
   std::vector<EncodedFile> files;
   for (int m = 0; m < cube.levelCount(); ++m) {
@@ -86,6 +127,58 @@ std::vector<EncodedFile> encodeCube(const Environment& env, FileFormat format, L
 }
 
 }  // namespace
+
+RangeLoss rangeLoss(const CubeMap& cube, glm::vec3 largest) {
+  RangeLoss all;
+  for (int m = 0; m < cube.levelCount(); ++m) {
+    RangeLoss loss;
+    double total = 0.0;
+    const int n = cube.levels[m][0].width;
+    for (int f = 0; f < kFaceCount; ++f)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+          accumulateLoss(loss, total, cube.levels[m][f].at(x, y), largest,
+                         texelSolidAngle(x, y, n));
+    loss = finish(loss, total);
+    all.clamped += loss.clamped;
+    all.brightest = std::max(all.brightest, loss.brightest);
+    all.lostPower = std::max(all.lostPower, loss.lostPower);
+  }
+  return all;
+}
+
+RangeLoss rangeLoss(const Image& equirect, glm::vec3 largest) {
+  RangeLoss loss;
+  double total = 0.0;
+  for (int y = 0; y < equirect.height; ++y) {
+    const double omega = equirectPixelSolidAngle(y, equirect.width, equirect.height);
+    for (int x = 0; x < equirect.width; ++x)
+      accumulateLoss(loss, total, equirect.at(x, y), largest, omega);
+  }
+  return finish(loss, total);
+}
+
+RangeLoss clampEnvironment(Environment& env, float limit) {
+  const glm::vec3 largest(limit);
+  const RangeLoss loss =
+      env.isCube() ? rangeLoss(env.cube, largest) : rangeLoss(env.equirect, largest);
+  const auto clampImage = [&](Image& img) {
+    for (auto& p : img.pixels) p = glm::min(p, largest);
+  };
+  if (env.isCube()) {
+    for (auto& level : env.cube.levels)
+      for (auto& face : level) clampImage(face);
+  } else {
+    clampImage(env.equirect);
+  }
+  return loss;
+}
+
+std::string describe(const RangeLoss& loss, float limit) {
+  return fmt::format("{} value{} above {:g} clamped (brightest {:g}), {:.3g} % of the power lost",
+                     loss.clamped, loss.clamped == 1 ? "" : "s", limit, loss.brightest,
+                     100.0 * loss.lostPower);
+}
 
 Ktx2Texture cubeTexture(const CubeMap& cube, PixelFormat format) {
   Ktx2Texture tex;

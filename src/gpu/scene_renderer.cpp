@@ -123,7 +123,7 @@ VkDescriptorSetLayout createSetLayout(VkDevice device,
 // World to clip space of `camera` (Vulkan: y down, depth 0..1), with depth planes around the
 // scene's bounds. Matches Camera::generateRay: same basis, field of view and aspect.
 glm::mat4 viewProjectionOf(const Camera& camera, std::pair<glm::vec3, glm::vec3> bounds) {
-  const glm::mat4 view = glm::lookAtRH(camera.from, camera.at, camera.up);
+  const glm::mat4 view = glm::lookAtRH(camera.from, camera.at, camera.frame().up);
   const glm::vec3 center = 0.5f * (bounds.first + bounds.second);
   const float radius = std::max(0.5f * glm::length(bounds.second - bounds.first), 1e-3f);
   const float distance = glm::length(center - camera.from);
@@ -479,9 +479,7 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   const Targets& t = *targets;
   FrameUniforms u{};
   u.viewProjection = viewProjectionOf(camera, bounds);
-  const glm::vec3 forward = glm::normalize(camera.at - camera.from);
-  const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
-  const glm::vec3 up = glm::cross(right, forward);
+  const auto [forward, right, up] = camera.frame();
   const float aspect = static_cast<float>(t.width) / static_cast<float>(t.height);
   // Half the view's extent at unit distance (perspective) or in world units (orthographic).
   const float halfHeight = camera.perspective ? std::tan(0.5f * glm::radians(camera.yfovDegrees))
@@ -548,6 +546,7 @@ int SceneRenderer::samples() const {
 
 RenderResult SceneRenderer::render(const Camera& camera, const RenderOptions& options,
                                    float skyboxLod) {
+  checkCamera(camera);
   const auto start = std::chrono::steady_clock::now();
   Impl& r = *impl_;
   r.prepare(camera.width, camera.height, r.supportedSamples(std::max(options.spp, 1)));

@@ -199,17 +199,24 @@ std::vector<std::uint8_t> encodeExr(const Image& img, ExrPixelType type,
   {
     Imf::OutputFile file(out, header);
     Imf::FrameBuffer fb;
+    // No infinity or NaN in any file: values are clamped to the type's range, NaN is 0.
     std::vector<Imath::half> halves;
+    std::vector<glm::vec3> floats;
     if (type == ExrPixelType::Half) {
       halves.resize(img.pixels.size() * 3);
-      for (std::size_t i = 0; i < img.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) halves[3 * i + c] = Imath::half(img.pixels[i][c]);
+      for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+        const glm::vec3 v = representable(PixelFormat::Rgba16f, img.pixels[i]);
+        for (int c = 0; c < 3; ++c) halves[3 * i + c] = Imath::half(v[c]);
+      }
       char* base = reinterpret_cast<char*>(halves.data());
       const std::size_t xs = 3 * sizeof(Imath::half), ys = xs * img.width;
       for (int c = 0; c < 3; ++c)
         fb.insert(std::string(1, "RGB"[c]), Imf::Slice(Imf::HALF, base + 2 * c, xs, ys));
     } else {
-      char* base = reinterpret_cast<char*>(const_cast<glm::vec3*>(img.pixels.data()));
+      floats.resize(img.pixels.size());
+      for (std::size_t i = 0; i < img.pixels.size(); ++i)
+        floats[i] = representable(PixelFormat::Rgba32f, img.pixels[i]);
+      char* base = reinterpret_cast<char*>(floats.data());
       const std::size_t xs = sizeof(glm::vec3), ys = xs * img.width;
       for (int c = 0; c < 3; ++c)
         fb.insert(std::string(1, "RGB"[c]), Imf::Slice(Imf::FLOAT, base + 4 * c, xs, ys));

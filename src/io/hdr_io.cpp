@@ -11,6 +11,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/core/version.hpp"
 #include "ibl/io/image_io.hpp"
+#include "ibl/io/pixel_formats.hpp"
 
 namespace ibl {
 
@@ -23,7 +24,8 @@ glm::vec3 rgbeToFloat(const std::uint8_t* p) {
           (static_cast<float>(p[2]) + 0.5f) * scale};
 }
 
-void floatToRgbe(glm::vec3 c, std::uint8_t* p) {
+void floatToRgbe(glm::vec3 value, std::uint8_t* p) {
+  const glm::vec3 c = representable(PixelFormat::Rgba32f, value);  // no infinity or NaN
   const float m = std::max({c.x, c.y, c.z});
   if (!(m > 1e-32f)) {
     p[0] = p[1] = p[2] = p[3] = 0;

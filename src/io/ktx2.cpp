@@ -78,7 +78,8 @@ std::size_t alignUp(std::size_t v, std::size_t a) {
   return (v + a - 1) / a * a;
 }
 
-void encodeTexel(PixelFormat f, glm::vec3 c, std::uint8_t* dst) {
+void encodeTexel(PixelFormat f, glm::vec3 value, std::uint8_t* dst) {
+  const glm::vec3 c = representable(f, value);  // no infinity or NaN in any file
   switch (f) {
     case PixelFormat::Rgba16f: {
       const std::uint16_t h[4] = {floatToHalf(c.x), floatToHalf(c.y), floatToHalf(c.z), 0x3C00};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace ibl {
 
@@ -17,6 +18,29 @@ std::uint32_t bytesPerTexel(PixelFormat f) {
       return 4;
   }
   return 0;
+}
+
+glm::vec3 largestValue(PixelFormat f) {
+  switch (f) {
+    case PixelFormat::Rgba16f:
+      return glm::vec3(kMaxHalf);
+    case PixelFormat::Rgba32f:
+      return glm::vec3(std::numeric_limits<float>::max());
+    case PixelFormat::B10G11R11:
+      return {kMaxB10G11R11, kMaxB10G11R11, kMaxB10};
+    case PixelFormat::E5B9G9R9:
+      return glm::vec3(kMaxE5B9G9R9);
+  }
+  return glm::vec3(0.0f);
+}
+
+glm::vec3 representable(PixelFormat f, glm::vec3 c) {
+  const glm::vec3 hi = largestValue(f);
+  const bool isSigned = f == PixelFormat::Rgba16f || f == PixelFormat::Rgba32f;
+  glm::vec3 out;
+  for (int i = 0; i < 3; ++i)
+    out[i] = std::isnan(c[i]) ? 0.0f : std::clamp(c[i], isSigned ? -hi[i] : 0.0f, hi[i]);
+  return out;
 }
 
 std::uint32_t ktxTypeSize(PixelFormat f) {

@@ -428,6 +428,7 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
 RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeResult& bake,
                          const BakeOptions& bakeOptions, const RenderOptions& o,
                          const std::function<void(float)>& progress) {
+  checkCamera(camera);
   const auto start = std::chrono::steady_clock::now();
   const RayTracer tracer(scene);
   const EnvironmentSampler env(bake.source.levels[0]);
@@ -437,7 +438,6 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
   std::atomic<int> rowsDone{0};
   std::atomic<std::uint64_t> samples{0};
   const int spp = std::max(1, o.spp);
-  const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<float>(spp))));
   tbb::parallel_for(0, camera.height, [&](int y) {
     std::uint64_t rowSamples = 0;
     for (int x = 0; x < camera.width; ++x) {
@@ -446,13 +446,15 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
       double lumSum = 0.0, lumSq = 0.0;
       int covered = 0, taken = 0;
       for (int s = 0; s < spp; ++s) {
-        // Stratified positions in the pixel; one sample is the pixel center.
-        const float jx =
-            spp == 1 ? 0.5f
-                     : (static_cast<float>(s % side) + rng.uniform()) / static_cast<float>(side);
-        const float jy = spp == 1 ? 0.5f
-                                  : (static_cast<float>(s / side % side) + rng.uniform()) /
-                                        static_cast<float>(side);
+        // Positions in the pixel from a scrambled Sobol sequence, decorrelated per pixel: any
+        // prefix is spread over the whole pixel (for early stops and any spp); one sample is
+        // the pixel center.
+        const std::uint32_t pixel = static_cast<std::uint32_t>(y * camera.width + x);
+        const glm::vec2 j =
+            spp == 1 ? glm::vec2(0.5f)
+                     : sobolOwen2D(static_cast<std::uint32_t>(s),
+                                   pixel ^ static_cast<std::uint32_t>(o.seed * 0x9e3779b9u));
+        const float jx = j.x, jy = j.y;
         const Ray ray = camera.generateRay(static_cast<float>(x) + jx, static_cast<float>(y) + jy);
         const RayTracer::Hit hit = tracer.intersect(ray);
         glm::vec3 c;

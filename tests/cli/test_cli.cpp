@@ -177,6 +177,32 @@ TEST(Cli, RenderAndCompare) {
   EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
 }
 
+TEST(Cli, CameraOptionsAreCheckedOrHandled) {
+  TempDir dir;
+  const std::string base = "render sphere --size 8x8 --spp 1 --quiet -o " + quote(dir / "c.exr");
+  // Looking straight down with the default up: another up is picked, the image is complete.
+  CliRun r = runIbl(base + " --look-from 0,10,0");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const DecodedFile d = readImageFile(dir / "c.exr");
+  EXPECT_EQ(d.levels[0][0].width, 8);
+  std::filesystem::remove(dir / "c.exr");
+  const std::pair<const char*, const char*> bad[] = {
+      {" --look-from 1,2,3 --look-at 1,2,3", "--look-from: equals --look-at"},
+      {" --up 0,0,0", "--up: must not be the zero vector"},
+      {" --look-from 1e30,0,0", "--look-from: '1e30,0,0' is too far from the origin"},
+      {" --look-from nan,0,0", "--look-from: expected X,Y,Z, got 'nan,0,0'"},
+      {" --camera ortho --ortho-width -2", "--ortho-width: must be positive"}};
+  for (const auto& [options, message] : bad) {
+    for (const char* mode : {"", " --mode reference"}) {
+      r = runIbl(base + options + mode);
+      EXPECT_EQ(r.status, 1) << options << mode << ": " << r.output;
+      EXPECT_NE(r.output.find(std::string("ibl: error: ") + message), std::string::npos)
+          << r.output;
+      EXPECT_FALSE(std::filesystem::exists(dir / "c.exr")) << options;
+    }
+  }
+}
+
 TEST(Cli, RenderFromAnExistingBake) {
   TempDir dir;
   ASSERT_EQ(

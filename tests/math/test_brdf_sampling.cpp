@@ -1,5 +1,6 @@
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -124,4 +125,32 @@ TEST(Brdf, AnalyticDfgFitsAgainstTheTable) {
   EXPECT_LT(ue4, 0.2);
   EXPECT_LT(bo2, 0.2);
   EXPECT_GT(ue4, 1e-3);  // approximations: equal to the table would mean a bug
+}
+
+// Every prefix of 2^k points of the scrambled Sobol sequence is a (0,k,2)-net: one point in
+// each elementary interval [i / 2^a, (i+1) / 2^a) x [j / 2^b, (j+1) / 2^b), a + b = k, for every
+// seed; and different seeds give different points.
+TEST(Sampling, ScrambledSobolPrefixesAreNets) {
+  for (std::uint32_t seed : {0u, 1u, 12345u, 0xdeadbeefu}) {
+    for (int k = 0; k <= 8; ++k) {
+      const std::uint32_t n = 1u << k;
+      std::vector<glm::vec2> points;
+      for (std::uint32_t i = 0; i < n; ++i) {
+        points.push_back(sobolOwen2D(i, seed));
+        ASSERT_GE(points.back().x, 0.0f);
+        ASSERT_LT(points.back().x, 1.0f);
+        ASSERT_GE(points.back().y, 0.0f);
+        ASSERT_LT(points.back().y, 1.0f);
+      }
+      for (int a = 0; a <= k; ++a) {
+        const int cols = 1 << a, rows = 1 << (k - a);
+        std::vector<int> count(n, 0);
+        for (const auto& p : points)
+          ++count[static_cast<int>(p.y * rows) * cols + static_cast<int>(p.x * cols)];
+        for (int c : count) ASSERT_EQ(c, 1) << "seed " << seed << " k " << k << " a " << a;
+      }
+    }
+  }
+  EXPECT_NE(sobolOwen2D(0, 1), sobolOwen2D(0, 2));
+  EXPECT_NE(sobolOwen2D(5, 1), sobolOwen2D(5, 2));
 }

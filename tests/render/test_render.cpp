@@ -1,9 +1,12 @@
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
 #include "ibl/bake/dfg.hpp"
+#include "ibl/core/error.hpp"
 #include "ibl/core/stats.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/render/camera.hpp"
@@ -192,6 +195,31 @@ TEST(Render, ShadowsDarkenTheReference) {
   EXPECT_GT(sum(shadowed), 0.5 * sum(open));
 }
 
+// Samples inside a pixel are spread over the whole pixel at any count: a centered sphere covers
+// each half of the image as the exact half-disk area, for counts that are not squares too.
+TEST(Render, PixelSamplesCoverThePixelAtAnyCount) {
+  const Baked b = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
+  const int n = 32;
+  Camera c = sphereCamera(n);
+  c.orthoWidth = 2.5f;  // the unit sphere's disk has radius n / 2.5 pixels
+  const double r = n / 2.5, halfDisk = std::numbers::pi * r * r / 2.0;
+  for (int spp : {2, 3, 5, 8}) {
+    RenderOptions o;
+    o.spp = spp;
+    const RenderResult img =
+        renderScene(sphere(glm::vec3(0.5f), 0.0f, 0.5f), c, b.result, b.options, o);
+    double top = 0.0, bottom = 0.0, left = 0.0, right = 0.0;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double a = img.alpha[static_cast<std::size_t>(y) * n + x];
+        (y < n / 2 ? top : bottom) += a;
+        (x < n / 2 ? left : right) += a;
+      }
+    for (double half : {top, bottom, left, right})
+      EXPECT_NEAR(half / halfDisk, 1.0, 0.02) << "spp " << spp;
+  }
+}
+
 TEST(Camera, ExposureMath) {
   // Sunny 16: f/16, 1/100 s, ISO 100 is EV 14.6.
   EXPECT_NEAR(ev100FromSettings(16.0f, 0.01f, 100.0f), std::log2(25600.0f), 1e-5f);
@@ -217,6 +245,66 @@ TEST(Camera, RaysThroughPixelCenters) {
   c.perspective = false;
   c.orthoWidth = 2.0f;
   EXPECT_NEAR(c.generateRay(4.0f, 1.0f).origin.x, 1.0f, 1e-6f);
+}
+
+TEST(Camera, LookingAlongUpPicksAnotherUp) {
+  // Straight down (and straight up) with the default +Y up: the frame stays orthonormal, the
+  // view keeps its direction, and the center ray hits the sphere's pole.
+  for (const float y : {10.0f, -10.0f}) {
+    Camera c;
+    c.from = glm::vec3(0.0f, y, 0.0f);
+    c.width = c.height = 9;
+    const auto [forward, right, up] = c.frame();
+    EXPECT_LT(glm::distance(forward, glm::vec3(0.0f, -y / 10.0f, 0.0f)), 1e-6f);
+    EXPECT_NEAR(glm::length(right), 1.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(up), 1.0f, 1e-6f);
+    EXPECT_NEAR(glm::dot(right, forward), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::dot(up, forward), 0.0f, 1e-6f);
+    EXPECT_LT(glm::distance(glm::cross(right, forward), up), 1e-6f);  // right-handed
+    for (int j = 0; j < 9; ++j)
+      for (int i = 0; i < 9; ++i) {
+        const Ray r = c.generateRay(static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f);
+        ASSERT_TRUE(std::isfinite(r.direction.x) && std::isfinite(r.direction.y) &&
+                    std::isfinite(r.direction.z));
+      }
+    const Baked b = bakeOf([](glm::vec3 d) { return glm::vec3(1.0f + d.y); }, 16);
+    RenderOptions o;
+    o.spp = 1;
+    const RenderResult img =
+        renderScene(sphere(glm::vec3(0.5f), 0.0f, 0.5f), c, b.result, b.options, o);
+    EXPECT_EQ(img.alpha[4 * 9 + 4], 1.0f);  // the center sees the sphere
+    EXPECT_EQ(img.alpha[0], 0.0f);          // a corner sees past it (radius 1 at distance 10)
+    for (const auto& p : img.color.pixels) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+  }
+  // A tilted up keeps its meaning: the image's up is its part orthogonal to the view.
+  Camera c;
+  c.up = glm::vec3(0.0f, 1.0f, 1.0f);  // looking down -Z from +Z
+  EXPECT_LT(glm::distance(c.frame().up, glm::vec3(0.0f, 1.0f, 0.0f)), 1e-6f);
+}
+
+TEST(Camera, CamerasWithoutAnImageAreRejected) {
+  const auto rejects = [](auto change) {
+    Camera c;
+    change(c);
+    try {
+      checkCamera(c);
+    } catch (const Error& e) {
+      return std::string(e.what()).rfind("camera: ", 0) == 0;
+    }
+    return false;
+  };
+  EXPECT_FALSE(rejects([](Camera&) {}));
+  EXPECT_TRUE(rejects([](Camera& c) { c.at = c.from; }));
+  EXPECT_TRUE(rejects([](Camera& c) { c.from = glm::vec3(1e30f, 0.0f, 0.0f); }));
+  EXPECT_TRUE(rejects([](Camera& c) { c.from.y = std::numeric_limits<float>::quiet_NaN(); }));
+  EXPECT_TRUE(rejects([](Camera& c) { c.up.x = std::numeric_limits<float>::infinity(); }));
+  EXPECT_TRUE(rejects([](Camera& c) { c.yfovDegrees = 180.0f; }));
+  EXPECT_TRUE(rejects([](Camera& c) {
+    c.perspective = false;
+    c.orthoWidth = 0.0f;
+  }));
+  EXPECT_TRUE(rejects([](Camera& c) { c.width = 0; }));
+  EXPECT_FALSE(rejects([](Camera& c) { c.up = glm::vec3(0.0f); }));  // another up is picked
 }
 
 TEST(Camera, ToneCurvesAndSrgbRoundTrip) {

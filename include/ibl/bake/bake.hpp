@@ -3,6 +3,7 @@
 // mips, GGX-prefiltered specular cube, irradiance cube, SH9, DFG table), each written as KTX2
 // (and optionally EXR / HDR), a preview, and a manifest stating every convention.
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "ibl/bake/prefilter.hpp"
 #include "ibl/env/environment.hpp"
+#include "ibl/env/export.hpp"
 #include "ibl/io/pixel_formats.hpp"
 #include "ibl/math/sh.hpp"
 
@@ -55,6 +57,10 @@ struct BakeOutputOptions {
   bool hdr = false;                           // also Radiance HDR files
   FlatLayout layout = FlatLayout::HCross;     // of the EXR / HDR cube maps
   bool preview = true;                        // preview.png (material grid) and PNG views
+  bool force = false;  // write into a non-empty directory (replacing an earlier bake's files)
+  // Called with one line for each output whose values exceed its format's range (they are
+  // clamped to it: no output holds an infinity); the manifest records it too.
+  std::function<void(const std::string&)> warn;
 };
 
 // Facts about the input, recorded in the manifest.
@@ -64,10 +70,14 @@ struct BakeSource {
   std::string layout;
   int width = 0, height = 0;
   InvalidPixelCounts replaced;
+  float clamp = 0.0f;   // the radiance limit applied before baking (--clamp), 0: none
+  RangeLoss clampLoss;  // what it removed
 };
 
-// Encodes everything, then writes it into `outDir` (created if missing; when it did not exist,
-// the files appear at once, by renaming a staging directory). Returns the written paths.
+// Encodes everything, then writes it into `outDir`, all files or none: a missing directory is
+// staged and renamed into place; an existing one must be empty unless output.force, and then
+// the earlier bake's files (as its manifest lists them) are replaced or removed, other files
+// kept. Returns the written paths.
 std::vector<std::filesystem::path> writeBakeOutputs(const BakeResult& result,
                                                     const BakeOptions& options,
                                                     const BakeOutputOptions& output,

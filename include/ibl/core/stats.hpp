@@ -1,5 +1,6 @@
 #pragma once
 // Statistics of an image or environment: the figures `ibl info` prints.
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -20,8 +21,9 @@ ImageStats imageStats(const Image& image);
 // the irradiance a sphere-sized sensor would integrate. Uses level 0 of a cube map.
 glm::dvec3 radiantIntegral(const Environment& env);
 
-// Unit direction of the brightest texel (luminance) of an environment.
-glm::vec3 brightestDirection(const Environment& env);
+// Unit direction of the brightest texel (luminance) of an environment; none when no texel has
+// a positive luminance (a black image).
+std::optional<glm::vec3> brightestDirection(const Environment& env);
 
 // Differences of image a from reference b over the pixels where mask > 0.5 (all without mask).
 struct ChannelErrors {

@@ -3,11 +3,13 @@
 // that encodes every file before anything is written.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "ibl/env/environment.hpp"
+#include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/io/ktx2.hpp"
 
@@ -15,6 +17,24 @@ namespace ibl {
 
 // A cube map (all its levels) as a KTX2 cube texture of the given texel format.
 Ktx2Texture cubeTexture(const CubeMap& cube, PixelFormat format);
+
+// What storing radiance in a format with a smaller range than float loses: the components
+// above the format's largest value (they are clamped to it), the brightest component, and the
+// fraction of the power (luminance integrated over the sphere) that the clamping removes.
+struct RangeLoss {
+  std::size_t clamped = 0;
+  float brightest = 0.0f;
+  double lostPower = 0.0;  // in [0, 1]
+};
+// Of a cube map (every level, texel solid angles; lostPower is the worst level's), or of a
+// panorama (pixel solid angles), for the per-channel limits `largest` (largestValue(format)).
+RangeLoss rangeLoss(const CubeMap& cube, glm::vec3 largest);
+RangeLoss rangeLoss(const Image& equirect, glm::vec3 largest);
+// Clamps an environment's radiance to `limit` (every component, every level), in place;
+// returns what that removed.
+RangeLoss clampEnvironment(Environment& env, float limit);
+// "12 values above 65504 clamped (brightest 2e+06), 8.1 % of the power lost".
+std::string describe(const RangeLoss& loss, float limit);
 
 struct ExportOptions {
   std::filesystem::path output;  // the format comes from its extension
@@ -26,11 +46,9 @@ struct ExportOptions {
   float pngExposure = 0.0f;  // stops
   float rotateDegrees = 0.0f;
   bool mips = false;  // cube outputs: the full chain (power-of-two size)
-};
-
-struct EncodedFile {
-  std::filesystem::path path;
-  std::vector<std::uint8_t> bytes;
+  // Called with one line for each file whose values exceed its format's range (they are
+  // clamped: no file holds an infinity).
+  std::function<void(const std::string&)> warn;
 };
 
 // Default output size for a source: its angular resolution (a cube's face size; a panorama's

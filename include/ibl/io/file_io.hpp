@@ -15,4 +15,17 @@ std::vector<std::uint8_t> readFileBytes(const std::filesystem::path& path);
 // reader never sees a half-written file. Creates missing parent directories.
 void writeFileAtomic(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 
+// A file's destination and its whole content.
+struct EncodedFile {
+  std::filesystem::path path;
+  std::vector<std::uint8_t> bytes;
+};
+
+// Writes several files all or none. Every file is first written to a temporary file beside its
+// destination; only when all of them are complete are they renamed into place, each existing
+// file kept aside until every rename has succeeded. Any failure (a full disk, a destination
+// that is a directory, a rename refused) removes what was written, restores what was replaced,
+// and throws Error naming the file concerned.
+void writeFilesTogether(std::span<const EncodedFile> files);
+
 }  // namespace ibl

@@ -39,8 +39,16 @@ glm::vec3 unpackB10G11R11(std::uint32_t packed);
 std::uint32_t packE5B9G9R9(glm::vec3 rgb);
 glm::vec3 unpackE5B9G9R9(std::uint32_t packed);
 
-// Largest finite values of the packed formats.
+// Largest finite values of the formats.
+inline constexpr float kMaxHalf = 65504.0f;       // (2 - 2^-10) * 2^15
 inline constexpr float kMaxB10G11R11 = 65024.0f;  // (2 - 2^-6) * 2^15 for R, G
+inline constexpr float kMaxB10 = 64512.0f;        // (2 - 2^-5) * 2^15 for B
 inline constexpr float kMaxE5B9G9R9 = 65408.0f;   // 511/512 * 2^16
+
+// The largest value each of R, G, B can hold in a format.
+glm::vec3 largestValue(PixelFormat f);
+// What a texel becomes before encoding, so that no file holds an infinity or a NaN: NaN -> 0,
+// each component clamped to largestValue (and, for the unsigned formats, to >= 0).
+glm::vec3 representable(PixelFormat f, glm::vec3 c);
 
 }  // namespace ibl

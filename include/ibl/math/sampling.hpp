@@ -3,6 +3,10 @@
 // by the bake, the reference renderer and the compute shaders: defined once for C++ and GLSL
 // in ibl/shared/sampling.h (Hammersley points, Duff et al.'s frame, Walter et al.'s GGX
 // half-vector sampling, Heitz 2018's visible normals, Malley's cosine sampling).
+#include <cstdint>
+
+#include <glm/vec2.hpp>
+
 #include "ibl/shared/sampling.h"
 
 namespace ibl {
@@ -17,5 +21,16 @@ using shared::uniformDiskPoint;
 using shared::VisibleNormalFrame;
 using shared::visibleNormalFrame;
 using shared::visibleNormalFromDisk;
+
+// Nested uniform (Owen) scrambling of the bits of x, hash-based: Burley 2020, "Practical
+// Hash-based Owen Scrambling", JCGT 9(4), listing 2 (the Laine-Karras permutation between two
+// bit reversals). Different seeds give independent scramblings.
+std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed);
+
+// Point `index` of the first two dimensions of the Sobol sequence (a (0,2)-sequence in base 2:
+// every prefix of 2^k points has one point in each of the 2^k elementary intervals of any
+// shape), shuffled and Owen-scrambled with `seed` (Burley 2020, section 4). In [0, 1)^2.
+// Any prefix is well distributed, and different seeds (pixels) are decorrelated.
+glm::vec2 sobolOwen2D(std::uint32_t index, std::uint32_t seed);
 
 }  // namespace ibl

@@ -12,6 +12,11 @@ struct Ray {
   glm::vec3 direction;  // unit
 };
 
+// The camera's orthonormal frame (right-handed: right = forward x up).
+struct CameraFrame {
+  glm::vec3 forward, right, up;
+};
+
 struct Camera {
   bool perspective = true;
   float yfovDegrees = 40.0f;  // perspective: vertical field of view
@@ -21,10 +26,21 @@ struct Camera {
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   int width = 512, height = 512;
 
+  // The frame: forward toward `at`; right and up from `up` made orthogonal to it. When `up`
+  // is zero or (nearly) parallel to the view, the world axis least aligned with the view stands
+  // in for it, as other renderers do (looking straight down with +Y up works).
+  // checkCamera() has rejected what has no frame (from == at, non-finite values).
+  CameraFrame frame() const;
+
   // Ray through image point (px, py) in pixels, (0, 0) the top-left corner of pixel (0, 0):
   // the center of pixel (i, j) is (i + 0.5, j + 0.5).
   Ray generateRay(float px, float py) const;
 };
+
+// Throws Error("camera: ...") when the camera cannot form an image: `from` equal to `at`,
+// non-finite or absurdly large coordinates (beyond 1e8), a field of view outside (0, 180)
+// degrees, an orthographic width <= 0, an empty image.
+void checkCamera(const Camera& camera);
 
 // EV100 of camera settings: log2(N^2 / t * 100 / S) (aperture N, shutter time t s, ISO S).
 float ev100FromSettings(float aperture, float shutterSeconds, float iso);

@@ -1,0 +1,141 @@
+// Commands that write several files write all of them or none, a bake into an existing
+// directory replaces exactly its own files, and readers of a bake check it against its manifest.
+#include <fstream>
+#include <map>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "ibl/core/error.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
+#include "support/helpers.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Runs `ibl args` with files limited to `kib` KiB (RLIMIT_FSIZE): a write past it fails as on
+// a full disk (SIGXFSZ ignored, so the write returns an error instead of killing the process).
+CliRun runIblWithFileLimit(const std::string& args, int kib) {
+  return runCommand("trap '' XFSZ; ulimit -f " + std::to_string(kib) + "; " + std::string(IBL_CLI) +
+                    " " + args);
+}
+
+std::map<std::string, std::vector<std::uint8_t>> filesIn(const fs::path& dir) {
+  std::map<std::string, std::vector<std::uint8_t>> files;
+  for (const auto& e : fs::directory_iterator(dir))
+    files[e.path().filename().string()] = readFileBytes(e.path());
+  return files;
+}
+
+const std::string kSmallBake = " --dfg-size 16 --dfg-samples 64 --quiet";
+
+}  // namespace
+
+TEST(Outputs, WriteFilesTogetherWritesAllOrNone) {
+  TempDir dir;
+  writeFileAtomic(dir / "a.bin", std::vector<std::uint8_t>{1, 2, 3});
+  fs::create_directories(dir / "d.bin" / "inside");  // the fourth destination is a directory
+  std::vector<EncodedFile> files;
+  for (const char* name : {"a.bin", "b.bin", "c.bin", "d.bin", "e.bin"})
+    files.push_back({dir / name, std::vector<std::uint8_t>(100, 7)});
+  try {
+    writeFilesTogether(files);
+    FAIL() << "writing onto a directory succeeded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("d.bin: is a directory"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(readFileBytes(dir / "a.bin"), (std::vector<std::uint8_t>{1, 2, 3}));  // kept
+  for (const char* name : {"b.bin", "c.bin", "e.bin"}) EXPECT_FALSE(fs::exists(dir / name));
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path())) ++entries;
+  EXPECT_EQ(entries, 2);  // a.bin and the directory: no temporary file left
+  files.erase(files.begin() + 3);
+  writeFilesTogether(files);
+  for (const auto& f : files) EXPECT_EQ(readFileBytes(f.path), f.bytes);
+}
+
+TEST(Outputs, ConvertToFacesOnAFullDiskWritesNone) {
+  TempDir dir;
+  // Six faces, five flat and -Z noise: the -Z face, written last, is the only large file.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (const char* f : {"px", "nx", "py", "ny", "pz", "nz"}) {
+    Image face(128, 128, glm::vec3(0.5f));
+    if (std::string(f) == "nz")
+      for (auto& p : face.pixels) p = glm::vec3(u(rng), u(rng), u(rng));
+    writeFileAtomic(dir / (std::string("in_") + f + ".exr"), encodeExr(face, ExrPixelType::Float));
+  }
+  const std::string args = "convert " + quote(dir / "in_{face}.exr") + " -o " +
+                           quote(dir / "out" / "f_{face}.exr") +
+                           " --layout faces --exr-type float --quiet";
+  const CliRun r = runIblWithFileLimit(args, 64);
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("f_nz.exr: write failed"), std::string::npos) << r.output;
+  EXPECT_TRUE(!fs::exists(dir / "out") || fs::is_empty(dir / "out")) << "faces were left";
+  ASSERT_EQ(runIbl(args).status, 0);  // without the limit, all six
+  EXPECT_EQ(filesIn(dir / "out").size(), 6u);
+}
+
+TEST(Outputs, BakeIntoAnExistingDirectory) {
+  TempDir dir;
+  const fs::path out = dir / "bake";
+  ASSERT_EQ(runIbl("bake -o " + quote(out) + kSmallBake + " --size 16 --exr").status, 0);
+  std::ofstream(out / "notes.txt") << "mine";
+  const auto before = filesIn(out);
+  ASSERT_TRUE(before.count("specular_m0.exr"));
+  // Not empty: refused without --force, nothing changed.
+  CliRun r = runIbl("bake -o " + quote(out) + kSmallBake + " --size 16");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find(out.string() + ": exists and is not empty; pass --force"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(filesIn(out), before);
+  // A failure halfway (the source cube is too large for the file limit) changes nothing.
+  r = runIblWithFileLimit("bake -o " + quote(out) + kSmallBake + " --force --size 128", 256);
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("write failed"), std::string::npos) << r.output;
+  EXPECT_EQ(filesIn(out), before);
+  // --force without --exr: the EXR copies of the earlier bake go, the user's file stays.
+  r = runIbl("bake -o " + quote(out) + kSmallBake + " --force --size 32");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto after = filesIn(out);
+  EXPECT_FALSE(after.count("specular_m0.exr"));
+  EXPECT_FALSE(after.count("dfg.exr"));
+  EXPECT_EQ(after.at("notes.txt"), before.at("notes.txt"));
+  EXPECT_EQ(readImageFile(out / "specular.ktx2").levels[0][0].width, 32);
+  EXPECT_EQ(after.size(), 10u);  // the 9 outputs and notes.txt
+}
+
+TEST(Outputs, ReadersCheckABakeAgainstItsManifest) {
+  TempDir dir;
+  const fs::path out = dir / "bake";
+  ASSERT_EQ(runIbl("bake -o " + quote(out) + kSmallBake + " --size 16").status, 0);
+  const std::string render =
+      "render sphere --size 8x8 --spp 1 -o " + quote(dir / "r.png") + " --bake " + quote(out);
+  ASSERT_EQ(runIbl(render).status, 0);
+  // A listed file replaced by another size.
+  ASSERT_EQ(runIbl("convert " + quote(out / "source.ktx2") + " -o " + quote(dir / "i.ktx2") +
+                   " --size 4 --quiet")
+                .status,
+            0);
+  fs::copy_file(out / "irradiance.ktx2", dir / "kept.ktx2");
+  fs::copy_file(dir / "i.ktx2", out / "irradiance.ktx2", fs::copy_options::overwrite_existing);
+  CliRun r = runIbl(render);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("irradiance.ktx2: holds 1 level(s) of 6 face(s) of width 4; "
+                          "manifest.json says 1 of 6 of width 32"),
+            std::string::npos)
+      << r.output;
+  // A listed file missing.
+  fs::copy_file(dir / "kept.ktx2", out / "irradiance.ktx2", fs::copy_options::overwrite_existing);
+  ASSERT_EQ(runIbl(render).status, 0);
+  fs::remove(out / "dfg.png");
+  r = runIbl(render);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("dfg.png: is listed in manifest.json but missing"), std::string::npos)
+      << r.output;
+}
