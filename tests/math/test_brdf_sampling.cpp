@@ -122,9 +122,9 @@ TEST(Brdf, AnalyticDfgFitsAgainstTheTable) {
     }
   ue4 = std::sqrt(ue4 / 1024);
   bo2 = std::sqrt(bo2 / 1024);
-  EXPECT_LT(ue4, 0.2);
-  EXPECT_LT(bo2, 0.2);
-  EXPECT_GT(ue4, 1e-3);  // approximations: equal to the table would mean a bug
+  // Measured 0.130 and 0.149 on this 32^2 grid: a changed table or fit moves them.
+  EXPECT_NEAR(ue4, 0.130, 0.005);
+  EXPECT_NEAR(bo2, 0.149, 0.005);
 }
 
 // Every prefix of 2^k points of the scrambled Sobol sequence is a (0,k,2)-net: one point in

@@ -93,3 +93,95 @@ inline void writeTexturedQuad(const std::filesystem::path& path) {
 }
 
 }  // namespace ibl::test
+
+namespace ibl::test {
+
+// A material for writeMaterialQuad: texture texels given as the 8-bit codes stored in the PNG
+// (what a glTF exporter writes), one texel each; a negative first code: no such texture.
+struct QuadMaterial {
+  glm::vec3 baseColorFactor{1.0f};
+  glm::ivec3 baseColorCodes{-1, 0, 0};  // sRGB-encoded in the file
+  float metallicFactor = 1.0f, roughnessFactor = 1.0f;
+  glm::ivec3 metallicRoughnessCodes{-1, 0, 0};  // R unused, G roughness, B metallic (linear)
+  glm::ivec3 normalCodes{-1, 0, 0};             // tangent-space normal, (code / 255) * 2 - 1
+  glm::vec3 emissiveFactor{0.0f};
+  glm::ivec3 emissiveCodes{-1, 0, 0};         // sRGB-encoded
+  glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // written per vertex when there is a normal map
+};
+
+// A 2 x 2 quad in the XY plane at z = 0 facing +Z (normals +Z, u along +X, v along -Y) with
+// the material above. PNG texels hold exactly the given codes.
+inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMaterial& m) {
+  const std::vector<float> positions = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  const std::vector<float> uvs = {0, 1, 1, 1, 1, 0, 0, 0};
+  std::vector<float> tangents;
+  for (int i = 0; i < 4; ++i)
+    for (int c = 0; c < 4; ++c) tangents.push_back(m.tangent[c]);
+  const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3};
+  std::vector<std::uint8_t> buffer;
+  append(buffer, positions);
+  append(buffer, normals);
+  append(buffer, uvs);
+  append(buffer, tangents);
+  append(buffer, indices);
+  nlohmann::json images = nlohmann::json::array(), textures = nlohmann::json::array();
+  // The PNG encoder sRGB-encodes linear values: decode the codes first, so they come back.
+  const auto texture = [&](glm::ivec3 codes) {
+    const glm::vec3 linear(srgbToLinear(codes.x / 255.0f), srgbToLinear(codes.y / 255.0f),
+                           srgbToLinear(codes.z / 255.0f));
+    images.push_back({{"uri", "data:image/png;base64," + base64(encodePng(Image(1, 1, linear)))}});
+    textures.push_back({{"source", textures.size()}});
+    return nlohmann::json{{"index", textures.size() - 1}};
+  };
+  nlohmann::json pbr = {
+      {"baseColorFactor", {m.baseColorFactor.x, m.baseColorFactor.y, m.baseColorFactor.z, 1.0}},
+      {"metallicFactor", m.metallicFactor},
+      {"roughnessFactor", m.roughnessFactor}};
+  if (m.baseColorCodes.x >= 0) pbr["baseColorTexture"] = texture(m.baseColorCodes);
+  if (m.metallicRoughnessCodes.x >= 0)
+    pbr["metallicRoughnessTexture"] = texture(m.metallicRoughnessCodes);
+  nlohmann::json material = {
+      {"pbrMetallicRoughness", pbr},
+      {"emissiveFactor", {m.emissiveFactor.x, m.emissiveFactor.y, m.emissiveFactor.z}}};
+  if (m.normalCodes.x >= 0) material["normalTexture"] = texture(m.normalCodes);
+  if (m.emissiveCodes.x >= 0) material["emissiveTexture"] = texture(m.emissiveCodes);
+  nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}, {"TANGENT", 3}}},
+            {"indices", 4},
+            {"material", 0}}}}}}},
+      {"materials", {material}},
+      {"buffers",
+       {{{"byteLength", buffer.size()},
+         {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+        {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
+        {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 32}},
+        {{"buffer", 0}, {"byteOffset", 128}, {"byteLength", 64}},
+        {{"buffer", 0}, {"byteOffset", 192}, {"byteLength", 12}}}},
+      {"accessors",
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", 4},
+         {"type", "VEC3"},
+         {"min", {-1, -1, 0}},
+         {"max", {1, 1, 0}}},
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+        {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+        {{"bufferView", 3}, {"componentType", 5126}, {"count", 4}, {"type", "VEC4"}},
+        {{"bufferView", 4}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}}};
+  if (!images.empty()) {
+    j["images"] = images;
+    j["textures"] = textures;
+  }
+  std::ofstream(path) << j.dump();
+}
+
+}  // namespace ibl::test
