@@ -203,6 +203,22 @@ TEST(Cli, CameraOptionsAreCheckedOrHandled) {
   }
 }
 
+// The README's compare example (smaller): the split sum without energy compensation against
+// the single-scattering reference, within the README's 3 %.
+TEST(Cli, ReadmeCompareExamplePasses) {
+  TempDir dir;
+  const std::string common = " --roughness 0.3 --metallic 1 --size 64x64 --background 0,0,0 -q";
+  ASSERT_EQ(runIbl("render sphere --mode reference --spp 512 -o " + quote(dir / "ref.exr") + common)
+                .status,
+            0);
+  ASSERT_EQ(runIbl("render sphere --spp 64 --no-multiscatter -o " + quote(dir / "rt.exr") + common)
+                .status,
+            0);
+  const CliRun r = runIbl("compare " + quote(dir / "rt.exr") + " " + quote(dir / "ref.exr") +
+                          " --max-rel-error 0.03 --json");
+  EXPECT_EQ(r.status, 0) << r.output;
+}
+
 TEST(Cli, RenderFromAnExistingBake) {
   TempDir dir;
   ASSERT_EQ(

@@ -220,6 +220,43 @@ TEST(Render, PixelSamplesCoverThePixelAtAnyCount) {
   }
 }
 
+// Adaptive stopping stops each pixel of the model once its relative standard error is below
+// the threshold: two renders with different seeds then differ, relative to their mean, by about
+// sqrt(2) times the threshold on the model (not less: they stop; not more: they converge).
+TEST(Render, AdaptiveStoppingMeetsTheNoiseThresholdOnTheModel) {
+  const glm::vec3 sun = glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f));
+  const Baked b = bakeOf(
+      [&](glm::vec3 d) { return glm::vec3(0.5f + (glm::dot(d, sun) > 0.9f ? 20.0f : 0.0f)); }, 32);
+  const Scene s = sphere(glm::vec3(0.9f), 1.0f, 0.5f);
+  const int n = 12;
+  const float threshold = 0.03f;
+  std::vector<RenderResult> renders;
+  for (unsigned seed : {1u, 2u}) {
+    RenderOptions o;
+    o.mode = RenderMode::Reference;
+    o.spp = 16384;
+    o.noiseThreshold = threshold;
+    o.seed = seed;
+    renders.push_back(renderScene(s, sphereCamera(n), b.result, b.options, o));
+  }
+  double sumSq = 0.0;
+  int count = 0;
+  for (std::size_t i = 0; i < renders[0].alpha.size(); ++i) {
+    if (renders[0].alpha[i] < 1.0f || renders[1].alpha[i] < 1.0f) continue;
+    const double x = luminance(renders[0].color.pixels[i]),
+                 y = luminance(renders[1].color.pixels[i]);
+    sumSq += std::pow((x - y) / (0.5 * (x + y)), 2.0);
+    ++count;
+  }
+  ASSERT_GT(count, 50);
+  const double rms = std::sqrt(sumSq / count);
+  RecordProperty("relative_rms_difference", std::to_string(rms));
+  EXPECT_LT(rms, 2.0 * std::sqrt(2.0) * threshold);
+  EXPECT_GT(rms, 0.35 * std::sqrt(2.0) * threshold);
+  // Far fewer samples than the maximum were taken.
+  EXPECT_LT(renders[0].samples, 0.2 * 16384.0 * n * n);
+}
+
 TEST(Camera, ExposureMath) {
   // Sunny 16: f/16, 1/100 s, ISO 100 is EV 14.6.
   EXPECT_NEAR(ev100FromSettings(16.0f, 0.01f, 100.0f), std::log2(25600.0f), 1e-5f);
