@@ -13,28 +13,18 @@
 
 namespace ibl::gpu {
 
+// Where a buffer's memory lives. Device: device-local (what shaders read fastest); mapped
+// directly where the device offers device-local memory the host can see (integrated GPUs,
+// resizable BAR, the software device), else reached through staging copies. Host: host-visible
+// and mapped (uniforms rewritten every frame, readback targets, staging).
+enum class BufferMemory { Device, Host };
+
 class Buffer {
  public:
-  Buffer(Context& context, std::size_t bytes);
+  Buffer(Context& context, std::size_t bytes, BufferMemory memory = BufferMemory::Device);
   ~Buffer();
   Buffer(const Buffer&) = delete;
   Buffer& operator=(const Buffer&) = delete;
-
-  template <typename T>
-  static Buffer of(Context& context, const std::vector<T>& data) {
-    Buffer b(context, data.size() * sizeof(T));
-    std::memcpy(b.mapped_, data.data(), data.size() * sizeof(T));
-    return b;
-  }
-  template <typename T>
-  std::vector<T> read(std::size_t count) const {
-    std::vector<T> out(count);
-    std::memcpy(out.data(), mapped_, count * sizeof(T));
-    return out;
-  }
-  void* handle() const { return buffer_; }
-  void* mapped() const { return mapped_; }
-  std::size_t size() const { return size_; }
   Buffer(Buffer&& other) noexcept
       : context_(other.context_),
         size_(other.size_),
@@ -43,6 +33,27 @@ class Buffer {
         mapped_(other.mapped_) {
     other.buffer_ = other.memory_ = other.mapped_ = nullptr;
   }
+
+  template <typename T>
+  static Buffer of(Context& context, const std::vector<T>& data) {
+    Buffer b(context, data.size() * sizeof(T));
+    b.upload(data.data(), data.size() * sizeof(T));
+    return b;
+  }
+  template <typename T>
+  std::vector<T> read(std::size_t count) const {
+    std::vector<T> out(count);
+    download(out.data(), count * sizeof(T));
+    return out;
+  }
+  // Copies bytes in (before the commands that read them) or out (after those that wrote them).
+  void upload(const void* data, std::size_t bytes);
+  void download(void* data, std::size_t bytes) const;
+
+  void* handle() const { return buffer_; }
+  // The host's view of the memory; null for device memory reached through staging.
+  void* mapped() const { return mapped_; }
+  std::size_t size() const { return size_; }
 
  private:
   Context* context_;

@@ -2,6 +2,9 @@
 // one-shot submissions.
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -61,16 +64,50 @@ bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
   });
 }
 
-VkInstance createInstance(const std::vector<std::string>& extensions) {
+std::atomic<std::size_t> validationMessages{0};
+
+// IBL_VULKAN_VALIDATION set to anything but "" or "0".
+bool validationRequested() {
+  const char* v = std::getenv("IBL_VULKAN_VALIDATION");
+  return v && *v && std::strcmp(v, "0") != 0;
+}
+
+bool hasInstanceLayer(const char* name) {
+  std::uint32_t count = 0;
+  vkEnumerateInstanceLayerProperties(&count, nullptr);
+  std::vector<VkLayerProperties> layers(count);
+  vkEnumerateInstanceLayerProperties(&count, layers.data());
+  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+    return std::strcmp(l.layerName, name) == 0;
+  });
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void*) {
+  ++validationMessages;
+  std::fprintf(stderr, "ibl: vulkan validation: %s\n", data->pMessage);
+  return VK_FALSE;
+}
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+VkInstance createInstance(const std::vector<std::string>& extensions, bool validation = false) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "ibl";
   app.apiVersion = VK_API_VERSION_1_1;
   std::vector<const char*> names;
   for (const auto& e : extensions) names.push_back(e.c_str());
+  if (validation) names.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
   info.enabledExtensionCount = static_cast<std::uint32_t>(names.size());
   info.ppEnabledExtensionNames = names.data();
+  if (validation) {
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = &kValidationLayer;
+  }
   VkInstance instance = VK_NULL_HANDLE;
   if (vkCreateInstance(&info, nullptr, &instance) != VK_SUCCESS) return VK_NULL_HANDLE;
   return instance;
@@ -104,6 +141,11 @@ Context::Impl::~Impl() {
     vkDestroyCommandPool(device, pool, nullptr);
     vkDestroyDevice(device, nullptr);
   }
+  if (messenger) {
+    const auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance, messenger, nullptr);
+  }
   if (instance) vkDestroyInstance(instance, nullptr);
 }
 
@@ -132,6 +174,19 @@ const Context::Impl::Pipeline& Context::Impl::computePipeline(std::string_view n
   const auto found = pipelines.find(name);
   if (found != pipelines.end()) return found->second;
   Pipeline p;
+  try {
+    createComputePipeline(p, name, bindings, pushBytes);
+  } catch (...) {  // free what was made (Vulkan ignores null handles)
+    vkDestroyPipelineLayout(device, p.layout, nullptr);
+    vkDestroyDescriptorSetLayout(device, p.setLayout, nullptr);
+    vkDestroyShaderModule(device, p.module, nullptr);
+    throw;
+  }
+  return pipelines.emplace(std::string(name), p).first->second;
+}
+
+void Context::Impl::createComputePipeline(Pipeline& p, std::string_view name,
+                                          std::uint32_t bindings, std::uint32_t pushBytes) {
   p.module = shaderModule(name);
   std::vector<VkDescriptorSetLayoutBinding> b(bindings);
   for (std::uint32_t i = 0; i < bindings; ++i)
@@ -159,7 +214,6 @@ const Context::Impl::Pipeline& Context::Impl::computePipeline(std::string_view n
   pipelineInfo.layout = p.layout;
   check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &p.pipeline),
         "vkCreateComputePipelines");
-  return pipelines.emplace(std::string(name), p).first->second;
 }
 
 void Context::Impl::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
@@ -172,9 +226,13 @@ void Context::Impl::submitAndWait(const std::function<void(VkCommandBuffer)>& re
   check(vkAllocateCommandBuffers(device, &cmdAlloc, &cmd), "vkAllocateCommandBuffers");
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  vkBeginCommandBuffer(cmd, &begin);
-  record(cmd);
-  vkEndCommandBuffer(cmd);
+  const VkResult begun = vkBeginCommandBuffer(cmd, &begin);
+  if (begun == VK_SUCCESS) record(cmd);
+  const VkResult ended = begun == VK_SUCCESS ? vkEndCommandBuffer(cmd) : begun;
+  if (ended != VK_SUCCESS) {
+    vkFreeCommandBuffers(device, pool, 1, &cmd);
+    check(ended, "vkBeginCommandBuffer / vkEndCommandBuffer");
+  }
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
@@ -188,6 +246,10 @@ void Context::Impl::submitAndWait(const std::function<void(VkCommandBuffer)>& re
   vkFreeCommandBuffers(device, pool, 1, &cmd);
   check(submitted, "vkQueueSubmit");
   check(waited, "vkWaitForFences");
+}
+
+std::size_t validationMessageCount() {
+  return validationMessages.load();
 }
 
 std::vector<DeviceInfo> listDevices() {
@@ -208,10 +270,29 @@ const DeviceInfo& Context::device() const {
 
 std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   auto impl = std::make_unique<Impl>();
-  impl->instance = createInstance(options.instanceExtensions);
+  const bool validation = validationRequested();
+  if (validation && !hasInstanceLayer(kValidationLayer))
+    fail("vulkan",
+         "IBL_VULKAN_VALIDATION is set but the Khronos validation layer is not installed "
+         "(Debian: vulkan-validationlayers)");
+  impl->instance = createInstance(options.instanceExtensions, validation);
   if (!impl->instance)
     fail("vulkan",
          "no Vulkan loader or driver (install mesa-vulkan-drivers for the software device)");
+  if (validation) {
+    VkDebugUtilsMessengerCreateInfoEXT info{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
+    info.pfnUserCallback = onValidationMessage;
+    const auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(impl->instance, "vkCreateDebugUtilsMessengerEXT"));
+    if (!create) fail("vulkan", "VK_EXT_debug_utils is missing");
+    check(create(impl->instance, &info, nullptr, &impl->messenger),
+          "vkCreateDebugUtilsMessengerEXT");
+  }
   // Prefer a discrete GPU, then an integrated one, then any device that can do the job.
   int best = -1;
   for (VkPhysicalDevice d : physicalDevices(impl->instance)) {
@@ -228,6 +309,19 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options) {
     fail("vulkan", options.graphics ? "no Vulkan device with a graphics and compute queue"
                                     : "no Vulkan device with a compute queue");
   impl->info = describe(impl->physical);
+  {
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(impl->physical, &props);
+    impl->limits = props.limits;
+    VkPhysicalDeviceMemoryProperties memory;
+    vkGetPhysicalDeviceMemoryProperties(impl->physical, &memory);
+    constexpr VkMemoryPropertyFlags kMappable = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT |
+                                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    for (std::uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+      if ((memory.memoryTypes[i].propertyFlags & kMappable) == kMappable)
+        impl->mappableDeviceMemory = !options.stagingBuffers;
+  }
   impl->family = static_cast<std::uint32_t>(queueFamily(impl->physical, options.graphics));
   {
     std::uint32_t count = 0;
@@ -258,7 +352,8 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options) {
 
 // ---- compute.hpp ----
 
-Buffer::Buffer(Context& context, std::size_t bytes) : context_(&context), size_(bytes) {
+Buffer::Buffer(Context& context, std::size_t bytes, BufferMemory memory)
+    : context_(&context), size_(bytes) {
   auto& c = context.impl();
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = std::max<std::size_t>(bytes, 16);
@@ -270,34 +365,102 @@ Buffer::Buffer(Context& context, std::size_t bytes) : context_(&context), size_(
   check(vkCreateBuffer(c.device, &info, nullptr, &buffer), "vkCreateBuffer");
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(c.device, buffer, &req);
+  const bool mapped = memory == BufferMemory::Host || c.mappableDeviceMemory;
+  VkMemoryPropertyFlags flags =
+      mapped ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT : 0;
+  if (memory == BufferMemory::Device) flags |= VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex =
-      c.memoryType(req.memoryTypeBits,
-                   VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  VkDeviceMemory memory;
-  if (vkAllocateMemory(c.device, &alloc, nullptr, &memory) != VK_SUCCESS) {
+  VkDeviceMemory deviceMemory = VK_NULL_HANDLE;
+  VkResult r = VK_ERROR_OUT_OF_DEVICE_MEMORY;
+  try {
+    alloc.memoryTypeIndex = c.memoryType(req.memoryTypeBits, flags);
+    r = vkAllocateMemory(c.device, &alloc, nullptr, &deviceMemory);
+  } catch (...) {
     vkDestroyBuffer(c.device, buffer, nullptr);
-    fail("vulkan", fmt::format("cannot allocate {} bytes", bytes));
+    throw;
   }
-  vkBindBufferMemory(c.device, buffer, memory, 0);
-  vkMapMemory(c.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped_);
+  if (r == VK_SUCCESS) r = vkBindBufferMemory(c.device, buffer, deviceMemory, 0);
+  if (r == VK_SUCCESS && mapped)
+    r = vkMapMemory(c.device, deviceMemory, 0, VK_WHOLE_SIZE, 0, &mapped_);
+  if (r != VK_SUCCESS) {
+    vkDestroyBuffer(c.device, buffer, nullptr);
+    vkFreeMemory(c.device, deviceMemory, nullptr);
+    fail("vulkan", fmt::format("cannot allocate, bind or map {} bytes (VkResult {})", bytes,
+                               static_cast<int>(r)));
+  }
   buffer_ = buffer;
-  memory_ = memory;
+  memory_ = deviceMemory;
 }
 
 Buffer::~Buffer() {
   if (!buffer_) return;  // moved from
   auto& c = context_->impl();
-  vkUnmapMemory(c.device, static_cast<VkDeviceMemory>(memory_));
+  if (mapped_) vkUnmapMemory(c.device, static_cast<VkDeviceMemory>(memory_));
   vkDestroyBuffer(c.device, static_cast<VkBuffer>(buffer_), nullptr);
   vkFreeMemory(c.device, static_cast<VkDeviceMemory>(memory_), nullptr);
+}
+
+void Buffer::upload(const void* data, std::size_t bytes) {
+  if (bytes == 0) return;
+  if (mapped_) {
+    std::memcpy(mapped_, data, bytes);
+    return;
+  }
+  Buffer staging(*context_, bytes, BufferMemory::Host);
+  std::memcpy(staging.mapped_, data, bytes);
+  context_->impl().submitAndWait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, static_cast<VkBuffer>(staging.buffer_), static_cast<VkBuffer>(buffer_), 1,
+                    &region);
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_MEMORY_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0,
+                         1, &barrier, 0, nullptr, 0, nullptr);
+  });
+}
+
+void Buffer::download(void* data, std::size_t bytes) const {
+  if (bytes == 0) return;
+  if (mapped_) {
+    std::memcpy(data, mapped_, bytes);
+    return;
+  }
+  Buffer staging(*context_, bytes, BufferMemory::Host);
+  context_->impl().submitAndWait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy region{0, 0, bytes};
+    vkCmdCopyBuffer(cmd, static_cast<VkBuffer>(buffer_), static_cast<VkBuffer>(staging.buffer_), 1,
+                    &region);
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                         &barrier, 0, nullptr, 0, nullptr);
+  });
+  std::memcpy(data, staging.mapped_, bytes);
 }
 
 void dispatch(Context& context, std::string_view shader, std::initializer_list<Buffer*> buffers,
               std::span<const std::uint8_t> pushConstants, std::uint32_t groupsX,
               std::uint32_t groupsY, std::uint32_t groupsZ) {
   auto& c = context.impl();
+  // The device's limits, checked here rather than left to undefined behaviour.
+  const std::uint32_t groups[3] = {groupsX, groupsY, groupsZ};
+  for (int i = 0; i < 3; ++i)
+    if (groups[i] > c.limits.maxComputeWorkGroupCount[i])
+      fail("vulkan",
+           fmt::format("{}: {} work groups along axis {} exceed the device's limit of {}; "
+                       "use a smaller size",
+                       shader, groups[i], i, c.limits.maxComputeWorkGroupCount[i]));
+  for (const Buffer* b : buffers)
+    if (b->size() > c.limits.maxStorageBufferRange)
+      fail("vulkan", fmt::format("{}: a buffer of {} bytes exceeds the device's storage-buffer "
+                                 "range of {} bytes; use a smaller size",
+                                 shader, b->size(), c.limits.maxStorageBufferRange));
+  if (pushConstants.size() > c.limits.maxPushConstantsSize)
+    fail("vulkan", fmt::format("{}: {} bytes of push constants exceed the device's {}", shader,
+                               pushConstants.size(), c.limits.maxPushConstantsSize));
   const Context::Impl::Pipeline* p;
   {
     const std::lock_guard lock(c.mutex);
@@ -379,7 +542,12 @@ DeviceImage::DeviceImage(Context& context, const Description& d)
     vkDestroyImage(c_->device, image_, nullptr);
     fail("vulkan", fmt::format("cannot allocate a {}x{} image", d.width, d.height));
   }
-  vkBindImageMemory(c_->device, image_, memory_, 0);
+  const VkResult bound = vkBindImageMemory(c_->device, image_, memory_, 0);
+  if (bound != VK_SUCCESS) {
+    vkDestroyImage(c_->device, image_, nullptr);
+    vkFreeMemory(c_->device, memory_, nullptr);
+    check(bound, "vkBindImageMemory");
+  }
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   viewInfo.image = image_;
   viewInfo.viewType = d.cube ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_2D;
@@ -418,7 +586,7 @@ void transitionImage(VkCommandBuffer cmd, const DeviceImage& image, VkImageLayou
 void uploadImage(Context& context, const DeviceImage& image, std::span<const std::uint8_t> texels,
                  std::size_t texelBytes) {
   const auto& d = image.description();
-  Buffer staging(context, texels.size());
+  Buffer staging(context, texels.size(), BufferMemory::Host);
   std::memcpy(staging.mapped(), texels.data(), texels.size());
   std::vector<VkBufferImageCopy> regions;
   VkDeviceSize offset = 0;

@@ -146,7 +146,17 @@ glm::mat4 viewProjectionOf(const Camera& camera, std::pair<glm::vec3, glm::vec3>
 SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake,
                           const BakeOptions& bakeOptions)
     : context(c), device(c.impl().device) {
-  if (!c.impl().graphics) fail("vulkan", "the device's queue cannot rasterize");
+  try {
+    create(scene, bake, bakeOptions);
+  } catch (...) {
+    destroy();  // a destructor does not run for a constructor that throws
+    throw;
+  }
+}
+
+void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
+                                 const BakeOptions& bakeOptions) {
+  if (!context.impl().graphics) fail("vulkan", "the device's queue cannot rasterize");
   bounds = scene.bounds();
   // Meshes: the scene's, then polyhedra around its spheres.
   const auto addMesh = [&](const Mesh& m, glm::vec4 sphere) {
@@ -251,7 +261,7 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake
   frameSet = sets[0];
   materialSets.assign(sets.begin() + 1, sets.end());
 
-  frameUniforms = std::make_unique<Buffer>(context, sizeof(FrameUniforms));
+  frameUniforms = std::make_unique<Buffer>(context, sizeof(FrameUniforms), BufferMemory::Host);
   const VkDescriptorBufferInfo uniformInfo{static_cast<VkBuffer>(frameUniforms->handle()), 0,
                                            sizeof(FrameUniforms)};
   const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -283,13 +293,13 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake
   vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
                          nullptr);
 
-  sceneVert = c.impl().shaderModule("scene_vert");
-  sceneFrag = c.impl().shaderModule("scene_frag");
-  fullscreenVert = c.impl().shaderModule("fullscreen_vert");
-  skyboxFrag = c.impl().shaderModule("skybox_frag");
+  sceneVert = context.impl().shaderModule("scene_vert");
+  sceneFrag = context.impl().shaderModule("scene_frag");
+  fullscreenVert = context.impl().shaderModule("fullscreen_vert");
+  skyboxFrag = context.impl().shaderModule("skybox_frag");
   for (VkFormat f : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D16_UNORM}) {
     VkFormatProperties props;
-    vkGetPhysicalDeviceFormatProperties(c.impl().physical, f, &props);
+    vkGetPhysicalDeviceFormatProperties(context.impl().physical, f, &props);
     if (props.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT) {
       depthFormat = f;
       break;
@@ -297,11 +307,15 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake
   }
   if (depthFormat == VK_FORMAT_UNDEFINED) fail("vulkan", "no depth format");
   VkPhysicalDeviceProperties props;
-  vkGetPhysicalDeviceProperties(c.impl().physical, &props);
+  vkGetPhysicalDeviceProperties(context.impl().physical, &props);
   standardSampleLocations = props.limits.standardSampleLocations == VK_TRUE;
 }
 
 SceneRenderer::Impl::~Impl() {
+  destroy();
+}
+
+void SceneRenderer::Impl::destroy() {
   vkDeviceWaitIdle(device);
   destroyTargets();
   for (VkShaderModule m : {sceneVert, sceneFrag, fullscreenVert, skyboxFrag})
@@ -551,7 +565,7 @@ RenderResult SceneRenderer::render(const Camera& camera, const RenderOptions& op
   Impl& r = *impl_;
   r.prepare(camera.width, camera.height, r.supportedSamples(std::max(options.spp, 1)));
   const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
-  Buffer readback(r.context, count * sizeof(glm::vec4));
+  Buffer readback(r.context, count * sizeof(glm::vec4), BufferMemory::Host);
   r.context.impl().submitAndWait([&](VkCommandBuffer cmd) {
     r.record(cmd, camera, options, skyboxLod);
     const DeviceImage& out = r.output();

@@ -72,6 +72,10 @@ struct SceneRenderer::Impl {
   const DeviceImage& output() const { return *targets->resolved; }
 
  private:
+  // The constructor's work; if it throws, the constructor frees what it had made (destroy).
+  void create(const Scene& scene, const BakeResult& bake, const BakeOptions& bakeOptions);
+  // Frees every Vulkan object made so far (null handles are skipped by Vulkan itself).
+  void destroy();
   void destroyTargets();
 };
 

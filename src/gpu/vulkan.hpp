@@ -26,6 +26,9 @@ struct Context::Impl {
   std::uint32_t family = 0;
   bool graphics = false;  // the queue also does graphics
   VkCommandPool pool = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;  // with IBL_VULKAN_VALIDATION
+  VkPhysicalDeviceLimits limits{};
+  bool mappableDeviceMemory = false;  // device-local memory the host can map (no staging)
   DeviceInfo info;
   struct Pipeline {
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
@@ -43,6 +46,9 @@ struct Context::Impl {
   // The compute pipeline of shader `name` with `bindings` storage buffers (cached).
   const Pipeline& computePipeline(std::string_view name, std::uint32_t bindings,
                                   std::uint32_t pushBytes);
+  // Fills `p` step by step (the caller frees what exists if it throws).
+  void createComputePipeline(Pipeline& p, std::string_view name, std::uint32_t bindings,
+                             std::uint32_t pushBytes);
   // Records a command buffer with `record`, submits it and waits for it. Takes the mutex.
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
 };

@@ -122,8 +122,13 @@ struct Swapchain {
   std::vector<VkImage> images;
   std::vector<VkImageView> views;
   std::vector<VkFramebuffer> framebuffers;
+  // Signaled when the frame drawn into image i is complete, waited on by its presentation: one
+  // per image, as a presentation may still wait on one while the next frame is submitted.
+  std::vector<VkSemaphore> rendered;
 
   void destroy() {
+    for (VkSemaphore s : rendered) vkDestroySemaphore(device, s, nullptr);
+    rendered.clear();
     for (VkFramebuffer f : framebuffers) vkDestroyFramebuffer(device, f, nullptr);
     for (VkImageView v : views) vkDestroyImageView(device, v, nullptr);
     framebuffers.clear();
@@ -149,7 +154,7 @@ struct WindowResources {
   VkSampler sampler = VK_NULL_HANDLE;
   VkDescriptorPool pool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
-  VkSemaphore acquired = VK_NULL_HANDLE, rendered = VK_NULL_HANDLE;
+  VkSemaphore acquired = VK_NULL_HANDLE;
   VkFence done = VK_NULL_HANDLE;
 
   ~WindowResources() {
@@ -160,7 +165,6 @@ struct WindowResources {
       swapchain.destroy();
       vkDestroyFence(d, done, nullptr);
       vkDestroySemaphore(d, acquired, nullptr);
-      vkDestroySemaphore(d, rendered, nullptr);
       vkDestroyDescriptorPool(d, pool, nullptr);
       vkDestroySampler(d, sampler, nullptr);
       vkDestroyPipeline(d, pipeline, nullptr);
@@ -251,6 +255,10 @@ void createSwapchain(WindowResources& r, VkSurfaceFormatKHR format) {
     VkFramebuffer framebuffer;
     check(vkCreateFramebuffer(c.device, &fb, nullptr, &framebuffer), "vkCreateFramebuffer");
     s.framebuffers.push_back(framebuffer);
+    VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore rendered;
+    check(vkCreateSemaphore(c.device, &semaphoreInfo, nullptr, &rendered), "vkCreateSemaphore");
+    s.rendered.push_back(rendered);
   }
 }
 
@@ -389,7 +397,6 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   check(vkAllocateCommandBuffers(c.device, &cmdAlloc, &r.cmd), "vkAllocateCommandBuffers");
   VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   check(vkCreateSemaphore(c.device, &semaphoreInfo, nullptr, &r.acquired), "vkCreateSemaphore");
-  check(vkCreateSemaphore(c.device, &semaphoreInfo, nullptr, &r.rendered), "vkCreateSemaphore");
   VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   fenceInfo.flags = VK_FENCE_CREATE_SIGNALED_BIT;
   check(vkCreateFence(c.device, &fenceInfo, nullptr, &r.done), "vkCreateFence");
@@ -444,10 +451,10 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
            : state.toneMap == ToneMap::Aces ? 1
                                             : 2,
            encodesSrgb(format.format) ? 0 : 1};
-    vkResetCommandBuffer(r.cmd, 0);
+    check(vkResetCommandBuffer(r.cmd, 0), "vkResetCommandBuffer");
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vkBeginCommandBuffer(r.cmd, &begin);
+    check(vkBeginCommandBuffer(r.cmd, &begin), "vkBeginCommandBuffer");
     renderer.record(r.cmd, state.camera(width, height), shading, state.skyboxLod);
     VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     passBegin.renderPass = r.pass;
@@ -465,7 +472,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
                        &push);
     vkCmdDraw(r.cmd, 3, 1, 0, 0);
     vkCmdEndRenderPass(r.cmd);
-    vkEndCommandBuffer(r.cmd);
+    check(vkEndCommandBuffer(r.cmd), "vkEndCommandBuffer");
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.waitSemaphoreCount = 1;
@@ -474,11 +481,11 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &r.cmd;
     submit.signalSemaphoreCount = 1;
-    submit.pSignalSemaphores = &r.rendered;
+    submit.pSignalSemaphores = &r.swapchain.rendered[imageIndex];
     check(vkQueueSubmit(c.queue, 1, &submit, r.done), "vkQueueSubmit");
     VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
     present.waitSemaphoreCount = 1;
-    present.pWaitSemaphores = &r.rendered;
+    present.pWaitSemaphores = &r.swapchain.rendered[imageIndex];
     present.swapchainCount = 1;
     present.pSwapchains = &r.swapchain.handle;
     present.pImageIndices = &imageIndex;

@@ -28,7 +28,15 @@ struct ContextOptions {
   std::vector<std::string> instanceExtensions;  // e.g. the window system's surface extensions
   bool graphics = false;                        // a queue that also rasterizes (the viewer)
   bool swapchain = false;                       // VK_KHR_swapchain, to present to a window
+  // Device-local buffers through staging copies even where the device lets the host map its
+  // memory: the path of discrete GPUs, on any device (tests).
+  bool stagingBuffers = false;
 };
+
+// With the environment variable IBL_VULKAN_VALIDATION=1, every context enables the Khronos
+// validation layer (Debian: vulkan-validationlayers) and reports its warnings and errors on
+// stderr; this counts them, over all contexts of the process (the GPU tests require 0).
+std::size_t validationMessageCount();
 
 // A Vulkan device, queue and the compiled pipelines. Prefers a discrete GPU, then an
 // integrated one, then anything (lavapipe).
