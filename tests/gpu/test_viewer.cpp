@@ -203,6 +203,30 @@ TEST(Viewer, TexturedAndCompressedMeshesMatchTheCpu) {
   EXPECT_LT(c.coverageMismatch, 1e-2);
 }
 
+// Looking straight down with the default up: the viewer picks another up as the CPU renderer
+// does, and both show the same (the sphere's pole over the environment), not one color.
+TEST(Viewer, ScreenshotLookingStraightDownMatchesTheCpu) {
+  TempDir dir;
+  ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+  const std::string view = " --size 48x48 --spp 1 -q --look-from 0,6,0 --background 0.2,0.3,0.4";
+  CliRun r = runIbl("view sphere --screenshot " + quote(dir / "gpu.exr") + view);
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl("render sphere -o " + quote(dir / "cpu.exr") + view);
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Image a = readImageFile(dir / "gpu.exr").levels[0][0];
+  const Image b = readImageFile(dir / "cpu.exr").levels[0][0];
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  double sum = 0.0;
+  int covered = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    sum += maxRelativeError(a.pixels[i], b.pixels[i]);
+    covered += a.pixels[i] != glm::vec3(0.2f, 0.3f, 0.4f);
+  }
+  EXPECT_LT(sum / static_cast<double>(a.pixels.size()), 1e-3);
+  EXPECT_GT(covered, 200);  // the sphere, not one color
+  EXPECT_LT(covered, 48 * 48);
+}
+
 TEST(Viewer, CliWritesAScreenshot) {
   TempDir dir;
   ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
