@@ -166,10 +166,7 @@ TEST(Render, ReferenceIsReproducibleAndConverges) {
   o.spp = 64;
   EXPECT_EQ(renderScene(s, cam, b.result, b.options, o).color.pixels,
             renderScene(s, cam, b.result, b.options, o).color.pixels);
-  o.noiseThreshold = 0.01f;
-  o.spp = 1 << 16;
-  const RenderResult adaptive = renderScene(s, cam, b.result, b.options, o);
-  EXPECT_LT(adaptive.samples, 25.0 * (1 << 16));  // stopped early
+  // Convergence on the model: AdaptiveStoppingMeetsTheNoiseThresholdOnTheModel.
 }
 
 TEST(Render, ShadowsDarkenTheReference) {
