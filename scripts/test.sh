@@ -29,8 +29,13 @@ ninja -C build-asan
 ctest --test-dir build-asan --output-on-failure -j "$jobs"
 
 echo "== ThreadSanitizer build and tests" >&2
+# The suites that run the library's own parallel code (oneTBB, through include/ibl/core/
+# parallel.hpp, which annotates fork and join). Left out: the GPU tests (the Vulkan driver's
+# threads) and the command-line tests (the same code through the executable). Mutex reports are
+# off: OpenEXR locks inside its library and unlocks in header code inlined into ours.
 cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_TSAN=ON \
   -DIBL_WERROR=ON -DIBL_BUILD_BENCH=OFF >/dev/null
 ninja -C build-tsan
-TSAN_OPTIONS="halt_on_error=1 suppressions=$PWD/tests/tsan.supp" \
-  ctest --test-dir build-tsan --output-on-failure -j "$jobs"
+TSAN_OPTIONS="halt_on_error=1 report_mutex_bugs=0 suppressions=$PWD/tests/tsan.supp" \
+  ctest --test-dir build-tsan --output-on-failure -j "$jobs" \
+  -R '^(CubeMap|Equirect|Resample|Sh|Sampling|Brdf|Dfg|Prefilter|Bake|Render|ShadingRules|Camera|Environment)\.'

@@ -7,14 +7,13 @@
 #include <system_error>
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 #include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include "ibl/bake/dfg.hpp"
 #include "ibl/bake/preview.hpp"
 #include "ibl/core/error.hpp"
+#include "ibl/core/parallel.hpp"
 #include "ibl/core/version.hpp"
 #include "ibl/env/export.hpp"
 #include "ibl/env/resample.hpp"
@@ -76,7 +75,7 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
     return cube;
   });
   // The DFG table does not depend on the environment: compute it beside the convolutions.
-  tbb::parallel_invoke(
+  parallelInvoke(
       [&] {
         r.specular = time("specular", [&] {
           return device
@@ -448,8 +447,8 @@ std::set<fs::path> filesOfEarlierBake(const fs::path& dir) {
 // bake's manifest lists that this bake does not write are removed, and other files are left.
 std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path& outDir,
                                bool force) {
-  tbb::parallel_for(std::size_t{0}, pending.size(),
-                    [&](std::size_t i) { pending[i].bytes = pending[i].encode(); });
+  parallelFor(std::size_t{0}, pending.size(),
+              [&](std::size_t i) { pending[i].bytes = pending[i].encode(); });
   std::vector<EncodedFile> files;
   for (auto& f : pending) files.push_back({outDir / f.path, std::move(f.bytes)});
   std::error_code ec;

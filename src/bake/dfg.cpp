@@ -4,9 +4,9 @@
 #include <cmath>
 #include <vector>
 
-#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "ibl/core/parallel.hpp"
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/sampling.hpp"
 
@@ -37,7 +37,7 @@ struct QuadratureNodes {
 };
 
 // Branch-free over the points so that it vectorizes; compiled for AVX-512, AVX2, baseline.
-#if defined(__x86_64__) && !defined(__clang__)
+#if defined(__x86_64__) && !defined(__clang__) && !defined(__SANITIZE_THREAD__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 glm::vec3
@@ -65,7 +65,7 @@ glm::vec3 integrateDfg(float NoV, float roughness, int samples) {
 Image integrateDfgLut(int width, int height, int samples) {
   Image lut(width, height);
   const QuadratureNodes nodes(samples);
-  tbb::parallel_for(0, height, [&](int j) {
+  parallelFor(0, height, [&](int j) {
     const float r = (static_cast<float>(j) + 0.5f) / static_cast<float>(height);
     for (int i = 0; i < width; ++i)
       lut.at(i, j) =

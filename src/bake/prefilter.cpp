@@ -6,10 +6,10 @@
 #include <numbers>
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include "ibl/core/error.hpp"
+#include "ibl/core/parallel.hpp"
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/sampling.hpp"
 #include "ibl/shared/split_sum.h"
@@ -118,8 +118,9 @@ template <int kWindow>
   }
 }
 
-// The loops above, compiled for AVX-512, AVX2 and baseline x86-64; the best one runs.
-#if defined(__x86_64__) && !defined(__clang__)
+// The loops above, compiled for AVX-512, AVX2 and baseline x86-64; the best one runs. (Not
+// under ThreadSanitizer: its instrumented ifunc resolvers would run before it starts.)
+#if defined(__x86_64__) && !defined(__clang__) && !defined(__SANITIZE_THREAD__)
 #define IBL_SIMD_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define IBL_SIMD_CLONES
@@ -200,7 +201,7 @@ ConvolutionSums convolveTexels(const TexelArrays& texels, int size, LobeWeight l
     out.sum[f] = Image(size, size);
     out.weight[f] = Image(size, size);
   }
-  tbb::parallel_for(0, kFaceCount * tilesPerRow * tilesPerRow, [&](int index) {
+  parallelFor(0, kFaceCount * tilesPerRow * tilesPerRow, [&](int index) {
     const int face = index / (tilesPerRow * tilesPerRow);
     const int ty = index / tilesPerRow % tilesPerRow, tx = index % tilesPerRow;
     const int x0 = tx * side, y0 = ty * side;
@@ -267,7 +268,7 @@ std::vector<glm::vec3> convolveDirections(const std::array<Image, kFaceCount>& s
   const TexelArrays texels(sourceLevel);
   std::vector<glm::vec3> out(dirs.size());
   const std::size_t tiles = (dirs.size() + kTileLanes - 1) / kTileLanes;
-  tbb::parallel_for(std::size_t{0}, tiles, [&](std::size_t t) {
+  parallelFor(std::size_t{0}, tiles, [&](std::size_t t) {
     DestTile tile{};
     const std::size_t first = t * kTileLanes;
     for (int j = 0; j < kTileLanes; ++j) {
@@ -335,7 +336,7 @@ std::array<Image, kFaceCount> prefilterLevelFresnelZero(const CubeMap& source, i
   if (coarse == size) return result.levels[0];
   std::array<Image, kFaceCount> out;
   for (auto& face : out) face = Image(size, size);
-  tbb::parallel_for(0, kFaceCount * size, [&](int row) {
+  parallelFor(0, kFaceCount * size, [&](int row) {
     const int face = row / size, y = row % size;
     for (int x = 0; x < size; ++x)
       out[face].at(x, y) = sampleBilinear(result, 0, texelDirection(face, x, y, size));
@@ -399,7 +400,7 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
       CubeMap sums, weights;
       sums.levels = {ring.sum};
       weights.levels = {ring.weight};
-      tbb::parallel_for(0, kFaceCount * size, [&](int row) {
+      parallelFor(0, kFaceCount * size, [&](int row) {
         const int face = row / size, y = row % size;
         for (int x = 0; x < size; ++x) {
           const glm::vec3 d = texelDirection(face, x, y, size);
@@ -493,7 +494,7 @@ std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int s
       filteredImportanceSamples(source.size(), source.levelCount(), roughness, samples, weight);
   std::array<Image, kFaceCount> out;
   for (auto& f : out) f = Image(size, size);
-  tbb::parallel_for(0, kFaceCount * size, [&](int row) {
+  parallelFor(0, kFaceCount * size, [&](int row) {
     const int face = row / size, y = row % size;
     for (int x = 0; x < size; ++x) {
       const glm::mat3 frame = tangentFrame(texelDirection(face, x, y, size));

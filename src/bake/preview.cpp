@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
+#include "ibl/core/parallel.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/render/renderer.hpp"
 
@@ -17,7 +17,7 @@ Image renderMaterialGrid(const BakeResult& bake, const BakeOptions& options, int
   Image img(columns * cell, rows * cell);
   const glm::vec3 view(0.0f, 0.0f, 1.0f);  // orthographic camera on +Z looking toward -Z
   const RenderOptions shading;
-  tbb::parallel_for(0, img.height, [&](int py) {
+  parallelFor(0, img.height, [&](int py) {
     for (int px = 0; px < img.width; ++px) {
       const int col = px / cell, row = py / cell;
       const float radius = 0.42f * static_cast<float>(cell);

@@ -4,10 +4,10 @@
 #include <bit>
 #include <cmath>
 
-#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include "ibl/core/error.hpp"
+#include "ibl/core/parallel.hpp"
 
 namespace ibl {
 
@@ -156,7 +156,7 @@ void buildMipChain(CubeMap& cube, int levelCount) {
     for (auto& f : cube.levels[m]) f = Image(n, n);
     const auto& src = cube.levels[m - 1];
     auto& dst = cube.levels[m];
-    tbb::parallel_for(0, kFaceCount * n, [&](int row) {
+    parallelFor(0, kFaceCount * n, [&](int row) {
       const int face = row / n, y = row % n;
       for (int x = 0; x < n; ++x) {
         glm::dvec3 sum(0.0);

@@ -41,7 +41,6 @@ void warnAboutRange(const ExportOptions& o, const fs::path& path, const RangeLos
                      path.string(), describe(loss, limit), formatName));
 }
 
-
 fs::path levelPath(const fs::path& p, int level, bool suffix) {
   if (!suffix) return p;
   fs::path out = p;

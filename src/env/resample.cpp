@@ -6,11 +6,11 @@
 #include <numbers>
 #include <optional>
 
-#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "ibl/core/error.hpp"
+#include "ibl/core/parallel.hpp"
 #include "ibl/env/equirect.hpp"
 
 namespace ibl {
@@ -111,7 +111,7 @@ class Source {
 
 std::vector<float> subcellSolidAngles(int sub) {
   std::vector<float> weights(static_cast<std::size_t>(sub) * sub);
-  tbb::parallel_for(0, sub, [&](int j) {
+  parallelFor(0, sub, [&](int j) {
     const double inv = 2.0 / sub;
     for (int i = 0; i < sub; ++i)
       weights[static_cast<std::size_t>(j) * sub + i] = static_cast<float>(faceRectSolidAngle(
@@ -141,7 +141,7 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
   const int sub = size * k;
   const std::vector<float> weights = subcellSolidAngles(sub);
   CubeMap out(size, 1);
-  tbb::parallel_for(0, kFaceCount * size, [&](int row) {
+  parallelFor(0, kFaceCount * size, [&](int row) {
     const int face = row / size, y = row % size;
     const float inv = 2.0f / static_cast<float>(sub);
     for (int x = 0; x < size; ++x) {
@@ -171,7 +171,7 @@ Image resampleToEquirect(const Environment& env, int width, float rotateDegrees)
   const Source source(env, density, rotateDegrees);
   const int k = source.samplesPerSide(density);
   Image out(width, height);
-  tbb::parallel_for(0, height, [&](int y) {
+  parallelFor(0, height, [&](int y) {
     // Sub-rows of a row have solid angles proportional to cos(theta0) - cos(theta1).
     std::vector<float> rowWeight(k);
     for (int b = 0; b < k; ++b)

@@ -1,10 +1,9 @@
 #include "ibl/math/sh.hpp"
+#include "ibl/core/parallel.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <vector>
-
-#include <tbb/parallel_for.h>
 
 namespace ibl {
 
@@ -18,7 +17,7 @@ Sh9 projectSh9(const CubeMap& cube, int level) {
   const int n = cube.levels[level][0].width;
   // One partial sum per face row, added in a fixed order: the same bits for any thread count.
   std::vector<std::array<glm::dvec3, 9>> rows(static_cast<std::size_t>(kFaceCount) * n);
-  tbb::parallel_for(0, kFaceCount * n, [&](int row) {
+  parallelFor(0, kFaceCount * n, [&](int row) {
     const int face = row / n, y = row % n;
     auto& acc = rows[row];
     acc.fill(glm::dvec3(0.0));

@@ -8,11 +8,11 @@
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
 #include "ibl/bake/dfg.hpp"
 #include "ibl/core/error.hpp"
+#include "ibl/core/parallel.hpp"
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/math/sampling.hpp"
@@ -438,7 +438,7 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
   std::atomic<int> rowsDone{0};
   std::atomic<std::uint64_t> samples{0};
   const int spp = std::max(1, o.spp);
-  tbb::parallel_for(0, camera.height, [&](int y) {
+  parallelFor(0, camera.height, [&](int y) {
     std::uint64_t rowSamples = 0;
     for (int x = 0; x < camera.width; ++x) {
       Random rng(o.seed, static_cast<std::uint64_t>(y) * camera.width + x);

@@ -74,8 +74,8 @@ TEST(Bake, WritesEveryOutputAndAManifest) {
   BakeOutputOptions out;
   out.exr = true;
   out.layout = FlatLayout::Faces;
-  const auto files =
-      writeBakeOutputs(r, o, out, {"sunset.exr", "exr", "equirect", 512, 256, {}, 0.0f, {}}, dir / "assets");
+  const auto files = writeBakeOutputs(
+      r, o, out, {"sunset.exr", "exr", "equirect", 512, 256, {}, 0.0f, {}}, dir / "assets");
   for (const auto& f : files) EXPECT_TRUE(std::filesystem::exists(f)) << f;
   const auto manifestBytes = readFileBytes(dir / "assets" / "manifest.json");
   const auto m = nlohmann::json::parse(manifestBytes.begin(), manifestBytes.end());

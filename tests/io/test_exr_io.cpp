@@ -13,7 +13,6 @@
 using namespace ibl;
 using namespace ibl::test;
 
-
 TEST(ExrIo, RoundTripFloatIsExact) {
   const Image img = randomImage(37, 19, 1, 1e6f);
   const Image back = decodeExr(encodeExr(img, ExrPixelType::Float), "f.exr");

@@ -19,7 +19,8 @@ namespace ibl::test {
 // Writes an RGB float image with the OpenEXR library itself, in the given compression, as a
 // scanline or tiled file, with a data window that does not start at the origin.
 inline std::vector<std::uint8_t> writeWithOpenExr(const Image& img, Imf::Compression compression,
-                                           bool tiled, Imf::PixelType type, const TempDir& dir) {
+                                                  bool tiled, Imf::PixelType type,
+                                                  const TempDir& dir) {
   const auto path = (dir / "ref.exr").string();
   const Imath::Box2i dataWindow({10, 20}, {10 + img.width - 1, 20 + img.height - 1});
   Imf::Header header(dataWindow, dataWindow);
@@ -52,7 +53,6 @@ inline std::vector<std::uint8_t> writeWithOpenExr(const Image& img, Imf::Compres
   }
   return readFileBytes(path);
 }
-
 
 // The same as a file: `path`, float, ZIP, scanlines.
 inline void writeExrWithOpenExr(const Image& img, const std::filesystem::path& path) {
