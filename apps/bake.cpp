@@ -22,7 +22,7 @@ struct BakeCliOptions {
   std::string output;
   std::string inputLayout;
   int size = 256;
-  int levels = 0;
+  std::optional<int> levels;  // default: down to 8x8
   std::string mapping = "linear";
   std::string method = "direct";
   int samples = 64;
@@ -72,6 +72,11 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
   };
   if (!std::has_single_bit(static_cast<unsigned>(o.size)))
     fail("--size", fmt::format("must be a power of two, not {}", o.size));
+  const int mipCount = std::bit_width(static_cast<unsigned>(o.size));
+  if (o.levels && *o.levels > mipCount)
+    fail("--levels", fmt::format("{} levels need a cube of at least {}^2; --size {} has {} (down "
+                                 "to 1x1)",
+                                 *o.levels, 1 << (*o.levels - 1), o.size, mipCount));
 
   LoadOptions loadOptions;
   if (!o.inputLayout.empty()) loadOptions.layout = parseLayout(o.inputLayout);
@@ -80,7 +85,7 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
   LoadedEnvironment loaded =
       o.input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), name, loadOptions)
                       : loadEnvironment(o.input, loadOptions);
-  warnAboutReplacedPixels(name, loaded.replaced, global);
+  if (!o.input.empty()) warnAboutReplacedPixels(name, loaded.replaced, global);  // not ours
   requireLight(loaded.environment, name);
   RangeLoss clampLoss;
   if (o.clamp > 0.0f) {
@@ -91,7 +96,7 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
 
   BakeOptions options;
   options.specular.size = o.size;
-  options.specular.levels = o.levels;
+  options.specular.levels = o.levels.value_or(0);
   options.specular.mapping =
       o.mapping == "frostbite" ? RoughnessMapping::Frostbite : RoughnessMapping::Linear;
   options.specular.method =
@@ -150,8 +155,8 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                   "Environment (any `ibl convert` input); default: the bundled sunset.exr");
   cmd->add_option("-o,--output", opts->output, "Output directory (required)");
   cmd->add_option("--device", opts->device,
-                  "cpu, gpu (Vulkan compute for the DFG table, irradiance and SH9), or auto (a "
-                  "real GPU if present)")
+                  "cpu, gpu (every stage in Vulkan compute: resampling, mips, specular, "
+                  "irradiance, SH9, DFG), or auto (a real GPU if present)")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}))
       ->capture_default_str();
   cmd->add_flag("--list-devices", opts->listDevices, "List the Vulkan devices and exit");
@@ -162,7 +167,7 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
   cmd->add_option("--levels", opts->levels, "Specular mip levels (default: down to 8x8)")
-      ->check(CLI::Range(0, 13));
+      ->check(CLI::Range(1, 13));
   cmd->add_option("--mapping", opts->mapping,
                   "Roughness of level m: linear r = m/(L-1), frostbite r = (m/(L-1))^2")
       ->check(CLI::IsMember({"linear", "frostbite"}))
@@ -188,11 +193,12 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--sh-window", opts->shWindow,
                 "Window the SH9 coefficients (Lanczos) against ringing");
   cmd->add_option("--rotate", opts->rotate, "Rotate the environment about +Y by DEG degrees")
+      ->check(finiteNumber())
       ->capture_default_str();
   cmd->add_option("--clamp", opts->clamp,
                   "Clamp the source's radiance to MAX before baking (the power removed is "
                   "reported and recorded in the manifest)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber & finiteNumber());
   cmd->add_option("--format", opts->format, "KTX2 texel format of the cube maps")
       ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}))
       ->capture_default_str();

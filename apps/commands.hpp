@@ -21,6 +21,9 @@ void warnAboutReplacedPixels(std::string_view name, const InvalidPixelCounts& re
 // NaN, infinite or negative): baking it would give black maps.
 void requireLight(const Environment& env, std::string_view name);
 
+// Rejects NaN and infinite values of a numeric option (CLI11 parses "nan" and "inf").
+const CLI::Validator& finiteNumber();
+
 void addConvertCommand(CLI::App& app, const GlobalOptions& global);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global);
 void addBakeCommand(CLI::App& app, const GlobalOptions& global);

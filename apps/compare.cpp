@@ -23,10 +23,21 @@ struct CompareOptions {
   bool json = false;
 };
 
-Image readFlat(const std::string& path) {
+struct FlatImage {
+  Image image;
+  FileFormat format;
+};
+
+FlatImage readFlat(const std::string& path) {
   DecodedFile d = readImageFile(path);
   if (d.levels[0].size() != 1) fail(path, "is a cube map; compare flat images");
-  return std::move(d.levels[0][0]);
+  return {std::move(d.levels[0][0]), d.format};
+}
+
+// PNG and JPEG hold display-referred (exposed, tone-mapped) values; the other formats hold
+// linear radiance. Comparing one with the other measures the tone curve, not the renderer.
+bool displayReferred(FileFormat format) {
+  return format == FileFormat::Png || format == FileFormat::Jpg;
 }
 
 nlohmann::ordered_json errorsJson(const ChannelErrors& e) {
@@ -38,12 +49,22 @@ nlohmann::ordered_json errorsJson(const ChannelErrors& e) {
 }
 
 int runCompare(const CompareOptions& o) {
-  const Image a = readFlat(o.a), b = readFlat(o.b);
+  const FlatImage fa = readFlat(o.a), fb = readFlat(o.b);
+  if (displayReferred(fa.format) != displayReferred(fb.format)) {
+    const bool aDisplay = displayReferred(fa.format);
+    fail(o.a,
+         fmt::format("is {} but {} is {}: compare two linear images (EXR, HDR) or two "
+                     "display images (PNG, JPEG)",
+                     aDisplay ? "a display image (tone-mapped PNG/JPEG)" : "linear radiance", o.b,
+                     aDisplay ? "linear radiance" : "a display image (tone-mapped PNG/JPEG)"));
+  }
+  const Image& a = fa.image;
+  const Image& b = fb.image;
   if (a.width != b.width || a.height != b.height)
     fail(o.a, fmt::format("is {}x{} but {} is {}x{}", a.width, a.height, o.b, b.width, b.height));
   std::vector<float> mask;
   if (!o.mask.empty()) {
-    const Image m = readFlat(o.mask);
+    const Image m = readFlat(o.mask).image;
     if (m.width != a.width || m.height != a.height)
       fail(o.mask, "mask size differs from the images");
     for (const auto& p : m.pixels) mask.push_back(p.x);
@@ -73,7 +94,7 @@ int runCompare(const CompareOptions& o) {
   if (o.maxRelError >= 0.0 && c.overall.meanRelativeError > o.maxRelError) {
     fmt::print(stderr, "ibl: mean relative error {:.6g} exceeds --max-rel-error {:.6g}\n",
                c.overall.meanRelativeError, o.maxRelError);
-    return 2;
+    return 3;
   }
   return 0;
 }
@@ -89,9 +110,11 @@ void addCompareCommand(CLI::App& app, const GlobalOptions&) {
   cmd->add_option("--mask", opts->mask, "Compare only where this image's red channel is > 0.5");
   cmd->add_option("--error-png", opts->errorPng, "Write a false-color map of the relative error");
   cmd->add_option("--error-scale", opts->errorScale, "Relative error shown as red in --error-png")
+      ->check(CLI::PositiveNumber & finiteNumber())
       ->capture_default_str();
   cmd->add_option("--max-rel-error", opts->maxRelError,
-                  "Exit with status 2 if the mean relative error is above");
+                  "Exit with status 3 if the mean relative error is above")
+      ->check(CLI::NonNegativeNumber & finiteNumber());
   cmd->add_flag("--json", opts->json, "Print JSON");
   cmd->callback([opts] {
     const int status = runCompare(*opts);

@@ -49,6 +49,8 @@ void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
     fail(o.output, "--format applies to KTX2 outputs only");
   if (format != FileFormat::Exr && o.exrType != "half")
     fail(o.output, "--exr-type applies to EXR outputs only");
+  if (format != FileFormat::Png && o.exposure != 0.0f)
+    fail(o.output, "--exposure applies to PNG outputs only (the others store linear radiance)");
   std::optional<Layout> inLayout;
   if (!o.inputLayout.empty()) inLayout = parseLayout(o.inputLayout);
 
@@ -93,9 +95,11 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::IsMember({"half", "float"}))
       ->capture_default_str();
   cmd->add_option("--exposure", opts->exposure, "PNG exposure in stops (scale by 2^EV)")
+      ->check(finiteNumber())
       ->capture_default_str();
   cmd->add_option("--rotate", opts->rotate,
                   "Rotate the environment about +Y by DEG degrees (+X turns toward -Z)")
+      ->check(finiteNumber())
       ->capture_default_str();
   cmd->add_flag("--mips", opts->mips,
                 "Write the full mip chain of a cube map (one KTX2, or _m<level> files)");

@@ -34,8 +34,15 @@ int main(int argc, char** argv) {
   ibl::cli::addInfoCommand(app, global);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a command's own status (compare above its threshold)
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // Usage errors: one line with the same prefix as every other error, and status 2.
+    fmt::print(stderr,
+               "ibl: error: {}\nRun 'ibl --help' or 'ibl COMMAND --help' for the options.\n",
+               e.what());
+    return 2;
   } catch (const ibl::Error& e) {
     fmt::print(stderr, "ibl: error: {}\n", e.what());
     return 1;

@@ -24,6 +24,7 @@ struct RenderCliOptions {
 
 void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   checkRenderedImagePath(o.output);
+  checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   const Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
@@ -68,7 +69,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global) {
                   "Samples per pixel (default 4 split-sum, 256 reference)")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--noise", opts->noise, "Reference: stop a pixel at this relative standard error")
-      ->check(CLI::Range(0.0f, 1.0f));
+      ->check(CLI::Range(0.0f, 1.0f) & finiteNumber());
   cmd->add_flag("--shadows", opts->shadows, "Reference: ray-traced visibility of the environment");
   cmd->add_flag("--exr-exposed", opts->exrExposed,
                 "Write the exposed, tone-mapped image to the EXR too");

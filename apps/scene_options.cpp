@@ -25,10 +25,11 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
       ->check(CLI::IsMember({"perspective", "ortho"}))
       ->capture_default_str();
   cmd->add_option("--fov", o.fov, "Vertical field of view in degrees")
-      ->check(CLI::Range(1.0f, 179.0f))
+      ->check(CLI::Range(1.0f, 179.0f) & finiteNumber())
       ->capture_default_str();
   cmd->add_option("--ortho-width", o.orthoWidth,
-                  "Width of the orthographic view (default: fits the scene)");
+                  "Width of the orthographic view (default: fits the scene)")
+      ->check(finiteNumber());
   cmd->add_option("--look-from", o.lookFrom,
                   "Camera position X,Y,Z (default: in front of the scene, +Z)");
   cmd->add_option("--look-at", o.lookAt, "Point looked at X,Y,Z (default: the scene's center)");
@@ -37,10 +38,10 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--base-color", o.baseColor, "Built-in scenes: linear base color R,G,B")
       ->capture_default_str();
   cmd->add_option("--metallic", o.metallic, "Built-in sphere: metallic")
-      ->check(CLI::Range(0.0f, 1.0f))
+      ->check(CLI::Range(0.0f, 1.0f) & finiteNumber())
       ->capture_default_str();
   cmd->add_option("--roughness", o.roughness, "Built-in sphere: perceptual roughness")
-      ->check(CLI::Range(0.0f, 1.0f))
+      ->check(CLI::Range(0.0f, 1.0f) & finiteNumber())
       ->capture_default_str();
   cmd->add_option("--diffuse", o.diffuse, "disney (Frostbite renormalized) or lambert")
       ->check(CLI::IsMember({"disney", "lambert"}))
@@ -59,10 +60,13 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
       ->capture_default_str();
   cmd->add_option("--ev100", o.ev100,
                   "Exposure value at ISO 100 (default: automatic, average log luminance)");
-  cmd->add_option("--aperture", o.aperture, "f-number (with --shutter and --iso)");
-  cmd->add_option("--shutter", o.shutter, "Shutter time in seconds");
-  cmd->add_option("--iso", o.iso, "Sensitivity");
+  cmd->add_option("--aperture", o.aperture, "f-number (with --shutter and --iso)")
+      ->check(CLI::PositiveNumber & finiteNumber());
+  cmd->add_option("--shutter", o.shutter, "Shutter time in seconds")
+      ->check(CLI::PositiveNumber & finiteNumber());
+  cmd->add_option("--iso", o.iso, "Sensitivity")->check(CLI::PositiveNumber & finiteNumber());
   cmd->add_option("--exposure-compensation", o.compensation, "Stops added to the exposure")
+      ->check(finiteNumber())
       ->capture_default_str();
   cmd->add_option("--tonemap", o.tonemap, "none, aces or filmic")
       ->check(CLI::IsMember({"none", "aces", "filmic"}))
@@ -107,6 +111,13 @@ Scene loadScene(const SceneCliOptions& o) {
   m.metallic = o.metallic;
   m.roughness = o.roughness;
   return makeSphereScene(m);
+}
+
+void checkLightingOptions(const SceneCliOptions& o) {
+  if (!o.bakeDir.empty() && !o.env.empty())
+    fail("--env", fmt::format("contradicts --bake {}: the bake holds the environment; pass one "
+                              "of them",
+                              o.bakeDir));
 }
 
 LoadedBake loadOrBake(const SceneCliOptions& o) {
@@ -158,10 +169,10 @@ Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int 
     camera.orthoWidth =
         2.2f * radius * std::max(1.0f, static_cast<float>(width) / static_cast<float>(height));
   }
-  if (o.orthoWidth != 0.0f) {
-    if (!(o.orthoWidth > 0.0f) || !std::isfinite(o.orthoWidth))
-      fail("--ortho-width", fmt::format("must be positive, not {}", o.orthoWidth));
-    camera.orthoWidth = o.orthoWidth;
+  if (o.orthoWidth) {
+    if (!(*o.orthoWidth > 0.0f) || !std::isfinite(*o.orthoWidth))
+      fail("--ortho-width", fmt::format("must be positive, not {}", *o.orthoWidth));
+    camera.orthoWidth = *o.orthoWidth;
   }
   checkCamera(camera);
   return camera;
@@ -185,11 +196,14 @@ RenderOptions shadingOptions(const SceneCliOptions& o) {
 
 float chooseEv100(const SceneCliOptions& o, const Image& linear) {
   if (!o.ev100.empty()) {
+    float ev100 = 0.0f;
     try {
-      return std::stof(o.ev100);
+      ev100 = std::stof(o.ev100);
     } catch (const std::exception&) {
       fail("--ev100", fmt::format("expected a number, got '{}'", o.ev100));
     }
+    if (!std::isfinite(ev100)) fail("--ev100", fmt::format("'{}' is not finite", o.ev100));
+    return ev100;
   }
   if (o.aperture > 0.0f && o.shutter > 0.0f && o.iso > 0.0f)
     return ev100FromSettings(o.aperture, o.shutter, o.iso);

@@ -1,6 +1,7 @@
 #pragma once
 // The options `ibl render` and `ibl view` share: the scene, the environment or bake, the camera,
 // the built-in scenes' material, the split sum's switches and the exposure.
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -19,7 +20,7 @@ struct SceneCliOptions {
   std::string bakeDir;
   std::string camera = "perspective";
   float fov = 40.0f;
-  float orthoWidth = 0.0f;
+  std::optional<float> orthoWidth;  // default: fits the scene
   std::string lookFrom, lookAt, up = "0,1,0";
   std::string size = "512x512";
   int spp = 0;  // 0: the command's default
@@ -52,6 +53,8 @@ struct LoadedBake {
   BakeOptions options;
 };
 // The --bake directory, or a bake of --env (or the bundled environment) on the CPU.
+// Fails on lighting options that contradict each other (--env with --bake).
+void checkLightingOptions(const SceneCliOptions& o);
 LoadedBake loadOrBake(const SceneCliOptions& o);
 
 // The camera: the options, else the scene file's, else one framing the scene from +Z.

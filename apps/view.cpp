@@ -1,4 +1,5 @@
 // `ibl view`: the real-time viewer (Vulkan), in a window or headless to a screenshot.
+#include <filesystem>
 #include <string>
 
 #include <fmt/core.h>
@@ -18,8 +19,17 @@ struct ViewCliOptions {
   float skyboxMip = 0.0f;
 };
 
+// ibl_view_001.png, 002, ...: the first name not taken in the working directory.
+std::string unusedScreenshotName() {
+  for (int n = 1;; ++n) {
+    std::string name = fmt::format("ibl_view_{:03}.png", n);
+    if (!std::filesystem::exists(name)) return name;
+  }
+}
+
 void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   if (!o.screenshot.empty()) checkRenderedImagePath(o.screenshot);
+  checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   const Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
@@ -33,6 +43,9 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     const auto context = gpu::Context::create(co);
     gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options);
     const RenderResult result = renderer.render(camera, shading, o.skyboxMip);
+    if (renderer.samples() < shading.spp && !global.quiet)
+      fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
+                 shading.spp, context->device().name, renderer.samples(), renderer.samples());
     const float ev100 = chooseEv100(o.scene, result.color);
     writeRenderedImage(o.screenshot, result, ev100 - o.scene.compensation, toneCurve(o.scene),
                        false);
@@ -52,10 +65,19 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   w.skyboxLod = o.skyboxMip;
   w.frames = o.frames;
   w.title = "ibl view " + o.scene.scene;
+  w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve) {
+    const std::string path = unusedScreenshotName();
+    writeRenderedImage(path, result, ev100, curve, false);
+    if (!global.quiet) fmt::print(stderr, "screenshot {}\n", path);
+  };
   const gpu::WindowStats stats = gpu::runViewerWindow(scene, baked.bake, baked.options, w);
-  if (!global.quiet)
+  if (!global.quiet) {
+    if (stats.samples < shading.spp)
+      fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
+                 shading.spp, stats.device, stats.samples, stats.samples);
     fmt::print(stderr, "viewed {} frames, {:.2f} ms per frame on {}\n", stats.frames,
                stats.meanFrameMs, stats.device);
+  }
 }
 
 }  // namespace
@@ -68,13 +90,22 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
   addSceneOptions(cmd, opts->scene);
   cmd->add_option("--screenshot", opts->screenshot,
                   "Render offscreen to this image (.png or .exr) and exit, without a window");
-  cmd->add_option("--spp", opts->scene.spp, "Multisamples per pixel (default 4)")
-      ->check(CLI::Range(1, 64));
+  cmd->add_option("--spp", opts->scene.spp, "Multisamples per pixel: 1, 2, 4 or 8 (default 4)")
+      ->check(CLI::IsMember({1, 2, 4, 8}));
   cmd->add_option("--skybox-mip", opts->skyboxMip, "Mip level of the skybox (0: sharpest)")
-      ->check(CLI::Range(0.0f, 16.0f))
+      ->check(CLI::Range(0.0f, 16.0f) & finiteNumber())
       ->capture_default_str();
   cmd->add_option("--frames", opts->frames, "Window: close after this many frames (0: never)")
       ->check(CLI::Range(0, 1 << 30));
+  cmd->footer(
+      "Window controls:\n"
+      "  left drag      orbit around the target      wheel   zoom\n"
+      "  + / -          exposure up / down (half stops)\n"
+      "  [ / ]          skybox mip level down / up\n"
+      "  D / S          toggle the diffuse / specular term\n"
+      "  T              cycle the tone curve (ACES, filmic, none)\n"
+      "  P or F12       screenshot of the current view to ibl_view_NNN.png (working directory)\n"
+      "  R              reset the camera      Esc / Q   quit");
   cmd->callback([opts, &global] { runView(*opts, global); });
 }
 

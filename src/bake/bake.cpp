@@ -1,6 +1,7 @@
 #include "ibl/bake/bake.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <mutex>
 #include <set>
@@ -121,6 +122,18 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
 }
 
 namespace {
+
+// Numbers that were floats print as the shortest decimal that reads back as the same float
+// (0.2, not 0.20000000298023224); true doubles are left alone.
+void shortenFloats(Json& j) {
+  if (j.is_structured()) {
+    for (auto& child : j) shortenFloats(child);
+  } else if (j.is_number_float()) {
+    const double d = j.get<double>();
+    const float f = static_cast<float>(d);
+    if (std::isfinite(d) && static_cast<double>(f) == d) j = std::stod(fmt::format("{}", f));
+  }
+}
 
 Json vec3Json(glm::vec3 v) {
   return Json::array({v.x, v.y, v.z});
@@ -348,9 +361,10 @@ void addDfg(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
 void addSh(OutputPlan& plan, const BakeResult& r, const BakeOptions& o) {
   Json coefficients = Json::array();
   for (const auto& c : r.sh) coefficients.push_back(vec3Json(c));
-  const Json sh = {{"generator", fmt::format("ibl {}", kVersion)},
-                   {"coefficients", coefficients},
-                   {"windowed", o.shWindow}};
+  Json sh = {{"generator", fmt::format("ibl {}", kVersion)},
+             {"coefficients", coefficients},
+             {"windowed", o.shWindow}};
+  shortenFloats(sh);
   plan.addText("sh.json", sh.dump(2) + "\n");
   plan.outputs.push_back({{"role", "sh"},
                           {"path", "sh.json"},
@@ -372,7 +386,7 @@ void addPreviews(OutputPlan& plan, const BakeResult& r, const BakeOptions& o) {
        {"format", "png"},
        {"size", {kPreviewColumns * kPreviewCell, 2 * kPreviewCell}},
        {"shows",
-        "spheres of roughness 0..1 (columns), dielectric (top) and metal (bottom), ACES"}});
+        "spheres of roughness 0..1 (columns), metal (top) and dielectric (bottom), ACES"}});
   plan.add("source.png", [&r] {
     const Image cross = crossFromCube(r.source, 0, false);
     return encodePng(toneMapAces(cross, autoExposure(cross)));
@@ -396,7 +410,10 @@ Json manifestJson(const BakeResult& r, const BakeOptions& o, const BakeSource& s
   Json manifest;
   manifest["generator"] = fmt::format("ibl {}", kVersion);
   manifest["device"] = r.device;
-  manifest["source"] = {{"path", src.path.empty() ? "(bundled default: sunset.exr)" : src.path},
+  // An absolute path: the manifest is read from anywhere, not from where the bake ran.
+  const std::string path = src.path.empty() ? std::string("(bundled default: sunset.exr)")
+                                            : fs::absolute(src.path).lexically_normal().string();
+  manifest["source"] = {{"path", path},
                         {"format", src.format},
                         {"layout", src.layout},
                         {"size", {src.width, src.height}},
@@ -411,6 +428,7 @@ Json manifestJson(const BakeResult& r, const BakeOptions& o, const BakeSource& s
                                    {"lost_power", src.clampLoss.lostPower}};
   manifest["conventions"] = conventionsJson(o, r);
   manifest["outputs"] = outputs;
+  shortenFloats(manifest);
   return manifest;
 }
 
@@ -461,6 +479,14 @@ std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path
     try {
       for (const auto& f : files)
         writeFileAtomic(staging / f.path.lexically_relative(outDir), f.bytes);
+    } catch (const Error& e) {
+      fs::remove_all(staging, ec);
+      // Name the user's directory, not the staging one.
+      std::string message = e.what();
+      const std::string from = staging.string(), to = outDir.string();
+      for (auto at = message.find(from); at != std::string::npos; at = message.find(from, at))
+        message.replace(at, from.size(), to);
+      throw Error(message);
     } catch (...) {
       fs::remove_all(staging, ec);
       throw;

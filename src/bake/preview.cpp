@@ -36,8 +36,8 @@ Image renderMaterialGrid(const BakeResult& bake, const BakeOptions& options, int
       SurfacePoint p{};
       p.normal = glm::vec3(dx, dy, std::sqrt(1.0f - d2));
       p.roughness = columns > 1 ? static_cast<float>(col) / static_cast<float>(columns - 1) : 0.5f;
-      p.metallic = row == 1 ? 1.0f : 0.0f;
-      p.baseColor = glm::vec3(row == 1 ? 0.95f : 0.8f);
+      p.metallic = row == 0 ? 1.0f : 0.0f;  // metals on top, as in `ibl render grid`
+      p.baseColor = glm::vec3(row == 0 ? 0.95f : 0.8f);
       img.at(px, py) = shadeSplitSum(p, view, bake, options, shading);
     }
   });

@@ -28,6 +28,7 @@ struct Interaction {
   double lastX = 0.0, lastY = 0.0;
   Camera initial;
   float maxSkyboxLod = 0.0f;
+  bool screenshotRequested = false;
 
   void orbitFrom(const Camera& c) {
     target = c.at;
@@ -87,6 +88,10 @@ void onKey(GLFWwindow* window, int key, int, int action, int) {
       break;
     case GLFW_KEY_R:
       s.orbitFrom(s.initial);
+      break;
+    case GLFW_KEY_P:
+    case GLFW_KEY_F12:
+      if (action == GLFW_PRESS) s.screenshotRequested = true;
       break;
     default:
       break;
@@ -403,6 +408,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
 
   WindowStats stats;
   stats.device = c.info.name;
+  stats.samples = samples;
   using Clock = std::chrono::steady_clock;
   auto last = Clock::now(), lastTitle = last;
   double windowMs = 0.0, totalMs = 0.0;
@@ -443,6 +449,12 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     shading.only = state.diffuse && state.specular ? ShadingTerms::Both
                    : state.diffuse                 ? ShadingTerms::Diffuse
                                                    : ShadingTerms::Specular;
+    if (state.screenshotRequested) {
+      state.screenshotRequested = false;
+      if (o.screenshot)
+        o.screenshot(r.renderer->render(state.camera(width, height), shading, state.skyboxLod),
+                     ev100 - state.compensation, state.toneMap);
+    }
     const struct {
       float exposure;
       std::int32_t curve, encode;

@@ -168,7 +168,7 @@ TEST(Cli, RenderAndCompare) {
   EXPECT_EQ(nlohmann::json::parse(r.output)["overall"]["rmse"], 0.0);
   r = runIbl("compare " + quote(dir / "a.exr") + " " + quote(dir / "b.exr") +
              " --max-rel-error 1e-6 --error-png " + quote(dir / "err.png"));
-  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_EQ(r.status, 3) << r.output;
   EXPECT_NE(r.output.find("exceeds"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(dir / "err.png"));
   r = runIbl("render " + quote(dir / "missing.glb") + " -o " + quote(dir / "c.png"));
@@ -231,4 +231,66 @@ TEST(Cli, RenderFromAnExistingBake) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("EV100 2.00"), std::string::npos) << r.output;
   EXPECT_EQ(readImageFile(dir / "g.png").levels[0][0].width, 64);
+}
+
+// Options that would be ignored, silently changed or meaningless are refused before any work:
+// usage errors (CLI11's parse) exit with 2, contradictions found by the command with 1; both
+// print one line with the same prefix, and nothing is written.
+TEST(Cli, ContradictoryOrMeaninglessOptionsAreErrors) {
+  TempDir dir;
+  ASSERT_EQ(runIbl("render sphere --size 8x8 --spp 1 -q -o " + quote(dir / "lin.exr")).status, 0);
+  ASSERT_EQ(runIbl("render sphere --size 8x8 --spp 1 -q -o " + quote(dir / "ldr.png")).status, 0);
+  const std::string out = quote(dir / "out");
+  const std::string park = quote(hdriPath("park"));
+  struct Case {
+    std::string args;
+    int status;
+    std::string message;
+  };
+  const Case cases[] = {
+      {"bake --sizee 3 -o " + out, 2, "ibl: error: The following argument was not expected"},
+      {"bake --levels 0 -o " + out, 2, "ibl: error: --levels: Value 0 not in range 1 to 13"},
+      {"bake --levels 13 -o " + out, 1,
+       "ibl: error: --levels: 13 levels need a cube of at least 4096^2; --size 256 has 9"},
+      {"bake --rotate nan -o " + out, 2, "'nan' is not a finite number"},
+      {"bake --clamp inf -o " + out, 2, "'inf' is not a finite number"},
+      {"convert " + park + " -o " + quote(dir / "out.exr") + " --exposure 1", 1,
+       "out.exr: --exposure applies to PNG outputs only"},
+      {"convert " + park + " -o " + quote(dir / "out.exr") + " --rotate inf", 2,
+       "'inf' is not a finite number"},
+      {"render sphere --env " + park + " --bake " + out + " -o " + quote(dir / "out.png"), 1,
+       "ibl: error: --env: contradicts --bake"},
+      {"render sphere --camera ortho --ortho-width 0 -o " + quote(dir / "out.png"), 1,
+       "ibl: error: --ortho-width: must be positive, not 0"},
+      {"render sphere --fov nan -o " + quote(dir / "out.png"), 2, "'nan' is not a finite number"},
+      {"render sphere --ev100 nan -o " + quote(dir / "out.png"), 1,
+       "ibl: error: --ev100: 'nan' is not finite"},
+      {"view sphere --spp 3 --screenshot " + quote(dir / "out.png"), 2,
+       "--spp: 3 not in {1,2,4,8}"},
+      {"compare " + quote(dir / "lin.exr") + " " + quote(dir / "ldr.png"), 1,
+       "lin.exr: is linear radiance but " + (dir / "ldr.png").string() + " is a display image"},
+  };
+  for (const Case& c : cases) {
+    const CliRun r = runIbl(c.args);
+    EXPECT_EQ(r.status, c.status) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.output.rfind("ibl: error: ", 0), 0u) << r.output;  // the first line
+  }
+  EXPECT_EQ(countFiles(dir.path()), 2);  // only the two renders
+}
+
+// The manifest prints float parameters as written (0.25, not 0.25000000372529) and names the
+// source by an absolute path, whatever the directory the bake ran in.
+TEST(Cli, ManifestNumbersAndSourcePath) {
+  TempDir dir;
+  const CliRun r = runCommand("cd " + quote(dir.path()) + " && cp " + quote(hdriPath("park")) +
+                              " park.exr && " + std::string(IBL_CLI) +
+                              " bake park.exr -o b --size 32 --levels 6 --dfg-size 16 -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::vector<std::uint8_t> bytes = readFileBytes(dir / "b" / "manifest.json");
+  const std::string text(bytes.begin(), bytes.end());
+  EXPECT_NE(text.find("0.2,"), std::string::npos) << text;  // level 1 of 6: r = 1/5
+  EXPECT_EQ(text.find("0.20000000"), std::string::npos);
+  const auto j = nlohmann::json::parse(text);
+  EXPECT_EQ(j["source"]["path"], (dir / "park.exr").string());
 }

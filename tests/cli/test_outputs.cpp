@@ -139,3 +139,17 @@ TEST(Outputs, ReadersCheckABakeAgainstItsManifest) {
   EXPECT_NE(r.output.find("dfg.png: is listed in manifest.json but missing"), std::string::npos)
       << r.output;
 }
+
+// A new directory is written beside its destination and renamed into place; a failure names
+// the user's directory, never the staging one, and leaves neither behind.
+TEST(Outputs, BakeErrorsNameTheUsersDirectory) {
+  TempDir dir;
+  const fs::path out = dir / "new";
+  const CliRun r =
+      runIblWithFileLimit("bake -o " + quote(out) + kSmallBake + " --size 128 --exr", 64);
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("ibl: error: " + out.string() + "/"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(": write failed"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("staging"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}

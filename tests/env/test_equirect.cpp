@@ -11,7 +11,7 @@
 using namespace ibl;
 using namespace ibl::test;
 
-TEST(Equirect, ConventionOfDesign) {
+TEST(Equirect, ConventionOfTheConventionsDoc) {
   // Image center toward +X; u grows toward +Z; row 0 straight up.
   EXPECT_LT(glm::distance(equirectToDirection(0.5f, 0.5f), glm::vec3(1, 0, 0)), 1e-6f);
   EXPECT_LT(glm::distance(equirectToDirection(0.75f, 0.5f), glm::vec3(0, 0, 1)), 1e-6f);

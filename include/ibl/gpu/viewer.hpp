@@ -2,6 +2,7 @@
 // The real-time viewer on Vulkan: the scene rasterized and shaded with the split sum of
 // `ibl render` (the formulas of ibl/shared/split_sum.h, as shadeSplitSum), the environment as
 // a skybox; offscreen (screenshots, tests) or in a GLFW window.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -49,17 +50,22 @@ struct WindowOptions {
   float skyboxLod = 0.0f;
   int frames = 0;  // stop after this many frames (0: when the window is closed)
   std::string title = "ibl view";
+  // Called with the current view rendered offscreen (linear radiance), its EV100 and tone
+  // curve when the user presses P or F12; none: the keys do nothing.
+  std::function<void(const RenderResult&, float ev100, ToneMap)> screenshot;
 };
 
 struct WindowStats {
   int frames = 0;
   double meanFrameMs = 0.0;  // wall time per frame, presentation included
   std::string device;
+  int samples = 0;  // MSAA samples per pixel the device allowed
 };
 
 // Opens a GLFW window and runs the interactive viewer until it is closed (Esc, Q) or after
 // `frames` frames: left drag orbits, the wheel zooms, +/- change the exposure, [ and ] the
-// skybox's mip level, D and S toggle the diffuse and specular terms, T cycles the tone curve,
+// skybox's mip level, D and S toggle the diffuse and specular terms, P or F12 takes a
+// screenshot (options.screenshot), T cycles the tone curve,
 // R resets the view; the title shows the frame time. Throws Error("window: ...") without a
 // display.
 WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
