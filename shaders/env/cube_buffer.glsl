@@ -46,13 +46,30 @@ vec3 sampleBilinear(int level, vec3 dir) {
              mix(fetch(level, face, x0, y0 + 1), fetch(level, face, x0 + 1, y0 + 1), wx), wy);
 }
 
-// Cubic B-spline reconstruction, 4 x 4 taps across face edges (sampleCubic).
-vec3 sampleCubic(int level, vec3 dir) {
-  TexelPosition t = texelPosition(dir, int(levels[level].x));
-  vec4 wx = cubicBSplineWeights(t.frac.x), wy = cubicBSplineWeights(t.frac.y);
+// The Catmull-Rom reconstruction from a 4 x 4 window of taps (reconstructFromWindow in
+// src/env/cubemap.cpp); `steep` is set when the window is steep.
+vec3 reconstructFromWindow(vec3 taps[16], vec2 frac, inout bool steep) {
+  vec3 lo = taps[0], hi = taps[0];
+  for (int k = 1; k < 16; ++k) {
+    lo = min(lo, taps[k]);
+    hi = max(hi, taps[k]);
+  }
+  steep = steep || windowIsSteep(lo, hi);
+  vec4 wx = catmullRomWeights(frac.x), wy = catmullRomWeights(frac.y);
   vec3 sum = vec3(0.0);
   for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i)
-      sum += fetch(level, t.face, t.corner.x - 1 + i, t.corner.y - 1 + j) * (wx[i] * wy[j]);
+    sum += (taps[4 * j] * wx[0] + taps[4 * j + 1] * wx[1] + taps[4 * j + 2] * wx[2] +
+            taps[4 * j + 3] * wx[3]) *
+           wy[j];
   return sum;
+}
+
+// Catmull-Rom reconstruction, 4 x 4 taps across face edges (sampleCubic in src/env/cubemap.cpp).
+vec3 sampleCubic(int level, vec3 dir, inout bool steep) {
+  TexelPosition t = texelPosition(dir, int(levels[level].x));
+  vec3 taps[16];
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i)
+      taps[4 * j + i] = fetch(level, t.face, t.corner.x - 1 + i, t.corner.y - 1 + j);
+  return reconstructFromWindow(taps, t.frac, steep);
 }

@@ -84,26 +84,42 @@ glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int 
                         p.t * static_cast<float>(n) - 0.5f);
 }
 
-glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir) {
+glm::vec3 reconstructFromWindow(const glm::vec3 (&taps)[4][4], float tx, float ty,
+                                TapRange* range) {
+  if (range) {
+    glm::vec3 lo = taps[0][0], hi = taps[0][0];
+    for (const auto& row : taps)
+      for (const glm::vec3& t : row) {
+        lo = glm::min(lo, t);
+        hi = glm::max(hi, t);
+      }
+    range->steep = range->steep || windowIsSteep(lo, hi);
+    range->lo = glm::min(
+        range->lo, glm::min(glm::min(taps[1][1], taps[1][2]), glm::min(taps[2][1], taps[2][2])));
+    range->hi = glm::max(
+        range->hi, glm::max(glm::max(taps[1][1], taps[1][2]), glm::max(taps[2][1], taps[2][2])));
+  }
+  const glm::vec4 wx = catmullRomWeights(tx), wy = catmullRomWeights(ty);
+  glm::vec3 sum(0.0f);
+  for (int j = 0; j < 4; ++j)
+    sum +=
+        (taps[j][0] * wx[0] + taps[j][1] * wx[1] + taps[j][2] * wx[2] + taps[j][3] * wx[3]) * wy[j];
+  return sum;
+}
+
+glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir, TapRange* range) {
   const auto& faces = cube.levels[level];
   const int n = faces[0].width;
   const TexelPosition p = texelPosition(dir, n);
   const int x0 = p.x0, y0 = p.y0;
-  const glm::vec4 wx = cubicBSplineWeights(p.fracX), wy = cubicBSplineWeights(p.fracY);
-  glm::vec3 sum(0.0f);
-  if (x0 >= 1 && y0 >= 1 && x0 + 2 < n && y0 + 2 < n) {
-    const Image& img = faces[p.face];
-    for (int j = 0; j < 4; ++j) {
-      glm::vec3 row(0.0f);
-      for (int i = 0; i < 4; ++i) row += img.at(x0 - 1 + i, y0 - 1 + j) * wx[i];
-      sum += row * wy[j];
-    }
-    return sum;
-  }
+  const bool inside = x0 >= 1 && y0 >= 1 && x0 + 2 < n && y0 + 2 < n;
+  glm::vec3 taps[4][4];
   for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i)
-      sum += fetchTexelAcrossEdges(faces, p.face, x0 - 1 + i, y0 - 1 + j) * (wx[i] * wy[j]);
-  return sum;
+    for (int i = 0; i < 4; ++i) {
+      const int x = x0 - 1 + i, y = y0 - 1 + j;
+      taps[j][i] = inside ? faces[p.face].at(x, y) : fetchTexelAcrossEdges(faces, p.face, x, y);
+    }
+  return reconstructFromWindow(taps, p.fracX, p.fracY, range);
 }
 
 glm::vec3 sampleBilinear(const CubeMap& cube, int level, glm::vec3 dir) {

@@ -55,30 +55,19 @@ glm::vec3 sampleEquirect(const Image& img, float u, float v) {
   return top * (1.0f - wy) + bottom * wy;
 }
 
-glm::vec3 sampleEquirectCubic(const Image& img, float u, float v) {
+glm::vec3 sampleEquirectCubic(const Image& img, float u, float v, TapRange* range) {
   const int w = img.width, h = img.height;
   const float fx = u * static_cast<float>(w) - 0.5f;
   const float fy = v * static_cast<float>(h) - 0.5f;
   const float flx = std::floor(fx), fly = std::floor(fy);
-  const glm::vec4 wx = cubicBSplineWeights(fx - flx), wy = cubicBSplineWeights(fy - fly);
   const int x0 = static_cast<int>(flx) - 1, y0 = static_cast<int>(fly) - 1;
-  glm::vec3 sum(0.0f);
-  if (x0 >= 0 && x0 + 3 < w && y0 >= 0 && y0 + 3 < h) {  // away from the seam and the poles
-    for (int j = 0; j < 4; ++j) {
-      const glm::vec3* row = &img.at(x0, y0 + j);
-      sum += (row[0] * wx[0] + row[1] * wx[1] + row[2] * wx[2] + row[3] * wx[3]) * wy[j];
-    }
-    return sum;
-  }
-  int xs[4];
-  for (int i = 0; i < 4; ++i) xs[i] = wrapColumn(x0 + i, w);
+  glm::vec3 taps[4][4];
+  const bool inside = x0 >= 0 && x0 + 3 < w && y0 >= 0 && y0 + 3 < h;  // off the seam and poles
   for (int j = 0; j < 4; ++j) {
-    const int y = std::clamp(y0 + j, 0, h - 1);
-    glm::vec3 row(0.0f);
-    for (int i = 0; i < 4; ++i) row += img.at(xs[i], y) * wx[i];
-    sum += row * wy[j];
+    const int y = inside ? y0 + j : std::clamp(y0 + j, 0, h - 1);
+    for (int i = 0; i < 4; ++i) taps[j][i] = img.at(inside ? x0 + i : wrapColumn(x0 + i, w), y);
   }
-  return sum;
+  return reconstructFromWindow(taps, fx - flx, fy - fly, range);
 }
 
 glm::vec3 sampleEquirect(const Image& img, glm::vec3 dir) {

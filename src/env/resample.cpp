@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <optional>
+#include <span>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -34,7 +36,7 @@ double cubeDensity(int size) {
 }
 
 // The source of a resampling, reduced (by exact box filters) to at most twice the density of
-// the output, and reconstructed with a cubic B-spline in the rotated frame.
+// the output, and reconstructed with Catmull-Rom splines in the rotated frame.
 class Source {
  public:
   Source(const Environment& env, double outputDensity, float rotateDegrees)
@@ -61,9 +63,9 @@ class Source {
         buildMipChain(*reducedCube_);
         cube_ = &*reducedCube_;
       }
-      // Stop at 128^2 unless that is more than 8x finer than the output: the cubic B-spline's
+      // Stop at 128^2 unless that is more than 8x finer than the output: the cubic kernel's
       // support is 4 texels wide, and on coarse levels the variation of texel solid angles
-      // under it biases energy by about 0.75 h^2 (0.02 % at 128^2).
+      // under it biases energy (0.02 % at 128^2).
       while (level_ + 1 < cube_->levelCount()) {
         const double d = cubeDensity(cube_->levels[level_][0].width);
         const bool coarseEnough = d <= 2.0 * outputDensity;
@@ -76,13 +78,14 @@ class Source {
     }
   }
 
-  glm::vec3 operator()(glm::vec3 dir) const {
+  // The reconstruction in direction `dir`, extending `range`.
+  glm::vec3 operator()(glm::vec3 dir, TapRange* range) const {
     const glm::vec3 d = rotated_ ? inverseRotation_ * dir : dir;
     if (equirect_) {
       const glm::vec2 uv = directionToEquirect(d);
-      return sampleEquirectCubic(*equirect_, uv.x, uv.y);
+      return sampleEquirectCubic(*equirect_, uv.x, uv.y, range);
     }
-    return sampleCubic(*cube_, level_, d);
+    return sampleCubic(*cube_, level_, d, range);
   }
 
   const Image* equirect() const { return equirect_; }
@@ -90,9 +93,12 @@ class Source {
     return cube_ ? &cube_->levels[level_] : nullptr;
   }
 
-  // Samples per output texel side: at most half a source texel apart. The cubic B-spline's
-  // spectrum (sinc^4) then keeps the error of integrating it with these samples below 1e-3.
+  // Samples per output texel side: one (the texel center) when the source is no finer than the
+  // output, as the reconstruction is already smooth at the output's scale and an average would
+  // blur; else at most half a source texel apart, an area integral that filters the finer
+  // source without aliasing.
   int samplesPerSide(double outputDensity) const {
+    if (density_ <= outputDensity) return 1;
     return std::clamp(static_cast<int>(std::ceil(2.0 * density_ / outputDensity)), 1, 16);
   }
 
@@ -107,7 +113,59 @@ class Source {
   double density_ = 0.0;
 };
 
+// Removes the negative lobes Catmull-Rom leaves around a sun, keeping the power: a texel below
+// zero becomes zero, and its deficit is taken from the brightest texel of its 5 x 5
+// neighbourhood (the peak whose ringing it is), in proportion to their solid angles.
+// `at(x, y)` is the texel (or null outside), `omega(x, y)` its solid angle.
+template <typename At, typename Omega>
+void moveNegativeLobesToPeaks(int width, int height, const At& at, const Omega& omega) {
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      glm::vec3& t = *at(x, y);
+      for (int c = 0; c < 3; ++c) {
+        if (!(t[c] < 0.0f)) continue;
+        glm::vec3* peak = nullptr;
+        int peakX = x, peakY = y;
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
+            glm::vec3* n = at(x + dx, y + dy);
+            if (n && (!peak || (*n)[c] > (*peak)[c])) {
+              peak = n;
+              peakX = x + dx;
+              peakY = y + dy;
+            }
+          }
+        if (peak && (*peak)[c] > 0.0f)
+          (*peak)[c] = std::max(
+              0.0f, (*peak)[c] + t[c] * static_cast<float>(omega(x, y) / omega(peakX, peakY)));
+        t[c] = 0.0f;
+      }
+    }
+}
+
+void moveNegativeLobesToPeaks(Image& img) {
+  moveNegativeLobesToPeaks(
+      img.width, img.height,
+      [&](int x, int y) {
+        return y < 0 || y >= img.height ? nullptr : &img.at((x + img.width) % img.width, y);
+      },
+      [&](int, int y) { return equirectPixelSolidAngle(y, img.width, img.height); });
+}
+
 }  // namespace
+
+void moveNegativeLobesToPeaks(CubeMap& cube) {
+  const int n = cube.size();
+  for (Image& face : cube.levels[0])
+    moveNegativeLobesToPeaks(
+        n, n,
+        [&](int x, int y) { return x < 0 || y < 0 || x >= n || y >= n ? nullptr : &face.at(x, y); },
+        [&](int x, int y) { return texelSolidAngle(x, y, n); });
+}
+
+int refinedSamplesPerSide(int k) {
+  return k > 1 ? 2 * k : 1;
+}
 
 std::vector<float> subcellSolidAngles(int sub) {
   std::vector<float> weights(static_cast<std::size_t>(sub) * sub);
@@ -129,7 +187,10 @@ CubeResamplePlan planResampleToCube(const Environment& env, int size) {
   else
     plan.cubeLevel = *source.cubeLevel();
   plan.samplesPerSide = source.samplesPerSide(density);
+  plan.refinedSamplesPerSide = refinedSamplesPerSide(plan.samplesPerSide);
   plan.weights = subcellSolidAngles(size * plan.samplesPerSide);
+  const std::vector<float> refined = subcellSolidAngles(size * plan.refinedSamplesPerSide);
+  plan.weights.insert(plan.weights.end(), refined.begin(), refined.end());
   return plan;
 }
 
@@ -137,59 +198,95 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
   if (size <= 0) fail("resample", "cube size must be positive");
   const double density = cubeDensity(size);
   const Source source(env, density, rotateDegrees);
-  const int k = source.samplesPerSide(density);
-  const int sub = size * k;
-  const std::vector<float> weights = subcellSolidAngles(sub);
+  const int k = source.samplesPerSide(density), k2 = refinedSamplesPerSide(k);
+  const std::vector<float> weights = subcellSolidAngles(size * k);
+  const std::vector<float> refinedWeights = k2 > k ? subcellSolidAngles(size * k2) : weights;
+  // The solid-angle weighted mean of n x n samples over texel (x, y); `range` learns whether a
+  // sample's window was steep.
+  const auto integrate = [&](int face, int x, int y, int n, const std::vector<float>& w,
+                             TapRange& range) {
+    const int sub = size * n;
+    const float inv = 2.0f / static_cast<float>(sub);
+    glm::vec3 sum(0.0f);
+    float wsum = 0.0f;
+    for (int b = 0; b < n; ++b) {
+      const int j = y * n + b;
+      const float tc = (static_cast<float>(j) + 0.5f) * inv - 1.0f;
+      for (int a = 0; a < n; ++a) {
+        const int i = x * n + a;
+        const float sc = (static_cast<float>(i) + 0.5f) * inv - 1.0f;
+        const float wi = w[static_cast<std::size_t>(j) * sub + i];
+        sum += source(faceToDirection(face, sc, tc), &range) * wi;
+        wsum += wi;
+      }
+    }
+    return sum / wsum;
+  };
   CubeMap out(size, 1);
   parallelFor(0, kFaceCount * size, [&](int row) {
     const int face = row / size, y = row % size;
-    const float inv = 2.0f / static_cast<float>(sub);
     for (int x = 0; x < size; ++x) {
-      glm::vec3 sum(0.0f);
-      float wsum = 0.0f;
-      for (int b = 0; b < k; ++b) {
-        const int j = y * k + b;
-        const float tc = (static_cast<float>(j) + 0.5f) * inv - 1.0f;
-        for (int a = 0; a < k; ++a) {
-          const int i = x * k + a;
-          const float sc = (static_cast<float>(i) + 0.5f) * inv - 1.0f;
-          const float w = weights[static_cast<std::size_t>(j) * sub + i];
-          sum += source(faceToDirection(face, sc, tc)) * w;
-          wsum += w;
-        }
+      TapRange range;
+      glm::vec3 v = integrate(face, x, y, k, weights, range);
+      if (range.steep && k2 > k) {
+        range = TapRange();
+        v = integrate(face, x, y, k2, refinedWeights, range);
       }
-      out.levels[0][face].at(x, y) = sum / wsum;
+      out.levels[0][face].at(x, y) = v;
     }
   });
+  moveNegativeLobesToPeaks(out);
   return out;
 }
 
 Image resampleToEquirect(const Environment& env, int width, float rotateDegrees) {
   if (width < 2 || width % 2 != 0) fail("resample", "equirect width must be even and positive");
   const int height = width / 2;
+  // A panorama turned by a whole number of its columns keeps its size: shift the columns,
+  // exactly (a feature at u moves to u - degrees / 360).
+  const double columns = static_cast<double>(rotateDegrees) / 360.0 * width;
+  if (!env.isCube() && env.equirect.width == width && env.equirect.height == height &&
+      std::abs(columns - std::round(columns)) < 1e-3) {
+    const long shift = static_cast<long>(std::round(columns)) % width;
+    Image out(width, height);
+    parallelFor(0, height, [&](int y) {
+      for (int x = 0; x < width; ++x)
+        out.at(x, y) = env.equirect.at(static_cast<int>(((x + shift) % width + width) % width), y);
+    });
+    return out;
+  }
   const double density = equirectDensity(height);
   const Source source(env, density, rotateDegrees);
-  const int k = source.samplesPerSide(density);
+  const int k = source.samplesPerSide(density), k2 = refinedSamplesPerSide(k);
+  // The solid-angle weighted mean of n x n samples over pixel (x, y) (sub-rows weigh
+  // cos(theta0) - cos(theta1)); `range` learns whether a sample's window was steep.
+  const auto integrate = [&](int x, int y, int n, TapRange& range) {
+    glm::vec3 sum(0.0f);
+    double wsum = 0.0;
+    for (int b = 0; b < n; ++b) {
+      const float w = static_cast<float>(equirectPixelSolidAngle(y * n + b, width * n, height * n));
+      const float v = (static_cast<float>(y * n + b) + 0.5f) / static_cast<float>(height * n);
+      for (int a = 0; a < n; ++a) {
+        const float u = (static_cast<float>(x * n + a) + 0.5f) / static_cast<float>(width * n);
+        sum += source(equirectToDirection(u, v), &range) * w;
+        wsum += w;
+      }
+    }
+    return sum / static_cast<float>(wsum);
+  };
   Image out(width, height);
   parallelFor(0, height, [&](int y) {
-    // Sub-rows of a row have solid angles proportional to cos(theta0) - cos(theta1).
-    std::vector<float> rowWeight(k);
-    for (int b = 0; b < k; ++b)
-      rowWeight[b] = static_cast<float>(equirectPixelSolidAngle(y * k + b, width * k, height * k));
     for (int x = 0; x < width; ++x) {
-      glm::vec3 sum(0.0f);
-      float wsum = 0.0f;
-      for (int b = 0; b < k; ++b) {
-        const float v = (static_cast<float>(y * k + b) + 0.5f) / static_cast<float>(height * k);
-        for (int a = 0; a < k; ++a) {
-          const float u = (static_cast<float>(x * k + a) + 0.5f) / static_cast<float>(width * k);
-          sum += source(equirectToDirection(u, v)) * rowWeight[b];
-          wsum += rowWeight[b];
-        }
+      TapRange range;
+      glm::vec3 v = integrate(x, y, k, range);
+      if (range.steep && k2 > k) {
+        range = TapRange();
+        v = integrate(x, y, k2, range);
       }
-      out.at(x, y) = sum / wsum;
+      out.at(x, y) = v;
     }
   });
+  moveNegativeLobesToPeaks(out);
   return out;
 }
 

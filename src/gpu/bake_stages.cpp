@@ -135,12 +135,15 @@ CubeMap resampleToCube(Context& context, const Environment& env, int size, float
   const glm::mat3 toSource = glm::transpose(rotationY(rotateDegrees));
   const struct {
     std::uint32_t size, k, width, height;
+    std::uint32_t k2, pad[3];
     glm::vec4 toSource[3];  // columns
   } params{
       static_cast<std::uint32_t>(size),
       static_cast<std::uint32_t>(plan.samplesPerSide),
       static_cast<std::uint32_t>(plan.equirect.width),
       static_cast<std::uint32_t>(plan.equirect.height),
+      static_cast<std::uint32_t>(plan.refinedSamplesPerSide),
+      {0u, 0u, 0u},
       {glm::vec4(toSource[0], 0.0f), glm::vec4(toSource[1], 0.0f), glm::vec4(toSource[2], 0.0f)}};
   dispatch(context, env.isCube() ? "cube_to_cube" : "equirect_to_cube",
            {&source, &levels, &weights, &result}, bytesOf(params), groups(size, 8), groups(size, 8),
@@ -148,6 +151,7 @@ CubeMap resampleToCube(Context& context, const Environment& env, int size, float
   CubeMap out;
   out.levels.push_back(
       unflatten(result.read<glm::vec4>(static_cast<std::size_t>(6) * size * size), size));
+  moveNegativeLobesToPeaks(out);  // on the host, as resampleToCube does
   return out;
 }
 

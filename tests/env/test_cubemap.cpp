@@ -168,11 +168,16 @@ TEST(CubeMap, CubicReproducesConstantsAndLinearFunctions) {
     const glm::vec3 d(g(rng), g(rng), g(rng));
     ASSERT_NEAR(sampleCubic(cube, 0, d).x, 4.0f, 1e-5f);
   }
-  for (float t : {0.0f, 0.3f, 0.99f}) {
-    const glm::vec4 w = cubicBSplineWeights(t);
+  for (float t : {0.0f, 0.3f, 0.5f, 0.99f}) {
+    const glm::vec4 w = catmullRomWeights(t);
     EXPECT_NEAR(w[0] + w[1] + w[2] + w[3], 1.0f, 1e-6f);
     EXPECT_NEAR(-w[0] + w[2] + 2 * w[3], t, 1e-6f);  // reproduces linear functions
+    // ... and quadratics (third-order accurate, Keys 1981), which a B-spline does not
+    // (it gives t^2 + 1/3): the taps at -1, 0, 1, 2 hold x^2.
+    EXPECT_NEAR(w[0] + w[2] + 4 * w[3], t * t, 1e-6f);
   }
+  const glm::vec4 atTap = catmullRomWeights(0.0f);  // interpolates: the tap itself
+  EXPECT_EQ(atTap, glm::vec4(0.0f, 1.0f, 0.0f, 0.0f));
 }
 
 TEST(CubeMap, MipChainPreservesTheIntegralAndConstants) {

@@ -1,5 +1,7 @@
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -98,6 +100,9 @@ TEST(Resample, SunKeepsItsEnergyFrom4KTo64) {
     const CubeMap cube = resampleToCube(equirectEnvironment(std::move(img)), 64);
     const glm::dvec3 v = integrateCube(cube);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c] / ref[c], 1.0, 1e-3) << "trial " << trial;
+    // The spline's negative lobes around the sun are gone (moved into the sun's texel).
+    for (const auto& face : cube.levels[0])
+      for (const auto& p : face.pixels) ASSERT_GE(std::min({p.x, p.y, p.z}), 0.0f);
     // The energy stays where the sun is: the brightest texel looks toward it.
     const glm::vec3 sunDir = equirectToDirection((sx + 1.5f) / 4096.0f, (sy + 1.0f) / 2048.0f);
     float best = 0.0f;
@@ -154,4 +159,53 @@ TEST(Resample, CrossNeighboursShareEdges) {
     EXPECT_LT(glm::distance(cross.at(31, y), cross.at(32, y)), 0.1f);  // +Z | +X
   for (int x = 16; x < 32; ++x)
     EXPECT_LT(glm::distance(cross.at(x, 15), cross.at(x, 16)), 0.1f);  // +Y above +Z
+}
+
+// Sharper than bilinear: a real HDRI sent to a cube 0.8x as dense and back comes back closer
+// to itself (median per-pixel error of luminance) than with bilinear point sampling both ways,
+// computed here; the power stays within 0.1 %.
+TEST(Resample, RoundTripIsSharperThanBilinear) {
+  DecodedFile file = readImageFile(hdriPath("park"));
+  Image src = std::move(file.levels[0][0]);
+  sanitizePixels(src);
+  const int size = src.height / 2;
+  const CubeMap cube = resampleToCube(equirectEnvironment(src), size);
+  const Image back = resampleToEquirect(cubeEnvironment(cube), src.width);
+  CubeMap bilinearCube(size, 1);
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x)
+        bilinearCube.levels[0][f].at(x, y) = sampleEquirect(src, texelDirection(f, x, y, size));
+  Image bilinearBack(src.width, src.height);
+  for (int y = 0; y < src.height; ++y)
+    for (int x = 0; x < src.width; ++x)
+      bilinearBack.at(x, y) = sampleBilinear(
+          bilinearCube, 0, equirectToDirection((x + 0.5f) / src.width, (y + 0.5f) / src.height));
+  const auto medianError = [&](const Image& img) {
+    std::vector<double> e;
+    for (std::size_t i = 0; i < src.pixels.size(); ++i) {
+      const double ref = src.pixels[i].x + src.pixels[i].y + src.pixels[i].z;
+      if (ref > 1e-3)
+        e.push_back(std::abs(img.pixels[i].x + img.pixels[i].y + img.pixels[i].z - ref) / ref);
+    }
+    std::nth_element(e.begin(), e.begin() + e.size() / 2, e.end());
+    return e[e.size() / 2];
+  };
+  const double ours = medianError(back), bilinear = medianError(bilinearBack);
+  EXPECT_LT(ours, 0.95 * bilinear) << ours << " vs " << bilinear;
+  const glm::dvec3 a = integrateEquirect(src), b = integrateCube(cube), c = integrateEquirect(back);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(b[i] / a[i], 1.0, 1e-3);
+    // Back to the finer panorama, texel centers are point samples of the spline, which keep
+    // the power to 0.5 % only (measured 0.48 % in one channel; open: issue 11).
+    EXPECT_NEAR(c[i] / a[i], 1.0, 6e-3);
+  }
+}
+
+// A panorama turned by a whole number of its columns is shifted, bit for bit.
+TEST(Resample, RotationByWholeColumnsIsAnExactShift) {
+  const Image src = equirectFromFunction(64, axisMarkers);
+  const Image turned = resampleToEquirect(equirectEnvironment(src), 64, 7 * 360.0f / 64);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) ASSERT_EQ(turned.at(x, y), src.at((x + 7) % 64, y)) << x << y;
 }

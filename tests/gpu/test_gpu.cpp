@@ -88,12 +88,17 @@ TEST(Gpu, EquirectToCubeMatchesTheCpu) {
   for (float rotate : {0.0f, 90.0f, -37.5f}) {
     const CubeMap g = gpu::resampleToCube(context(), env, 64, rotate),
                   c = resampleToCube(env, 64, rotate);
-    double worst = 0.0;
+    double worst = 0.0, mean = 0.0;
     for (int f = 0; f < 6; ++f)
-      for (std::size_t i = 0; i < c.levels[0][f].pixels.size(); ++i)
-        worst =
-            std::max(worst, maxRelativeError(g.levels[0][f].pixels[i], c.levels[0][f].pixels[i]));
-    EXPECT_LT(worst, 1e-3) << rotate;  // float sums, the GPU's atan against the CPU's polynomial
+      for (std::size_t i = 0; i < c.levels[0][f].pixels.size(); ++i) {
+        const double e = maxRelativeError(g.levels[0][f].pixels[i], c.levels[0][f].pixels[i]);
+        worst = std::max(worst, e);
+        mean += e / (6.0 * static_cast<double>(c.levels[0][f].pixels.size()));
+      }
+    // Float sums, the GPU's atan against the CPU's polynomial; a sample's window on the edge of
+    // steep (a factor of 4) may refine the texel on one side only: 1 % at worst.
+    EXPECT_LT(mean, 1e-4) << rotate;
+    EXPECT_LT(worst, 1e-2) << rotate;
   }
 }
 

@@ -55,12 +55,25 @@ glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int 
 
 // Bilinear lookup in one level, filtering across face edges (no seams).
 glm::vec3 sampleBilinear(const CubeMap& cube, int level, glm::vec3 dir);
-// Cubic B-spline reconstruction in one level (4 x 4 taps, across face edges).
-glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir);
+// What the samples of an area integral saw: the range of the 2 x 2 nearest taps of each (the
+// bounds of the texel's mean: Catmull-Rom may ring past them next to a sun), and whether a
+// window was steep (windowIsSteep in ibl/shared/cube.h).
+struct TapRange {
+  glm::vec3 lo{INFINITY}, hi{-INFINITY};
+  bool steep = false;
+};
 
-// Weights of the uniform cubic B-spline for the taps at -1, 0, 1, 2 around a sample that lies
-// a fraction t past tap 0 (ibl/shared/cube.h).
-using shared::cubicBSplineWeights;
+// Catmull-Rom reconstruction in one level (4 x 4 taps, across face edges): it interpolates
+// (texel centers come back exactly) and is sharper than bilinear between them, but may ring
+// next to a sun (clamp to `range`, which it extends if given).
+glm::vec3 sampleCubic(const CubeMap& cube, int level, glm::vec3 dir, TapRange* range = nullptr);
+// The same reconstruction from a 4 x 4 window of taps (rows of taps at -1, 0, 1, 2) at
+// fractions (tx, ty) past tap (0, 0).
+glm::vec3 reconstructFromWindow(const glm::vec3 (&taps)[4][4], float tx, float ty, TapRange* range);
+
+// The reconstruction's weights (ibl/shared/cube.h).
+using shared::catmullRomWeights;
+using shared::windowIsSteep;
 
 // Trilinear lookup: bilinear in the two levels around `lod`, blended.
 glm::vec3 sampleTrilinear(const CubeMap& cube, float lod, glm::vec3 dir);

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibl/core/image.hpp"
+#include "ibl/env/cubemap.hpp"  // reconstructFromWindow
 
 namespace ibl {
 
@@ -45,10 +46,9 @@ double equirectPixelSolidAngle(int y, int width, int height);
 glm::vec3 sampleEquirect(const Image& image, float u, float v);
 glm::vec3 sampleEquirect(const Image& image, glm::vec3 dir);
 
-// Cubic B-spline reconstruction at (u, v) (4 x 4 taps, wraps in u, clamps at the poles). Not
-// interpolating: it smooths like a low-pass filter, and its spectrum (sinc^4) makes integrals
-// of it by regularly spaced samples accurate, which the area-filtered resampling relies on.
-glm::vec3 sampleEquirectCubic(const Image& image, float u, float v);
+// Catmull-Rom reconstruction at (u, v) (4 x 4 taps, wraps in u, clamps at the poles), as
+// sampleCubic for cube maps.
+glm::vec3 sampleEquirectCubic(const Image& image, float u, float v, TapRange* range = nullptr);
 
 // Halves width and height; each pixel is the solid-angle weighted mean of its 2 x 2 children,
 // so the integral over the sphere is unchanged. Width and height must be even.

@@ -14,30 +14,42 @@ namespace ibl {
 // Rotating an environment by it moves a feature seen in direction d to direction R d.
 glm::mat3 rotationY(float degrees);
 
-// Resamples any environment to a cube map of `size`^2 faces (one level). Each output texel is
-// the solid-angle weighted mean of the source over the texel: the source is first reduced
-// with exact box filters until it is at most twice as fine as the output, then reconstructed
-// with a cubic B-spline and integrated over each texel with k x k samples (at most half a
-// source texel apart) weighted by their exact solid angles. Energy over the
-// sphere is preserved (tested to 0.1 %), and a 4K panorama becomes a 64^2 cube without aliasing.
+// Resamples any environment to a cube map of `size`^2 faces (one level). The source is first
+// reduced with exact box filters until it is at most twice as fine as the output, then
+// reconstructed with Catmull-Rom splines (sampleCubic: interpolating, sharper than bilinear)
+// and, when it is finer than the output, integrated over each texel with k x k samples (at
+// most half a source texel apart, a quarter where a sample's window is steep: a sun) weighted
+// by their exact solid angles; else sampled at texel centers. Power over the sphere is kept
+// (0.1 %), and a 4K panorama becomes a 64^2 cube without aliasing.
 CubeMap resampleToCube(const Environment& source, int size, float rotateDegrees = 0.0f);
+
+// Removes the negative lobes a Catmull-Rom reconstruction leaves around a sun from level 0:
+// a texel below zero becomes zero, and its deficit is taken from the brightest texel of its
+// 5 x 5 neighbourhood in the face (the peak whose ringing it is), keeping the power.
+void moveNegativeLobesToPeaks(CubeMap& cube);
+
+// Samples per side for texels whose samples found a steep window (twice as many, if k > 1):
+// a Catmull-Rom spline has a kink in its second derivative at every tap, and integrating a
+// sun's reconstruction with samples half a texel apart misses 0.3 % of its energy.
+int refinedSamplesPerSide(int k);
 
 // Solid angles of the sub x sub equal cells of a cube face (row by row), exact.
 std::vector<float> subcellSolidAngles(int sub);
 
 // What resampleToCube integrates, for the GPU path: the reduced source (a panorama, or one
-// level of a cube map), the samples per texel side k, and the solid angles of the (size k)^2
-// sub-cells of a face.
+// level of a cube map), the samples per texel side k (and k2 where a window is steep), and
+// the solid angles of the (size k)^2 sub-cells of a face followed by those of the (size k2)^2.
 struct CubeResamplePlan {
   Image equirect;                           // equirect sources
   std::array<Image, kFaceCount> cubeLevel;  // cube sources
   int samplesPerSide = 1;
+  int refinedSamplesPerSide = 1;
   std::vector<float> weights;
 };
 CubeResamplePlan planResampleToCube(const Environment& source, int size);
 
-// Resamples any environment to an equirectangular map of width x width/2, with the same
-// area filtering.
+// Resamples any environment to an equirectangular map of width x width/2, the same way; a
+// panorama turned by a whole number of its columns is shifted exactly.
 Image resampleToEquirect(const Environment& source, int width, float rotateDegrees = 0.0f);
 
 }  // namespace ibl

@@ -1,5 +1,5 @@
 // Cube-map geometry: the face table of the Vulkan / OpenGL specification ("Cube Map Face
-// Selection"), faces +X, -X, +Y, -Y, +Z, -Z, and the cubic B-spline weights of the
+// Selection"), faces +X, -X, +Y, -Y, +Z, -Z, and the Catmull-Rom weights of the
 // reconstruction filter. C++ and GLSL (see lang.h).
 #ifndef IBL_SHARED_CUBE_H
 #define IBL_SHARED_CUBE_H
@@ -75,13 +75,22 @@ IBL_FN FacePoint directionToFace(vec3 d) {
   return p;
 }
 
-// Weights of the uniform cubic B-spline for the taps at -1, 0, 1, 2 around a sample a fraction
-// t past tap 0.
-IBL_FN vec4 cubicBSplineWeights(float t) {
-  float t2 = t * t, t3 = t2 * t, s = 1.0f - t;
-  return vec4(s * s * s, 3.0f * t3 - 6.0f * t2 + 4.0f, -3.0f * t3 + 3.0f * t2 + 3.0f * t + 1.0f,
-              t3) /
-         6.0f;
+// Weights of the Catmull-Rom spline (the interpolating cubic convolution kernel with a = -1/2,
+// Keys 1981, eq. 15) for the taps at -1, 0, 1, 2 around a sample a fraction t past tap 0. They
+// sum to 1 and reproduce the taps exactly at t = 0 and 1; the outer weights are negative, so a
+// reconstruction may overshoot next to an edge (clamp it to the inner taps' range).
+IBL_FN vec4 catmullRomWeights(float t) {
+  float t2 = t * t, t3 = t2 * t;
+  return vec4(-t3 + 2.0f * t2 - t, 3.0f * t3 - 5.0f * t2 + 2.0f, -3.0f * t3 + 4.0f * t2 + t,
+              t3 - t2) *
+         0.5f;
+}
+
+// Whether a 4 x 4 window of taps, whose per-channel minimum and maximum are lo and hi, is
+// steep (a sun, a lamp's edge): its values differ by more than a factor of 4. There the
+// Catmull-Rom reconstruction varies fast, and an area integral of it needs finer samples.
+IBL_FN bool windowIsSteep(vec3 lo, vec3 hi) {
+  return hi.x > 4.0f * lo.x || hi.y > 4.0f * lo.y || hi.z > 4.0f * lo.z;
 }
 
 IBL_END
