@@ -2,11 +2,14 @@
 #include <bit>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include <fmt/core.h>
 #include <unistd.h>
 
+#include "batch.hpp"
 #include "commands.hpp"
 #include "ibl/bake/bake.hpp"
 #include "ibl/core/error.hpp"
@@ -18,7 +21,8 @@ namespace ibl::cli {
 namespace {
 
 struct BakeCliOptions {
-  std::string input;  // empty: the bundled default
+  std::vector<std::string> inputs;  // none: the bundled default
+  std::string list;                 // --list FILE: more inputs
   std::string output;
   std::string inputLayout;
   int size = 256;
@@ -55,37 +59,21 @@ std::unique_ptr<gpu::Context> openDevice(const std::string& choice) {
   return gpu::Context::create();
 }
 
-void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
-  if (o.listDevices) {
-    const auto devices = gpu::listDevices();
-    if (devices.empty()) fmt::print("no Vulkan device\n");
-    for (const auto& d : devices)
-      fmt::print("{} ({}, Vulkan {}.{})\n", d.name, d.type, d.apiVersion >> 22,
-                 (d.apiVersion >> 12) & 0x3ff);
-    return;
-  }
-  if (o.output.empty()) fail("--output", "an output directory is required");
+// Bakes one input ("" for the bundled default) into `outDir`; returns the summary line.
+std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std::string& outDir,
+                    bool showProgress, gpu::Context* device, const GlobalOptions& global) {
   const auto start = std::chrono::steady_clock::now();
-  const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
   const auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  if (!std::has_single_bit(static_cast<unsigned>(o.size)))
-    fail("--size", fmt::format("must be a power of two, not {}", o.size));
-  const int mipCount = std::bit_width(static_cast<unsigned>(o.size));
-  if (o.levels && *o.levels > mipCount)
-    fail("--levels", fmt::format("{} levels need a cube of at least {}^2; --size {} has {} (down "
-                                 "to 1x1)",
-                                 *o.levels, 1 << (*o.levels - 1), o.size, mipCount));
-
   LoadOptions loadOptions;
   if (!o.inputLayout.empty()) loadOptions.layout = parseLayout(o.inputLayout);
   const std::string name =
-      o.input.empty() ? std::string(kDefaultEnvironmentName) + " (bundled)" : o.input;
+      input.empty() ? std::string(kDefaultEnvironmentName) + " (bundled)" : input;
   LoadedEnvironment loaded =
-      o.input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), name, loadOptions)
-                      : loadEnvironment(o.input, loadOptions);
-  if (!o.input.empty()) warnAboutReplacedPixels(name, loaded.replaced, global);  // not ours
+      input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), name, loadOptions)
+                    : loadEnvironment(input, loadOptions);
+  if (!input.empty()) warnAboutReplacedPixels(name, loaded.replaced, global);  // not ours
   requireLight(loaded.environment, name);
   RangeLoss clampLoss;
   if (o.clamp > 0.0f) {
@@ -112,9 +100,8 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
   const ProgressFn progress = [&](const std::string& stage) {
     if (showProgress) fmt::print(stderr, "[{:6.2f} s] {}\n", elapsed(), stage);
   };
-  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
   if (device) progress(fmt::format("GPU stages on {}", device->device().name));
-  const BakeResult result = bakeEnvironment(loaded.environment, options, progress, device.get());
+  const BakeResult result = bakeEnvironment(loaded.environment, options, progress, device);
 
   BakeOutputOptions output;
   output.format = *parsePixelFormat(o.format);
@@ -129,7 +116,7 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
     if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
   };
   const Environment& env = loaded.environment;
-  BakeSource source{o.input,
+  BakeSource source{input,
                     loaded.format,
                     std::string(layoutName(env.layout)),
                     env.isCube() ? env.cube.size() : env.equirect.width,
@@ -138,11 +125,49 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
                     o.clamp,
                     clampLoss};
   progress("writing outputs");
-  const auto files = writeBakeOutputs(result, options, output, source, o.output);
-  if (!global.quiet) {
-    fmt::print(stderr, "baked {} into {}: {} files in {:.2f} s (bake {:.0f} ms)\n", name, o.output,
-               files.size(), elapsed(), result.timingsMs.at("total"));
+  const auto files = writeBakeOutputs(result, options, output, source, outDir);
+  return fmt::format("baked {} into {}: {} files in {:.2f} s (bake {:.0f} ms)", name, outDir,
+                     files.size(), elapsed(), result.timingsMs.at("total"));
+}
+
+void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
+  if (o.listDevices) {
+    const auto devices = gpu::listDevices();
+    if (devices.empty()) fmt::print("no Vulkan device\n");
+    for (const auto& d : devices)
+      fmt::print("{} ({}, Vulkan {}.{})\n", d.name, d.type, d.apiVersion >> 22,
+                 (d.apiVersion >> 12) & 0x3ff);
+    return;
   }
+  if (o.output.empty()) fail("--output", "an output directory is required");
+  if (!std::has_single_bit(static_cast<unsigned>(o.size)))
+    fail("--size", fmt::format("must be a power of two, not {}", o.size));
+  const int mipCount = std::bit_width(static_cast<unsigned>(o.size));
+  if (o.levels && *o.levels > mipCount)
+    fail("--levels", fmt::format("{} levels need a cube of at least {}^2; --size {} has {} (down "
+                                 "to 1x1)",
+                                 *o.levels, 1 << (*o.levels - 1), o.size, mipCount));
+  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
+  const bool batch =
+      o.inputs.size() > 1 || !o.list.empty() ||
+      (o.inputs.size() == 1 && o.inputs[0].find_first_of("*?[") != std::string::npos &&
+       !std::filesystem::exists(o.inputs[0]));
+  if (!batch) {
+    const std::string input = o.inputs.empty() ? std::string() : o.inputs[0];
+    const std::string line =
+        bakeOne(o, input, o.output, !global.quiet && ::isatty(STDERR_FILENO), device.get(), global);
+    if (!global.quiet) fmt::print(stderr, "{}\n", line);
+    return;
+  }
+  // A batch: each input into OUTDIR/<name>/, several at once (one at a time on a GPU).
+  const std::vector<std::string> inputs = expandInputs(o.inputs, o.list);
+  runBatch(
+      inputs,
+      [&](const std::string& input) {
+        return bakeOne(o, input, (std::filesystem::path(o.output) / batchName(input)).string(),
+                       false, device.get(), global);
+      },
+      device == nullptr, global);
 }
 
 }  // namespace
@@ -151,9 +176,15 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   auto opts = std::make_shared<BakeCliOptions>();
   CLI::App* cmd = app.add_subcommand(
       "bake", "Bake an HDR environment into IBL assets (specular, irradiance, SH9, DFG)");
-  cmd->add_option("input", opts->input,
-                  "Environment (any `ibl convert` input); default: the bundled sunset.exr");
-  cmd->add_option("-o,--output", opts->output, "Output directory (required)");
+  cmd->add_option("inputs", opts->inputs,
+                  "Environments (any `ibl convert` input; a quoted pattern such as 'hdri/*.exr' "
+                  "is expanded); default: the bundled sunset.exr. Several: each is baked into "
+                  "OUTDIR/<name>/");
+  cmd->add_option("--list", opts->list,
+                  "Also bake the files this text file lists, one per line (a batch)");
+  cmd->add_option("-o,--output", opts->output,
+                  "Output directory (required); of a batch: the parent of one directory per "
+                  "input");
   cmd->add_option("--device", opts->device,
                   "cpu, gpu (every stage in Vulkan compute: resampling, mips, specular, "
                   "irradiance, SH9, DFG), or auto (a real GPU if present)")

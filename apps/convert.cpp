@@ -6,6 +6,7 @@
 
 #include <fmt/core.h>
 
+#include "batch.hpp"
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/env/environment.hpp"
@@ -18,8 +19,9 @@ namespace ibl::cli {
 namespace {
 
 struct ConvertOptions {
-  std::string input;
-  std::string output;
+  std::vector<std::string> inputs;
+  std::string list;         // --list FILE: more inputs
+  std::string output;       // of a batch: a pattern with {name}
   std::string layout;       // output layout; empty: default for the output format
   std::string inputLayout;  // empty: detect
   int size = 0;             // 0: keep the source's resolution
@@ -30,9 +32,11 @@ struct ConvertOptions {
   bool mips = false;
 };
 
-void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
+// Converts `input` into `output`; returns the summary line.
+std::string convertOne(const ConvertOptions& o, const std::string& input, const std::string& output,
+                       const GlobalOptions& global) {
   ExportOptions e;
-  e.output = o.output;
+  e.output = output;
   if (!o.layout.empty()) e.layout = parseLayout(o.layout);
   e.size = o.size;
   e.ktx2Format = *parsePixelFormat(o.format);
@@ -46,22 +50,47 @@ void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
   // Contradictions are reported before the input is read.
   const FileFormat format = checkExportOptions(e);
   if (format != FileFormat::Ktx2 && o.format != "rgba16f")
-    fail(o.output, "--format applies to KTX2 outputs only");
+    fail(output, "--format applies to KTX2 outputs only");
   if (format != FileFormat::Exr && o.exrType != "half")
-    fail(o.output, "--exr-type applies to EXR outputs only");
+    fail(output, "--exr-type applies to EXR outputs only");
   if (format != FileFormat::Png && o.exposure != 0.0f)
-    fail(o.output, "--exposure applies to PNG outputs only (the others store linear radiance)");
+    fail(output, "--exposure applies to PNG outputs only (the others store linear radiance)");
   std::optional<Layout> inLayout;
   if (!o.inputLayout.empty()) inLayout = parseLayout(o.inputLayout);
 
-  const LoadedEnvironment loaded = loadEnvironment(o.input, {inLayout});
-  warnAboutReplacedPixels(o.input, loaded.replaced, global);
+  const LoadedEnvironment loaded = loadEnvironment(input, {inLayout});
+  warnAboutReplacedPixels(input, loaded.replaced, global);
   const std::vector<EncodedFile> files = encodeEnvironment(loaded.environment, e);
   // All files or none: an error (a full disk) leaves nothing behind.
   writeFilesTogether(files);
-  if (!global.quiet)
-    for (const auto& [path, bytes] : files)
-      fmt::print(stderr, "wrote {} ({} bytes)\n", path.string(), bytes.size());
+  std::string line;
+  for (const auto& [path, bytes] : files)
+    line +=
+        fmt::format("{}wrote {} ({} bytes)", line.empty() ? "" : "\n", path.string(), bytes.size());
+  return line;
+}
+
+void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
+  if (o.inputs.empty() && o.list.empty()) throw CLI::RequiredError("an input (or --list FILE)");
+  const bool batch =
+      o.inputs.size() > 1 || !o.list.empty() || o.output.find("{name}") != std::string::npos;
+  if (!batch) {
+    const std::string line = convertOne(o, o.inputs.at(0), o.output, global);
+    if (!global.quiet) fmt::print(stderr, "{}\n", line);
+    return;
+  }
+  if (o.output.find("{name}") == std::string::npos)
+    fail(o.output, "several inputs need {name} in the output (out/{name}.ktx2)");
+  const std::vector<std::string> inputs = expandInputs(o.inputs, o.list);
+  runBatch(
+      inputs,
+      [&](const std::string& input) {
+        std::string output = o.output;
+        for (auto at = output.find("{name}"); at != std::string::npos; at = output.find("{name}"))
+          output.replace(at, 6, batchName(input));
+        return convertOne(o, input, output, global);
+      },
+      true, global);
 }
 
 }  // namespace
@@ -70,12 +99,15 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
   auto opts = std::make_shared<ConvertOptions>();
   CLI::App* cmd = app.add_subcommand(
       "convert", "Convert an environment between formats (hdr, exr, png, jpg, ktx2) and layouts");
-  cmd->add_option("input", opts->input,
-                  "Input file; a path with {face} names six face files (px nx py ny pz nz)")
-      ->required();
+  cmd->add_option("inputs", opts->inputs,
+                  "Input files; a path with {face} names six face files (px nx py ny pz nz); "
+                  "a quoted pattern such as 'hdri/*.exr' is expanded");
+  cmd->add_option("--list", opts->list,
+                  "Also convert the files this text file lists, one per line (a batch)");
   cmd->add_option("-o,--output", opts->output,
                   "Output file (.ktx2, .exr, .hdr, .png); with --layout faces, {face} in the "
-                  "name is replaced, else _px.. is appended")
+                  "name is replaced, else _px.. is appended. Several inputs: {name} in it is "
+                  "each input's name (out/{name}.ktx2)")
       ->required();
   const auto layouts = CLI::IsMember({"equirect", "cube", "cross", "hcross", "vcross", "faces"});
   cmd->add_option("--layout", opts->layout,

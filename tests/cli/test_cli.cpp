@@ -294,3 +294,45 @@ TEST(Cli, ManifestNumbersAndSourcePath) {
   const auto j = nlohmann::json::parse(text);
   EXPECT_EQ(j["source"]["path"], (dir / "park.exr").string());
 }
+
+// A batch bakes every input into OUTDIR/<name>/; a bad file is reported, the others still
+// bake, and the command fails at the end. Inputs come from arguments, patterns and lists.
+TEST(Cli, BatchesBakeAndConvertEveryGoodInput) {
+  TempDir dir;
+  std::filesystem::copy_file(hdriPath("park"), dir / "park.exr");
+  std::filesystem::copy_file(hdriPath("night"), dir / "night.exr");
+  std::ofstream(dir / "broken.exr") << "not an image";
+  CliRun r = runIbl("bake " + quote(dir / "*.exr") + " -o " + quote(dir / "out") +
+                    " --size 16 --dfg-size 16 --dfg-samples 64");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("ibl: error: " + (dir / "broken.exr").string() + ": unknown file format"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("2 of 3 inputs done"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 of 3 inputs failed: " + (dir / "broken.exr").string()),
+            std::string::npos)
+      << r.output;
+  for (const char* name : {"park", "night"})
+    EXPECT_EQ(readImageFile(dir / "out" / name / "specular.ktx2").levels[0][0].width, 16) << name;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "broken"));
+  // A list (comments and blank lines skipped) and convert with {name}.
+  std::ofstream(dir / "list.txt") << (dir / "park.exr").string() << "\n# a comment\n\n"
+                                  << (dir / "night.exr").string() << "\n";
+  r = runIbl("convert --list " + quote(dir / "list.txt") + " -o " +
+             quote(dir / "c" / "{name}.hdr") + " --size 32 -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readImageFile(dir / "c" / "park.hdr").levels[0][0].width, 32);
+  EXPECT_EQ(readImageFile(dir / "c" / "night.hdr").levels[0][0].width, 32);
+  // Two inputs of the same name would write into one place: refused before anything runs.
+  std::filesystem::create_directories(dir / "other");
+  std::filesystem::copy_file(hdriPath("park"), dir / "other" / "park.exr");
+  r = runIbl("bake " + quote(dir / "park.exr") + " " + quote(dir / "other" / "park.exr") + " -o " +
+             quote(dir / "dup"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("has the same name 'park'"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "dup"));
+  r = runIbl("convert " + quote(dir / "park.exr") + " " + quote(dir / "night.exr") + " -o " +
+             quote(dir / "x.ktx2"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("several inputs need {name} in the output"), std::string::npos);
+}
