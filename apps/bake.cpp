@@ -25,6 +25,7 @@ struct BakeCliOptions {
   std::string list;                 // --list FILE: more inputs
   std::string output;
   std::string inputLayout;
+  std::string layer;
   int size = 256;
   std::optional<int> levels;  // default: down to 8x8
   std::string mapping = "linear";
@@ -68,6 +69,7 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
   };
   LoadOptions loadOptions;
   if (!o.inputLayout.empty()) loadOptions.layout = parseLayout(o.inputLayout);
+  loadOptions.layer = o.layer;
   const std::string name =
       input.empty() ? std::string(kDefaultEnvironmentName) + " (bundled)" : input;
   LoadedEnvironment loaded =
@@ -194,6 +196,9 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--input-layout", opts->inputLayout,
                   "Input layout (default: from the image shape)")
       ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "faces"}));
+  cmd->add_option("--layer", opts->layer,
+                  "EXR layer to read (ViewLayer.Combined); default: the plain R, G, B channels or "
+                  "the only color layer");
   cmd->add_option("--size", opts->size, "Specular (and source) cube size, a power of two")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();

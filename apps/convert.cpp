@@ -24,6 +24,7 @@ struct ConvertOptions {
   std::string output;       // of a batch: a pattern with {name}
   std::string layout;       // output layout; empty: default for the output format
   std::string inputLayout;  // empty: detect
+  std::string layer;        // EXR layer
   int size = 0;             // 0: keep the source's resolution
   std::string format = "rgba16f";
   std::string exrType = "half";
@@ -58,7 +59,7 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
   std::optional<Layout> inLayout;
   if (!o.inputLayout.empty()) inLayout = parseLayout(o.inputLayout);
 
-  const LoadedEnvironment loaded = loadEnvironment(input, {inLayout});
+  const LoadedEnvironment loaded = loadEnvironment(input, {inLayout, o.layer});
   warnAboutReplacedPixels(input, loaded.replaced, global);
   const std::vector<EncodedFile> files = encodeEnvironment(loaded.environment, e);
   // All files or none: an error (a full disk) leaves nothing behind.
@@ -117,6 +118,9 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--input-layout", opts->inputLayout,
                   "Input layout (default: detected from the image shape)")
       ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "faces"}));
+  cmd->add_option("--layer", opts->layer,
+                  "EXR layer to read (ViewLayer.Combined); default: the plain R, G, B channels or "
+                  "the only color layer");
   cmd->add_option("--size", opts->size,
                   "Cube face size, or equirect width (default: the source's resolution)")
       ->check(CLI::Range(1, 16384));

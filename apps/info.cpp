@@ -20,44 +20,86 @@ namespace {
 struct InfoOptions {
   std::string file;
   std::string inputLayout;
+  std::string layer;
   bool json = false;
 };
 
+// The file, or the six files of a {face} pattern as one cube map.
+DecodedFile readInput(const InfoOptions& o) {
+  const DecodeOptions decode{o.layer};
+  if (o.file.find("{face}") == std::string::npos && o.inputLayout != "faces")
+    return readImageFile(o.file, decode);
+  DecodedFile cube;
+  cube.levels.resize(1);
+  for (int f = 0; f < kFaceCount; ++f) {
+    const std::string path = facePath(o.file, f).string();
+    DecodedFile d = readImageFile(path, decode);
+    const Image& img = d.levels[0][0];
+    if (img.width != img.height)
+      fail(path, fmt::format("face is {}x{}, not square", img.width, img.height));
+    if (f > 0 && img.width != cube.levels[0][0].width) fail(path, "faces differ in size");
+    if (f == 0) cube = DecodedFile{d.format, d.channels, d.detail, {{}}, d.layers};
+    cube.levels[0].push_back(std::move(d.levels[0][0]));
+  }
+  return cube;
+}
+
+// Statistics of the stored values, before anything is replaced: over the faces of a cube map
+// (a cross's padding is not part of the environment), else over the image.
+ImageStats statistics(const std::vector<const Image*>& images) {
+  ImageStats stats = imageStats(*images[0]);
+  double pixels = static_cast<double>(images[0]->pixels.size());
+  stats.mean *= pixels;
+  for (std::size_t i = 1; i < images.size(); ++i) {
+    const ImageStats s = imageStats(*images[i]);
+    stats.min = glm::min(stats.min, s.min);
+    stats.max = glm::max(stats.max, s.max);
+    stats.mean += s.mean * static_cast<double>(images[i]->pixels.size());
+    stats.invalid += s.invalid;
+    pixels += static_cast<double>(images[i]->pixels.size());
+  }
+  stats.mean /= pixels;
+  return stats;
+}
+
 void runInfo(const InfoOptions& o) {
-  DecodedFile d = readImageFile(o.file);
+  DecodedFile d = readInput(o);
   const Image& base = d.levels[0][0];
   const int faces = static_cast<int>(d.levels[0].size());
   const int levels = static_cast<int>(d.levels.size());
   const std::string format(fileFormatName(d.format));
   const int channels = d.channels;
   const std::string detail = d.detail;
-
-  // Statistics of the stored values, before anything is replaced.
-  ImageStats stats = imageStats(base);
-  for (int f = 1; f < faces; ++f) {
-    const ImageStats s = imageStats(d.levels[0][f]);
-    stats.min = glm::min(stats.min, s.min);
-    stats.max = glm::max(stats.max, s.max);
-    stats.mean += s.mean;
-    stats.invalid += s.invalid;
-  }
-  stats.mean /= static_cast<double>(faces);
+  const std::vector<std::string> layers = d.layers;
+  const int width = base.width, height = base.height;
 
   std::optional<Environment> env;
   std::optional<Layout> layout;
-  if (!o.inputLayout.empty()) layout = parseLayout(o.inputLayout);
+  if (!o.inputLayout.empty() && o.inputLayout != "faces") layout = parseLayout(o.inputLayout);
+  std::vector<const Image*> images;
   if (faces == kFaceCount || layout || layoutFromShape(base.width, base.height)) {
-    env = environmentFromFile(std::move(d), {layout}, o.file);
-    sanitizeEnvironment(*env);
+    env = environmentFromFile(std::move(d), {layout, o.layer}, o.file);
+    if (o.file.find("{face}") != std::string::npos || o.inputLayout == "faces")
+      env->layout = Layout::Faces;
+    if (env->isCube()) {
+      for (const Image& face : env->cube.levels[0]) images.push_back(&face);
+    } else {
+      images.push_back(&env->equirect);
+    }
+  } else {
+    images.push_back(&d.levels[0][0]);
   }
+  const ImageStats stats = statistics(images);
+  if (env) sanitizeEnvironment(*env);
 
   nlohmann::ordered_json j;
   j["file"] = o.file;
   j["format"] = format;
   j["detail"] = detail;
   j["channels"] = channels;
-  j["width"] = base.width;
-  j["height"] = base.height;
+  if (format == "exr") j["layers"] = layers;
+  j["width"] = width;
+  j["height"] = height;
   j["faces"] = faces;
   j["levels"] = levels;
   j["layout"] = env ? std::string(layoutName(env->layout)) : "2d";
@@ -85,8 +127,13 @@ void runInfo(const InfoOptions& o) {
   fmt::print("file        {}\n", o.file);
   fmt::print("format      {} ({}), {} channel{}\n", format, detail, channels,
              channels == 1 ? "" : "s");
+  if (layers.size() > 1 || (layers.size() == 1 && !layers[0].empty())) {
+    std::string list;
+    for (const auto& l : layers) list += (list.empty() ? "" : ", ") + (l.empty() ? "(plain)" : l);
+    fmt::print("layers      {}\n", list);
+  }
   fmt::print("layout      {}\n", env ? layoutName(env->layout) : "2d image (not an environment)");
-  fmt::print("size        {}x{}{}, {} level{}\n", base.width, base.height,
+  fmt::print("size        {}x{}{}, {} level{}\n", width, height,
              faces == kFaceCount ? " per face" : "", levels, levels == 1 ? "" : "s");
   fmt::print("min         {:.6g} {:.6g} {:.6g}\n", stats.min.x, stats.min.y, stats.min.z);
   fmt::print("max         {:.6g} {:.6g} {:.6g}\n", stats.max.x, stats.max.y, stats.max.z);
@@ -113,9 +160,13 @@ void addInfoCommand(CLI::App& app, const GlobalOptions&) {
   CLI::App* cmd = app.add_subcommand("info",
                                      "Describe an image file: format, layout, size, "
                                      "value range, invalid pixels, radiant integral");
-  cmd->add_option("file", opts->file, "Image file (.hdr, .exr, .png, .jpg, .ktx2)")->required();
+  cmd->add_option("file", opts->file,
+                  "Image file (.hdr, .exr, .png, .jpg, .ktx2); a path with {face} names six face "
+                  "files")
+      ->required();
   cmd->add_option("--input-layout", opts->inputLayout, "Layout (default: from the shape)")
-      ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross"}));
+      ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "faces"}));
+  cmd->add_option("--layer", opts->layer, "EXR layer to describe (default: as `ibl convert`)");
   cmd->add_flag("--json", opts->json, "Print JSON instead of text");
   cmd->callback([opts] { runInfo(*opts); });
 }

@@ -130,7 +130,7 @@ LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& op
     env.cube.levels.resize(1);
     for (int f = 0; f < kFaceCount; ++f) {
       const std::string file = facePath(path, f).string();
-      DecodedFile d = readImageFile(file);
+      DecodedFile d = readImageFile(file, {options.layer});
       Image& img = d.levels[0][0];
       if (img.width != img.height)
         fail(file, fmt::format("face is {}x{}, not square", img.width, img.height));
@@ -139,7 +139,7 @@ LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& op
       env.cube.levels[0][f] = std::move(img);
     }
   } else {
-    DecodedFile d = readImageFile(path);
+    DecodedFile d = readImageFile(path, {options.layer});
     out.format = fileFormatName(d.format);
     env = environmentFromFile(std::move(d), options, path);
   }
@@ -150,7 +150,7 @@ LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& op
 LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes,
                                             std::string_view name, const LoadOptions& options) {
   LoadedEnvironment out;
-  DecodedFile d = decodeImageFile(bytes, name);
+  DecodedFile d = decodeImageFile(bytes, name, {options.layer});
   out.format = fileFormatName(d.format);
   out.environment = environmentFromFile(std::move(d), options, name);
   out.replaced = sanitizeEnvironment(out.environment);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <ImfChannelList.h>
@@ -124,7 +125,8 @@ std::string firstLine(const char* what) {
 
 }  // namespace
 
-Image decodeExr(std::span<const std::uint8_t> bytes, std::string_view name, DecodedFile* info) {
+Image decodeExr(std::span<const std::uint8_t> bytes, std::string_view name, DecodedFile* info,
+                const DecodeOptions& options) {
   useAllCores();
   const std::string nameStr(name);
   try {
@@ -144,19 +146,54 @@ Image decodeExr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
       if (!firstChannel) firstChannel = &it.channel();
     }
     if (channelCount == 0) fail(name, "no channels");
-    const bool hasRgb =
-        channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
-    const bool hasY = channels.findChannel("Y") != nullptr;
-    const bool hasChroma = channels.findChannel("RY") || channels.findChannel("BY");
+    // Layers that hold a color: "L" when L.R, L.G and L.B exist ("" for plain R, G, B).
+    const auto has = [&](const std::string& c) { return channels.findChannel(c) != nullptr; };
+    const auto channelOf = [](const std::string& layer, const char* c) {
+      return layer.empty() ? std::string(c) : layer + "." + c;
+    };
+    std::vector<std::string> rgbLayers;
+    for (auto it = channels.begin(); it != channels.end(); ++it) {
+      const std::string n = it.name();
+      if (n.size() < 1 || n.back() != 'R' || (n.size() > 1 && n[n.size() - 2] != '.')) continue;
+      const std::string layer = n.size() > 1 ? n.substr(0, n.size() - 2) : std::string();
+      if (has(channelOf(layer, "G")) && has(channelOf(layer, "B"))) rgbLayers.push_back(layer);
+    }
+    const bool hasY = has("Y");
+    const bool hasChroma = has("RY") || has("BY");
+    const bool hasXyz = has("X") && hasY && has("Z");
     if (info) {
       info->channels = channelCount;
+      info->layers = rgbLayers;
       info->detail = fmt::format("{}, {}{}", pixelTypeName(firstChannel->type),
                                  compressionName(header.compression()),
                                  header.hasTileDescription() ? ", tiled" : "");
     }
+    const auto layerList = [&] {
+      std::string list;
+      for (const auto& l : rgbLayers)
+        list += (list.empty() ? "" : ", ") + (l.empty() ? "(plain RGB)" : l);
+      return list.empty() ? std::string("none") : list;
+    };
+    // The layer to read: the one asked for, the plain channels, or the only color layer.
+    std::optional<std::string> layer;
+    if (!options.layer.empty()) {
+      if (std::find(rgbLayers.begin(), rgbLayers.end(), options.layer) == rgbLayers.end())
+        fail(name, fmt::format("has no layer '{}' with R, G and B channels; its color layers: {}",
+                               options.layer, layerList()));
+      layer = options.layer;
+    } else if (std::find(rgbLayers.begin(), rgbLayers.end(), std::string()) != rgbLayers.end()) {
+      layer = std::string();
+    } else if (rgbLayers.size() == 1 && !hasY) {
+      layer = rgbLayers[0];
+    } else if (rgbLayers.size() > 1) {
+      fail(name, fmt::format("has {} color layers and no plain RGB: choose one with --layer "
+                             "({})",
+                             rgbLayers.size(), layerList()));
+    }
+    if (info && layer && !layer->empty()) info->detail += fmt::format(", layer {}", *layer);
 
     Image img(static_cast<int>(w), static_cast<int>(h));
-    if (hasY && hasChroma && !hasRgb) {
+    if (!layer && hasY && hasChroma) {
       // Luminance-chroma images: let the RGBA interface reconstruct RGB.
       MemoryInput rgbaStream(bytes, nameStr);
       Imf::RgbaInputFile rgbaFile(rgbaStream);
@@ -166,22 +203,36 @@ Image decodeExr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
       for (std::size_t i = 0; i < px.size(); ++i) img.pixels[i] = {px[i].r, px[i].g, px[i].b};
       return img;
     }
-    const char* gray = hasY ? "Y" : (channelCount == 1 ? channels.begin().name() : nullptr);
-    if (!hasRgb && !gray) fail(name, "no R, G, B or Y channels to read");
+    if (!layer && !hasY) {
+      std::string names;
+      for (auto it = channels.begin(); it != channels.end() && names.size() < 200; ++it)
+        names += (names.empty() ? "" : ", ") + std::string(it.name());
+      fail(name,
+           fmt::format("has no color channels (R, G, B; Y; X, Y, Z) to read, only {}", names));
+    }
     Imf::FrameBuffer fb;
     char* base = reinterpret_cast<char*>(img.pixels.data());
     const std::size_t xs = sizeof(glm::vec3), ys = xs * static_cast<std::size_t>(w);
-    if (hasRgb) {
-      fb.insert("R", Imf::Slice::Make(Imf::FLOAT, base, dw, xs, ys));
-      fb.insert("G", Imf::Slice::Make(Imf::FLOAT, base + 4, dw, xs, ys));
-      fb.insert("B", Imf::Slice::Make(Imf::FLOAT, base + 8, dw, xs, ys));
+    const char* const names[3] = {hasXyz && !layer ? "X" : "R", hasXyz && !layer ? "Y" : "G",
+                                  hasXyz && !layer ? "Z" : "B"};
+    if (layer || hasXyz) {
+      for (int c = 0; c < 3; ++c)
+        fb.insert(layer ? channelOf(*layer, names[c]) : std::string(names[c]),
+                  Imf::Slice::Make(Imf::FLOAT, base + 4 * c, dw, xs, ys));
     } else {
-      fb.insert(gray, Imf::Slice::Make(Imf::FLOAT, base, dw, xs, ys));
+      fb.insert("Y", Imf::Slice::Make(Imf::FLOAT, base, dw, xs, ys));
     }
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
-    if (!hasRgb)
-      for (auto& p : img.pixels) p.y = p.z = p.x;
+    if (!layer && hasXyz) {
+      // CIE XYZ to linear Rec. 709 / sRGB primaries, D65 (IEC 61966-2-1).
+      for (auto& p : img.pixels)
+        p = glm::vec3(3.2404542f * p.x - 1.5371385f * p.y - 0.4985314f * p.z,
+                      -0.9692660f * p.x + 1.8760108f * p.y + 0.0415560f * p.z,
+                      0.0556434f * p.x - 0.2040259f * p.y + 1.0572252f * p.z);
+    } else if (!layer) {
+      for (auto& p : img.pixels) p.y = p.z = p.x;  // Y: gray
+    }
     return img;
   } catch (const Error&) {
     throw;

@@ -52,7 +52,8 @@ std::optional<FileFormat> fileFormatFromExtension(const std::filesystem::path& p
   return std::nullopt;
 }
 
-DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_view name) {
+DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_view name,
+                            const DecodeOptions& options) {
   const auto format = detectFileFormat(bytes);
   if (!format) {
     if (bytes.empty()) fail(name, "empty file");
@@ -60,6 +61,8 @@ DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_vie
   }
   DecodedFile out;
   out.format = *format;
+  if (!options.layer.empty() && *format != FileFormat::Exr)
+    fail(name, fmt::format("--layer {}: only OpenEXR files have layers", options.layer));
   switch (*format) {
     case FileFormat::Hdr:
       out.channels = 3;
@@ -67,7 +70,7 @@ DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_vie
       out.levels = {{decodeHdr(bytes, name)}};
       break;
     case FileFormat::Exr:
-      out.levels = {{decodeExr(bytes, name, &out)}};
+      out.levels = {{decodeExr(bytes, name, &out, options)}};
       break;
     case FileFormat::Png:
     case FileFormat::Jpg:
@@ -85,9 +88,9 @@ DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_vie
   return out;
 }
 
-DecodedFile readImageFile(const std::filesystem::path& path) {
+DecodedFile readImageFile(const std::filesystem::path& path, const DecodeOptions& options) {
   const std::vector<std::uint8_t> bytes = readFileBytes(path);
-  return decodeImageFile(bytes, path.string());
+  return decodeImageFile(bytes, path.string(), options);
 }
 
 }  // namespace ibl

@@ -336,3 +336,35 @@ TEST(Cli, BatchesBakeAndConvertEveryGoodInput) {
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("several inputs need {name} in the output"), std::string::npos);
 }
+
+// `ibl info` reads what `ibl convert` reads: six {face} files, and crosses whose padding (here
+// a huge value) is not part of the environment's statistics.
+TEST(Cli, InfoReadsFacesAndIgnoresCrossPadding) {
+  TempDir dir;
+  Image cross(16, 12, glm::vec3(1e6f));  // 4 x 3 cells of 4x4; padding cells stay 1e6
+  const int cells[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}};  // +X -X +Y -Y +Z -Z
+  for (int f = 0; f < 6; ++f)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x)
+        cross.at(cells[f][0] * 4 + x, cells[f][1] * 4 + y) = glm::vec3(static_cast<float>(f + 1));
+  writeFileAtomic(dir / "cross.exr", encodeExr(cross, ExrPixelType::Float));
+  CliRun r = runIbl("info --json " + quote(dir / "cross.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["layout"], "hcross");
+  EXPECT_EQ(j["max"][0], 6.0);
+  EXPECT_NEAR(j["mean"][0].get<double>(), 3.5, 1e-9);  // (1 + ... + 6) / 6
+  r = runIbl("convert " + quote(dir / "cross.exr") + " -o " + quote(dir / "f_{face}.exr") +
+             " --layout faces --exr-type float -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl("info --json " + quote(dir / "f_{face}.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["faces"], 6);
+  EXPECT_EQ(j["layout"], "faces");
+  EXPECT_EQ(j["max"][0], 6.0);
+  EXPECT_EQ(j["min"][0], 1.0);
+  r = runIbl("info " + quote(dir / "f_{face}.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("f_px.png: no such file"), std::string::npos) << r.output;
+}

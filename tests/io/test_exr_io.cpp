@@ -1,4 +1,7 @@
 #include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
 
 #include <ImfRgbaFile.h>
 #include <gtest/gtest.h>
@@ -122,4 +125,88 @@ TEST(ExrIo, RejectsBrokenFiles) {
     EXPECT_EQ(std::string(e.what()).rfind("named.exr: ", 0), 0u) << e.what();
     EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
   }
+}
+
+namespace {
+
+// A 4x2 float EXR with the named channels; channel k holds k + 1 + pixel index / 10.
+std::vector<std::uint8_t> exrWithChannels(const std::vector<std::string>& names,
+                                          const TempDir& dir) {
+  const auto path = (dir / "layers.exr").string();
+  Imf::Header header(4, 2);
+  for (const auto& n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+  std::vector<std::vector<float>> planes(names.size(), std::vector<float>(8));
+  Imf::FrameBuffer fb;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    for (int i = 0; i < 8; ++i) planes[k][i] = static_cast<float>(k + 1) + 0.1f * i;
+    fb.insert(names[k], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(planes[k].data()), 4, 16));
+  }
+  {
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(2);
+  }
+  return readFileBytes(path);
+}
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+// Blender writes passes as layers (ViewLayer.Combined.R): one is read by name, the only one
+// without a name, and several without a name are an error that lists them.
+TEST(ExrIo, LayersAreChosenByNameOrListed) {
+  TempDir dir;
+  // OpenEXR sorts channels by name: Blender.Combined.{B,G,R} are channels 0-2, Depth.Z 3.
+  const auto two = exrWithChannels(
+      {"ViewLayer.Combined.B", "ViewLayer.Combined.G", "ViewLayer.Combined.R", "ViewLayer.Depth.Z",
+       "ViewLayer.Shadow.B", "ViewLayer.Shadow.G", "ViewLayer.Shadow.R"},
+      dir);
+  EXPECT_NE(errorOf([&] { decodeExr(two, "blender.exr"); })
+                .find("blender.exr: has 2 color layers and no plain RGB: choose one with --layer "
+                      "(ViewLayer.Combined, ViewLayer.Shadow)"),
+            std::string::npos);
+  DecodedFile info;
+  const Image combined = decodeExr(two, "blender.exr", &info, {"ViewLayer.Combined"});
+  EXPECT_EQ(combined.at(1, 0), glm::vec3(3.1f, 2.1f, 1.1f));  // R, G, B = channels 3, 2, 1
+  EXPECT_EQ(info.layers, (std::vector<std::string>{"ViewLayer.Combined", "ViewLayer.Shadow"}));
+  EXPECT_NE(info.detail.find("layer ViewLayer.Combined"), std::string::npos);
+  const Image shadow = decodeExr(two, "blender.exr", nullptr, {"ViewLayer.Shadow"});
+  EXPECT_EQ(shadow.at(0, 0), glm::vec3(7.0f, 6.0f, 5.0f));
+  EXPECT_NE(errorOf([&] {
+              decodeExr(two, "blender.exr", nullptr, {"ViewLayer.Depth"});
+            }).find("has no layer 'ViewLayer.Depth' with R, G and B channels"),
+            std::string::npos);
+  // One color layer: read without a name.
+  const auto one = exrWithChannels({"Pass.B", "Pass.G", "Pass.R"}, dir);
+  EXPECT_EQ(decodeExr(one, "one.exr").at(0, 1), glm::vec3(3.4f, 2.4f, 1.4f));
+}
+
+// Channels that are not a color are refused, never read as gray; CIE XYZ is converted.
+TEST(ExrIo, OtherChannelSetsAreRejectedOrConverted) {
+  TempDir dir;
+  EXPECT_NE(errorOf([&] {
+              decodeExr(exrWithChannels({"Z"}, dir), "depth.exr");
+            }).find("depth.exr: has no color channels (R, G, B; Y; X, Y, Z) to read, only Z"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              decodeExr(exrWithChannels({"U", "V"}, dir), "uv.exr");
+            }).find("only U, V"),
+            std::string::npos);
+  // X, Y, Z = 1, 2, 3 (+ 0.1 i): linear Rec. 709 by the sRGB matrix (IEC 61966-2-1),
+  // computed here in double.
+  const Image rgb = decodeExr(exrWithChannels({"X", "Y", "Z"}, dir), "xyz.exr");
+  const double x = 1.0, y = 2.0, z = 3.0;
+  EXPECT_NEAR(rgb.at(0, 0).x, 3.2404542 * x - 1.5371385 * y - 0.4985314 * z, 1e-5);
+  EXPECT_NEAR(rgb.at(0, 0).y, -0.9692660 * x + 1.8760108 * y + 0.0415560 * z, 1e-5);
+  EXPECT_NEAR(rgb.at(0, 0).z, 0.0556434 * x - 0.2040259 * y + 1.0572252 * z, 1e-5);
+  // D65 white (0.95047, 1, 1.08883) is RGB white.
+  EXPECT_NEAR(3.2404542 * 0.95047 - 1.5371385 - 0.4985314 * 1.08883, 1.0, 1e-4);
 }

@@ -50,6 +50,7 @@ std::filesystem::path facePath(const std::filesystem::path& pattern, int face);
 
 struct LoadOptions {
   std::optional<Layout> layout;  // overrides detection by shape
+  std::string layer;             // EXR layer (DecodeOptions::layer)
 };
 
 struct LoadedEnvironment {

@@ -23,16 +23,27 @@ struct DecodedFile {
   int channels = 3;                        // channels stored in the file
   std::string detail;                      // e.g. "half, DWAB" or "RLE"
   std::vector<std::vector<Image>> levels;  // [level][face]; a plain image is 1 x 1
+  std::vector<std::string> layers;         // EXR: the layers holding R, G and B ("" plain)
+};
+
+struct DecodeOptions {
+  // EXR: the layer to read (Blender's "ViewLayer.Combined" for ViewLayer.Combined.R, G, B);
+  // empty: the plain R, G, B channels, or the only layer that has them.
+  std::string layer;
 };
 
 // Decodes any supported file from memory; `name` is used in error messages.
-DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_view name);
-DecodedFile readImageFile(const std::filesystem::path& path);
+DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_view name,
+                            const DecodeOptions& options = {});
+DecodedFile readImageFile(const std::filesystem::path& path, const DecodeOptions& options = {});
 
 // Single-format decoders (used by decodeImageFile, and by the fuzz targets).
 Image decodeHdr(std::span<const std::uint8_t> bytes, std::string_view name);
+// OpenEXR: RGB (of the plain channels or a layer), luminance-chroma, Y (gray), or CIE XYZ
+// (converted to linear Rec. 709). Any other channel set is an error, never read as gray; a
+// file with several RGB layers and none chosen is an error that lists them.
 Image decodeExr(std::span<const std::uint8_t> bytes, std::string_view name,
-                DecodedFile* info = nullptr);
+                DecodedFile* info = nullptr, const DecodeOptions& options = {});
 Image decodeLdr(std::span<const std::uint8_t> bytes, std::string_view name,
                 DecodedFile* info = nullptr);
 
