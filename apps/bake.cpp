@@ -109,9 +109,7 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
   output.format = *parsePixelFormat(o.format);
   output.exr = o.exr;
   output.hdr = o.hdr;
-  output.layout = o.layout == "faces"    ? FlatLayout::Faces
-                  : o.layout == "vcross" ? FlatLayout::VCross
-                                         : FlatLayout::HCross;
+  output.layout = *parseLayout(o.layout);
   output.preview = !o.noPreview;
   output.force = o.force;
   output.warn = [&](const std::string& message) {
@@ -195,7 +193,8 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--list-devices", opts->listDevices, "List the Vulkan devices and exit");
   cmd->add_option("--input-layout", opts->inputLayout,
                   "Input layout (default: from the image shape)")
-      ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "faces"}));
+      ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "hstrip", "vstrip", "faces",
+                             "mirrorball", "angular"}));
   cmd->add_option("--layer", opts->layer,
                   "EXR layer to read (ViewLayer.Combined); default: the plain R, G, B channels or "
                   "the only color layer");
@@ -240,8 +239,10 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_flag("--exr", opts->exr, "Also write EXR files");
   cmd->add_flag("--hdr", opts->hdr, "Also write Radiance HDR files");
-  cmd->add_option("--layout", opts->layout, "Layout of EXR/HDR cube maps")
-      ->check(CLI::IsMember({"hcross", "vcross", "faces"}))
+  cmd->add_option("--layout", opts->layout,
+                  "Layout of the EXR/HDR copies: a cross, a strip, six faces, or equirect "
+                  "(resampled, 4n x 2n for an n^2 level)")
+      ->check(CLI::IsMember({"hcross", "vcross", "hstrip", "vstrip", "faces", "equirect"}))
       ->capture_default_str();
   cmd->add_flag("--force", opts->force,
                 "Write into an existing, non-empty OUTDIR: replace the earlier bake's files "

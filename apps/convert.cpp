@@ -110,14 +110,16 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
                   "name is replaced, else _px.. is appended. Several inputs: {name} in it is "
                   "each input's name (out/{name}.ktx2)")
       ->required();
-  const auto layouts = CLI::IsMember({"equirect", "cube", "cross", "hcross", "vcross", "faces"});
+  const auto layouts =
+      CLI::IsMember({"equirect", "cube", "cross", "hcross", "vcross", "hstrip", "vstrip", "faces"});
   cmd->add_option("--layout", opts->layout,
                   "Output layout (default: cube for .ktx2, else equirect for equirect inputs "
                   "and hcross for cube inputs)")
       ->check(layouts);
   cmd->add_option("--input-layout", opts->inputLayout,
                   "Input layout (default: detected from the image shape)")
-      ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "faces"}));
+      ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "hstrip", "vstrip", "faces",
+                             "mirrorball", "angular"}));
   cmd->add_option("--layer", opts->layer,
                   "EXR layer to read (ViewLayer.Combined); default: the plain R, G, B channels or "
                   "the only color layer");

@@ -165,7 +165,8 @@ void addInfoCommand(CLI::App& app, const GlobalOptions&) {
                   "files")
       ->required();
   cmd->add_option("--input-layout", opts->inputLayout, "Layout (default: from the shape)")
-      ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "faces"}));
+      ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "hstrip", "vstrip", "faces",
+                             "mirrorball", "angular"}));
   cmd->add_option("--layer", opts->layer, "EXR layer to describe (default: as `ibl convert`)");
   cmd->add_flag("--json", opts->json, "Print JSON instead of text");
   cmd->callback([opts] { runInfo(*opts); });

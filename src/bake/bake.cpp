@@ -227,7 +227,7 @@ struct OutputPlan {
 
 // One cube map as flat files (cross or six faces) in `format` (EXR or HDR), level by level.
 void addFlatCube(OutputPlan& plan, const Json& entry, const CubeMap& cube, const std::string& stem,
-                 FileFormat format, FlatLayout layout) {
+                 FileFormat format, Layout layout) {
   const std::string ext = format == FileFormat::Exr ? ".exr" : ".hdr";
   const auto encoder = [format](const Image& img) {
     return format == FileFormat::Exr ? encodeExr(img, ExrPixelType::Half) : encodeHdr(img);
@@ -238,7 +238,7 @@ void addFlatCube(OutputPlan& plan, const Json& entry, const CubeMap& cube, const
     e["format"] = fileFormatName(format);
     e["level"] = m;
     e["size"] = {cube.levels[m][0].width, cube.levels[m][0].width};
-    if (layout == FlatLayout::Faces) {
+    if (layout == Layout::Faces) {
       Json paths = Json::array();
       for (int f = 0; f < kFaceCount; ++f) {
         const std::string p = fmt::format("{}_{}{}", base, kFaceNames[f], ext);
@@ -250,9 +250,10 @@ void addFlatCube(OutputPlan& plan, const Json& entry, const CubeMap& cube, const
       e["paths"] = paths;
     } else {
       const std::string p = base + ext;
-      plan.add(
-          p, [=, &cube] { return encoder(crossFromCube(cube, m, layout == FlatLayout::VCross)); });
-      e["layout"] = layout == FlatLayout::VCross ? "vcross" : "hcross";
+      plan.add(p, [=, &cube] { return encoder(flatFromCube(cube, m, layout)); });
+      e["layout"] = layoutName(layout);
+      if (layout == Layout::Equirect)
+        e["size"] = {4 * cube.levels[m][0].width, 2 * cube.levels[m][0].width};
       e["path"] = p;
     }
     plan.outputs.push_back(e);

@@ -1,8 +1,15 @@
 #include "ibl/env/environment.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "ibl/core/error.hpp"
+#include "ibl/env/equirect.hpp"
+#include "ibl/env/resample.hpp"
 #include "ibl/io/image_io.hpp"
 
 namespace ibl {
@@ -19,12 +26,21 @@ std::string_view layoutName(Layout l) {
       return "faces";
     case Layout::Cube:
       return "cube";
+    case Layout::HStrip:
+      return "hstrip";
+    case Layout::VStrip:
+      return "vstrip";
+    case Layout::MirrorBall:
+      return "mirrorball";
+    case Layout::Angular:
+      return "angular";
   }
   return "?";
 }
 
 std::optional<Layout> parseLayout(std::string_view name) {
-  for (auto l : {Layout::Equirect, Layout::HCross, Layout::VCross, Layout::Faces, Layout::Cube})
+  for (auto l : {Layout::Equirect, Layout::HCross, Layout::VCross, Layout::Faces, Layout::Cube,
+                 Layout::HStrip, Layout::VStrip, Layout::MirrorBall, Layout::Angular})
     if (name == layoutName(l)) return l;
   if (name == "cross") return Layout::HCross;
   return std::nullopt;
@@ -34,6 +50,8 @@ std::optional<Layout> layoutFromShape(int w, int h) {
   if (w == 2 * h) return Layout::Equirect;
   if (w % 4 == 0 && 3 * w == 4 * h) return Layout::HCross;
   if (h % 4 == 0 && 4 * w == 3 * h) return Layout::VCross;
+  if (w == 6 * h) return Layout::HStrip;
+  if (h == 6 * w) return Layout::VStrip;
   return std::nullopt;
 }
 
@@ -42,44 +60,130 @@ struct CrossCell {
   int col, row;
   bool rotated;  // stored rotated by 180 degrees
 };
-// Cell of each face (+X, -X, +Y, -Y, +Z, -Z) in the cross.
-CrossCell crossCell(int face, bool vertical) {
+// Cell of each face (+X, -X, +Y, -Y, +Z, -Z) in a cross or strip.
+CrossCell layoutCell(int face, Layout layout) {
   static constexpr CrossCell kHorizontal[6] = {{2, 1, false}, {0, 1, false}, {1, 0, false},
                                                {1, 2, false}, {1, 1, false}, {3, 1, false}};
   static constexpr CrossCell kVertical[6] = {{2, 1, false}, {0, 1, false}, {1, 0, false},
                                              {1, 2, false}, {1, 1, false}, {1, 3, true}};
-  return vertical ? kVertical[face] : kHorizontal[face];
+  if (layout == Layout::HStrip) return {face, 0, false};
+  if (layout == Layout::VStrip) return {0, face, false};
+  return layout == Layout::VCross ? kVertical[face] : kHorizontal[face];
+}
+
+// Columns and rows of cells of a cross or strip.
+std::pair<int, int> layoutCells(Layout layout) {
+  switch (layout) {
+    case Layout::VCross:
+      return {3, 4};
+    case Layout::HStrip:
+      return {6, 1};
+    case Layout::VStrip:
+      return {1, 6};
+    default:
+      return {4, 3};
+  }
 }
 }  // namespace
 
-CubeMap cubeFromCross(const Image& cross, bool vertical, std::string_view name) {
-  const int cols = vertical ? 3 : 4, rows = vertical ? 4 : 3;
-  if (cross.width % cols != 0 || cross.height % rows != 0 ||
-      cross.width / cols != cross.height / rows)
-    fail(name, fmt::format("{}x{} is not a {} cross ({}:{})", cross.width, cross.height,
-                           vertical ? "vertical" : "horizontal", cols, rows));
-  const int n = cross.width / cols;
+CubeMap cubeFromFlat(const Image& flat, Layout layout, std::string_view name) {
+  const auto [cols, rows] = layoutCells(layout);
+  if (flat.width % cols != 0 || flat.height % rows != 0 || flat.width / cols != flat.height / rows)
+    fail(name, fmt::format("{}x{} is not a {} ({}:{})", flat.width, flat.height, layoutName(layout),
+                           cols, rows));
+  const int n = flat.width / cols;
   CubeMap cube;
   cube.levels.resize(1);
   for (int f = 0; f < kFaceCount; ++f) {
-    const CrossCell c = crossCell(f, vertical);
-    Image face = cropImage(cross, c.col * n, c.row * n, n, n);
+    const CrossCell c = layoutCell(f, layout);
+    Image face = cropImage(flat, c.col * n, c.row * n, n, n);
     cube.levels[0][f] = c.rotated ? rotateImage180(face) : std::move(face);
   }
   return cube;
 }
 
-Image crossFromCube(const CubeMap& cube, int level, bool vertical) {
+CubeMap cubeFromCross(const Image& cross, bool vertical, std::string_view name) {
+  return cubeFromFlat(cross, vertical ? Layout::VCross : Layout::HCross, name);
+}
+
+Image flatFromCube(const CubeMap& cube, int level, Layout layout) {
   const int n = cube.levels[level][0].width;
-  Image out(vertical ? 3 * n : 4 * n, vertical ? 4 * n : 3 * n);
+  if (layout == Layout::Equirect) {
+    Environment env;
+    env.layout = Layout::Cube;
+    env.cube.levels = {cube.levels[level]};
+    return resampleToEquirect(env, 4 * n);
+  }
+  const auto [cols, rows] = layoutCells(layout);
+  Image out(cols * n, rows * n);
   for (int f = 0; f < kFaceCount; ++f) {
-    const CrossCell c = crossCell(f, vertical);
+    const CrossCell c = layoutCell(f, layout);
     const Image face = c.rotated ? rotateImage180(cube.levels[level][f]) : cube.levels[level][f];
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x) out.at(c.col * n + x, c.row * n + y) = face.at(x, y);
   }
   return out;
 }
+
+Image crossFromCube(const CubeMap& cube, int level, bool vertical) {
+  return flatFromCube(cube, level, vertical ? Layout::VCross : Layout::HCross);
+}
+
+std::optional<glm::vec3> probeDirection(Layout layout, float u, float v) {
+  const float x = 2.0f * u - 1.0f, y = 1.0f - 2.0f * v;  // +X right, +Y up
+  const float r2 = x * x + y * y;
+  if (r2 > 1.0f) return std::nullopt;
+  if (layout == Layout::MirrorBall) {
+    // The ball's normal n = (x, y, sqrt(1 - r^2)) reflects the view ray (0, 0, -1):
+    // R = (0, 0, -1) + 2 n_z n.
+    const float nz = std::sqrt(1.0f - r2);
+    return glm::vec3(2.0f * nz * x, 2.0f * nz * y, 2.0f * nz * nz - 1.0f);
+  }
+  // Angular map: the angle from +Z is pi r.
+  const float r = std::sqrt(r2);
+  const float theta = 3.14159265358979f * r;
+  const float s = r > 0.0f ? std::sin(theta) / r : 0.0f;
+  return glm::vec3(s * x, s * y, std::cos(theta));
+}
+
+glm::vec2 probeCoordinates(Layout layout, glm::vec3 d) {
+  d = glm::normalize(d);
+  const float rho = std::sqrt(d.x * d.x + d.y * d.y);
+  const float angle = std::acos(std::clamp(d.z, -1.0f, 1.0f));  // from +Z
+  // Mirror ball: the normal is halfway between the view's reverse (+Z) and d, r = sin(angle/2);
+  // angular map: r = angle / pi.
+  const float r = layout == Layout::MirrorBall ? std::sin(0.5f * angle) : angle / 3.14159265358979f;
+  const float x = rho > 0.0f ? r * d.x / rho : 0.0f, y = rho > 0.0f ? r * d.y / rho : 0.0f;
+  return {0.5f * (x + 1.0f), 0.5f * (1.0f - y)};
+}
+
+namespace {
+
+// A panorama (2W x W) of a W x W mirror-ball or angular image: each pixel a bilinear lookup
+// where its center's direction is seen.
+Image equirectFromProbe(const Image& probe, Layout layout) {
+  const int w = 2 * probe.width, h = probe.width;
+  Image out(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const glm::vec3 d =
+          equirectToDirection((static_cast<float>(x) + 0.5f) / static_cast<float>(w),
+                              (static_cast<float>(y) + 0.5f) / static_cast<float>(h));
+      const glm::vec2 uv = probeCoordinates(layout, d);
+      const float fx = uv.x * static_cast<float>(probe.width) - 0.5f;
+      const float fy = uv.y * static_cast<float>(probe.height) - 0.5f;
+      const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+      const float tx = fx - static_cast<float>(x0), ty = fy - static_cast<float>(y0);
+      const auto at = [&](int px, int py) {
+        return probe.at(std::clamp(px, 0, probe.width - 1), std::clamp(py, 0, probe.height - 1));
+      };
+      out.at(x, y) = glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), tx),
+                              glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), tx), ty);
+    }
+  return out;
+}
+
+}  // namespace
 
 std::filesystem::path facePath(const std::filesystem::path& pattern, int face) {
   std::string s = pattern.string();
@@ -109,14 +213,21 @@ Environment environmentFromFile(DecodedFile&& d, const LoadOptions& options,
   const auto layout = options.layout ? options.layout : layoutFromShape(img.width, img.height);
   if (!layout || *layout == Layout::Cube || *layout == Layout::Faces)
     fail(name, fmt::format("cannot tell the layout of a {}x{} image (expected 2:1 equirect, 4:3 "
-                           "or 3:4 cross); name one with --input-layout",
+                           "or 3:4 cross, 6:1 or 1:6 strip); name one with --input-layout (a "
+                           "square image may be a mirrorball or an angular map)",
                            img.width, img.height));
   env.layout = *layout;
   if (*layout == Layout::Equirect) {
     if (img.width < 2) fail(name, "image too small for an environment");
     env.equirect = std::move(img);
+  } else if (*layout == Layout::MirrorBall || *layout == Layout::Angular) {
+    if (img.width != img.height)
+      fail(name, fmt::format("a {} image must be square, not {}x{}", layoutName(*layout), img.width,
+                             img.height));
+    if (img.width < 2) fail(name, "image too small for an environment");
+    env.equirect = equirectFromProbe(img, *layout);
   } else {
-    env.cube = cubeFromCross(img, *layout == Layout::VCross, name);
+    env.cube = cubeFromFlat(img, *layout, name);
   }
   return env;
 }

@@ -118,8 +118,7 @@ std::vector<EncodedFile> encodeCube(const Environment& env, FileFormat format, L
       for (int f = 0; f < kFaceCount; ++f)
         files.push_back({facePath(path, f), encodeFlat(cube.levels[m][f], format, o)});
     } else {
-      files.push_back(
-          {path, encodeFlat(crossFromCube(cube, m, layout == Layout::VCross), format, o)});
+      files.push_back({path, encodeFlat(flatFromCube(cube, m, layout), format, o)});
     }
   }
   return files;
@@ -202,7 +201,9 @@ FileFormat checkExportOptions(const ExportOptions& o) {
       *o.layout != Layout::Equirect)
     fail(out, "KTX2 holds cube maps (--layout cube) or 2D equirect images");
   if (o.layout && *format != FileFormat::Ktx2 && *o.layout == Layout::Cube)
-    fail(out, "--layout cube needs a .ktx2 output; use hcross, vcross or faces");
+    fail(out, "--layout cube needs a .ktx2 output; use hcross, vcross, hstrip, vstrip or faces");
+  if (o.layout && (*o.layout == Layout::MirrorBall || *o.layout == Layout::Angular))
+    fail(out, fmt::format("--layout {} is an input layout only", layoutName(*o.layout)));
   return *format;
 }
 

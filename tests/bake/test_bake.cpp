@@ -73,7 +73,7 @@ TEST(Bake, WritesEveryOutputAndAManifest) {
   const BakeResult r = bakeEnvironment(sunsetEnvironment(), o);
   BakeOutputOptions out;
   out.exr = true;
-  out.layout = FlatLayout::Faces;
+  out.layout = Layout::Faces;
   const auto files = writeBakeOutputs(
       r, o, out, {"sunset.exr", "exr", "equirect", 512, 256, {}, 0.0f, {}}, dir / "assets");
   for (const auto& f : files) EXPECT_TRUE(std::filesystem::exists(f)) << f;

@@ -368,3 +368,35 @@ TEST(Cli, InfoReadsFacesAndIgnoresCrossPadding) {
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("f_px.png: no such file"), std::string::npos) << r.output;
 }
+
+// The bake's EXR/HDR copies as equirect panoramas (4n x 2n for an n^2 level) or strips, listed
+// in the manifest; a panorama holds the level's power (its integral over the sphere).
+TEST(Cli, BakeCopiesAsEquirectOrStrips) {
+  TempDir dir;
+  CliRun r = runIbl("bake " + quote(hdriPath("park")) + " -o " + quote(dir / "e") +
+                    " --size 32 --dfg-size 16 --dfg-samples 64 --exr --layout equirect -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const DecodedFile pano = readImageFile(dir / "e" / "source_m0.exr");
+  EXPECT_EQ(pano.levels[0][0].width, 128);
+  EXPECT_EQ(pano.levels[0][0].height, 64);
+  const DecodedFile cube = readImageFile(dir / "e" / "source.ktx2");
+  CubeMap level0;
+  level0.levels = {{cube.levels[0][0], cube.levels[0][1], cube.levels[0][2], cube.levels[0][3],
+                    cube.levels[0][4], cube.levels[0][5]}};
+  const glm::dvec3 a = integrateEquirect(pano.levels[0][0]), b = integrateCube(level0);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c] / b[c], 1.0, 2e-3) << c;  // half floats
+  const auto bytes = readFileBytes(dir / "e" / "manifest.json");
+  const auto manifest = nlohmann::json::parse(bytes.begin(), bytes.end());
+  bool listed = false;
+  for (const auto& o : manifest["outputs"])
+    if (o["path"] == "source_m0.exr") {
+      listed = true;
+      EXPECT_EQ(o["layout"], "equirect");
+      EXPECT_EQ(o["size"], nlohmann::json({128, 64}));
+    }
+  EXPECT_TRUE(listed);
+  r = runIbl("bake " + quote(hdriPath("park")) + " -o " + quote(dir / "s") +
+             " --size 16 --dfg-size 16 --dfg-samples 64 --hdr --layout vstrip -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readImageFile(dir / "s" / "irradiance.hdr").levels[0][0].height, 6 * 32);
+}

@@ -1,9 +1,11 @@
+#include <cmath>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/environment.hpp"
+#include "ibl/env/equirect.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/io/ktx2.hpp"
@@ -107,4 +109,64 @@ TEST(FileIo, AtomicWriteLeavesNoTemporaryFiles) {
   // A path whose directory cannot be created fails cleanly.
   writeFileAtomic(dir / "file", bytes);
   EXPECT_THROW(writeFileAtomic(dir / "file" / "x.bin", bytes), Error);
+}
+
+// 6:1 and 1:6 strips hold faces +X -X +Y -Y +Z -Z in order, in their native orientation; the
+// shape alone tells them, and writing one back gives the same image.
+TEST(Environment, StripsOfFaces) {
+  const int n = 4;
+  for (const Layout layout : {Layout::HStrip, Layout::VStrip}) {
+    const bool horizontal = layout == Layout::HStrip;
+    Image strip(horizontal ? 6 * n : n, horizontal ? n : 6 * n);
+    for (int f = 0; f < 6; ++f)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+          strip.at(horizontal ? f * n + x : x, horizontal ? y : f * n + y) =
+              glm::vec3(static_cast<float>(f), static_cast<float>(x), static_cast<float>(y));
+    DecodedFile file;
+    file.levels = {{strip}};
+    const Environment env = environmentFromFile(std::move(file), {}, "strip.exr");
+    ASSERT_EQ(env.layout, layout);
+    for (int f = 0; f < 6; ++f)
+      EXPECT_EQ(env.cube.levels[0][f].at(3, 1), glm::vec3(static_cast<float>(f), 3.0f, 1.0f));
+    EXPECT_EQ(flatFromCube(env.cube, 0, layout).pixels, strip.pixels);
+  }
+}
+
+// A mirror ball and an angular map of a known environment (the direction as a color), drawn
+// here from the reflection law and the angle-to-radius rule, are read back as that environment.
+TEST(Environment, MirrorBallAndAngularMaps) {
+  const auto color = [](glm::vec3 d) { return 0.5f * (d + 1.0f); };
+  const int w = 256;
+  for (const Layout layout : {Layout::MirrorBall, Layout::Angular}) {
+    Image probe(w, w);
+    for (int y = 0; y < w; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double px = 2.0 * (x + 0.5) / w - 1.0, py = 1.0 - 2.0 * (y + 0.5) / w;
+        const double r2 = px * px + py * py;
+        if (r2 > 1.0) continue;
+        glm::dvec3 d;
+        if (layout == Layout::MirrorBall) {  // reflect (0, 0, -1) about the ball's normal
+          const glm::dvec3 normal(px, py, std::sqrt(1.0 - r2));
+          const glm::dvec3 view(0.0, 0.0, -1.0);
+          d = view - 2.0 * glm::dot(view, normal) * normal;
+        } else {  // the angle from +Z is pi times the radius
+          const double r = std::sqrt(r2), a = 3.141592653589793 * r;
+          d = r > 0 ? glm::dvec3(std::sin(a) * px / r, std::sin(a) * py / r, std::cos(a))
+                    : glm::dvec3(0, 0, 1);
+        }
+        probe.at(x, y) = color(glm::vec3(d));
+      }
+    DecodedFile file;
+    file.levels = {{probe}};
+    const Environment env = environmentFromFile(std::move(file), {layout, ""}, "probe.exr");
+    ASSERT_FALSE(env.isCube());
+    for (const glm::vec3 d :
+         {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, -1, 0),
+          glm::vec3(0, 0, 1), glm::vec3(0.6f, 0.0f, -0.8f), glm::normalize(glm::vec3(1, 2, 3))}) {
+      const glm::vec3 got = sampleEquirect(env.equirect, d);
+      EXPECT_LT(glm::length(got - color(d)), 0.03f)
+          << layoutName(layout) << " " << d.x << "," << d.y << "," << d.z;
+    }
+  }
 }

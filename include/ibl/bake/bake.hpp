@@ -49,14 +49,12 @@ class Context;
 BakeResult bakeEnvironment(const Environment& env, const BakeOptions& options,
                            const ProgressFn& progress = {}, gpu::Context* device = nullptr);
 
-enum class FlatLayout { HCross, VCross, Faces };
-
 struct BakeOutputOptions {
   PixelFormat format = PixelFormat::Rgba16f;  // KTX2 cube maps (the DFG table is always RGBA16F)
   bool exr = false;                           // also EXR files
   bool hdr = false;                           // also Radiance HDR files
-  FlatLayout layout = FlatLayout::HCross;     // of the EXR / HDR cube maps
-  bool preview = true;                        // preview.png (material grid) and PNG views
+  Layout layout = Layout::HCross;  // of the EXR / HDR copies: a cross, strip, faces or equirect
+  bool preview = true;             // preview.png (material grid) and PNG views
   bool force = false;  // write into a non-empty directory (replacing an earlier bake's files)
   // Called with one line for each output whose values exceed its format's range (they are
   // clamped to it: no output holds an infinity); the manifest records it too.

@@ -15,25 +15,39 @@ namespace ibl {
 
 // How the pixels of an input file or files map to directions.
 enum class Layout {
-  Equirect,  // one 2:1 latitude-longitude image
-  HCross,    // 4:3 horizontal cross
-  VCross,    // 3:4 vertical cross
-  Faces,     // six square images, one per face (path contains "{face}")
-  Cube,      // a KTX2 cube map
+  Equirect,    // one 2:1 latitude-longitude image
+  HCross,      // 4:3 horizontal cross
+  VCross,      // 3:4 vertical cross
+  Faces,       // six square images, one per face (path contains "{face}")
+  Cube,        // a KTX2 cube map
+  HStrip,      // 6:1 strip of faces +X -X +Y -Y +Z -Z, left to right
+  VStrip,      // 1:6 strip of the same faces, top to bottom
+  MirrorBall,  // square photograph of a mirror ball (Debevec's light probes), input only
+  Angular,     // square angular map (radius proportional to the angle), input only
 };
 std::string_view layoutName(Layout layout);
 std::optional<Layout> parseLayout(std::string_view name);
 
 struct Environment {
   Layout layout = Layout::Equirect;  // how it was stored
-  Image equirect;                    // set for Layout::Equirect
+  Image equirect;                    // set for equirect, mirror-ball and angular inputs
   CubeMap cube;                      // set for every cube layout
 
-  bool isCube() const { return layout != Layout::Equirect; }
+  bool isCube() const {
+    return layout != Layout::Equirect && layout != Layout::MirrorBall && layout != Layout::Angular;
+  }
 };
 
-// Infers the layout of a single image from its shape (2:1 equirect, 4:3 or 3:4 cross).
+// Infers the layout of a single image from its shape (2:1 equirect, 4:3 or 3:4 cross, 6:1 or
+// 1:6 strip). Mirror balls and angular maps are square like a face: they are named.
 std::optional<Layout> layoutFromShape(int width, int height);
+
+// The direction seen at (u, v) in [0, 1]^2 (v down) of a mirror-ball or angular map (Debevec's
+// light probe conventions: the center looks toward +Z, the camera's side, the rim toward -Z;
+// +X right, +Y up), or none outside the disk.
+std::optional<glm::vec3> probeDirection(Layout layout, float u, float v);
+// Its inverse: where direction `d` is seen in the image, (u, v) in [0, 1]^2.
+glm::vec2 probeCoordinates(Layout layout, glm::vec3 d);
 
 // Cross layouts (faces in their native orientation):
 //   horizontal 4:3         vertical 3:4
@@ -43,6 +57,10 @@ std::optional<Layout> layoutFromShape(int width, int height);
 //                              -Z (rotated 180 degrees)
 CubeMap cubeFromCross(const Image& cross, bool vertical, std::string_view name);
 Image crossFromCube(const CubeMap& cube, int level, bool vertical);
+// Any flat layout of a cube map: crosses, strips, or an equirect (resampled, 4 n wide) of
+// `level`. Strips hold the faces in their native orientation.
+Image flatFromCube(const CubeMap& cube, int level, Layout layout);
+CubeMap cubeFromFlat(const Image& flat, Layout layout, std::string_view name);
 
 // Replaces "{face}" in a path pattern by px, nx, py, ny, pz or nz; a path without "{face}"
 // gets "_px" etc. before its extension.
