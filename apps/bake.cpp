@@ -43,6 +43,7 @@ struct BakeCliOptions {
   bool hdr = false;
   std::string layout = "hcross";
   bool noPreview = false;
+  int previewSize = 96;
   bool force = false;
   std::string device = "cpu";
   bool listDevices = false;
@@ -111,6 +112,7 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
   output.hdr = o.hdr;
   output.layout = *parseLayout(o.layout);
   output.preview = !o.noPreview;
+  output.previewCell = o.previewSize;
   output.force = o.force;
   output.warn = [&](const std::string& message) {
     if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
@@ -248,6 +250,10 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                 "Write into an existing, non-empty OUTDIR: replace the earlier bake's files "
                 "(and remove those it listed that this bake does not write); keep others");
   cmd->add_flag("--no-preview", opts->noPreview, "Skip the PNG previews");
+  cmd->add_option("--preview-size", opts->previewSize,
+                  "Pixels per sphere of preview.png (6 x 2 spheres: 6N x 2N)")
+      ->check(CLI::Range(8, 1024))
+      ->capture_default_str();
   cmd->callback([opts, &global] { runBake(*opts, global); });
 }
 

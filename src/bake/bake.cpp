@@ -28,7 +28,7 @@ namespace ibl {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-constexpr int kPreviewColumns = 6, kPreviewCell = 96;
+constexpr int kPreviewColumns = 6;
 
 namespace {
 
@@ -376,16 +376,16 @@ void addSh(OutputPlan& plan, const BakeResult& r, const BakeOptions& o) {
 }
 
 // The PNG previews: the material grid shaded with the bake, the source cross, the DFG table.
-void addPreviews(OutputPlan& plan, const BakeResult& r, const BakeOptions& o) {
-  plan.add("preview.png", [&r, &o] {
-    const Image grid = renderMaterialGrid(r, o, kPreviewColumns, kPreviewCell);
+void addPreviews(OutputPlan& plan, const BakeResult& r, const BakeOptions& o, int cell) {
+  plan.add("preview.png", [&r, &o, cell] {
+    const Image grid = renderMaterialGrid(r, o, kPreviewColumns, cell);
     return encodePng(toneMapAces(grid, autoExposure(grid) + 0.5f));
   });
   plan.outputs.push_back(
       {{"role", "preview"},
        {"path", "preview.png"},
        {"format", "png"},
-       {"size", {kPreviewColumns * kPreviewCell, 2 * kPreviewCell}},
+       {"size", {kPreviewColumns * cell, 2 * cell}},
        {"shows",
         "spheres of roughness 0..1 (columns), metal (top) and dielectric (bottom), ACES"}});
   plan.add("source.png", [&r] {
@@ -527,7 +527,7 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   addCube(plan, out, "source", "source", r.source, {});
   addDfg(plan, r, o, out);
   addSh(plan, r, o);
-  if (out.preview) addPreviews(plan, r, o);
+  if (out.preview) addPreviews(plan, r, o, out.previewCell);
   plan.addText("manifest.json", manifestJson(r, o, src, plan.outputs).dump(2) + "\n");
   return writeAll(plan.files, outDir, out.force);
 }

@@ -396,7 +396,9 @@ TEST(Cli, BakeCopiesAsEquirectOrStrips) {
     }
   EXPECT_TRUE(listed);
   r = runIbl("bake " + quote(hdriPath("park")) + " -o " + quote(dir / "s") +
-             " --size 16 --dfg-size 16 --dfg-samples 64 --hdr --layout vstrip -q");
+             " --size 16 --dfg-size 16 --dfg-samples 64 --hdr --layout vstrip -q "
+             "--preview-size 20");
   ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readImageFile(dir / "s" / "preview.png").levels[0][0].width, 120);
   EXPECT_EQ(readImageFile(dir / "s" / "irradiance.hdr").levels[0][0].height, 6 * 32);
 }

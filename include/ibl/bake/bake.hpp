@@ -55,6 +55,7 @@ struct BakeOutputOptions {
   bool hdr = false;                           // also Radiance HDR files
   Layout layout = Layout::HCross;  // of the EXR / HDR copies: a cross, strip, faces or equirect
   bool preview = true;             // preview.png (material grid) and PNG views
+  int previewCell = 96;            // pixels per sphere of preview.png (6 x 2 spheres)
   bool force = false;  // write into a non-empty directory (replacing an earlier bake's files)
   // Called with one line for each output whose values exceed its format's range (they are
   // clamped to it: no output holds an infinity); the manifest records it too.
