@@ -60,16 +60,21 @@ class GltfReader {
     if (components != n)
       fail(path_, fmt::format("accessor {} has {} components, expected {}", index, components, n));
     std::vector<float> out(a.count * n, 0.0f);
-    if (a.bufferView < 0) return out;  // all zeros (sparse accessors are not supported)
-    const auto [data, stride] = view(a, n);
-    for (std::size_t i = 0; i < a.count; ++i)
-      for (int c = 0; c < n; ++c)
-        out[i * n + c] = component(data + i * stride, a.componentType, c, a.normalized);
+    if (a.bufferView >= 0) {  // else zeros, to which a sparse accessor's values are applied
+      const auto [data, stride] = view(a, n);
+      for (std::size_t i = 0; i < a.count; ++i)
+        for (int c = 0; c < n; ++c)
+          out[i * n + c] = component(data + i * stride, a.componentType, c, a.normalized);
+    }
+    if (a.sparse.isSparse) applySparse(a, n, index, out);
     return out;
   }
 
   std::vector<std::uint32_t> indices(int index) const {
-    const tinygltf::Accessor& a = model_.accessors.at(index);
+    return indicesOf(model_.accessors.at(index));
+  }
+
+  std::vector<std::uint32_t> indicesOf(const tinygltf::Accessor& a) const {
     const auto [data, stride] = view(a, 1);
     std::vector<std::uint32_t> out(a.count);
     for (std::size_t i = 0; i < a.count; ++i) {
@@ -103,6 +108,38 @@ class GltfReader {
   }
 
  private:
+  // A sparse accessor (glTF 2.0, 3.6.2.3): `count` indices into the accessor, and the values
+  // that replace the elements there.
+  void applySparse(const tinygltf::Accessor& a, int n, int index, std::vector<float>& out) const {
+    const auto& s = a.sparse;
+    if (s.count < 0 || static_cast<std::size_t>(s.count) > a.count)
+      fail(path_, fmt::format("sparse accessor {} has {} values for {} elements", index, s.count,
+                              a.count));
+    tinygltf::Accessor indexAccessor;
+    indexAccessor.bufferView = s.indices.bufferView;
+    indexAccessor.byteOffset = static_cast<std::size_t>(s.indices.byteOffset);
+    indexAccessor.componentType = s.indices.componentType;
+    indexAccessor.count = static_cast<std::size_t>(s.count);
+    indexAccessor.type = TINYGLTF_TYPE_SCALAR;
+    tinygltf::Accessor valueAccessor = a;
+    valueAccessor.bufferView = s.values.bufferView;
+    valueAccessor.byteOffset = static_cast<std::size_t>(s.values.byteOffset);
+    valueAccessor.count = static_cast<std::size_t>(s.count);
+    if (indexAccessor.bufferView < 0 || valueAccessor.bufferView < 0 ||
+        indexAccessor.bufferView >= static_cast<int>(model_.bufferViews.size()) ||
+        valueAccessor.bufferView >= static_cast<int>(model_.bufferViews.size()))
+      fail(path_, fmt::format("sparse accessor {} has no indices or values", index));
+    const std::vector<std::uint32_t> at = indicesOf(indexAccessor);
+    const auto [data, stride] = view(valueAccessor, n);
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      if (at[k] >= a.count)
+        fail(path_, fmt::format("sparse accessor {} replaces element {} of {}", index, at[k],
+                                a.count));
+      for (int c = 0; c < n; ++c)
+        out[at[k] * n + c] = component(data + k * stride, a.componentType, c, a.normalized);
+    }
+  }
+
   std::pair<const unsigned char*, std::size_t> view(const tinygltf::Accessor& a, int n) const {
     const tinygltf::BufferView& bv = model_.bufferViews.at(a.bufferView);
     const tinygltf::Buffer& b = model_.buffers.at(bv.buffer);
@@ -324,7 +361,7 @@ tinygltf::Model readGltfModel(const std::string& path) {
   for (const std::string& ext : model.extensionsRequired)
     if (ext != "KHR_draco_mesh_compression" && ext != "KHR_materials_emissive_strength" &&
         ext != "KHR_mesh_quantization")
-      fail(path, fmt::format("requires the unsupported extension {}", ext));
+      fail(path, fmt::format("requires the extension {}, which ibl does not implement", ext));
   return model;
 }
 
@@ -333,6 +370,9 @@ tinygltf::Model readGltfModel(const std::string& path) {
 std::vector<Texture> readTextures(const tinygltf::Model& model, const std::string& path) {
   std::vector<Texture> textures;
   for (const tinygltf::Image& img : model.images) {
+    if (img.image.empty() && !img.uri.empty() && img.uri.rfind("data:", 0) != 0)
+      fail(path, fmt::format("cannot read texture '{}' (image {}): missing or not an image file",
+                             img.uri, textures.size()));
     Texture t;
     t.width = img.width;
     t.height = img.height;
@@ -375,6 +415,11 @@ std::vector<Material> readMaterials(const tinygltf::Model& model, int textureCou
                                static_cast<float>(m.emissiveFactor[1]),
                                static_cast<float>(m.emissiveFactor[2]));
     mat.emissiveTexture = textureIndex(m.emissiveTexture.index);
+    // KHR_materials_emissive_strength: a scale of the emission past 1 (physical units).
+    const auto strength = m.extensions.find("KHR_materials_emissive_strength");
+    if (strength != m.extensions.end() && strength->second.Has("emissiveStrength"))
+      mat.emissive *=
+          static_cast<float>(strength->second.Get("emissiveStrength").GetNumberAsDouble());
     materials.push_back(mat);
   }
   materials.push_back(Material{glm::vec3(0.8f), -1, 0.0f, 0.5f});

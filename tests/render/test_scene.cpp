@@ -89,3 +89,80 @@ TEST(Gltf, BadFilesAreRejectedClearly) {
     }
   }
 }
+
+namespace {
+
+// One triangle whose positions come from a sparse accessor (base: none, all zeros; vertices 1
+// and 2 replaced), with an emissive material scaled by KHR_materials_emissive_strength.
+void writeSparseEmissiveTriangle(const std::filesystem::path& path) {
+  std::vector<std::uint8_t> buffer;
+  append(buffer, std::vector<std::uint16_t>{0, 1, 2, 0});  // triangle indices (+ padding)
+  append(buffer, std::vector<std::uint16_t>{1, 2});        // sparse indices
+  append(buffer, std::vector<float>{1, 0, 0, 0, 2, 0});    // sparse values
+  nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"KHR_materials_emissive_strength"}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes",
+       {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"material", 0}}}}}}},
+      {"materials",
+       {{{"emissiveFactor", {0.5, 0.25, 1.0}},
+         {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 8.0}}}}}}}},
+      {"buffers",
+       {{{"byteLength", buffer.size()},
+         {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 6}},
+        {{"buffer", 0}, {"byteOffset", 8}, {"byteLength", 4}},
+        {{"buffer", 0}, {"byteOffset", 12}, {"byteLength", 24}}}},
+      {"accessors",
+       {{{"componentType", 5126},
+         {"count", 3},
+         {"type", "VEC3"},
+         {"min", {0, 0, 0}},
+         {"max", {1, 2, 0}},
+         {"sparse",
+          {{"count", 2},
+           {"indices", {{"bufferView", 1}, {"componentType", 5123}}},
+           {"values", {{"bufferView", 2}}}}}},
+        {{"bufferView", 0}, {"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}}}}};
+  std::ofstream(path) << j.dump();
+}
+
+}  // namespace
+
+TEST(Gltf, SparseAccessorsAndEmissiveStrength) {
+  TempDir dir;
+  writeSparseEmissiveTriangle(dir / "t.gltf");
+  const Scene scene = loadGltf((dir / "t.gltf").string());
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const auto& p = scene.meshes[0].positions;
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[0], glm::vec3(0, 0, 0));
+  EXPECT_EQ(p[1], glm::vec3(1, 0, 0));
+  EXPECT_EQ(p[2], glm::vec3(0, 2, 0));
+  EXPECT_EQ(scene.materials[0].emissive, glm::vec3(4.0f, 2.0f, 8.0f));
+}
+
+// A missing texture file and an unsupported required extension are named in the error.
+TEST(Gltf, MissingTexturesAndExtensionsAreNamed) {
+  TempDir dir;
+  std::ofstream(dir / "tex.gltf") << R"({"asset":{"version":"2.0"},"images":[{"uri":"textures/wood.png"}],
+    "textures":[{"source":0}],"materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}]})";
+  std::ofstream(dir / "ext.gltf") << R"({"asset":{"version":"2.0"},
+    "extensionsUsed":["EXT_future_thing"],"extensionsRequired":["EXT_future_thing"]})";
+  const std::pair<const char*, const char*> cases[] = {
+      {"tex.gltf", ": cannot read texture 'textures/wood.png' (image 0)"},
+      {"ext.gltf", ": requires the extension EXT_future_thing, which ibl does not implement"}};
+  for (const auto& [name, message] : cases) {
+    const std::string path = (dir / name).string();
+    try {
+      loadGltf(path);
+      FAIL() << name;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + message, 0), 0u) << e.what();
+    }
+  }
+}
