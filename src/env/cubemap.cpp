@@ -86,18 +86,14 @@ glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int 
 
 glm::vec3 reconstructFromWindow(const glm::vec3 (&taps)[4][4], float tx, float ty,
                                 TapRange* range) {
-  if (range) {
+  if (range && !range->steep) {  // once a texel found one, it is refined anyway
     glm::vec3 lo = taps[0][0], hi = taps[0][0];
     for (const auto& row : taps)
       for (const glm::vec3& t : row) {
         lo = glm::min(lo, t);
         hi = glm::max(hi, t);
       }
-    range->steep = range->steep || windowIsSteep(lo, hi);
-    range->lo = glm::min(
-        range->lo, glm::min(glm::min(taps[1][1], taps[1][2]), glm::min(taps[2][1], taps[2][2])));
-    range->hi = glm::max(
-        range->hi, glm::max(glm::max(taps[1][1], taps[1][2]), glm::max(taps[2][1], taps[2][2])));
+    range->steep = windowIsSteep(lo, hi);
   }
   const glm::vec4 wx = catmullRomWeights(tx), wy = catmullRomWeights(ty);
   glm::vec3 sum(0.0f);

@@ -202,7 +202,7 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
   // The solid-angle weighted mean of n x n samples over texel (x, y); `range` learns whether a
   // sample's window was steep.
   const auto integrate = [&](int face, int x, int y, int n, const std::vector<float>& w,
-                             TapRange& range) {
+                             TapRange* range) {
     const int sub = size * n;
     const float inv = 2.0f / static_cast<float>(sub);
     glm::vec3 sum(0.0f);
@@ -214,7 +214,7 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
         const int i = x * n + a;
         const float sc = (static_cast<float>(i) + 0.5f) * inv - 1.0f;
         const float wi = w[static_cast<std::size_t>(j) * sub + i];
-        sum += source(faceToDirection(face, sc, tc), &range) * wi;
+        sum += source(faceToDirection(face, sc, tc), range) * wi;
         wsum += wi;
       }
     }
@@ -225,10 +225,9 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
     const int face = row / size, y = row % size;
     for (int x = 0; x < size; ++x) {
       TapRange range;
-      glm::vec3 v = integrate(face, x, y, k, weights, range);
-      if (range.steep && k2 > k) {
-        range = TapRange();
-        v = integrate(face, x, y, k2, refinedWeights, range);
+      glm::vec3 v = integrate(face, x, y, k, weights, k2 > k ? &range : nullptr);
+      if (range.steep) {
+        v = integrate(face, x, y, k2, refinedWeights, nullptr);
       }
       out.levels[0][face].at(x, y) = v;
     }
@@ -258,7 +257,7 @@ Image resampleToEquirect(const Environment& env, int width, float rotateDegrees)
   const int k = source.samplesPerSide(density), k2 = refinedSamplesPerSide(k);
   // The solid-angle weighted mean of n x n samples over pixel (x, y) (sub-rows weigh
   // cos(theta0) - cos(theta1)); `range` learns whether a sample's window was steep.
-  const auto integrate = [&](int x, int y, int n, TapRange& range) {
+  const auto integrate = [&](int x, int y, int n, TapRange* range) {
     glm::vec3 sum(0.0f);
     double wsum = 0.0;
     for (int b = 0; b < n; ++b) {
@@ -266,7 +265,7 @@ Image resampleToEquirect(const Environment& env, int width, float rotateDegrees)
       const float v = (static_cast<float>(y * n + b) + 0.5f) / static_cast<float>(height * n);
       for (int a = 0; a < n; ++a) {
         const float u = (static_cast<float>(x * n + a) + 0.5f) / static_cast<float>(width * n);
-        sum += source(equirectToDirection(u, v), &range) * w;
+        sum += source(equirectToDirection(u, v), range) * w;
         wsum += w;
       }
     }
@@ -276,11 +275,8 @@ Image resampleToEquirect(const Environment& env, int width, float rotateDegrees)
   parallelFor(0, height, [&](int y) {
     for (int x = 0; x < width; ++x) {
       TapRange range;
-      glm::vec3 v = integrate(x, y, k, range);
-      if (range.steep && k2 > k) {
-        range = TapRange();
-        v = integrate(x, y, k2, range);
-      }
+      glm::vec3 v = integrate(x, y, k, k2 > k ? &range : nullptr);
+      if (range.steep) v = integrate(x, y, k2, nullptr);
       out.at(x, y) = v;
     }
   });

@@ -133,8 +133,8 @@ class GltfReader {
     const auto [data, stride] = view(valueAccessor, n);
     for (std::size_t k = 0; k < at.size(); ++k) {
       if (at[k] >= a.count)
-        fail(path_, fmt::format("sparse accessor {} replaces element {} of {}", index, at[k],
-                                a.count));
+        fail(path_,
+             fmt::format("sparse accessor {} replaces element {} of {}", index, at[k], a.count));
       for (int c = 0; c < n; ++c)
         out[at[k] * n + c] = component(data + k * stride, a.componentType, c, a.normalized);
     }

@@ -149,7 +149,8 @@ TEST(Gltf, SparseAccessorsAndEmissiveStrength) {
 // A missing texture file and an unsupported required extension are named in the error.
 TEST(Gltf, MissingTexturesAndExtensionsAreNamed) {
   TempDir dir;
-  std::ofstream(dir / "tex.gltf") << R"({"asset":{"version":"2.0"},"images":[{"uri":"textures/wood.png"}],
+  std::ofstream(dir / "tex.gltf")
+      << R"({"asset":{"version":"2.0"},"images":[{"uri":"textures/wood.png"}],
     "textures":[{"source":0}],"materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}]})";
   std::ofstream(dir / "ext.gltf") << R"({"asset":{"version":"2.0"},
     "extensionsUsed":["EXT_future_thing"],"extensionsRequired":["EXT_future_thing"]})";

@@ -55,11 +55,9 @@ glm::vec3 fetchTexelAcrossEdges(const std::array<Image, kFaceCount>& level, int 
 
 // Bilinear lookup in one level, filtering across face edges (no seams).
 glm::vec3 sampleBilinear(const CubeMap& cube, int level, glm::vec3 dir);
-// What the samples of an area integral saw: the range of the 2 x 2 nearest taps of each (the
-// bounds of the texel's mean: Catmull-Rom may ring past them next to a sun), and whether a
-// window was steep (windowIsSteep in ibl/shared/cube.h).
+// What the samples of an area integral saw: whether a window was steep (windowIsSteep in
+// ibl/shared/cube.h).
 struct TapRange {
-  glm::vec3 lo{INFINITY}, hi{-INFINITY};
   bool steep = false;
 };
 

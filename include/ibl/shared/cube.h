@@ -87,10 +87,10 @@ IBL_FN vec4 catmullRomWeights(float t) {
 }
 
 // Whether a 4 x 4 window of taps, whose per-channel minimum and maximum are lo and hi, is
-// steep (a sun, a lamp's edge): its values differ by more than a factor of 4. There the
+// steep (a sun, a lamp's edge): its values differ by more than a factor of 16. There the
 // Catmull-Rom reconstruction varies fast, and an area integral of it needs finer samples.
 IBL_FN bool windowIsSteep(vec3 lo, vec3 hi) {
-  return hi.x > 4.0f * lo.x || hi.y > 4.0f * lo.y || hi.z > 4.0f * lo.z;
+  return hi.x > 16.0f * lo.x || hi.y > 16.0f * lo.y || hi.z > 16.0f * lo.z;
 }
 
 IBL_END
