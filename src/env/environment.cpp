@@ -129,23 +129,6 @@ Image crossFromCube(const CubeMap& cube, int level, bool vertical) {
   return flatFromCube(cube, level, vertical ? Layout::VCross : Layout::HCross);
 }
 
-std::optional<glm::vec3> probeDirection(Layout layout, float u, float v) {
-  const float x = 2.0f * u - 1.0f, y = 1.0f - 2.0f * v;  // +X right, +Y up
-  const float r2 = x * x + y * y;
-  if (r2 > 1.0f) return std::nullopt;
-  if (layout == Layout::MirrorBall) {
-    // The ball's normal n = (x, y, sqrt(1 - r^2)) reflects the view ray (0, 0, -1):
-    // R = (0, 0, -1) + 2 n_z n.
-    const float nz = std::sqrt(1.0f - r2);
-    return glm::vec3(2.0f * nz * x, 2.0f * nz * y, 2.0f * nz * nz - 1.0f);
-  }
-  // Angular map: the angle from +Z is pi r.
-  const float r = std::sqrt(r2);
-  const float theta = 3.14159265358979f * r;
-  const float s = r > 0.0f ? std::sin(theta) / r : 0.0f;
-  return glm::vec3(s * x, s * y, std::cos(theta));
-}
-
 glm::vec2 probeCoordinates(Layout layout, glm::vec3 d) {
   d = glm::normalize(d);
   const float rho = std::sqrt(d.x * d.x + d.y * d.y);

@@ -15,17 +15,6 @@
 using namespace ibl;
 using namespace ibl::test;
 
-namespace {
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-}  // namespace
-
 TEST(Environment, LayoutFromShape) {
   EXPECT_EQ(layoutFromShape(1024, 512), Layout::Equirect);
   EXPECT_EQ(layoutFromShape(400, 300), Layout::HCross);

@@ -149,15 +149,6 @@ std::vector<std::uint8_t> exrWithChannels(const std::vector<std::string>& names,
   return readFileBytes(path);
 }
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 }  // namespace
 
 // Blender writes passes as layers (ViewLayer.Combined.R): one is read by name, the only one

@@ -15,6 +15,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "ibl/core/error.hpp"
 #include "ibl/core/image.hpp"
 #include "ibl/env/cubemap.hpp"
 #include "ibl/env/environment.hpp"
@@ -133,6 +134,16 @@ inline CliRun runIbl(const std::string& args) {
 
 inline std::string quote(const std::filesystem::path& p) {
   return "'" + p.string() + "'";
+}
+
+// The message of the ibl::Error that `f` throws, or "" when it throws none.
+inline std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace ibl::test

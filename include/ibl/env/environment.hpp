@@ -42,11 +42,9 @@ struct Environment {
 // 1:6 strip). Mirror balls and angular maps are square like a face: they are named.
 std::optional<Layout> layoutFromShape(int width, int height);
 
-// The direction seen at (u, v) in [0, 1]^2 (v down) of a mirror-ball or angular map (Debevec's
-// light probe conventions: the center looks toward +Z, the camera's side, the rim toward -Z;
-// +X right, +Y up), or none outside the disk.
-std::optional<glm::vec3> probeDirection(Layout layout, float u, float v);
-// Its inverse: where direction `d` is seen in the image, (u, v) in [0, 1]^2.
+// Where direction `d` is seen in a mirror-ball or angular map, (u, v) in [0, 1]^2 with v down
+// (Debevec's light probe conventions: the center looks toward +Z, the camera's side, the rim
+// toward -Z; +X right, +Y up).
 glm::vec2 probeCoordinates(Layout layout, glm::vec3 d);
 
 // Cross layouts (faces in their native orientation):
