@@ -28,6 +28,7 @@ struct TexelArrays {
   explicit TexelArrays(const std::array<Image, kFaceCount>& level) : n(level[0].width) {
     const std::size_t count = static_cast<std::size_t>(kFaceCount) * n * n;
     for (auto* v : {&x, &y, &z, &r, &g, &b, &omega}) v->resize(count);
+    const std::vector<double> faceOmega = faceTexelSolidAngles(n);
     std::size_t i = 0;
     for (int f = 0; f < kFaceCount; ++f)
       for (int ty = 0; ty < n; ++ty)
@@ -40,7 +41,7 @@ struct TexelArrays {
           r[i] = l.x;
           g[i] = l.y;
           b[i] = l.z;
-          omega[i] = static_cast<float>(texelSolidAngle(tx, ty, n));
+          omega[i] = static_cast<float>(faceOmega[static_cast<std::size_t>(ty) * n + tx]);
         }
   }
   std::size_t size() const { return x.size(); }
@@ -86,19 +87,46 @@ template <int kWindow>
                                                       LobeWeight lobe, RadialWindow win) {
   const float a2 = lobe.a2;
   const auto run = [&](auto weight) IBL_INLINE {
-    for (std::size_t i = begin; i < end; ++i) {
-      const float sx = t.x[i], sy = t.y[i], sz = t.z[i], om = t.omega[i];
-      const float lr = t.r[i], lg = t.g[i], lb = t.b[i];
+    // Local copies: the compiler sees that the sums alias nothing and keeps them in registers
+    // (through the tile, whether the loop vectorized depended on inlining decisions).
+    alignas(64) float nx[kTileLanes], ny[kTileLanes], nz[kTileLanes];
+    alignas(64) float sr[kTileLanes], sg[kTileLanes], sb[kTileLanes], sw[kTileLanes];
+    for (int j = 0; j < kTileLanes; ++j) {
+      nx[j] = tile.x[j];
+      ny[j] = tile.y[j];
+      nz[j] = tile.z[j];
+      sr[j] = tile.r[j];
+      sg[j] = tile.g[j];
+      sb[j] = tile.b[j];
+      sw[j] = tile.w[j];
+    }
+    const float* __restrict px = t.x.data() + begin;
+    const float* __restrict py = t.y.data() + begin;
+    const float* __restrict pz = t.z.data() + begin;
+    const float* __restrict pr = t.r.data() + begin;
+    const float* __restrict pg = t.g.data() + begin;
+    const float* __restrict pb = t.b.data() + begin;
+    const float* __restrict po = t.omega.data() + begin;
+    const std::size_t count = end - begin;
+    for (std::size_t i = 0; i < count; ++i) {
+      const float sx = px[i], sy = py[i], sz = pz[i], om = po[i];
+      const float lr = pr[i], lg = pg[i], lb = pb[i];
       for (int j = 0; j < kTileLanes; ++j) {
-        const float c = std::max(tile.x[j] * sx + tile.y[j] * sy + tile.z[j] * sz, 0.0f);
+        const float c = std::max(nx[j] * sx + ny[j] * sy + nz[j] * sz, 0.0f);
         float w = weight(c) * om;
         if constexpr (kWindow >= 1) w *= smoothRise(c, win.outerLo, win.outerInv);
         if constexpr (kWindow == 2) w -= weight(c) * om * smoothRise(c, win.innerLo, win.innerInv);
-        tile.r[j] += w * lr;
-        tile.g[j] += w * lg;
-        tile.b[j] += w * lb;
-        tile.w[j] += w;
+        sr[j] += w * lr;
+        sg[j] += w * lg;
+        sb[j] += w * lb;
+        sw[j] += w;
       }
+    }
+    for (int j = 0; j < kTileLanes; ++j) {
+      tile.r[j] = sr[j];
+      tile.g[j] = sg[j];
+      tile.b[j] = sb[j];
+      tile.w[j] = sw[j];
     }
   };
   // The lobes of ibl/shared/brdf.h (the convolution shader uses the same), one loop each.

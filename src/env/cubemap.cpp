@@ -28,6 +28,36 @@ double texelSolidAngle(int x, int y, int n) {
   return faceRectSolidAngle(x * inv - 1.0, y * inv - 1.0, (x + 1) * inv - 1.0, (y + 1) * inv - 1.0);
 }
 
+std::vector<double> faceTexelSolidAngles(int n) {
+  // corner[a][b] = cornerSolidAngle(|s_a|, |t_b|) for the corners at distance a, b (in texels)
+  // from the face center: odd in s and t, symmetric in s <-> t.
+  const int half = n / 2 + 1;
+  const double inv = 2.0 / n;
+  std::vector<double> corner(static_cast<std::size_t>(half) * half);
+  const auto coord = [&](int a) { return (n % 2 == 0 ? a : a + 0.5) * inv; };
+  parallelFor(0, half, [&](int b) {
+    for (int a = 0; a <= b; ++a) {
+      const double c = cornerSolidAngle(coord(a), coord(b));
+      corner[static_cast<std::size_t>(b) * half + a] = c;
+      corner[static_cast<std::size_t>(a) * half + b] = c;
+    }
+  });
+  // The signed corner value at corner index i (0..n) along one axis.
+  const auto at = [&](int i, int j) {
+    const int ci = 2 * i - n, cj = 2 * j - n;  // twice the offset from the center, in texels
+    const int ai = (std::abs(ci) - n % 2) / 2, aj = (std::abs(cj) - n % 2) / 2;
+    const double sign = (ci < 0) == (cj < 0) ? 1.0 : -1.0;
+    return sign * corner[static_cast<std::size_t>(aj) * half + ai];
+  };
+  std::vector<double> omega(static_cast<std::size_t>(n) * n);
+  parallelFor(0, n, [&](int y) {
+    for (int x = 0; x < n; ++x)
+      omega[static_cast<std::size_t>(y) * n + x] =
+          at(x + 1, y + 1) - at(x, y + 1) - at(x + 1, y) + at(x, y);
+  });
+  return omega;
+}
+
 int fullMipCount(int size) {
   return size <= 0 ? 0 : std::bit_width(static_cast<unsigned>(size));
 }
@@ -89,10 +119,11 @@ glm::vec3 reconstructFromWindow(const glm::vec3 (&taps)[4][4], float tx, float t
   if (range && !range->steep) {  // once a texel found one, it is refined anyway
     glm::vec3 lo = taps[0][0], hi = taps[0][0];
     for (const auto& row : taps)
-      for (const glm::vec3& t : row) {
-        lo = glm::min(lo, t);
-        hi = glm::max(hi, t);
-      }
+      for (const glm::vec3& t : row)
+        for (int c = 0; c < 3; ++c) {  // per component: glm::min/max call through pointers
+          lo[c] = std::min(lo[c], t[c]);
+          hi[c] = std::max(hi[c], t[c]);
+        }
     range->steep = windowIsSteep(lo, hi);
   }
   const glm::vec4 wx = catmullRomWeights(tx), wy = catmullRomWeights(ty);
@@ -161,10 +192,7 @@ void buildMipChain(CubeMap& cube, int levelCount) {
   for (int m = 1; m < levelCount; ++m) {
     const int np = size >> (m - 1), n = np / 2;
     // Solid angles of the parent level's texels: identical on every face.
-    std::vector<double> omega(static_cast<std::size_t>(np) * np);
-    for (int y = 0; y < np; ++y)
-      for (int x = 0; x < np; ++x)
-        omega[static_cast<std::size_t>(y) * np + x] = texelSolidAngle(x, y, np);
+    const std::vector<double> omega = faceTexelSolidAngles(np);
     for (auto& f : cube.levels[m]) f = Image(n, n);
     const auto& src = cube.levels[m - 1];
     auto& dst = cube.levels[m];
@@ -189,9 +217,10 @@ void buildMipChain(CubeMap& cube, int levelCount) {
 glm::dvec3 integrateCube(const CubeMap& cube, int level) {
   glm::dvec3 total(0.0);
   const int n = cube.levels[level][0].width;
+  const std::vector<double> omega = faceTexelSolidAngles(n);
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
-      const double w = texelSolidAngle(x, y, n);
+      const double w = omega[static_cast<std::size_t>(y) * n + x];
       for (int f = 0; f < kFaceCount; ++f) total += glm::dvec3(cube.levels[level][f].at(x, y)) * w;
     }
   return total;

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibl/core/error.hpp"
+#include "ibl/core/parallel.hpp"
 #include "ibl/env/cubemap.hpp"
 
 namespace ibl {
@@ -55,19 +56,71 @@ glm::vec3 sampleEquirect(const Image& img, float u, float v) {
   return top * (1.0f - wy) + bottom * wy;
 }
 
-glm::vec3 sampleEquirectCubic(const Image& img, float u, float v, TapRange* range) {
-  const int w = img.width, h = img.height;
+EquirectCubic::EquirectCubic(const Image& img) : image_(&img), stride_(img.width + 2 * kPad) {
+  const int w = img.width, h = img.height, rows = h + 2 * kPad;
+  padded_.resize(static_cast<std::size_t>(rows) * stride_);
+  parallelFor(0, rows, [&](int py) {
+    const int y = std::clamp(py - kPad, 0, h - 1);
+    for (int px = 0; px < stride_; ++px) {
+      const glm::vec3 t = img.at(wrapColumn(px - kPad, w), y);
+      padded_[static_cast<std::size_t>(py) * stride_ + px] = {t.x, t.y, t.z, 0.0f};
+    }
+  });
+  // Window origins x0 + kPad in [0, w], y0 + kPad in [0, h]: the minimum and maximum over 4
+  // columns, then over 4 rows of those.
+  const int ox = w + 1, oy = h + 1;
+  std::vector<std::array<float, 6>> across(static_cast<std::size_t>(rows) * ox);
+  parallelFor(0, rows, [&](int py) {
+    for (int x = 0; x < ox; ++x) {
+      std::array<float, 6> m{};
+      for (int c = 0; c < 3; ++c)
+        m[c] = m[3 + c] = padded_[static_cast<std::size_t>(py) * stride_ + x][c];
+      for (int i = 1; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) {
+          const float t = padded_[static_cast<std::size_t>(py) * stride_ + x + i][c];
+          m[c] = std::min(m[c], t);
+          m[3 + c] = std::max(m[3 + c], t);
+        }
+      across[static_cast<std::size_t>(py) * ox + x] = m;
+    }
+  });
+  steep_.resize(static_cast<std::size_t>(oy) * ox);
+  parallelFor(0, oy, [&](int y) {
+    for (int x = 0; x < ox; ++x) {
+      glm::vec3 lo(0.0f), hi(0.0f);
+      for (int j = 0; j < 4; ++j) {
+        const auto& m = across[static_cast<std::size_t>(y + j) * ox + x];
+        for (int c = 0; c < 3; ++c) {
+          lo[c] = j == 0 ? m[c] : std::min(lo[c], m[c]);
+          hi[c] = j == 0 ? m[3 + c] : std::max(hi[c], m[3 + c]);
+        }
+      }
+      steep_[static_cast<std::size_t>(y) * ox + x] = windowIsSteep(lo, hi) ? 1 : 0;
+    }
+  });
+}
+
+glm::vec3 EquirectCubic::operator()(float u, float v, TapRange* range) const {
+  const int w = image_->width, h = image_->height;
   const float fx = u * static_cast<float>(w) - 0.5f;
   const float fy = v * static_cast<float>(h) - 0.5f;
   const float flx = std::floor(fx), fly = std::floor(fy);
-  const int x0 = static_cast<int>(flx) - 1, y0 = static_cast<int>(fly) - 1;
-  glm::vec3 taps[4][4];
-  const bool inside = x0 >= 0 && x0 + 3 < w && y0 >= 0 && y0 + 3 < h;  // off the seam and poles
+  // Origins in [-kPad, w - kPad] x [-kPad, h - kPad] (u, v within [0, 1], clamped for rounding).
+  const int x0 = std::clamp(static_cast<int>(flx) - 1, -kPad, w - kPad);
+  const int y0 = std::clamp(static_cast<int>(fly) - 1, -kPad, h - kPad);
+  if (range && steep_[static_cast<std::size_t>(y0 + kPad) * (w + 1) + x0 + kPad])
+    range->steep = true;
+  const glm::vec4 wx = catmullRomWeights(fx - flx), wy = catmullRomWeights(fy - fly);
+  float sum[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   for (int j = 0; j < 4; ++j) {
-    const int y = inside ? y0 + j : std::clamp(y0 + j, 0, h - 1);
-    for (int i = 0; i < 4; ++i) taps[j][i] = img.at(inside ? x0 + i : wrapColumn(x0 + i, w), y);
+    const std::array<float, 4>* row =
+        &padded_[static_cast<std::size_t>(y0 + kPad + j) * stride_ + x0 + kPad];
+    float across[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    for (int i = 0; i < 4; ++i)
+      for (int c = 0; c < 4; ++c) across[c] += row[i][c] * wx[i];
+    for (int c = 0; c < 4; ++c) sum[c] += across[c] * wy[j];
   }
-  return reconstructFromWindow(taps, fx - flx, fy - fly, range);
+  return {sum[0], sum[1], sum[2]};
 }
 
 glm::vec3 sampleEquirect(const Image& img, glm::vec3 dir) {

@@ -132,11 +132,12 @@ RangeLoss rangeLoss(const CubeMap& cube, glm::vec3 largest) {
     RangeLoss loss;
     double total = 0.0;
     const int n = cube.levels[m][0].width;
+    const std::vector<double> omega = faceTexelSolidAngles(n);
     for (int f = 0; f < kFaceCount; ++f)
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x)
           accumulateLoss(loss, total, cube.levels[m][f].at(x, y), largest,
-                         texelSolidAngle(x, y, n));
+                         omega[static_cast<std::size_t>(y) * n + x]);
     loss = finish(loss, total);
     all.clamped += loss.clamped;
     all.brightest = std::max(all.brightest, loss.brightest);

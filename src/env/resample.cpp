@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <numbers>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -49,7 +51,7 @@ class Source {
         reduced_ = downsampleEquirect(*img);
         img = &*reduced_;
       }
-      equirect_ = img;
+      equirect_.emplace(*img);
       density_ = equirectDensity(img->height);
     } else {
       cube_ = &env.cube;
@@ -83,12 +85,47 @@ class Source {
     const glm::vec3 d = rotated_ ? inverseRotation_ * dir : dir;
     if (equirect_) {
       const glm::vec2 uv = directionToEquirect(d);
-      return sampleEquirectCubic(*equirect_, uv.x, uv.y, range);
+      return (*equirect_)(uv.x, uv.y, range);
     }
     return sampleCubic(*cube_, level_, d, range);
   }
 
-  const Image* equirect() const { return equirect_; }
+  // The reconstruction in `count` directions at once (x, y, z: unit or not), into `out`;
+  // steep[i] says whether sample i's window was steep. For a panorama, the angles of all
+  // samples are computed in one loop the compiler vectorizes, then the taps are read.
+  void operator()(int count, const float* x, const float* y, const float* z, glm::vec3* out,
+                  std::uint8_t* steep) const {
+    if (!equirect_) {
+      for (int i = 0; i < count; ++i) {
+        TapRange range;
+        out[i] = (*this)(glm::vec3(x[i], y[i], z[i]), &range);
+        steep[i] = range.steep ? 1 : 0;
+      }
+      return;
+    }
+    constexpr float kInvTwoPi = 0.5f / std::numbers::pi_v<float>;
+    constexpr float kInvPi = 1.0f / std::numbers::pi_v<float>;
+    thread_local std::vector<float> uStore, vStore;
+    uStore.resize(static_cast<std::size_t>(count));
+    vStore.resize(static_cast<std::size_t>(count));
+    float* __restrict u = uStore.data();  // plain pointers: the loop vectorizes
+    float* __restrict v = vStore.data();
+    const glm::mat3 m = inverseRotation_;
+    for (int i = 0; i < count; ++i) {
+      const float dx = m[0][0] * x[i] + m[1][0] * y[i] + m[2][0] * z[i];
+      const float dy = m[0][1] * x[i] + m[1][1] * y[i] + m[2][1] * z[i];
+      const float dz = m[0][2] * x[i] + m[1][2] * y[i] + m[2][2] * z[i];
+      u[i] = 0.5f + atan2Approx(dz, dx) * kInvTwoPi;  // directionToEquirect
+      v[i] = atan2Approx(std::sqrt(dx * dx + dz * dz), dy) * kInvPi;
+    }
+    for (int i = 0; i < count; ++i) {
+      TapRange range;
+      out[i] = (*equirect_)(u[i], v[i], &range);
+      steep[i] = range.steep ? 1 : 0;
+    }
+  }
+
+  const Image* equirect() const { return equirect_ ? &equirect_->image() : nullptr; }
   const std::array<Image, kFaceCount>* cubeLevel() const {
     return cube_ ? &cube_->levels[level_] : nullptr;
   }
@@ -105,7 +142,7 @@ class Source {
   bool rotated_;
   std::optional<Image> reduced_;
   std::optional<CubeMap> reducedCube_;
-  const Image* equirect_ = nullptr;
+  std::optional<EquirectCubic> equirect_;
   const CubeMap* cube_ = nullptr;
   int level_ = 0;
   double density_ = 0.0;
@@ -166,14 +203,8 @@ int refinedSamplesPerSide(int k) {
 }
 
 std::vector<float> subcellSolidAngles(int sub) {
-  std::vector<float> weights(static_cast<std::size_t>(sub) * sub);
-  parallelFor(0, sub, [&](int j) {
-    const double inv = 2.0 / sub;
-    for (int i = 0; i < sub; ++i)
-      weights[static_cast<std::size_t>(j) * sub + i] = static_cast<float>(faceRectSolidAngle(
-          i * inv - 1.0, j * inv - 1.0, (i + 1) * inv - 1.0, (j + 1) * inv - 1.0));
-  });
-  return weights;
+  const std::vector<double> exact = faceTexelSolidAngles(sub);
+  return {exact.begin(), exact.end()};
 }
 
 CubeResamplePlan planResampleToCube(const Environment& env, int size) {
@@ -199,11 +230,11 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
   const int k = source.samplesPerSide(density), k2 = refinedSamplesPerSide(k);
   const std::vector<float> weights = subcellSolidAngles(size * k);
   const std::vector<float> refinedWeights = k2 > k ? subcellSolidAngles(size * k2) : weights;
-  // The solid-angle weighted mean of n x n samples over texel (x, y); `range` learns whether a
-  // sample's window was steep.
-  const auto integrate = [&](int face, int x, int y, int n, const std::vector<float>& w,
-                             TapRange* range) {
-    const int sub = size * n;
+  // The solid-angle weighted mean of the k2 x k2 samples over texel (x, y) of a face: for
+  // texels with a steep window.
+  const auto integrateRefined = [&](int face, int x, int y) {
+    const int n = k2, sub = size * n;
+    const std::vector<float>& w = refinedWeights;
     const float inv = 2.0f / static_cast<float>(sub);
     glm::vec3 sum(0.0f);
     float wsum = 0.0f;
@@ -214,7 +245,7 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
         const int i = x * n + a;
         const float sc = (static_cast<float>(i) + 0.5f) * inv - 1.0f;
         const float wi = w[static_cast<std::size_t>(j) * sub + i];
-        sum += source(faceToDirection(face, sc, tc), range) * wi;
+        sum += source(faceToDirection(face, sc, tc), nullptr) * wi;
         wsum += wi;
       }
     }
@@ -223,13 +254,44 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
   CubeMap out(size, 1);
   parallelFor(0, kFaceCount * size, [&](int row) {
     const int face = row / size, y = row % size;
-    for (int x = 0; x < size; ++x) {
-      TapRange range;
-      glm::vec3 v = integrate(face, x, y, k, weights, k2 > k ? &range : nullptr);
-      if (range.steep) {
-        v = integrate(face, x, y, k2, refinedWeights, nullptr);
+    // The k sub-rows of samples of this texel row, looked up together.
+    const int across = size * k, count = across * k;
+    thread_local std::vector<float> dx, dy, dz;
+    thread_local std::vector<glm::vec3> values;
+    thread_local std::vector<std::uint8_t> steep;
+    for (auto* a : {&dx, &dy, &dz}) a->resize(static_cast<std::size_t>(count));
+    values.resize(static_cast<std::size_t>(count));
+    steep.resize(static_cast<std::size_t>(count));
+    const glm::vec3 axis = faceAxis(face, 0), sAxis = faceAxis(face, 1), tAxis = faceAxis(face, 2);
+    const float inv = 2.0f / static_cast<float>(across);
+    for (int b = 0; b < k; ++b) {
+      const float tc = (static_cast<float>(y * k + b) + 0.5f) * inv - 1.0f;
+      const glm::vec3 rowStart = axis + tc * tAxis;
+      float* px = &dx[static_cast<std::size_t>(b) * across];
+      float* py = &dy[static_cast<std::size_t>(b) * across];
+      float* pz = &dz[static_cast<std::size_t>(b) * across];
+      for (int i = 0; i < across; ++i) {
+        const float sc = (static_cast<float>(i) + 0.5f) * inv - 1.0f;
+        px[i] = rowStart.x + sc * sAxis.x;
+        py[i] = rowStart.y + sc * sAxis.y;
+        pz[i] = rowStart.z + sc * sAxis.z;
       }
-      out.levels[0][face].at(x, y) = v;
+    }
+    source(count, dx.data(), dy.data(), dz.data(), values.data(), steep.data());
+    for (int x = 0; x < size; ++x) {
+      glm::vec3 sum(0.0f);
+      float wsum = 0.0f;
+      bool steepTexel = false;
+      for (int b = 0; b < k; ++b)
+        for (int a = 0; a < k; ++a) {
+          const std::size_t i = static_cast<std::size_t>(b) * across + x * k + a;
+          const float w = weights[static_cast<std::size_t>(y * k + b) * across + x * k + a];
+          sum += values[i] * w;
+          wsum += w;
+          steepTexel |= steep[i] != 0;
+        }
+      out.levels[0][face].at(x, y) =
+          steepTexel && k2 > k ? integrateRefined(face, x, y) : sum / wsum;
     }
   });
   moveNegativeLobesToPeaks(out);

@@ -20,11 +20,12 @@ struct TexelBuffers {
   std::vector<glm::vec4> dirOmega, radiance;
   explicit TexelBuffers(const std::array<Image, kFaceCount>& level) {
     const int n = level[0].width;
+    const std::vector<double> omega = faceTexelSolidAngles(n);
     for (int f = 0; f < kFaceCount; ++f)
       for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
           dirOmega.emplace_back(texelDirection(f, x, y, n),
-                                static_cast<float>(texelSolidAngle(x, y, n)));
+                                static_cast<float>(omega[static_cast<std::size_t>(y) * n + x]));
           radiance.emplace_back(level[f].at(x, y), 1.0f);
         }
   }
@@ -163,10 +164,8 @@ void buildMipChain(Context& context, CubeMap& cube) {
   std::vector<glm::vec4> parent = flatten(cube, nullptr);
   for (int np = size; np > 1; np /= 2) {
     const int n = np / 2;
-    std::vector<float> omega(static_cast<std::size_t>(np) * np);
-    for (int y = 0; y < np; ++y)
-      for (int x = 0; x < np; ++x)
-        omega[static_cast<std::size_t>(y) * np + x] = static_cast<float>(texelSolidAngle(x, y, np));
+    const std::vector<double> exact = faceTexelSolidAngles(np);
+    const std::vector<float> omega(exact.begin(), exact.end());
     Buffer in = Buffer::of(context, parent), weights = Buffer::of(context, omega),
            out(context, static_cast<std::size_t>(6) * n * n * sizeof(glm::vec4));
     const std::uint32_t childSize = static_cast<std::uint32_t>(n);

@@ -15,6 +15,7 @@ std::array<float, 9> shBasis9(glm::vec3 d) {
 
 Sh9 projectSh9(const CubeMap& cube, int level) {
   const int n = cube.levels[level][0].width;
+  const std::vector<double> omega = faceTexelSolidAngles(n);
   // One partial sum per face row, added in a fixed order: the same bits for any thread count.
   std::vector<std::array<glm::dvec3, 9>> rows(static_cast<std::size_t>(kFaceCount) * n);
   parallelFor(0, kFaceCount * n, [&](int row) {
@@ -23,7 +24,8 @@ Sh9 projectSh9(const CubeMap& cube, int level) {
     acc.fill(glm::dvec3(0.0));
     for (int x = 0; x < n; ++x) {
       const auto basis = shBasis9(texelDirection(face, x, y, n));
-      const glm::dvec3 l = glm::dvec3(cube.levels[level][face].at(x, y)) * texelSolidAngle(x, y, n);
+      const glm::dvec3 l = glm::dvec3(cube.levels[level][face].at(x, y)) *
+                           omega[static_cast<std::size_t>(y) * n + x];
       for (int k = 0; k < 9; ++k) acc[k] += l * static_cast<double>(basis[k]);
     }
   });

@@ -63,11 +63,13 @@ class EnvironmentSampler {
     mean /= static_cast<double>(count);
     double total = 0.0;
     std::size_t i = 0;
+    const std::vector<double> omega = faceTexelSolidAngles(n_);
     for (int f = 0; f < kFaceCount; ++f)
       for (int y = 0; y < n_; ++y)
         for (int x = 0; x < n_; ++x, ++i) {
           // A floor keeps every texel reachable, for MIS and for colors of low luminance.
-          total += (luminance(level[f].at(x, y)) + 1e-3 * mean + 1e-12) * texelSolidAngle(x, y, n_);
+          total += (luminance(level[f].at(x, y)) + 1e-3 * mean + 1e-12) *
+                   omega[static_cast<std::size_t>(y) * n_ + x];
           cdf_[i] = total;
         }
     for (auto& c : cdf_) c /= total;

@@ -79,6 +79,19 @@ TEST(CubeMap, SolidAnglesSumToFourPi) {
   }
 }
 
+TEST(CubeMap, FaceTableOfSolidAnglesMatchesEachTexel) {
+  // The table uses the face's symmetries; each entry must equal the closed form for its texel
+  // (odd sizes have a corner-free center row and column).
+  for (int n : {1, 2, 5, 8, 33}) {
+    const std::vector<double> table = faceTexelSolidAngles(n);
+    ASSERT_EQ(table.size(), static_cast<std::size_t>(n) * n);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+        EXPECT_NEAR(table[static_cast<std::size_t>(y) * n + x], texelSolidAngle(x, y, n), 1e-13)
+            << n << " " << x << " " << y;
+  }
+}
+
 TEST(CubeMap, SolidAngleMatchesNumericalIntegration) {
   // dOmega = dA / (1 + sc^2 + tc^2)^(3/2) on the face plane at distance 1.
   const int n = 4, x = 3, y = 1, steps = 400;

@@ -31,6 +31,10 @@ using shared::texelDirection;
 double faceRectSolidAngle(double sc0, double tc0, double sc1, double tc1);
 // Exact solid angle of texel (x, y) of an n x n face.
 double texelSolidAngle(int x, int y, int n);
+// The solid angles of all n x n texels of a face (the same on every face), row by row, exact:
+// differences of the closed form at the (n + 1)^2 texel corners, of which the face's symmetries
+// leave an eighth to evaluate.
+std::vector<double> faceTexelSolidAngles(int n);
 
 // floor(log2(size)) + 1: levels of a full chain down to 1 x 1.
 int fullMipCount(int size);
