@@ -314,6 +314,7 @@ void addSpecular(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
     methods.push_back({{"roughness", l.roughness},
                        {"method", l.method},
                        {"source_size", l.sourceSize},
+                       {"computed_size", l.computedSize},
                        {"samples", l.samples}});
   }
   const std::string mapping =
@@ -375,6 +376,8 @@ void addSh(OutputPlan& plan, const BakeResult& r, const BakeOptions& o) {
                           {"windowed", o.shWindow}});
 }
 
+constexpr int kSourcePreviewFaceSize = 256;
+
 // The PNG previews: the material grid shaded with the bake, the source cross, the DFG table.
 void addPreviews(OutputPlan& plan, const BakeResult& r, const BakeOptions& o, int cell) {
   plan.add("preview.png", [&r, &o, cell] {
@@ -388,14 +391,18 @@ void addPreviews(OutputPlan& plan, const BakeResult& r, const BakeOptions& o, in
        {"size", {kPreviewColumns * cell, 2 * cell}},
        {"shows",
         "spheres of roughness 0..1 (columns), metal (top) and dielectric (bottom), ACES"}});
-  plan.add("source.png", [&r] {
-    const Image cross = crossFromCube(r.source, 0, false);
+  // A view, not data (source.ktx2 has every level): at most 256^2 per face, so that a 1024^2
+  // bake does not spend a second compressing a 4096 x 3072 PNG.
+  const int shownLevel = levelOfSize(r.source, kSourcePreviewFaceSize);
+  const int shownSize = r.source.levels[shownLevel][0].width;
+  plan.add("source.png", [&r, shownLevel] {
+    const Image cross = crossFromCube(r.source, shownLevel, false);
     return encodePng(toneMapAces(cross, autoExposure(cross)));
   });
   plan.outputs.push_back({{"role", "preview"},
                           {"path", "source.png"},
                           {"format", "png"},
-                          {"size", {4 * r.source.size(), 3 * r.source.size()}},
+                          {"size", {4 * shownSize, 3 * shownSize}},
                           {"shows", "source cube, horizontal cross, ACES"}});
   plan.add("dfg.png", [&r] { return encodePng(r.dfg); });
   plan.outputs.push_back({{"role", "preview"},

@@ -324,6 +324,9 @@ int levelForTexelAngle(const CubeMap& cube, float angle) {
 // Source resolution, in texels per lobe half width: the lobe's core (sharp lobes) and whole
 // lobes (wide ones, where a single pass over the sphere is cheap). Tuned with ibl_accuracy.
 constexpr float kCoreTexelsPerLobe = 3.0f;
+// The coarsest level a lobe's core reads: on 32^2 (texels of 0.06 rad against the core's
+// radial windows) park's r = 0.43 level of a 1024^2 chain was 0.9 % off, on 64^2 0.19 %.
+constexpr int kCoreMinSourceSize = 64;
 constexpr float kDirectTexelsPerLobe = 12.0f;
 
 // Angle from the lobe axis at which the lobe falls to half its peak (n = v): n.h at half
@@ -357,6 +360,7 @@ std::array<Image, kFaceCount> prefilterLevelFresnelZero(const CubeMap& source, i
   if (info) {
     info->method = "direct";
     info->sourceSize = source.levels[level][0].width;
+    info->computedSize = coarse;
   }
   CubeMap result;
   result.levels = {normalize(pass(source.levels[level], coarse, roughness,
@@ -368,6 +372,38 @@ std::array<Image, kFaceCount> prefilterLevelFresnelZero(const CubeMap& source, i
     const int face = row / size, y = row % size;
     for (int x = 0; x < size; ++x)
       out[face].at(x, y) = sampleBilinear(result, 0, texelDirection(face, x, y, size));
+  });
+  return out;
+}
+
+// Output texels per lobe half width beyond which a level is computed coarser and interpolated
+// up: the prefiltered radiance varies on the lobe's scale, and 8 texels per half width
+// resolve it (the default chain has 3 to 8). Without this, a chain of few levels or a large
+// size pays for output texels far finer than its lobes (--levels 3: 20 and 44 per half width).
+constexpr float kOutputTexelsPerLobe = 8.0f;
+
+// The size a level of `size` is computed at: halved while the half still has
+// kOutputTexelsPerLobe texels (2 / n radians wide) per lobe half width theta.
+int workingSize(int size, float theta) {
+  int n = size;
+  while (n > kMinSpecularSize && theta * static_cast<float>(n / 2) / 2.0f >= kOutputTexelsPerLobe)
+    n /= 2;
+  return n;
+}
+
+// A prefiltered level computed at a coarser size, interpolated up to `size` with Catmull-Rom
+// splines (sharper than bilinear on the lobe's scale; negative overshoot clamped to 0).
+std::array<Image, kFaceCount> interpolateLevel(const std::array<Image, kFaceCount>& coarse,
+                                               int size) {
+  CubeMap cube;
+  cube.levels = {coarse};
+  std::array<Image, kFaceCount> out;
+  for (auto& face : out) face = Image(size, size);
+  parallelFor(0, kFaceCount * size, [&](int row) {
+    const int face = row / size, y = row % size;
+    for (int x = 0; x < size; ++x)
+      out[face].at(x, y) =
+          glm::max(sampleCubic(cube, 0, texelDirection(face, x, y, size)), glm::vec3(0.0f));
   });
   return out;
 }
@@ -384,6 +420,12 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
   const float b1 = 2.0f * theta;
   if (weight == PrefilterWeight::FresnelF0Zero)
     return prefilterLevelFresnelZero(source, size, roughness, info, pass);
+  if (const int work = workingSize(size, theta); work < size) {
+    std::array<Image, kFaceCount> coarse =
+        prefilterLevelRings(source, work, roughness, weight, info, pass);
+    if (info) info->computedSize = work;
+    return interpolateLevel(coarse, size);
+  }
   if (2.0f * b1 >= 0.5f * kPiF) {
     // A wide lobe: one pass over the whole sphere, with texels a twelfth of its half width.
     const int level = levelForTexelAngle(source, theta / kDirectTexelsPerLobe);
@@ -393,9 +435,11 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
     }
     return normalize(pass(source.levels[level], size, roughness, weight, RadialWindow{}, 0.0f));
   }
-  // The core reads texels a third of the lobe's half width, and no coarser than the output.
-  const int core =
-      std::min(levelForTexelAngle(source, theta / kCoreTexelsPerLobe), levelOfSize(source, size));
+  // The core reads texels a third of the lobe's half width (finer costs 16 pi (theta/texel)^2
+  // texels per output texel and gains nothing measurable), and no coarser than 64^2 nor the
+  // output.
+  const int core = std::min(levelForTexelAngle(source, theta / kCoreTexelsPerLobe),
+                            levelOfSize(source, std::min(size, kCoreMinSourceSize)));
   if (info) info->sourceSize = source.levels[core][0].width;
 
   const auto rise = [](float thetaOne, float thetaZero) {  // 1 inside thetaOne, 0 beyond thetaZero
@@ -555,7 +599,7 @@ CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& o,
     if (progress)
       progress(fmt::format("specular level {}/{} ({}x{}, roughness {:.3f})", m + 1, levels, size,
                            size, r));
-    LevelMethod method{r, "", 0, 0};
+    LevelMethod method{r, "", 0, 0, size};
     if (r == 0.0f) {
       // Mirror reflection: the source itself.
       const int sl = levelOfSize(source, size);

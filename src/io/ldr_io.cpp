@@ -1,12 +1,11 @@
 // 8/16-bit PNG and JPEG through stb_image, decoded with the exact sRGB curve; PNG output
-// through stb_image_write.
+// through libpng.
 #include <cmath>
 #include <cstring>
-#include <mutex>
 
 #include <fmt/format.h>
+#include <png.h>
 #include <stb_image.h>
-#include <stb_image_write.h>
 
 #include "ibl/core/error.hpp"
 #include "ibl/io/image_io.hpp"
@@ -45,21 +44,43 @@ Image decodeLdr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
 }
 
 std::vector<std::uint8_t> encodePng(const Image& img, float exposure) {
-  // Previews: a faster zlib level (4 instead of stb's 8) costs a few percent in size.
-  static std::once_flag once;
-  std::call_once(once, [] { stbi_write_png_compression_level = 4; });
   const float scale = std::exp2(exposure);
   std::vector<std::uint8_t> rgb(img.pixels.size() * 3);
   for (std::size_t i = 0; i < img.pixels.size(); ++i)
     for (int c = 0; c < 3; ++c) rgb[3 * i + c] = linearToSrgb8(img.pixels[i][c] * scale);
+  std::vector<png_bytep> rows(static_cast<std::size_t>(img.height));
+  for (int y = 0; y < img.height; ++y)
+    rows[static_cast<std::size_t>(y)] = rgb.data() + static_cast<std::size_t>(y) * img.width * 3;
   std::vector<std::uint8_t> out;
-  const auto sink = [](void* ctx, void* data, int size) {
-    auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
-    const auto* p = static_cast<const std::uint8_t*>(data);
-    v->insert(v->end(), p, p + size);
-  };
-  if (!stbi_write_png_to_func(sink, &out, img.width, img.height, 3, rgb.data(), img.width * 3))
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    fail("png", "out of memory");
+  }
+  // libpng reports errors by longjmp: only trivially destructible locals live past this point.
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
     fail("png", "encoding failed");
+  }
+  png_set_write_fn(
+      png, &out,
+      [](png_structp p, png_bytep data, png_size_t size) {
+        auto* v = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(p));
+        v->insert(v->end(), data, data + size);
+      },
+      nullptr);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(img.width), static_cast<png_uint_32>(img.height),
+               8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  // Previews: one filter (Paeth, the best on photographs) and a fast zlib level write a PNG in
+  // a quarter of the time of stb's search over every filter at level 4, a few percent larger.
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_PAETH);
+  png_set_compression_level(png, 3);
+  png_write_info(png, info);
+  png_write_image(png, rows.data());
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
   return out;
 }
 

@@ -29,9 +29,10 @@ enum class PrefilterWeight {
 // How a specular level was computed (reported in the manifest).
 struct LevelMethod {
   float roughness = 0.0f;
-  std::string method;  // "source", "direct", "rings", "sampled"
-  int sourceSize = 0;  // size of the source level read
-  int samples = 0;     // samples per texel ("sampled")
+  std::string method;    // "source", "direct", "rings", "sampled"
+  int sourceSize = 0;    // size of the source level read
+  int samples = 0;       // samples per texel ("sampled")
+  int computedSize = 0;  // the size it was computed at (then interpolated up, if smaller)
 };
 
 enum class PrefilterMethod {
