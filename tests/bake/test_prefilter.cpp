@@ -166,6 +166,27 @@ TEST(Prefilter, LevelZeroIsTheSource) {
   for (int f = 0; f < 6; ++f) EXPECT_EQ(out.levels[0][f].pixels, source.levels[0][f].pixels);
 }
 
+TEST(Prefilter, CoarseLevelsComputedSmallerAndInterpolated) {
+  // Three levels of 128^2: r = 0.5 at 64^2 has 10 texels per lobe half width (kept: half as
+  // many would be too few), r = 1 at 32^2 has 22, more than it needs: it is computed at 16^2
+  // and interpolated up, and must still match quadrature over every texel of the source.
+  const CubeMap source = sunSource(128);
+  const IndependentSource ref(source.levels[0]);
+  PrefilterOptions o;
+  o.size = 128;
+  o.levels = 3;
+  std::vector<LevelMethod> methods;
+  const CubeMap out = prefilterGgx(source, o, &methods);
+  EXPECT_EQ(methods[1].computedSize, 64);
+  EXPECT_EQ(methods[2].computedSize, 16);
+  for (int m = 1; m < 3; ++m) {
+    const double e =
+        ref.relativeRmse(out.levels[m], methods[m].roughness, PrefilterWeight::Standard, 3);
+    RecordProperty("level " + std::to_string(m), std::to_string(e));
+    EXPECT_LT(e, 3e-3) << "level " << m;
+  }
+}
+
 TEST(Prefilter, LevelsAgainstAnIndependentReference) {
   // Every level and every weight against independentPrefilter (its own GGX, Smith and Fresnel
   // terms and solid angles, quadrature over all 24576 texels of the 64^2 source).
