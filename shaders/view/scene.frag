@@ -10,21 +10,28 @@
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec4 worldTangent;
-layout(location = 3) in vec2 texCoord;
+layout(location = 3) in vec2 texCoord0;
+layout(location = 4) in vec2 texCoord1;
 layout(location = 0) out vec4 outColor;
 
-layout(set = 1, binding = 0) uniform sampler2D baseColorTexture;  // sRGB values, decoded here
+layout(set = 1, binding = 0) uniform sampler2D baseColorTexture;  // an sRGB format: linear here
 layout(set = 1, binding = 1) uniform sampler2D metallicRoughnessTexture;
 layout(set = 1, binding = 2) uniform sampler2D normalTexture;
 layout(set = 1, binding = 3) uniform sampler2D occlusionTexture;
-layout(set = 1, binding = 4) uniform sampler2D emissiveTexture;  // sRGB values, decoded here
+layout(set = 1, binding = 4) uniform sampler2D emissiveTexture;  // an sRGB format: linear here
 layout(push_constant) uniform Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
   vec4 scales;       // normal scale, occlusion strength
   vec4 sphere;       // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
-  uint textureMask;  // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive
+  uint textureMask;   // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive
+  uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
 } material;
+
+// The UV set texture slot `bit` reads (glTF texCoord).
+vec2 texCoordOf(uint bit) {
+  return (material.texCoordMask & bit) != 0u ? texCoord1 : texCoord0;
+}
 
 // Distance along r to the sphere's nearest point in front of the origin, or -1.
 float intersectSphere(Ray r, vec4 sphere) {
@@ -102,19 +109,19 @@ void main() {
   vec3 emissive = material.emissiveRoughness.rgb;
   float occlusion = 1.0;
   uint mask = material.textureMask;
-  // Textures are filtered as stored and decoded after, as Texture::sample and srgbTexel do.
-  if ((mask & 1u) != 0u) baseColor *= srgbToLinear(texture(baseColorTexture, texCoord).rgb);
+  // sRGB textures are decoded before filtering (their formats), as Texture::sample does.
+  if ((mask & 1u) != 0u) baseColor *= texture(baseColorTexture, texCoordOf(1u)).rgb;
   if ((mask & 2u) != 0u) {
     vec2 mr = applyMetallicRoughnessTexel(metallic, roughness,
-                                          texture(metallicRoughnessTexture, texCoord));
+                                          texture(metallicRoughnessTexture, texCoordOf(2u)));
     metallic = mr.x;
     roughness = mr.y;
   }
   if ((mask & 8u) != 0u)
-    occlusion = occlusionFromTexel(material.scales.y, texture(occlusionTexture, texCoord));
-  if ((mask & 16u) != 0u) emissive *= srgbToLinear(texture(emissiveTexture, texCoord).rgb);
+    occlusion = occlusionFromTexel(material.scales.y, texture(occlusionTexture, texCoordOf(8u)));
+  if ((mask & 16u) != 0u) emissive *= texture(emissiveTexture, texCoordOf(16u)).rgb;
   if ((mask & 4u) != 0u)
-    n = applyNormalMap(n, worldTangent, texture(normalTexture, texCoord), material.scales.x);
+    n = applyNormalMap(n, worldTangent, texture(normalTexture, texCoordOf(4u)), material.scales.x);
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
                                            : normalize(position - frame.cameraPosition.xyz);
   if (dot(n, ray) > 0.0) n = -n;  // shade the side the camera sees

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <numbers>
 
@@ -14,6 +15,7 @@
 #include "gpu/scene_renderer.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/io/pixel_formats.hpp"
+#include "ibl/math/color.hpp"
 
 namespace ibl::gpu {
 
@@ -42,7 +44,7 @@ Mesh sphereProxy(const Sphere& sphere) {
 }
 
 // Vertex layout of shaders/view/scene.vert: position, normal, tangent, uv.
-constexpr std::uint32_t kVertexFloats = 3 + 3 + 4 + 2;
+constexpr std::uint32_t kVertexFloats = 3 + 3 + 4 + 2 + 2;
 
 std::vector<std::uint8_t> bytesOfFloats(const std::vector<float>& v) {
   std::vector<std::uint8_t> out(v.size() * sizeof(float));
@@ -79,22 +81,83 @@ std::unique_ptr<DeviceImage> uploadImage2d(Context& context, const Image& image)
   return out;
 }
 
-// A material texture as RGBA16F (values in [0, 1] as stored; the shader decodes sRGB).
-std::unique_ptr<DeviceImage> uploadTexture(Context& context, const Texture& t) {
-  std::vector<std::uint16_t> halves;
-  halves.reserve(t.texels.size() * 4);
-  for (const glm::vec4& p : t.texels)
-    for (int c = 0; c < 4; ++c) halves.push_back(floatToHalf(p[c]));
+// The mip chain of an RGBA8 texture, level 0 first, each level the 2 x 2 box average of the one
+// above (clamped at odd edges); sRGB texels are averaged as linear values and encoded again.
+std::vector<std::uint8_t> textureMipChain(const Texture& t, bool srgb, int levels) {
+  std::vector<std::uint8_t> out(t.rgba->begin(), t.rgba->end());
+  std::size_t parentOffset = 0;
+  int pw = t.width, ph = t.height;
+  for (int level = 1; level < levels; ++level) {
+    const int w = std::max(pw / 2, 1), h = std::max(ph / 2, 1);
+    const std::size_t offset = out.size();
+    out.resize(offset + static_cast<std::size_t>(w) * h * 4);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 4; ++c) {
+          float sum = 0.0f;
+          for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) {
+              const int px = std::min(2 * x + i, pw - 1), py = std::min(2 * y + j, ph - 1);
+              const std::uint8_t v =
+                  out[parentOffset + (static_cast<std::size_t>(py) * pw + px) * 4 + c];
+              sum += srgb && c < 3 ? srgb8ToLinear(v) : static_cast<float>(v) / 255.0f;
+            }
+          const float mean = 0.25f * sum;
+          out[offset + (static_cast<std::size_t>(y) * w + x) * 4 + c] =
+              srgb && c < 3
+                  ? linearToSrgb8(mean)
+                  : static_cast<std::uint8_t>(std::lround(std::clamp(mean, 0.0f, 1.0f) * 255.0f));
+        }
+    parentOffset = offset;
+    pw = w;
+    ph = h;
+  }
+  return out;
+}
+
+// A material texture as RGBA8, sRGB-decoded by the sampler (before filtering) where srgb, with
+// its mip chain if its sampler minifies with mip maps.
+std::unique_ptr<DeviceImage> uploadTexture(Context& context, const Texture& t, bool srgb) {
   DeviceImage::Description d;
-  d.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+  d.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
   d.width = static_cast<std::uint32_t>(t.width);
   d.height = static_cast<std::uint32_t>(t.height);
+  d.levels = t.sampler.mipmaps
+                 ? static_cast<std::uint32_t>(fullMipCount(std::max(t.width, t.height)))
+                 : 1u;
   d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   auto out = std::make_unique<DeviceImage>(context, d);
-  uploadImage(context, *out,
-              {reinterpret_cast<const std::uint8_t*>(halves.data()), halves.size() * 2},
-              4 * sizeof(std::uint16_t));
+  uploadImage(context, *out, textureMipChain(t, srgb, static_cast<int>(d.levels)), 4);
   return out;
+}
+
+VkSamplerAddressMode addressModeOf(Wrap wrap) {
+  switch (wrap) {
+    case Wrap::ClampToEdge:
+      return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case Wrap::MirroredRepeat:
+      return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    case Wrap::Repeat:
+      break;
+  }
+  return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+}
+
+// A glTF sampler: its wrap modes and magnification filter; minification trilinear over the
+// mip chain (or bilinear on level 0 without mip maps).
+VkSampler createTextureSampler(VkDevice device, const TextureSampler& s) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = s.nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+  info.minFilter = VK_FILTER_LINEAR;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  info.addressModeU = addressModeOf(s.wrapS);
+  info.addressModeV = addressModeOf(s.wrapT);
+  info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  info.minLod = 0.0f;
+  info.maxLod = s.mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
+  VkSampler sampler;
+  check(vkCreateSampler(device, &info, nullptr, &sampler), "vkCreateSampler");
+  return sampler;
 }
 
 VkSampler createSampler(VkDevice device, VkSamplerAddressMode address, bool mipmaps) {
@@ -167,7 +230,9 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
       const glm::vec3 p = m.positions[i], n = m.normals[i];
       const glm::vec4 t = m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[i];
       const glm::vec2 uv = m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i];
-      v.insert(v.end(), {p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y, t.z, t.w, uv.x, uv.y});
+      const glm::vec2 uv1 = m.uvs1.empty() ? glm::vec2(0.0f) : m.uvs1[i];
+      v.insert(v.end(),
+               {p.x, p.y, p.z, n.x, n.y, n.z, t.x, t.y, t.z, t.w, uv.x, uv.y, uv1.x, uv1.y});
     }
     DrawMesh d;
     d.vertices = std::make_unique<Buffer>(Buffer::of(context, v));
@@ -179,29 +244,44 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   };
   for (const Mesh& m : scene.meshes) addMesh(m, glm::vec4(0.0f));
   for (const Sphere& s : scene.spheres) addMesh(sphereProxy(s), glm::vec4(s.center, s.radius));
-  for (const Texture& t : scene.textures)
-    textures.push_back(t.texels.empty() ? nullptr : uploadTexture(context, t));
-  textures.push_back(uploadTexture(context, Texture{1, 1, {glm::vec4(1.0f)}}));
-  // Materials: their push constants, and per texture slot the scene's texture or white.
+  white = uploadTexture(
+      context, Texture{1, 1, std::make_shared<std::vector<std::uint8_t>>(4, 255), {}}, false);
+  // Materials: their push constants, and per texture slot the scene's texture (sRGB for base
+  // color and emission) and its sampler, or white.
   const std::vector<Material> sceneMaterials =
       scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
-  std::vector<std::array<const DeviceImage*, 5>> materialTextures;
+  const auto samplerFor = [&](const TextureSampler& ts) {
+    for (const auto& [kind, sampler] : textureSamplers)
+      if (kind == ts) return sampler;
+    textureSamplers.emplace_back(ts, createTextureSampler(device, ts));
+    return textureSamplers.back().second;
+  };
+  std::vector<std::array<VkDescriptorImageInfo, 5>> materialImages;
+  const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   for (const Material& mat : sceneMaterials) {
     MaterialConstants mc{};
     mc.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
     mc.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
     mc.scales = glm::vec4(mat.normalScale, mat.occlusionStrength, 0.0f, 0.0f);
-    const std::array<int, 5> indices{mat.baseColorTexture, mat.metallicRoughnessTexture,
-                                     mat.normalTexture, mat.occlusionTexture, mat.emissiveTexture};
-    std::array<const DeviceImage*, 5> images{};
+    const std::array<TextureRef, 5> slots{mat.baseColorTexture, mat.metallicRoughnessTexture,
+                                          mat.normalTexture, mat.occlusionTexture,
+                                          mat.emissiveTexture};
+    std::array<VkDescriptorImageInfo, 5> images{};
     for (std::size_t b = 0; b < 5; ++b) {
-      const int i = indices[b];
-      const bool valid = i >= 0 && static_cast<std::size_t>(i) + 1 < textures.size() && textures[i];
-      images[b] = valid ? textures[i].get() : textures.back().get();
-      if (valid) mc.textureMask |= 1u << b;
+      const int i = slots[b].index;
+      const bool srgb = b == 0 || b == 4;
+      const bool valid = i >= 0 && static_cast<std::size_t>(i) < scene.textures.size() &&
+                         !scene.textures[i].empty();
+      images[b] = {samplerFor(TextureSampler{}), white->view(), readable};
+      if (!valid) continue;
+      auto& image = textures[{i, srgb}];
+      if (!image) image = uploadTexture(context, scene.textures[i], srgb);
+      images[b] = {samplerFor(scene.textures[i].sampler), image->view(), readable};
+      mc.textureMask |= 1u << b;
+      if (slots[b].texCoord == 1) mc.texCoordMask |= 1u << b;
     }
     materials.push_back(mc);
-    materialTextures.push_back(images);
+    materialImages.push_back(images);
   }
 
   // The bake.
@@ -217,7 +297,6 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
 
   cubeSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, true);
   lutSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
-  textureSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_REPEAT, false);
   const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   std::vector<VkDescriptorSetLayoutBinding> frameBindings{
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, both, nullptr}};
@@ -264,7 +343,6 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   frameUniforms = std::make_unique<Buffer>(context, sizeof(FrameUniforms), BufferMemory::Host);
   const VkDescriptorBufferInfo uniformInfo{static_cast<VkBuffer>(frameUniforms->handle()), 0,
                                            sizeof(FrameUniforms)};
-  const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   const std::array<VkDescriptorImageInfo, 4> frameImages{
       VkDescriptorImageInfo{cubeSampler, specular->view(), readable},
       VkDescriptorImageInfo{cubeSampler, irradiance->view(), readable},
@@ -282,10 +360,8 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   }
   for (std::uint32_t b = 0; b < 4; ++b)
     writes.push_back(imageWrite(frameSet, b + 1, &frameImages[b]));
-  std::vector<std::array<VkDescriptorImageInfo, 5>> materialImages(materials.size());
   for (std::size_t m = 0; m < materials.size(); ++m) {
     for (std::size_t b = 0; b < 5; ++b) {
-      materialImages[m][b] = {textureSampler, materialTextures[m][b]->view(), readable};
       writes.push_back(
           imageWrite(materialSets[m], static_cast<std::uint32_t>(b), &materialImages[m][b]));
     }
@@ -324,8 +400,8 @@ void SceneRenderer::Impl::destroy() {
   vkDestroyPipelineLayout(device, pipelineLayout, nullptr);
   vkDestroyDescriptorSetLayout(device, frameLayout, nullptr);
   vkDestroyDescriptorSetLayout(device, materialLayout, nullptr);
-  for (VkSampler s : {cubeSampler, lutSampler, textureSampler})
-    vkDestroySampler(device, s, nullptr);
+  for (VkSampler s : {cubeSampler, lutSampler}) vkDestroySampler(device, s, nullptr);
+  for (const auto& entry : textureSamplers) vkDestroySampler(device, entry.second, nullptr);
 }
 
 void SceneRenderer::Impl::destroyTargets() {
@@ -467,11 +543,12 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
   // and the skybox (a full-screen triangle).
   const VkVertexInputBindingDescription binding{0, kVertexFloats * sizeof(float),
                                                 VK_VERTEX_INPUT_RATE_VERTEX};
-  const std::array<VkVertexInputAttributeDescription, 4> attributes{
+  const std::array<VkVertexInputAttributeDescription, 5> attributes{
       VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
       VkVertexInputAttributeDescription{1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
       VkVertexInputAttributeDescription{2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 6 * sizeof(float)},
-      VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, 10 * sizeof(float)}};
+      VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, 10 * sizeof(float)},
+      VkVertexInputAttributeDescription{4, 0, VK_FORMAT_R32G32_SFLOAT, 12 * sizeof(float)}};
   targets = std::move(t);  // from here on, destroyTargets() frees what exists
   GraphicsPipelineDescription p;
   p.layout = pipelineLayout;

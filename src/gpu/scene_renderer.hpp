@@ -1,6 +1,7 @@
 #pragma once
 // Internal: the state behind gpu::SceneRenderer, shared with the window (which records a frame
 // of the scene into its own command buffer before tone mapping it to the swapchain).
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -14,7 +15,8 @@ namespace ibl::gpu {
 // The push constants of shaders/view/scene.frag: a material, and the sphere a mesh bounds.
 struct MaterialConstants {
   glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
-  std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
+  std::uint32_t textureMask;   // the textures the material has, bit b for set 1 binding b
+  std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
 };
 
 struct SceneRenderer::Impl {
@@ -28,16 +30,19 @@ struct SceneRenderer::Impl {
     glm::vec4 sphere{0.0f};  // center, radius of the sphere this mesh bounds (radius 0: none)
   };
   std::vector<DrawMesh> meshes;
-  std::vector<MaterialConstants> materials;            // sphere left 0
-  std::vector<std::unique_ptr<DeviceImage>> textures;  // the scene's, then a 1x1 white one
+  std::vector<MaterialConstants> materials;  // sphere left 0
+  // The scene's textures with mip chains, sRGB or linear as each material slot reads them
+  // (a texture used both ways is uploaded twice), and a 1x1 white one.
+  std::map<std::pair<int, bool>, std::unique_ptr<DeviceImage>> textures;
+  std::unique_ptr<DeviceImage> white;
   // The bake.
   std::unique_ptr<DeviceImage> specular, irradiance, source, dfg;
   float specularMaxLod = 0.0f, skyboxMaxLod = 0.0f;
   bool frostbiteMapping = false;
   Sh9 shIrradianceOverPi{};
   // Samplers, layouts, descriptors.
-  VkSampler cubeSampler = VK_NULL_HANDLE, lutSampler = VK_NULL_HANDLE,
-            textureSampler = VK_NULL_HANDLE;
+  VkSampler cubeSampler = VK_NULL_HANDLE, lutSampler = VK_NULL_HANDLE;
+  std::vector<std::pair<TextureSampler, VkSampler>> textureSamplers;  // one per glTF sampler kind
   VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE, materialLayout = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool = VK_NULL_HANDLE;

@@ -221,14 +221,14 @@ std::vector<glm::vec3> generateNormals(const Mesh& m) {
 }
 
 // Tangents from UV derivatives per triangle, accumulated and orthogonalized per vertex
-// (Lengyel 2001), handedness in w.
-std::vector<glm::vec4> generateTangents(const Mesh& m) {
+// (Lengyel 2001), handedness in w, from the UV set `uvs` (the normal texture's).
+std::vector<glm::vec4> generateTangents(const Mesh& m, const std::vector<glm::vec2>& uvs) {
   std::vector<glm::vec3> tan(m.positions.size(), glm::vec3(0.0f)),
       bit(m.positions.size(), glm::vec3(0.0f));
   for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
     const std::uint32_t i0 = m.indices[i], i1 = m.indices[i + 1], i2 = m.indices[i + 2];
     const glm::vec3 e1 = m.positions[i1] - m.positions[i0], e2 = m.positions[i2] - m.positions[i0];
-    const glm::vec2 d1 = m.uvs[i1] - m.uvs[i0], d2 = m.uvs[i2] - m.uvs[i0];
+    const glm::vec2 d1 = uvs[i1] - uvs[i0], d2 = uvs[i2] - uvs[i0];
     const float det = d1.x * d2.y - d2.x * d1.y;
     if (std::abs(det) < 1e-20f) continue;
     const float r = 1.0f / det;
@@ -279,6 +279,7 @@ void decodeDracoPrimitive(const GltfReader& reader, const tinygltf::Value& ext, 
   read("NORMAL", 3, mesh.normals);
   read("TEXCOORD_0", 2, mesh.uvs);
   read("TANGENT", 4, mesh.tangents);
+  read("TEXCOORD_1", 2, mesh.uvs1);
   for (draco::FaceIndex f(0); f < dm->num_faces(); ++f)
     for (int k = 0; k < 3; ++k) mesh.indices.push_back(dm->face(f)[k].value());
 }
@@ -365,23 +366,75 @@ tinygltf::Model readGltfModel(const std::string& path) {
   return model;
 }
 
-// The images as RGBA textures in [0, 1] (sRGB-encoded where the material says so: decoded at
-// shading time, after filtering).
-std::vector<Texture> readTextures(const tinygltf::Model& model, const std::string& path) {
-  std::vector<Texture> textures;
-  for (const tinygltf::Image& img : model.images) {
+// A glTF sampler's wrap mode (an OpenGL enum; absent: REPEAT).
+Wrap wrapOf(int mode) {
+  if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return Wrap::ClampToEdge;
+  if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return Wrap::MirroredRepeat;
+  return Wrap::Repeat;
+}
+
+TextureSampler samplerOf(const tinygltf::Model& model, int index) {
+  TextureSampler s;
+  if (index < 0 || index >= static_cast<int>(model.samplers.size())) return s;
+  const tinygltf::Sampler& g = model.samplers[index];
+  s.wrapS = wrapOf(g.wrapS);
+  s.wrapT = wrapOf(g.wrapT);
+  s.nearest = g.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+  s.mipmaps = g.minFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+              g.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR;
+  return s;
+}
+
+// An image's texels as 8-bit RGBA (16-bit images keep their high byte; gray and gray-alpha
+// images are spread over RGB). 8-bit RGBA, what decoders give most often, is moved, not copied.
+std::shared_ptr<const std::vector<std::uint8_t>> rgba8Of(tinygltf::Image& img,
+                                                         const std::string& path) {
+  const std::size_t count = static_cast<std::size_t>(img.width) * img.height;
+  const int channels = img.component, bytes = img.bits == 16 ? 2 : 1;
+  if (img.width <= 0 || img.height <= 0 || channels < 1 || channels > 4 ||
+      img.image.size() < count * channels * bytes)
+    fail(path, fmt::format("image '{}' is missing, truncated or of an unsupported layout",
+                           img.uri.empty() ? img.name : img.uri));
+  if (channels == 4 && bytes == 1) {
+    img.image.resize(count * 4);
+    return std::make_shared<std::vector<std::uint8_t>>(std::move(img.image));
+  }
+  auto out = std::make_shared<std::vector<std::uint8_t>>(count * 4);
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto value = [&](int c) {  // the high byte of a 16-bit value (little endian)
+      return img.image[(i * channels + c) * bytes + bytes - 1];
+    };
+    std::uint8_t* t = out->data() + 4 * i;
+    if (channels >= 3) {
+      for (int c = 0; c < 3; ++c) t[c] = value(c);
+    } else {
+      t[0] = t[1] = t[2] = value(0);
+    }
+    t[3] = channels == 4 ? value(3) : channels == 2 ? value(1) : 255;
+  }
+  return out;
+}
+
+// The glTF textures: each an image (shared between the textures that use it) and a sampler.
+// Textures whose image ibl cannot read (none, or only an extension's) are empty.
+std::vector<Texture> readTextures(tinygltf::Model& model, const std::string& path) {
+  std::vector<std::shared_ptr<const std::vector<std::uint8_t>>> images;
+  for (std::size_t k = 0; k < model.images.size(); ++k) {
+    tinygltf::Image& img = model.images[k];
     if (img.image.empty() && !img.uri.empty() && img.uri.rfind("data:", 0) != 0)
       fail(path, fmt::format("cannot read texture '{}' (image {}): missing or not an image file",
-                             img.uri, textures.size()));
+                             img.uri, k));
+    images.push_back(img.image.empty() ? nullptr : rgba8Of(img, path));
+  }
+  std::vector<Texture> textures;
+  for (const tinygltf::Texture& g : model.textures) {
     Texture t;
-    t.width = img.width;
-    t.height = img.height;
-    t.texels.resize(static_cast<std::size_t>(img.width) * img.height);
-    if (img.image.size() < t.texels.size() * 4) fail(path, "image data is missing or truncated");
-    for (std::size_t i = 0; i < t.texels.size(); ++i)
-      t.texels[i] = glm::vec4(img.image[4 * i], img.image[4 * i + 1], img.image[4 * i + 2],
-                              img.image[4 * i + 3]) /
-                    255.0f;
+    if (g.source >= 0 && g.source < static_cast<int>(images.size()) && images[g.source]) {
+      t.width = model.images[g.source].width;
+      t.height = model.images[g.source].height;
+      t.rgba = images[g.source];
+    }
+    t.sampler = samplerOf(model, g.sampler);
     textures.push_back(std::move(t));
   }
   return textures;
@@ -389,11 +442,15 @@ std::vector<Texture> readTextures(const tinygltf::Model& model, const std::strin
 
 // The metallic-roughness materials, then a default one (gray, roughness 0.5) for primitives
 // without a material; textures are indices into readTextures' list, -1 for none.
-std::vector<Material> readMaterials(const tinygltf::Model& model, int textureCount) {
-  const auto textureIndex = [&](int gltfTexture) {
-    if (gltfTexture < 0 || gltfTexture >= static_cast<int>(model.textures.size())) return -1;
-    const int source = model.textures[gltfTexture].source;
-    return source >= 0 && source < textureCount ? source : -1;
+std::vector<Material> readMaterials(const tinygltf::Model& model,
+                                    const std::vector<Texture>& textures) {
+  const auto textureRef = [&](const auto& info) {
+    TextureRef ref;
+    if (info.index >= 0 && info.index < static_cast<int>(textures.size()) &&
+        !textures[info.index].empty())
+      ref.index = info.index;
+    ref.texCoord = info.texCoord;
+    return ref;
   };
   std::vector<Material> materials;
   for (const tinygltf::Material& m : model.materials) {
@@ -402,19 +459,19 @@ std::vector<Material> readMaterials(const tinygltf::Model& model, int textureCou
     mat.baseColor = glm::vec3(static_cast<float>(pbr.baseColorFactor[0]),
                               static_cast<float>(pbr.baseColorFactor[1]),
                               static_cast<float>(pbr.baseColorFactor[2]));
-    mat.baseColorTexture = textureIndex(pbr.baseColorTexture.index);
+    mat.baseColorTexture = textureRef(pbr.baseColorTexture);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
-    mat.metallicRoughnessTexture = textureIndex(pbr.metallicRoughnessTexture.index);
-    mat.normalTexture = textureIndex(m.normalTexture.index);
+    mat.metallicRoughnessTexture = textureRef(pbr.metallicRoughnessTexture);
+    mat.normalTexture = textureRef(m.normalTexture);
     mat.normalScale = static_cast<float>(m.normalTexture.scale);
-    mat.occlusionTexture = textureIndex(m.occlusionTexture.index);
+    mat.occlusionTexture = textureRef(m.occlusionTexture);
     mat.occlusionStrength = static_cast<float>(m.occlusionTexture.strength);
     if (m.emissiveFactor.size() == 3)
       mat.emissive = glm::vec3(static_cast<float>(m.emissiveFactor[0]),
                                static_cast<float>(m.emissiveFactor[1]),
                                static_cast<float>(m.emissiveFactor[2]));
-    mat.emissiveTexture = textureIndex(m.emissiveTexture.index);
+    mat.emissiveTexture = textureRef(m.emissiveTexture);
     // KHR_materials_emissive_strength: a scale of the emission past 1 (physical units).
     const auto strength = m.extensions.find("KHR_materials_emissive_strength");
     if (strength != m.extensions.end() && strength->second.Has("emissiveStrength"))
@@ -422,7 +479,11 @@ std::vector<Material> readMaterials(const tinygltf::Model& model, int textureCou
           static_cast<float>(strength->second.Get("emissiveStrength").GetNumberAsDouble());
     materials.push_back(mat);
   }
-  materials.push_back(Material{glm::vec3(0.8f), -1, 0.0f, 0.5f});
+  Material fallback;
+  fallback.baseColor = glm::vec3(0.8f);
+  fallback.metallic = 0.0f;
+  fallback.roughness = 0.5f;
+  materials.push_back(fallback);
   return materials;
 }
 
@@ -465,6 +526,8 @@ Mesh readPrimitive(const GltfReader& reader, const tinygltf::Primitive& prim,
     mesh.normals = readAttribute<glm::vec3>(reader, attribute("NORMAL"), 3);
   if (attribute("TEXCOORD_0") >= 0)
     mesh.uvs = readAttribute<glm::vec2>(reader, attribute("TEXCOORD_0"), 2);
+  if (attribute("TEXCOORD_1") >= 0)
+    mesh.uvs1 = readAttribute<glm::vec2>(reader, attribute("TEXCOORD_1"), 2);
   if (attribute("TANGENT") >= 0)
     mesh.tangents = readAttribute<glm::vec4>(reader, attribute("TANGENT"), 4);
   if (prim.indices >= 0) {
@@ -483,13 +546,14 @@ void checkMesh(const Mesh& mesh, const std::string& path) {
     if (i >= mesh.positions.size()) fail(path, "a vertex index is out of range");
   if ((!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) ||
       (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) ||
+      (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size()) ||
       (!mesh.tangents.empty() && mesh.tangents.size() != mesh.positions.size()))
     fail(path, "vertex attributes of different counts");
 }
 
 // Moves a mesh to world space; generates the normals it lacks, and the tangents it lacks when
-// it has a normal map (needsTangents).
-void placeInWorld(Mesh& mesh, const glm::mat4& world, bool needsTangents) {
+// it has a normal map (normalTexture.index >= 0), from the UV set that map reads.
+void placeInWorld(Mesh& mesh, const glm::mat4& world, const TextureRef& normalTexture) {
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
   for (auto& p : mesh.positions) p = glm::vec3(world * glm::vec4(p, 1.0f));
   if (mesh.normals.empty()) {
@@ -497,9 +561,10 @@ void placeInWorld(Mesh& mesh, const glm::mat4& world, bool needsTangents) {
   } else {
     for (auto& n : mesh.normals) n = glm::normalize(normalMatrix * n);
   }
-  if (!mesh.uvs.empty() && needsTangents) {
+  const std::vector<glm::vec2>& uvs = normalTexture.texCoord == 1 ? mesh.uvs1 : mesh.uvs;
+  if (!uvs.empty() && normalTexture.index >= 0) {
     if (mesh.tangents.empty()) {
-      mesh.tangents = generateTangents(mesh);
+      mesh.tangents = generateTangents(mesh, uvs);
     } else {
       for (auto& t : mesh.tangents)
         t = glm::vec4(glm::normalize(glm::mat3(world) * glm::vec3(t)), t.w);
@@ -535,7 +600,7 @@ class NodeVisitor {
       mesh.material =
           prim.material >= 0 && prim.material < defaultMaterial ? prim.material : defaultMaterial;
       checkMesh(mesh, path_);
-      placeInWorld(mesh, world, scene_.materials[mesh.material].normalTexture >= 0);
+      placeInWorld(mesh, world, scene_.materials[mesh.material].normalTexture);
       if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
     }
   }
@@ -549,10 +614,10 @@ class NodeVisitor {
 }  // namespace
 
 Scene loadGltf(const std::string& path) {
-  const tinygltf::Model model = readGltfModel(path);
+  tinygltf::Model model = readGltfModel(path);
   Scene scene;
   scene.textures = readTextures(model, path);
-  scene.materials = readMaterials(model, static_cast<int>(scene.textures.size()));
+  scene.materials = readMaterials(model, scene.textures);
   NodeVisitor visitor(model, path, scene);
   const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (!model.scenes.empty() && sceneIndex < static_cast<int>(model.scenes.size())) {

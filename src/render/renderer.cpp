@@ -225,10 +225,6 @@ class RayTracer {
   unsigned sphereGeometry_ = RTC_INVALID_GEOMETRY_ID;
 };
 
-glm::vec3 srgbTexel(glm::vec4 t) {
-  return srgbToLinear(glm::vec3(t));
-}
-
 // The shading point of a hit: interpolated attributes, material textures, normal mapping.
 SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTracer::Hit& hit,
                        const Ray& ray) {
@@ -253,26 +249,27 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     glm::vec3 base = mat->baseColor;
     float metallic = mat->metallic, roughness = mat->roughness;
     glm::vec3 emissive = mat->emissive;
-    if (!m.uvs.empty()) {
-      const glm::vec2 uv = m.uvs[i0] * w0 + m.uvs[i1] * w1 + m.uvs[i2] * w2;
-      if (mat->baseColorTexture >= 0)
-        base *= srgbTexel(scene.textures[mat->baseColorTexture].sample(uv));
-      if (mat->metallicRoughnessTexture >= 0) {
-        const glm::vec2 mr = shared::applyMetallicRoughnessTexel(
-            metallic, roughness, scene.textures[mat->metallicRoughnessTexture].sample(uv));
-        metallic = mr.x;
-        roughness = mr.y;
-      }
-      if (mat->occlusionTexture >= 0)
-        p.occlusion = shared::occlusionFromTexel(mat->occlusionStrength,
-                                                 scene.textures[mat->occlusionTexture].sample(uv));
-      if (mat->emissiveTexture >= 0)
-        emissive *= srgbTexel(scene.textures[mat->emissiveTexture].sample(uv));
-      if (mat->normalTexture >= 0 && !m.tangents.empty()) {
-        const glm::vec4 t4 = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
-        n = shared::applyNormalMap(n, t4, scene.textures[mat->normalTexture].sample(uv),
-                                   mat->normalScale);
-      }
+    // Each slot reads its own UV set (glTF texCoord); a slot whose set the mesh lacks is off.
+    const auto lookup = [&](const TextureRef& ref, bool srgb, glm::vec4& texel) {
+      const std::vector<glm::vec2>& uvs = ref.texCoord == 1 ? m.uvs1 : m.uvs;
+      if (ref.index < 0 || uvs.empty()) return false;
+      const glm::vec2 uv = uvs[i0] * w0 + uvs[i1] * w1 + uvs[i2] * w2;
+      texel = scene.textures[ref.index].sample(uv, srgb);
+      return true;
+    };
+    glm::vec4 t;
+    if (lookup(mat->baseColorTexture, true, t)) base *= glm::vec3(t);
+    if (lookup(mat->metallicRoughnessTexture, false, t)) {
+      const glm::vec2 mr = shared::applyMetallicRoughnessTexel(metallic, roughness, t);
+      metallic = mr.x;
+      roughness = mr.y;
+    }
+    if (lookup(mat->occlusionTexture, false, t))
+      p.occlusion = shared::occlusionFromTexel(mat->occlusionStrength, t);
+    if (lookup(mat->emissiveTexture, true, t)) emissive *= glm::vec3(t);
+    if (!m.tangents.empty() && lookup(mat->normalTexture, false, t)) {
+      const glm::vec4 t4 = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
+      n = shared::applyNormalMap(n, t4, t, mat->normalScale);
     }
     p.baseColor = base;
     p.metallic = std::clamp(metallic, 0.0f, 1.0f);

@@ -10,23 +10,50 @@
 
 #include <glm/geometric.hpp>
 
+#include "ibl/math/color.hpp"
+
 namespace ibl {
 
-glm::vec4 Texture::sample(glm::vec2 uv) const {
-  if (texels.empty()) return glm::vec4(1.0f);
-  const float fx = uv.x * static_cast<float>(width) - 0.5f,
-              fy = uv.y * static_cast<float>(height) - 0.5f;
-  const float flx = std::floor(fx), fly = std::floor(fy);
-  const float wx = fx - flx, wy = fy - fly;
-  const auto wrap = [](int i, int n) {
-    i %= n;
-    return i < 0 ? i + n : i;
+namespace {
+
+// Texel index i of a row or column of n, wrapped as glTF's samplers (OpenGL's rules).
+int wrapTexel(int i, int n, Wrap wrap) {
+  switch (wrap) {
+    case Wrap::ClampToEdge:
+      return std::clamp(i, 0, n - 1);
+    case Wrap::MirroredRepeat: {
+      const int period = 2 * n;
+      int m = i % period;
+      if (m < 0) m += period;
+      return m < n ? m : period - 1 - m;
+    }
+    case Wrap::Repeat:
+      break;
+  }
+  i %= n;
+  return i < 0 ? i + n : i;
+}
+
+}  // namespace
+
+glm::vec4 Texture::sample(glm::vec2 uv, bool srgb) const {
+  if (empty()) return glm::vec4(1.0f);
+  const auto at = [&](int x, int y) {
+    const std::uint8_t* t =
+        rgba->data() + 4 * (static_cast<std::size_t>(wrapTexel(y, height, sampler.wrapT)) * width +
+                            static_cast<std::size_t>(wrapTexel(x, width, sampler.wrapS)));
+    return srgb ? glm::vec4(srgb8ToLinear(t[0]), srgb8ToLinear(t[1]), srgb8ToLinear(t[2]),
+                            static_cast<float>(t[3]) / 255.0f)
+                : glm::vec4(t[0], t[1], t[2], t[3]) / 255.0f;
   };
-  const int x0 = wrap(static_cast<int>(flx), width), x1 = wrap(static_cast<int>(flx) + 1, width);
-  const int y0 = wrap(static_cast<int>(fly), height), y1 = wrap(static_cast<int>(fly) + 1, height);
-  const auto at = [&](int x, int y) { return texels[static_cast<std::size_t>(y) * width + x]; };
-  return (at(x0, y0) * (1.0f - wx) + at(x1, y0) * wx) * (1.0f - wy) +
-         (at(x0, y1) * (1.0f - wx) + at(x1, y1) * wx) * wy;
+  const float fx = uv.x * static_cast<float>(width), fy = uv.y * static_cast<float>(height);
+  if (sampler.nearest)
+    return at(static_cast<int>(std::floor(fx)), static_cast<int>(std::floor(fy)));
+  const float flx = std::floor(fx - 0.5f), fly = std::floor(fy - 0.5f);
+  const float wx = fx - 0.5f - flx, wy = fy - 0.5f - fly;
+  const int x0 = static_cast<int>(flx), y0 = static_cast<int>(fly);
+  return (at(x0, y0) * (1.0f - wx) + at(x0 + 1, y0) * wx) * (1.0f - wy) +
+         (at(x0, y0 + 1) * (1.0f - wx) + at(x0 + 1, y0 + 1) * wx) * wy;
 }
 
 std::pair<glm::vec3, glm::vec3> Scene::bounds() const {

@@ -192,6 +192,11 @@ TEST(Viewer, TexturedAndCompressedMeshesMatchTheCpu) {
       renderBoth(loadGltf((dir / "quad.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 96, 96), o);
   EXPECT_LT(c.meanRelative, 1e-3);
   EXPECT_LT(c.coverageMismatch, 5e-3);
+  // The second UV set, a clamping nearest sampler, an sRGB texture format with mip maps.
+  writeTexturedQuad(dir / "quad1.gltf", true);
+  c = renderBoth(loadGltf((dir / "quad1.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 96, 96), o);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  EXPECT_LT(c.coverageMismatch, 5e-3);
   const Scene bunny = loadGltf((dataDir() / "models" / "bunny.glb").string());
   const auto [lo, hi] = bunny.bounds();
   Camera camera =

@@ -31,9 +31,76 @@ TEST(Gltf, LoadsATexturedQuad) {
   EXPECT_LT(glm::distance(glm::vec3(m.tangents[0]), glm::vec3(1, 0, 0)), 1e-5f);
   const Material& mat = s.materials[m.material];
   EXPECT_FLOAT_EQ(mat.roughness, 0.8f);
-  ASSERT_GE(mat.baseColorTexture, 0);
-  EXPECT_NEAR(s.textures[mat.baseColorTexture].sample({0.375f, 0.5f}).x, 1.0f, 1e-6f);
-  EXPECT_NEAR(s.textures[mat.baseColorTexture].sample({0.625f, 0.5f}).z, 1.0f, 1e-6f);
+  ASSERT_GE(mat.baseColorTexture.index, 0);
+  const Texture& base = s.textures[mat.baseColorTexture.index];
+  EXPECT_NEAR(base.sample({0.375f, 0.5f}, true).x, 1.0f, 1e-6f);
+  EXPECT_NEAR(base.sample({0.625f, 0.5f}, true).z, 1.0f, 1e-6f);
+}
+
+TEST(Texture, WrapsFiltersAndDecodesSrgbBeforeFiltering) {
+  // Two texels, codes 0 and 255: centers at u = 0.25 and 0.75.
+  Texture t;
+  t.width = 2;
+  t.height = 1;
+  t.rgba = std::make_shared<std::vector<std::uint8_t>>(
+      std::vector<std::uint8_t>{0, 0, 0, 255, 255, 255, 255, 255});
+  // Halfway: sRGB decoded first, (0 + 1) / 2 = 0.5; decoding the filtered code 127.5 would
+  // give 0.21. Linear textures filter the codes: 0.5 too.
+  EXPECT_NEAR(t.sample({0.5f, 0.5f}, true).x, 0.5f, 1e-6f);
+  EXPECT_NEAR(t.sample({0.5f, 0.5f}, false).x, 0.5f, 1e-6f);
+  EXPECT_NEAR(t.sample({0.375f, 0.5f}, true).x, 0.25f, 1e-6f);
+  EXPECT_NEAR(t.sample({0.375f, 0.5f}, false).x, 0.25f, 1e-6f);
+  // At u = 0 (a texel edge): repeat blends the last texel in, clamping keeps the first, mirrored
+  // repeat reflects the first.
+  EXPECT_NEAR(t.sample({0.0f, 0.5f}, false).x, 0.5f, 1e-6f);
+  t.sampler.wrapS = Wrap::ClampToEdge;
+  EXPECT_NEAR(t.sample({0.0f, 0.5f}, false).x, 0.0f, 1e-6f);
+  EXPECT_NEAR(t.sample({1.3f, 0.5f}, false).x, 1.0f, 1e-6f);
+  t.sampler.wrapS = Wrap::MirroredRepeat;
+  EXPECT_NEAR(t.sample({0.0f, 0.5f}, false).x, 0.0f, 1e-6f);
+  EXPECT_NEAR(t.sample({-0.25f, 0.5f}, false).x, 0.0f, 1e-6f);  // texel -1 mirrors texel 0
+  EXPECT_NEAR(t.sample({1.25f, 0.5f}, false).x, 1.0f, 1e-6f);   // texel 2 mirrors texel 1
+  t.sampler.wrapS = Wrap::Repeat;
+  EXPECT_NEAR(t.sample({-0.25f, 0.5f}, false).x, 1.0f, 1e-6f);  // texel -1 is texel 1
+  // Nearest: the texel under uv, no blending.
+  t.sampler.nearest = true;
+  EXPECT_NEAR(t.sample({0.45f, 0.5f}, true).x, 0.0f, 1e-6f);
+  EXPECT_NEAR(t.sample({0.55f, 0.5f}, true).x, 1.0f, 1e-6f);
+}
+
+TEST(Gltf, SamplersAndTheSecondUvSet) {
+  TempDir dir;
+  writeTexturedQuad(dir / "quad.gltf", true);
+  const Scene s = loadGltf((dir / "quad.gltf").string());
+  const Mesh& m = s.meshes[0];
+  ASSERT_EQ(m.uvs1.size(), 4u);
+  const Material& mat = s.materials[m.material];
+  EXPECT_EQ(mat.baseColorTexture.texCoord, 1);
+  EXPECT_EQ(mat.normalTexture.texCoord, 0);
+  const TextureSampler& sampler = s.textures[mat.baseColorTexture.index].sampler;
+  EXPECT_EQ(sampler.wrapS, Wrap::ClampToEdge);
+  EXPECT_EQ(sampler.wrapT, Wrap::MirroredRepeat);
+  EXPECT_TRUE(sampler.nearest);
+  EXPECT_FALSE(sampler.mipmaps);  // minFilter LINEAR: no mip maps
+  EXPECT_EQ(s.textures[mat.normalTexture.index].sampler, TextureSampler{});  // glTF defaults
+  // Rendered: the mirrored UV set puts blue left and red right.
+  BakeOptions bo;
+  bo.specular.size = 16;
+  bo.dfgSize = 16;
+  bo.dfgSamples = 64;
+  const BakeResult bake = bakeEnvironment(equirectEnvironment(Image(64, 32, glm::vec3(1.0f))), bo);
+  Camera cam;
+  cam.perspective = false;
+  cam.orthoWidth = 2.0f;
+  cam.from = glm::vec3(0, 0, 4);
+  cam.width = cam.height = 8;
+  RenderOptions o;
+  o.spp = 1;
+  o.only = ShadingTerms::Diffuse;
+  o.diffuse = DiffuseModel::Lambert;
+  const RenderResult r = renderScene(s, cam, bake, bo, o);
+  EXPECT_LT(glm::distance(r.color.at(2, 4), glm::vec3(0, 0, 1)), 0.02f);
+  EXPECT_LT(glm::distance(r.color.at(5, 4), glm::vec3(1, 0, 0)), 0.02f);
 }
 
 TEST(Gltf, TexturesShowInTheRender) {

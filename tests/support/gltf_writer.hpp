@@ -40,8 +40,9 @@ void append(std::vector<std::uint8_t>& buf, const std::vector<T>& v) {
 
 // A 2 x 2 quad in the XY plane facing +Z, moved by a node translation, with a textured
 // material: the left two texel columns red, the right two blue; a flat normal map (no normals and
-// no tangents in the file: both must be generated).
-inline void writeTexturedQuad(const std::filesystem::path& path) {
+// no tangents in the file: both must be generated). With secondUvSet, the base color reads
+// TEXCOORD_1 (u mirrored: red right, blue left) through a clamping, nearest-magnifying sampler.
+inline void writeTexturedQuad(const std::filesystem::path& path, bool secondUvSet = false) {
   const std::vector<float> positions = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
   const std::vector<float> uvs = {0, 1, 1, 1, 1, 0, 0, 0};
   const std::vector<std::uint16_t> indices = {0, 1, 2, 0, 2, 3};
@@ -89,6 +90,20 @@ inline void writeTexturedQuad(const std::filesystem::path& path) {
          {"max", {1, 1, 0}}},
         {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
         {{"bufferView", 2}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}}};
+  if (secondUvSet) {
+    const std::size_t offset = buffer.size();
+    append(buffer, std::vector<float>{1, 1, 0, 1, 0, 0, 1, 0});
+    j["buffers"][0] = {{"byteLength", buffer.size()},
+                       {"uri", "data:application/octet-stream;base64," + base64(buffer)}};
+    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 32}});
+    j["accessors"].push_back(
+        {{"bufferView", 3}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}});
+    j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = 3;
+    j["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+    j["samplers"] = {
+        {{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}, {"minFilter", 9729}}};
+    j["textures"][0]["sampler"] = 0;
+  }
   std::ofstream(path) << j.dump();
 }
 

@@ -2,6 +2,7 @@
 // Scenes to render: triangle meshes with glTF metallic-roughness materials (from glTF 2.0
 // files), analytic spheres (the built-in scenes), and an optional camera.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,26 +16,48 @@
 
 namespace ibl {
 
-// A texture: RGBA values in [0, 1] as stored (sRGB-encoded or linear, per its use).
-struct Texture {
-  int width = 0, height = 0;
-  std::vector<glm::vec4> texels;
-  glm::vec4 sample(glm::vec2 uv) const;  // bilinear, repeat wrapping
+// How a texture is read outside [0, 1] and between texels (a glTF sampler, glTF 2.0 5.26).
+enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
+struct TextureSampler {
+  Wrap wrapS = Wrap::Repeat, wrapT = Wrap::Repeat;
+  bool nearest = false;  // magnification: nearest texel (NEAREST), else bilinear (LINEAR)
+  bool mipmaps = true;   // minification reads mip levels (the viewer; the renderer supersamples)
+  bool operator==(const TextureSampler&) const = default;
 };
 
-// glTF 2.0 metallic-roughness material (texture indices: -1 for none).
+// A glTF texture: 8-bit RGBA texels as stored (several textures may share one image) and its
+// sampler.
+struct Texture {
+  int width = 0, height = 0;
+  std::shared_ptr<const std::vector<std::uint8_t>> rgba;  // 4 bytes per texel, row by row
+  TextureSampler sampler;
+
+  bool empty() const { return !rgba || rgba->empty(); }
+  // The filtered value at uv (bilinear, or nearest), wrapped as the sampler says. With srgb
+  // (base color and emission, glTF 2.0 3.9.2), each texel's RGB is decoded to linear before
+  // filtering, as an sRGB texture format does on a GPU; alpha and other textures are linear.
+  glm::vec4 sample(glm::vec2 uv, bool srgb) const;
+};
+
+// One texture slot of a material: the scene's texture (-1: none) and which UV set it reads.
+struct TextureRef {
+  int index = -1;
+  int texCoord = 0;  // 0: TEXCOORD_0, 1: TEXCOORD_1
+};
+
+// glTF 2.0 metallic-roughness material.
 struct Material {
-  glm::vec3 baseColor{1.0f};  // linear
-  int baseColorTexture = -1;  // sRGB
+  glm::vec3 baseColor{1.0f};    // linear
+  TextureRef baseColorTexture;  // sRGB
   float metallic = 1.0f;
-  float roughness = 1.0f;             // perceptual
-  int metallicRoughnessTexture = -1;  // B = metallic, G = roughness (linear)
-  int normalTexture = -1;
+  float roughness = 1.0f;               // perceptual
+  TextureRef metallicRoughnessTexture;  // B = metallic, G = roughness (linear)
+  TextureRef normalTexture;
   float normalScale = 1.0f;
-  int occlusionTexture = -1;  // R
+  TextureRef occlusionTexture;  // R
   float occlusionStrength = 1.0f;
   glm::vec3 emissive{0.0f};
-  int emissiveTexture = -1;  // sRGB
+  TextureRef emissiveTexture;  // sRGB
 };
 
 // Triangles in world space.
@@ -42,7 +65,8 @@ struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;   // per vertex
   std::vector<glm::vec4> tangents;  // per vertex, w = handedness (empty: no normal map)
-  std::vector<glm::vec2> uvs;       // empty: no textures
+  std::vector<glm::vec2> uvs;       // TEXCOORD_0 (empty: no textures)
+  std::vector<glm::vec2> uvs1;      // TEXCOORD_1 (empty: none)
   std::vector<std::uint32_t> indices;
   int material = 0;
 };
