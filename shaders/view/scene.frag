@@ -24,9 +24,24 @@ layout(push_constant) uniform Material {
   vec4 emissiveRoughness;
   vec4 scales;       // normal scale, occlusion strength
   vec4 sphere;       // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
+  vec4 alpha;        // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
   uint textureMask;   // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive
   uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
 } material;
+
+// A uniform number in [0, 1) per pixel and surface depth: BLEND's stochastic threshold (hashed
+// alpha; the CPU renderer hashes its rays instead, so the two agree on average, not per pixel).
+// (gl_PrimitiveID would need the geometry shader feature.)
+float blendThreshold() {
+  uvec3 v = uvec3(uvec2(gl_FragCoord.xy), floatBitsToUint(gl_FragCoord.z));
+  v = v * 1664525u + 1013904223u;
+  v.x += v.y * v.z;
+  v.y += v.z * v.x;
+  v.z += v.x * v.y;
+  v ^= v >> 16u;
+  v.x += v.y * v.z;
+  return float(v.x >> 8u) * (1.0 / 16777216.0);
+}
 
 // The UV set texture slot `bit` reads (glTF texCoord).
 vec2 texCoordOf(uint bit) {
@@ -110,7 +125,13 @@ void main() {
   float occlusion = 1.0;
   uint mask = material.textureMask;
   // sRGB textures are decoded before filtering (their formats), as Texture::sample does.
-  if ((mask & 1u) != 0u) baseColor *= texture(baseColorTexture, texCoordOf(1u)).rgb;
+  float alpha = material.alpha.x;
+  if ((mask & 1u) != 0u) {
+    vec4 texel = texture(baseColorTexture, texCoordOf(1u));
+    baseColor *= texel.rgb;
+    alpha *= texel.a;
+  }
+  if (!alphaCovers(int(material.alpha.y), alpha, material.alpha.z, blendThreshold())) discard;
   if ((mask & 2u) != 0u) {
     vec2 mr = applyMetallicRoughnessTexel(metallic, roughness,
                                           texture(metallicRoughnessTexture, texCoordOf(2u)));

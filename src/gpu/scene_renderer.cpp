@@ -263,6 +263,8 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
     mc.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
     mc.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
     mc.scales = glm::vec4(mat.normalScale, mat.occlusionStrength, 0.0f, 0.0f);
+    mc.alpha =
+        glm::vec4(mat.baseColorAlpha, static_cast<float>(mat.alphaMode), mat.alphaCutoff, 0.0f);
     const std::array<TextureRef, 5> slots{mat.baseColorTexture, mat.metallicRoughnessTexture,
                                           mat.normalTexture, mat.occlusionTexture,
                                           mat.emissiveTexture};

@@ -15,7 +15,8 @@ namespace ibl::gpu {
 // The push constants of shaders/view/scene.frag: a material, and the sphere a mesh bounds.
 struct MaterialConstants {
   glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
-  std::uint32_t textureMask;   // the textures the material has, bit b for set 1 binding b
+  glm::vec4 alpha;            // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff
+  std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
 };
 

@@ -460,6 +460,11 @@ std::vector<Material> readMaterials(const tinygltf::Model& model,
                               static_cast<float>(pbr.baseColorFactor[1]),
                               static_cast<float>(pbr.baseColorFactor[2]));
     mat.baseColorTexture = textureRef(pbr.baseColorTexture);
+    mat.baseColorAlpha = static_cast<float>(pbr.baseColorFactor[3]);
+    mat.alphaMode = m.alphaMode == "MASK"    ? AlphaMode::Mask
+                    : m.alphaMode == "BLEND" ? AlphaMode::Blend
+                                             : AlphaMode::Opaque;
+    mat.alphaCutoff = static_cast<float>(m.alphaCutoff);
     mat.metallic = static_cast<float>(pbr.metallicFactor);
     mat.roughness = static_cast<float>(pbr.roughnessFactor);
     mat.metallicRoughnessTexture = textureRef(pbr.metallicRoughnessTexture);

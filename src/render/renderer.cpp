@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -136,6 +137,59 @@ RTCRay embreeRay(glm::vec3 origin, glm::vec3 dir) {
   return ray;
 }
 
+// What a mesh whose material is MASK or BLEND needs to decide whether a hit covers.
+struct AlphaTest {
+  const Mesh* mesh;
+  const Material* material;
+  const Texture* texture;  // the base color texture, or null
+};
+
+// The material's alpha at a hit (barycentrics u, v of triangle `primitive`).
+float alphaAt(const AlphaTest& a, unsigned primitive, float u, float v) {
+  float alpha = a.material->baseColorAlpha;
+  const std::vector<glm::vec2>& uvs =
+      a.material->baseColorTexture.texCoord == 1 ? a.mesh->uvs1 : a.mesh->uvs;
+  if (a.texture && !uvs.empty()) {
+    const std::uint32_t* i = &a.mesh->indices[3 * static_cast<std::size_t>(primitive)];
+    const glm::vec2 uv = uvs[i[0]] * (1.0f - u - v) + uvs[i[1]] * u + uvs[i[2]] * v;
+    alpha *= a.texture->sample(uv, false).w;
+  }
+  return alpha;
+}
+
+// A uniform number in [0, 1) from a ray and a triangle: the threshold of stochastic
+// transparency (each sample's ray differs, so BLEND averages to alpha over samples).
+float blendThreshold(const float (&ray)[6], unsigned primitive) {
+  std::uint32_t h = primitive * 0x9e3779b9u;
+  for (float f : ray) {
+    h ^= std::bit_cast<std::uint32_t>(f) + 0x7f4a7c15u + (h << 6) + (h >> 2);
+    h *= 0x85ebca6bu;
+    h ^= h >> 13;
+  }
+  h *= 0xc2b2ae35u;
+  h ^= h >> 16;
+  return static_cast<float>(h >> 8) * 0x1p-24f;
+}
+
+// Embree's filter for MASK and BLEND meshes, of intersections and of occlusion alike: a hit the
+// alpha does not cover is ignored, and the ray goes on.
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* a = static_cast<const AlphaTest*>(args->geometryUserPtr);
+  for (unsigned k = 0; k < args->N; ++k) {
+    if (args->valid[k] != -1) continue;
+    const unsigned primitive = RTCHitN_primID(args->hit, args->N, k);
+    const float alpha =
+        alphaAt(*a, primitive, RTCHitN_u(args->hit, args->N, k), RTCHitN_v(args->hit, args->N, k));
+    const float ray[6] = {
+        RTCRayN_org_x(args->ray, args->N, k), RTCRayN_org_y(args->ray, args->N, k),
+        RTCRayN_org_z(args->ray, args->N, k), RTCRayN_dir_x(args->ray, args->N, k),
+        RTCRayN_dir_y(args->ray, args->N, k), RTCRayN_dir_z(args->ray, args->N, k)};
+    if (!shared::alphaCovers(static_cast<int>(a->material->alphaMode), alpha,
+                             a->material->alphaCutoff, blendThreshold(ray, primitive)))
+      args->valid[k] = 0;
+  }
+}
+
 // Embree scene of the meshes (one geometry each) and the spheres (one geometry).
 class RayTracer {
  public:
@@ -143,6 +197,7 @@ class RayTracer {
     device_ = rtcNewDevice(nullptr);
     if (!device_) fail("embree", "cannot create a device");
     handle_ = rtcNewScene(device_);
+    alphaTests_.reserve(scene.meshes.size());  // stable addresses: Embree keeps pointers
     for (const Mesh& m : scene.meshes) {
       RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
       auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -153,6 +208,14 @@ class RayTracer {
           rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                   3 * sizeof(std::uint32_t), m.indices.size() / 3));
       std::copy(m.indices.begin(), m.indices.end(), idx);
+      const Material& mat = scene.materials[m.material];
+      if (mat.alphaMode != AlphaMode::Opaque) {
+        const int t = mat.baseColorTexture.index;
+        alphaTests_.push_back({&m, &mat, t >= 0 ? &scene.textures[t] : nullptr});
+        rtcSetGeometryUserData(g, &alphaTests_.back());
+        rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
+        rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
+      }
       rtcCommitGeometry(g);
       rtcAttachGeometry(handle_, g);
       rtcReleaseGeometry(g);
@@ -220,6 +283,7 @@ class RayTracer {
 
  private:
   const Scene& scene_;
+  std::vector<AlphaTest> alphaTests_;
   RTCDevice device_ = nullptr;
   RTCScene handle_ = nullptr;
   unsigned sphereGeometry_ = RTC_INVALID_GEOMETRY_ID;

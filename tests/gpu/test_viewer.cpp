@@ -192,6 +192,14 @@ TEST(Viewer, TexturedAndCompressedMeshesMatchTheCpu) {
       renderBoth(loadGltf((dir / "quad.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 96, 96), o);
   EXPECT_LT(c.meanRelative, 1e-3);
   EXPECT_LT(c.coverageMismatch, 5e-3);
+  // A MASK material cuts the same holes (a texture whose left half is under the cutoff).
+  QuadMaterial masked;
+  masked.alphaCodes = {77, 204};
+  masked.alphaMode = "MASK";
+  writeMaterialQuad(dir / "mask.gltf", masked);
+  c = renderBoth(loadGltf((dir / "mask.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 96, 96), o);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  EXPECT_LT(c.coverageMismatch, 5e-3);
   // The second UV set, a clamping nearest sampler, an sRGB texture format with mip maps.
   writeTexturedQuad(dir / "quad1.gltf", true);
   c = renderBoth(loadGltf((dir / "quad1.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 96, 96), o);

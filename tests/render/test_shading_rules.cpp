@@ -175,6 +175,48 @@ TEST(ShadingRules, BaseColorTexturesAreSrgbDecoded) {
   EXPECT_NEAR(c.z, 1.0f, 1e-5f);
 }
 
+// alphaMode (glTF 2.0 3.9.4): the fraction of a pixel's samples the quad covers. The quad fills
+// an 8 x 8 view; its texture's left half has alpha code 0.3 x 255 = 77 (0.302), the right
+// half 204 (0.8); the factor's alpha multiplies both.
+TEST(ShadingRules, AlphaModesCoverAsTheSpecificationSays) {
+  TempDir dir;
+  const SyntheticBake s = syntheticBake(
+      2, [](int, glm::vec3) { return glm::vec3(0.0f); }, [](glm::vec3) { return glm::vec3(1.0f); },
+      glm::vec3(1.0f, 0.0f, 1.0f), 8);
+  const auto coverage = [&](const QuadMaterial& m, int spp) {
+    writeMaterialQuad(dir / "q.gltf", m);
+    Camera c;
+    c.perspective = false;
+    c.orthoWidth = 1.9f;
+    c.from = glm::vec3(0.0f, 0.0f, 3.0f);
+    c.width = c.height = 8;
+    RenderOptions o;
+    o.spp = spp;
+    const RenderResult r =
+        renderScene(loadGltf((dir / "q.gltf").string()), c, s.bake, s.options, o);
+    double left = 0.0, right = 0.0;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) (x < 4 ? left : right) += r.alpha[y * 8 + x] / 32.0;
+    return std::pair{left, right};
+  };
+  QuadMaterial m;
+  m.alphaCodes = {77, 204};
+  m.alphaMode = "OPAQUE";  // alpha ignored
+  EXPECT_EQ(coverage(m, 1), std::pair(1.0, 1.0));
+  m.alphaMode = "MASK";  // cutoff 0.5: left cut out, right kept
+  EXPECT_EQ(coverage(m, 1), std::pair(0.0, 1.0));
+  m.alphaCutoff = 0.25f;
+  EXPECT_EQ(coverage(m, 1), std::pair(1.0, 1.0));
+  m.baseColorAlpha = 0.5f;  // 0.151 and 0.4 against 0.25
+  EXPECT_EQ(coverage(m, 1), std::pair(0.0, 1.0));
+  // BLEND: covered with probability alpha, 0.151 and 0.4 here (256 samples per pixel, 32 pixels
+  // per half: a standard deviation under 0.005).
+  m.alphaMode = "BLEND";
+  const auto [left, right] = coverage(m, 256);
+  EXPECT_NEAR(left, 0.5 * 77.0 / 255.0, 0.02);
+  EXPECT_NEAR(right, 0.5 * 204.0 / 255.0, 0.02);
+}
+
 // metallicRoughnessTexture: roughness in G, metalness in B (linear), R ignored.
 TEST(ShadingRules, MetallicRoughnessChannels) {
   TempDir dir;

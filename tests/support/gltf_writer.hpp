@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <stb_image_write.h>
 #include <nlohmann/json.hpp>
 
 #include "ibl/core/image.hpp"
@@ -122,7 +123,28 @@ struct QuadMaterial {
   glm::vec3 emissiveFactor{0.0f};
   glm::ivec3 emissiveCodes{-1, 0, 0};         // sRGB-encoded
   glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // written per vertex when there is a normal map
+  // Alpha: the mode ("" for none written), cutoff, baseColorFactor's A, and the codes of a
+  // base color texture's A, left and right half (a 2 x 1 RGBA texture, white, sampled nearest
+  // and clamped; a negative first code: none).
+  std::string alphaMode;
+  float alphaCutoff = 0.5f, baseColorAlpha = 1.0f;
+  glm::ivec2 alphaCodes{-1, 0};
 };
+
+// A 2 x 1 RGBA PNG, white, with alpha codes (left, right).
+inline std::vector<std::uint8_t> alphaPng(glm::ivec2 codes) {
+  const std::vector<std::uint8_t> texels = {255, 255, 255, static_cast<std::uint8_t>(codes.x),
+                                            255, 255, 255, static_cast<std::uint8_t>(codes.y)};
+  std::vector<std::uint8_t> png;
+  stbi_write_png_to_func(
+      [](void* ctx, void* data, int size) {
+        auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
+        v->insert(v->end(), static_cast<std::uint8_t*>(data),
+                  static_cast<std::uint8_t*>(data) + size);
+      },
+      &png, 2, 1, 4, texels.data(), 8);
+  return png;
+}
 
 // A 2 x 2 quad in the XY plane at z = 0 facing +Z (normals +Z, u along +X, v along -Y) with
 // the material above. PNG texels hold exactly the given codes.
@@ -154,6 +176,15 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
       {"metallicFactor", m.metallicFactor},
       {"roughnessFactor", m.roughnessFactor}};
   if (m.baseColorCodes.x >= 0) pbr["baseColorTexture"] = texture(m.baseColorCodes);
+  pbr["baseColorFactor"][3] = m.baseColorAlpha;
+  nlohmann::json samplers = nlohmann::json::array();
+  if (m.alphaCodes.x >= 0) {
+    images.push_back({{"uri", "data:image/png;base64," + base64(alphaPng(m.alphaCodes))}});
+    samplers.push_back(
+        {{"wrapS", 33071}, {"wrapT", 33071}, {"magFilter", 9728}, {"minFilter", 9728}});
+    textures.push_back({{"source", images.size() - 1}, {"sampler", 0}});
+    pbr["baseColorTexture"] = {{"index", textures.size() - 1}};
+  }
   if (m.metallicRoughnessCodes.x >= 0)
     pbr["metallicRoughnessTexture"] = texture(m.metallicRoughnessCodes);
   nlohmann::json material = {
@@ -161,6 +192,10 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
       {"emissiveFactor", {m.emissiveFactor.x, m.emissiveFactor.y, m.emissiveFactor.z}}};
   if (m.normalCodes.x >= 0) material["normalTexture"] = texture(m.normalCodes);
   if (m.emissiveCodes.x >= 0) material["emissiveTexture"] = texture(m.emissiveCodes);
+  if (!m.alphaMode.empty()) {
+    material["alphaMode"] = m.alphaMode;
+    material["alphaCutoff"] = m.alphaCutoff;
+  }
   nlohmann::json j = {
       {"asset", {{"version", "2.0"}}},
       {"scene", 0},
@@ -196,6 +231,7 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
     j["images"] = images;
     j["textures"] = textures;
   }
+  if (!samplers.empty()) j["samplers"] = samplers;
   std::ofstream(path) << j.dump();
 }
 

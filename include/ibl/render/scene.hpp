@@ -45,10 +45,16 @@ struct TextureRef {
   int texCoord = 0;  // 0: TEXCOORD_0, 1: TEXCOORD_1
 };
 
+// How a material's alpha covers what is behind it (the values of shared::alphaCovers).
+enum class AlphaMode { Opaque = 0, Mask = 1, Blend = 2 };
+
 // glTF 2.0 metallic-roughness material.
 struct Material {
   glm::vec3 baseColor{1.0f};    // linear
-  TextureRef baseColorTexture;  // sRGB
+  TextureRef baseColorTexture;  // sRGB; its A multiplies baseColorAlpha
+  float baseColorAlpha = 1.0f;  // baseColorFactor's A
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;  // with AlphaMode::Mask
   float metallic = 1.0f;
   float roughness = 1.0f;               // perceptual
   TextureRef metallicRoughnessTexture;  // B = metallic, G = roughness (linear)

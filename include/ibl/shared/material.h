@@ -31,6 +31,16 @@ IBL_FN vec3 applyNormalMap(vec3 n, vec4 tangent, vec4 texel, float scale) {
   return normalize(t * ts.x + b * ts.y + n * ts.z);
 }
 
+// alphaMode (glTF 2.0 3.9.4), alpha = baseColorFactor.a x the base color texture's A:
+// OPAQUE (0) covers always; MASK (1) covers where alpha >= alphaCutoff; BLEND (2) covers with
+// probability alpha (stochastic transparency: `threshold`, uniform in [0, 1), decides), so
+// that the expected result over samples is alpha-blended.
+IBL_FN bool alphaCovers(int mode, float alpha, float cutoff, float threshold) {
+  if (mode == 1) return alpha >= cutoff;
+  if (mode == 2) return alpha > threshold;
+  return true;
+}
+
 IBL_END
 
 #endif
