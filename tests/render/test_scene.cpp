@@ -37,6 +37,23 @@ TEST(Gltf, LoadsATexturedQuad) {
   EXPECT_NEAR(base.sample({0.625f, 0.5f}, true).z, 1.0f, 1e-6f);
 }
 
+namespace {
+// An 8 x 8 orthographic view of the 2 x 2 quad, diffuse only (Lambert) under constant white
+// light: each pixel's radiance is the base color there.
+RenderResult renderLambertUnderWhiteLight(const Scene& s) {
+  BakeOptions bo;
+  bo.specular.size = 16;
+  bo.dfgSize = 16;
+  bo.dfgSamples = 64;
+  const BakeResult bake = bakeEnvironment(equirectEnvironment(Image(64, 32, glm::vec3(1.0f))), bo);
+  RenderOptions o;
+  o.spp = 1;
+  o.only = ShadingTerms::Diffuse;
+  o.diffuse = DiffuseModel::Lambert;
+  return renderScene(s, frontOrthoCamera(2.0f, 8), bake, bo, o);
+}
+}  // namespace
+
 TEST(Texture, WrapsFiltersAndDecodesSrgbBeforeFiltering) {
   // Two texels, codes 0 and 255: centers at u = 0.25 and 0.75.
   Texture t;
@@ -84,21 +101,7 @@ TEST(Gltf, SamplersAndTheSecondUvSet) {
   EXPECT_FALSE(sampler.mipmaps);  // minFilter LINEAR: no mip maps
   EXPECT_EQ(s.textures[mat.normalTexture.index].sampler, TextureSampler{});  // glTF defaults
   // Rendered: the mirrored UV set puts blue left and red right.
-  BakeOptions bo;
-  bo.specular.size = 16;
-  bo.dfgSize = 16;
-  bo.dfgSamples = 64;
-  const BakeResult bake = bakeEnvironment(equirectEnvironment(Image(64, 32, glm::vec3(1.0f))), bo);
-  Camera cam;
-  cam.perspective = false;
-  cam.orthoWidth = 2.0f;
-  cam.from = glm::vec3(0, 0, 4);
-  cam.width = cam.height = 8;
-  RenderOptions o;
-  o.spp = 1;
-  o.only = ShadingTerms::Diffuse;
-  o.diffuse = DiffuseModel::Lambert;
-  const RenderResult r = renderScene(s, cam, bake, bo, o);
+  const RenderResult r = renderLambertUnderWhiteLight(s);
   EXPECT_LT(glm::distance(r.color.at(2, 4), glm::vec3(0, 0, 1)), 0.02f);
   EXPECT_LT(glm::distance(r.color.at(5, 4), glm::vec3(1, 0, 0)), 0.02f);
 }
@@ -107,21 +110,7 @@ TEST(Gltf, TexturesShowInTheRender) {
   TempDir dir;
   writeTexturedQuad(dir / "quad.gltf");
   const Scene s = loadGltf((dir / "quad.gltf").string());
-  BakeOptions bo;
-  bo.specular.size = 16;
-  bo.dfgSize = 16;
-  bo.dfgSamples = 64;
-  const BakeResult bake = bakeEnvironment(equirectEnvironment(Image(64, 32, glm::vec3(1.0f))), bo);
-  Camera cam;
-  cam.perspective = false;
-  cam.orthoWidth = 2.0f;
-  cam.from = glm::vec3(0, 0, 4);
-  cam.width = cam.height = 8;
-  RenderOptions o;
-  o.spp = 1;
-  o.only = ShadingTerms::Diffuse;
-  o.diffuse = DiffuseModel::Lambert;
-  const RenderResult r = renderScene(s, cam, bake, bo, o);
+  const RenderResult r = renderLambertUnderWhiteLight(s);
   // Constant white light, Lambert: radiance = albedo (the texture), left red, right blue.
   // (Texture columns 1 and 2 are sampled away from the wrap-around blend at u = 0 and 1.)
   EXPECT_LT(glm::distance(r.color.at(2, 4), glm::vec3(1, 0, 0)), 0.02f);

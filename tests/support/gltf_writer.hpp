@@ -12,6 +12,7 @@
 #include "ibl/core/image.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/math/color.hpp"
+#include "support/helpers.hpp"
 
 namespace ibl::test {
 
@@ -136,13 +137,7 @@ inline std::vector<std::uint8_t> alphaPng(glm::ivec2 codes) {
   const std::vector<std::uint8_t> texels = {255, 255, 255, static_cast<std::uint8_t>(codes.x),
                                             255, 255, 255, static_cast<std::uint8_t>(codes.y)};
   std::vector<std::uint8_t> png;
-  stbi_write_png_to_func(
-      [](void* ctx, void* data, int size) {
-        auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
-        v->insert(v->end(), static_cast<std::uint8_t*>(data),
-                  static_cast<std::uint8_t*>(data) + size);
-      },
-      &png, 2, 1, 4, texels.data(), 8);
+  stbi_write_png_to_func(appendToVector, &png, 2, 1, 4, texels.data(), 8);
   return png;
 }
 

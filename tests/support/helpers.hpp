@@ -20,6 +20,7 @@
 #include "ibl/env/cubemap.hpp"
 #include "ibl/env/environment.hpp"
 #include "ibl/env/equirect.hpp"
+#include "ibl/render/camera.hpp"
 
 namespace ibl::test {
 
@@ -99,6 +100,16 @@ inline Image randomImage(int w, int h, unsigned seed, float maxValue = 100.0f) {
 inline void appendToVector(void* vector, void* data, int size) {
   auto* v = static_cast<std::vector<std::uint8_t>*>(vector);
   v->insert(v->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+}
+
+// An orthographic camera on +Z looking at the origin: `width` wide, pixels x pixels.
+inline Camera frontOrthoCamera(float width, int pixels, float distance = 4.0f) {
+  Camera c;
+  c.perspective = false;
+  c.orthoWidth = width;
+  c.from = glm::vec3(0.0f, 0.0f, distance);
+  c.width = c.height = pixels;
+  return c;
 }
 
 inline double maxRelativeError(glm::vec3 a, glm::vec3 ref) {
