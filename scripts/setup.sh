@@ -8,7 +8,7 @@ packages=(
   cmake ninja-build g++ clang-14 libclang-rt-14-dev clang-format pkg-config
   # libraries
   libopenexr-dev libimath-dev libstb-dev libpng-dev libglm-dev libcli11-dev libfmt-dev
-  nlohmann-json3-dev libtbb-dev libtinygltf-dev libembree-dev libdraco-dev
+  nlohmann-json3-dev libtbb-dev libtinygltf-dev libembree-dev libdraco-dev libmeshoptimizer-dev
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers libglfw3-dev
   # the viewer's window in tests, on a virtual X display
   xvfb xauth

@@ -1,6 +1,7 @@
 // glTF 2.0 loading: tinygltf parses, stb_image decodes the images, Draco decodes compressed
-// primitives; this file turns the model into a Scene, step by step (readGltfModel,
-// readTextures, readMaterials, then NodeVisitor: readPrimitive, checkMesh, placeInWorld).
+// primitives, meshoptimizer decodes compressed buffer views; this file turns the model into a
+// Scene, step by step (readGltfModel, readTextures, readMaterials, then NodeVisitor: readPrimitive,
+// checkMesh, placeInWorld).
 #include "ibl/render/gltf.hpp"
 
 #include <cstring>
@@ -9,6 +10,7 @@
 
 #include <draco/compression/decode.h>
 #include <fmt/format.h>
+#include <meshoptimizer.h>
 #include <stb_image.h>
 #include <tiny_gltf.h>
 #include <glm/geometric.hpp>
@@ -301,6 +303,123 @@ void hideDracoAccessors(nlohmann::json& gltf) {
   }
 }
 
+// A buffer view compressed with EXT_meshopt_compression: after hideMeshoptFallbacks, tinygltf
+// sees it as the compressed bytes; decodeMeshoptViews turns it back into `count` elements of
+// `stride` bytes.
+struct MeshoptView {
+  int index = 0;
+  std::size_t count = 0, stride = 0, byteLength = 0;  // byteLength: of the decoded view
+  std::string mode, filter;
+};
+
+// EXT_meshopt_compression stores each compressed view's bytes elsewhere and may give the view's
+// own buffer no data at all (a "fallback" buffer: no uri, or a GLB buffer that is not the BIN
+// chunk), which tinygltf rejects. Point each compressed view at its compressed bytes, give
+// fallback buffers a 4-byte placeholder, and return the views to decode once tinygltf is done.
+std::vector<MeshoptView> hideMeshoptFallbacks(nlohmann::json& gltf, const std::string& path) {
+  std::vector<MeshoptView> views;
+  if (!gltf.contains("bufferViews")) return views;
+  const auto extensionOf = [](const nlohmann::json& o) -> const nlohmann::json* {
+    if (!o.is_object() || !o.contains("extensions")) return nullptr;
+    const auto& e = o["extensions"];
+    return e.is_object() && e.contains("EXT_meshopt_compression") ? &e["EXT_meshopt_compression"]
+                                                                  : nullptr;
+  };
+  std::vector<bool> fallback;
+  if (gltf.contains("buffers"))
+    for (const auto& b : gltf["buffers"]) {
+      const nlohmann::json* e = extensionOf(b);
+      fallback.push_back(e && e->value("fallback", false));
+    }
+  auto& bufferViews = gltf["bufferViews"];
+  for (std::size_t i = 0; i < bufferViews.size(); ++i) {
+    auto& bv = bufferViews[i];
+    const nlohmann::json* e = extensionOf(bv);
+    if (!e) {
+      const int buffer = bv.value("buffer", -1);
+      if (buffer >= 0 && static_cast<std::size_t>(buffer) < fallback.size() && fallback[buffer])
+        fail(path,
+             fmt::format("buffer view {} reads fallback buffer {}, which has no data", i, buffer));
+      continue;
+    }
+    try {
+      MeshoptView v;
+      v.index = static_cast<int>(i);
+      v.count = e->at("count").get<std::size_t>();
+      v.stride = e->at("byteStride").get<std::size_t>();
+      v.mode = e->at("mode").get<std::string>();
+      v.filter = e->value("filter", std::string("NONE"));
+      v.byteLength = bv.at("byteLength").get<std::size_t>();
+      bv["buffer"] = e->at("buffer");
+      bv["byteOffset"] = e->value("byteOffset", 0);
+      bv["byteLength"] = e->at("byteLength");
+      bv["extensions"].erase("EXT_meshopt_compression");
+      views.push_back(std::move(v));
+    } catch (const nlohmann::json::exception&) {
+      fail(path, fmt::format("buffer view {}: EXT_meshopt_compression without a valid buffer, "
+                             "byteLength, byteStride, count or mode",
+                             i));
+    }
+  }
+  for (std::size_t b = 0; b < fallback.size(); ++b)
+    if (fallback[b])
+      gltf["buffers"][b] = {{"byteLength", 4},
+                            {"uri", "data:application/octet-stream;base64,AAAAAA=="}};
+  return views;
+}
+
+// Decodes the views hideMeshoptFallbacks listed (EXT_meshopt_compression: the vertex and index
+// codecs of meshoptimizer, then the view's filter) into buffers of their own.
+void decodeMeshoptViews(tinygltf::Model& model, const std::vector<MeshoptView>& views,
+                        const std::string& path) {
+  for (const MeshoptView& v : views) {
+    const auto bad = [&](const std::string& what) {
+      fail(path, fmt::format("buffer view {}: EXT_meshopt_compression {}", v.index, what));
+    };
+    const tinygltf::BufferView& bv = model.bufferViews.at(static_cast<std::size_t>(v.index));
+    if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= model.buffers.size() ||
+        bv.byteOffset + bv.byteLength > model.buffers[bv.buffer].data.size())
+      bad("data past the end of its buffer");
+    const bool attributes = v.mode == "ATTRIBUTES";
+    if (!attributes && v.mode != "TRIANGLES" && v.mode != "INDICES") bad("mode " + v.mode);
+    if (attributes ? v.stride == 0 || v.stride % 4 || v.stride > 256
+                   : v.stride != 2 && v.stride != 4)
+      bad(fmt::format("byteStride {} for mode {}", v.stride, v.mode));
+    if (v.mode == "TRIANGLES" && v.count % 3) bad("triangle index count not a multiple of 3");
+    if (v.count > (std::size_t{1} << 32) / v.stride || v.count * v.stride > v.byteLength)
+      bad(fmt::format("count {} of {} bytes for a view of {} bytes", v.count, v.stride,
+                      v.byteLength));
+    const unsigned char* src = model.buffers[bv.buffer].data.data() + bv.byteOffset;
+    tinygltf::Buffer decoded;
+    decoded.data.resize(v.byteLength);
+    const int status =
+        attributes
+            ? meshopt_decodeVertexBuffer(decoded.data.data(), v.count, v.stride, src, bv.byteLength)
+        : v.mode == "TRIANGLES"
+            ? meshopt_decodeIndexBuffer(decoded.data.data(), v.count, v.stride, src, bv.byteLength)
+            : meshopt_decodeIndexSequence(decoded.data.data(), v.count, v.stride, src,
+                                          bv.byteLength);
+    if (status != 0) bad("data is corrupt");
+    if (v.filter == "OCTAHEDRAL") {
+      if (!attributes || (v.stride != 4 && v.stride != 8)) bad("OCTAHEDRAL filter on this view");
+      meshopt_decodeFilterOct(decoded.data.data(), v.count, v.stride);
+    } else if (v.filter == "QUATERNION") {
+      if (!attributes || v.stride != 8) bad("QUATERNION filter on this view");
+      meshopt_decodeFilterQuat(decoded.data.data(), v.count, v.stride);
+    } else if (v.filter == "EXPONENTIAL") {
+      if (!attributes) bad("EXPONENTIAL filter on this view");
+      meshopt_decodeFilterExp(decoded.data.data(), v.count, v.stride);
+    } else if (v.filter != "NONE") {
+      bad("filter " + v.filter);
+    }
+    tinygltf::BufferView& out = model.bufferViews[static_cast<std::size_t>(v.index)];
+    out.buffer = static_cast<int>(model.buffers.size());
+    out.byteOffset = 0;
+    out.byteLength = v.byteLength;
+    model.buffers.push_back(std::move(decoded));
+  }
+}
+
 std::uint32_t readLe32(const std::vector<std::uint8_t>& b, std::size_t at) {
   return b[at] | (b[at + 1] << 8) | (b[at + 2] << 16) |
          (static_cast<std::uint32_t>(b[at + 3]) << 24);
@@ -309,17 +428,19 @@ void appendLe32(std::vector<std::uint8_t>& b, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
 }
 
-// Loads .gltf text or a .glb container from memory, with hideDracoAccessors applied.
+// Loads .gltf text or a .glb container from memory, with hideDracoAccessors and
+// hideMeshoptFallbacks applied (whose views to decode go to `meshopt`).
 bool loadGltfModel(tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& err,
-                   std::string& warn, const std::string& path) {
+                   std::string& warn, const std::string& path, std::vector<MeshoptView>& meshopt) {
   const std::vector<std::uint8_t> bytes = readFileBytes(path);
   const std::string baseDir = std::filesystem::path(path).parent_path().string();
   const auto parse = [&](const char* begin, const char* end) {
     try {
       nlohmann::json j = nlohmann::json::parse(begin, end);
       hideDracoAccessors(j);
+      meshopt = hideMeshoptFallbacks(j, path);
       return j.dump();
-    } catch (const std::exception& e) {
+    } catch (const nlohmann::json::exception& e) {
       fail(path,
            fmt::format("not a readable glTF 2.0 file: invalid JSON ({})", firstLine(e.what())));
     }
@@ -356,13 +477,15 @@ tinygltf::Model readGltfModel(const std::string& path) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(loadImageWithStb, nullptr);
   std::string err, warn;
-  if (!loadGltfModel(loader, model, err, warn, path))
+  std::vector<MeshoptView> meshopt;
+  if (!loadGltfModel(loader, model, err, warn, path, meshopt))
     fail(path,
          fmt::format("not a readable glTF 2.0 file: {}", firstLine(err.empty() ? warn : err)));
   for (const std::string& ext : model.extensionsRequired)
     if (ext != "KHR_draco_mesh_compression" && ext != "KHR_materials_emissive_strength" &&
-        ext != "KHR_mesh_quantization")
+        ext != "KHR_mesh_quantization" && ext != "EXT_meshopt_compression")
       fail(path, fmt::format("requires the extension {}, which ibl does not implement", ext));
+  decodeMeshoptViews(model, meshopt, path);
   return model;
 }
 

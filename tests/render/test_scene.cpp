@@ -128,6 +128,51 @@ TEST(Gltf, DracoCompressedModels) {
   EXPECT_GT(glm::length(hi - lo), 0.0f);
 }
 
+namespace {
+// Each triangle rotated to start at its smallest index (its winding kept).
+std::vector<std::uint32_t> canonicalTriangles(std::vector<std::uint32_t> indices) {
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+    const auto first = std::min_element(indices.begin() + t, indices.begin() + t + 3);
+    std::rotate(indices.begin() + t, first, indices.begin() + t + 3);
+  }
+  return indices;
+}
+}  // namespace
+
+// EXT_meshopt_compression (as gltfpack writes it, fallback buffer without data), in .gltf and
+// .glb: the same triangles and positions as the Draco bunny they were encoded from, normals
+// within the 8-bit octahedral quantization; corrupt compressed data is an error.
+TEST(Gltf, MeshoptCompressedModels) {
+  const Scene bunny = loadGltf((dataDir() / "models" / "bunny.glb").string());
+  const Mesh& original = bunny.meshes.at(0);
+  TempDir dir;
+  for (const char* name : {"bunny.gltf", "bunny.glb"}) {
+    writeMeshoptMesh(dir / name, original);
+    const Scene s = loadGltf((dir / name).string());
+    ASSERT_EQ(s.meshes.size(), 1u) << name;
+    const Mesh& m = s.meshes[0];
+    // The triangle codec may rotate a triangle's corners (keeping its winding).
+    EXPECT_EQ(canonicalTriangles(m.indices), canonicalTriangles(original.indices)) << name;
+    ASSERT_EQ(m.positions.size(), original.positions.size()) << name;
+    float positionError = 0.0f, normalError = 0.0f;
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      positionError = std::max(positionError, glm::distance(m.positions[i], original.positions[i]));
+      normalError = std::max(normalError, glm::distance(m.normals[i], original.normals[i]));
+    }
+    EXPECT_EQ(positionError, 0.0f) << name;
+    EXPECT_LT(normalError, 0.02f) << name;  // 8-bit octahedral: about 1/127 of a radian
+  }
+  // Corrupt: the compressed bytes of the first view scrambled (the .gltf keeps them in base64).
+  const std::vector<std::uint8_t> bytes = readFileBytes(dir / "bunny.gltf");
+  std::string text(bytes.begin(), bytes.end());
+  const auto data = text.find("base64,") + 7;
+  for (std::size_t i = data; i < data + 40; ++i) text[i] = 'A';
+  std::ofstream(dir / "corrupt.gltf") << text;
+  const std::string corrupt = (dir / "corrupt.gltf").string();
+  EXPECT_EQ(errorOf([&] { loadGltf(corrupt); }),
+            corrupt + ": buffer view 0: EXT_meshopt_compression data is corrupt");
+}
+
 TEST(Gltf, BadFilesAreRejectedClearly) {
   TempDir dir;
   std::ofstream(dir / "text.gltf") << "this is not json";

@@ -231,3 +231,113 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
 }
 
 }  // namespace ibl::test
+
+#include <meshoptimizer.h>
+
+#include "ibl/render/scene.hpp"
+
+namespace ibl::test {
+
+// The mesh (positions, normals, triangles) as EXT_meshopt_compression writes it, the way
+// gltfpack does: positions as floats (no filter), normals as 8-bit octahedral vectors
+// (KHR_mesh_quantization), indices with the triangle codec; the compressed bytes in buffer 0 and
+// a data-less fallback buffer 1 that the views name. A .glb path writes a GLB container.
+inline void writeMeshoptMesh(const std::filesystem::path& path, const Mesh& mesh) {
+  const std::size_t n = mesh.positions.size();
+  std::vector<float> normals4;
+  for (const glm::vec3& v : mesh.normals) normals4.insert(normals4.end(), {v.x, v.y, v.z, 0.0f});
+  std::vector<std::uint8_t> octNormals(n * 4);
+  meshopt_encodeFilterOct(octNormals.data(), n, 4, 8, normals4.data());
+  std::vector<std::uint8_t> compressed;
+  nlohmann::json views = nlohmann::json::array();
+  std::size_t fallbackOffset = 0;
+  const auto addView = [&](std::vector<std::uint8_t> bytes, std::size_t count, std::size_t stride,
+                           const char* mode, const char* filter) {
+    while (compressed.size() % 4) compressed.push_back(0);
+    nlohmann::json ext = {{"buffer", 0},
+                          {"byteOffset", compressed.size()},
+                          {"byteLength", bytes.size()},
+                          {"byteStride", stride},
+                          {"count", count},
+                          {"mode", mode},
+                          {"filter", filter}};
+    compressed.insert(compressed.end(), bytes.begin(), bytes.end());
+    nlohmann::json view = {{"buffer", 1},
+                           {"byteOffset", fallbackOffset},
+                           {"byteLength", count * stride},
+                           {"extensions", {{"EXT_meshopt_compression", ext}}}};
+    if (std::string(mode) == "ATTRIBUTES") view["byteStride"] = stride;
+    fallbackOffset += count * stride;
+    views.push_back(view);
+  };
+  const auto encodeVertices = [](const void* data, std::size_t count, std::size_t stride) {
+    std::vector<std::uint8_t> out(meshopt_encodeVertexBufferBound(count, stride));
+    out.resize(meshopt_encodeVertexBuffer(out.data(), out.size(), data, count, stride));
+    return out;
+  };
+  addView(encodeVertices(mesh.positions.data(), n, 12), n, 12, "ATTRIBUTES", "NONE");
+  addView(encodeVertices(octNormals.data(), n, 4), n, 4, "ATTRIBUTES", "OCTAHEDRAL");
+  std::vector<std::uint8_t> triangles(meshopt_encodeIndexBufferBound(mesh.indices.size(), n));
+  triangles.resize(meshopt_encodeIndexBuffer(triangles.data(), triangles.size(),
+                                             mesh.indices.data(), mesh.indices.size()));
+  addView(std::move(triangles), mesh.indices.size(), 4, "TRIANGLES", "NONE");
+  while (compressed.size() % 4) compressed.push_back(0);
+  const bool glb = path.extension() == ".glb";
+  nlohmann::json buffer0 = {{"byteLength", compressed.size()}};
+  if (!glb) buffer0["uri"] = "data:application/octet-stream;base64," + base64(compressed);
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const nlohmann::json j = {
+      {"asset", {{"version", "2.0"}, {"generator", "ibl tests (gltfpack's layout)"}}},
+      {"extensionsUsed", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
+      {"extensionsRequired", {"EXT_meshopt_compression", "KHR_mesh_quantization"}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes",
+       {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", 2}}}}}}},
+      {"buffers",
+       {buffer0,
+        {{"byteLength", fallbackOffset},
+         {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}}},
+      {"bufferViews", views},
+      {"accessors",
+       {{{"bufferView", 0},
+         {"componentType", 5126},
+         {"count", n},
+         {"type", "VEC3"},
+         {"min", {lo.x, lo.y, lo.z}},
+         {"max", {hi.x, hi.y, hi.z}}},
+        {{"bufferView", 1},
+         {"componentType", 5120},
+         {"normalized", true},
+         {"count", n},
+         {"type", "VEC3"}},
+        {{"bufferView", 2},
+         {"componentType", 5125},
+         {"count", mesh.indices.size()},
+         {"type", "SCALAR"}}}}};
+  std::ofstream out(path, std::ios::binary);
+  if (!glb) {
+    out << j.dump();
+    return;
+  }
+  std::string json = j.dump();
+  while (json.size() % 4) json += ' ';
+  std::vector<std::uint8_t> file;
+  const auto le32 = [&](std::size_t v) {
+    for (int i = 0; i < 4; ++i) file.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  };
+  le32(0x46546C67u);  // "glTF"
+  le32(2);
+  le32(12 + 8 + json.size() + 8 + compressed.size());
+  le32(json.size());
+  le32(0x4E4F534Au);  // "JSON"
+  file.insert(file.end(), json.begin(), json.end());
+  le32(compressed.size());
+  le32(0x004E4942u);  // "BIN"
+  file.insert(file.end(), compressed.begin(), compressed.end());
+  out.write(reinterpret_cast<const char*>(file.data()), static_cast<std::streamsize>(file.size()));
+}
+
+}  // namespace ibl::test
