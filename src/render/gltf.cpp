@@ -288,9 +288,10 @@ void decodeDracoPrimitive(const GltfReader& reader, const tinygltf::Value& ext, 
 
 // Debian's tinygltf is built without Draco and rejects the accessors of Draco primitives (they
 // have no buffer view). Those accessors are not needed (the Draco stream has the data), so
-// drop them from such primitives before tinygltf sees the JSON.
-void hideDracoAccessors(nlohmann::json& gltf) {
-  if (!gltf.contains("meshes")) return;
+// drop them from such primitives before tinygltf sees the JSON. Returns whether it changed any.
+bool hideDracoAccessors(nlohmann::json& gltf) {
+  bool changed = false;
+  if (!gltf.contains("meshes")) return changed;
   for (auto& mesh : gltf["meshes"]) {
     if (!mesh.contains("primitives")) continue;
     for (auto& prim : mesh["primitives"]) {
@@ -299,8 +300,10 @@ void hideDracoAccessors(nlohmann::json& gltf) {
         continue;
       prim.erase("indices");
       prim["attributes"] = nlohmann::json::object();
+      changed = true;
     }
   }
+  return changed;
 }
 
 // A buffer view compressed with EXT_meshopt_compression: after hideMeshoptFallbacks, tinygltf
@@ -315,10 +318,11 @@ struct MeshoptView {
 // EXT_meshopt_compression stores each compressed view's bytes elsewhere and may give the view's
 // own buffer no data at all (a "fallback" buffer: no uri, or a GLB buffer that is not the BIN
 // chunk), which tinygltf rejects. Point each compressed view at its compressed bytes, give
-// fallback buffers a 4-byte placeholder, and return the views to decode once tinygltf is done.
-std::vector<MeshoptView> hideMeshoptFallbacks(nlohmann::json& gltf, const std::string& path) {
-  std::vector<MeshoptView> views;
-  if (!gltf.contains("bufferViews")) return views;
+// fallback buffers a 4-byte placeholder, and list the views to decode once tinygltf is done.
+// Returns whether it changed anything.
+bool hideMeshoptFallbacks(nlohmann::json& gltf, const std::string& path,
+                          std::vector<MeshoptView>& views) {
+  if (!gltf.contains("bufferViews")) return false;
   const auto extensionOf = [](const nlohmann::json& o) -> const nlohmann::json* {
     if (!o.is_object() || !o.contains("extensions")) return nullptr;
     const auto& e = o["extensions"];
@@ -361,11 +365,14 @@ std::vector<MeshoptView> hideMeshoptFallbacks(nlohmann::json& gltf, const std::s
                              i));
     }
   }
+  bool changed = !views.empty();
   for (std::size_t b = 0; b < fallback.size(); ++b)
-    if (fallback[b])
+    if (fallback[b]) {
       gltf["buffers"][b] = {{"byteLength", 4},
                             {"uri", "data:application/octet-stream;base64,AAAAAA=="}};
-  return views;
+      changed = true;
+    }
+  return changed;
 }
 
 // Decodes the views hideMeshoptFallbacks listed (EXT_meshopt_compression: the vertex and index
@@ -434,12 +441,12 @@ bool loadGltfModel(tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::stri
                    std::string& warn, const std::string& path, std::vector<MeshoptView>& meshopt) {
   const std::vector<std::uint8_t> bytes = readFileBytes(path);
   const std::string baseDir = std::filesystem::path(path).parent_path().string();
-  const auto parse = [&](const char* begin, const char* end) {
+  // The JSON with hideDracoAccessors and hideMeshoptFallbacks applied; empty if unchanged.
+  const auto rewrite = [&](const char* begin, const char* end) {
     try {
       nlohmann::json j = nlohmann::json::parse(begin, end);
-      hideDracoAccessors(j);
-      meshopt = hideMeshoptFallbacks(j, path);
-      return j.dump();
+      const bool draco = hideDracoAccessors(j);
+      return hideMeshoptFallbacks(j, path, meshopt) || draco ? j.dump() : std::string();
     } catch (const nlohmann::json::exception& e) {
       fail(path,
            fmt::format("not a readable glTF 2.0 file: invalid JSON ({})", firstLine(e.what())));
@@ -450,8 +457,11 @@ bool loadGltfModel(tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::stri
       fail(path, "GLB without a JSON chunk");
     const std::uint32_t jsonLength = readLe32(bytes, 12);
     if (20ull + jsonLength > bytes.size()) fail(path, "truncated GLB");
-    std::string json = parse(reinterpret_cast<const char*>(bytes.data() + 20),
-                             reinterpret_cast<const char*>(bytes.data() + 20 + jsonLength));
+    std::string json = rewrite(reinterpret_cast<const char*>(bytes.data() + 20),
+                               reinterpret_cast<const char*>(bytes.data() + 20 + jsonLength));
+    if (json.empty())  // as it is: no second copy of a large file
+      return loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                         static_cast<unsigned>(bytes.size()), baseDir);
     while (json.size() % 4) json += ' ';
     std::vector<std::uint8_t> glb;
     appendLe32(glb, 0x46546C67u);
@@ -465,10 +475,12 @@ bool loadGltfModel(tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::stri
     for (int i = 0; i < 4; ++i) glb[8 + i] = static_cast<std::uint8_t>(total >> (8 * i));
     return loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), total, baseDir);
   }
-  const std::string json = parse(reinterpret_cast<const char*>(bytes.data()),
-                                 reinterpret_cast<const char*>(bytes.data() + bytes.size()));
-  return loader.LoadASCIIFromString(&model, &err, &warn, json.c_str(),
-                                    static_cast<unsigned>(json.size()), baseDir);
+  const auto* text = reinterpret_cast<const char*>(bytes.data());
+  const std::string json = rewrite(text, text + bytes.size());
+  return json.empty() ? loader.LoadASCIIFromString(&model, &err, &warn, text,
+                                                   static_cast<unsigned>(bytes.size()), baseDir)
+                      : loader.LoadASCIIFromString(&model, &err, &warn, json.c_str(),
+                                                   static_cast<unsigned>(json.size()), baseDir);
 }
 
 // The model, parsed; required extensions we do not implement are an error.
@@ -679,6 +691,31 @@ void checkMesh(const Mesh& mesh, const std::string& path) {
     fail(path, "vertex attributes of different counts");
 }
 
+// Keeps only the vertices the triangles use, in their order (exporters often share one vertex
+// buffer between primitives that each draw a part of it: each would otherwise keep all of it).
+void dropUnusedVertices(Mesh& mesh) {
+  constexpr std::uint32_t unused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> remap(mesh.positions.size(), unused);
+  for (std::uint32_t i : mesh.indices) remap[i] = 0;
+  std::uint32_t kept = 0;
+  for (std::uint32_t& r : remap)
+    if (r != unused) r = kept++;
+  if (kept == mesh.positions.size()) return;
+  const auto compact = [&](auto& values) {
+    if (values.empty()) return;
+    for (std::size_t i = 0; i < remap.size(); ++i)
+      if (remap[i] != unused) values[remap[i]] = values[i];
+    values.resize(kept);
+    values.shrink_to_fit();
+  };
+  compact(mesh.positions);
+  compact(mesh.normals);
+  compact(mesh.tangents);
+  compact(mesh.uvs);
+  compact(mesh.uvs1);
+  for (std::uint32_t& i : mesh.indices) i = remap[i];
+}
+
 // Moves a mesh to world space; generates the normals it lacks, and the tangents it lacks when
 // it has a normal map (normalTexture.index >= 0), from the UV set that map reads.
 void placeInWorld(Mesh& mesh, const glm::mat4& world, const TextureRef& normalTexture) {
@@ -728,6 +765,7 @@ class NodeVisitor {
       mesh.material =
           prim.material >= 0 && prim.material < defaultMaterial ? prim.material : defaultMaterial;
       checkMesh(mesh, path_);
+      dropUnusedVertices(mesh);
       placeInWorld(mesh, world, scene_.materials[mesh.material].normalTexture);
       if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
     }

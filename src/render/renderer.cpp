@@ -197,6 +197,7 @@ class RayTracer {
     device_ = rtcNewDevice(nullptr);
     if (!device_) fail("embree", "cannot create a device");
     handle_ = rtcNewScene(device_);
+    rtcSetSceneFlags(handle_, RTC_SCENE_FLAG_COMPACT);
     alphaTests_.reserve(scene.meshes.size());  // stable addresses: Embree keeps pointers
     for (const Mesh& m : scene.meshes) {
       RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -204,10 +205,9 @@ class RayTracer {
           g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
       for (std::size_t i = 0; i < m.positions.size(); ++i)
         for (int c = 0; c < 3; ++c) v[3 * i + c] = m.positions[i][c];
-      auto* idx = static_cast<std::uint32_t*>(
-          rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                  3 * sizeof(std::uint32_t), m.indices.size() / 3));
-      std::copy(m.indices.begin(), m.indices.end(), idx);
+      // The scene outlives the tracer: Embree reads the mesh's triangles where they are.
+      rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
+                                 3 * sizeof(std::uint32_t), m.indices.size() / 3);
       const Material& mat = scene.materials[m.material];
       if (mat.alphaMode != AlphaMode::Opaque) {
         const int t = mat.baseColorTexture.index;

@@ -211,9 +211,7 @@ void writeSparseEmissiveTriangle(const std::filesystem::path& path) {
       {"materials",
        {{{"emissiveFactor", {0.5, 0.25, 1.0}},
          {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 8.0}}}}}}}},
-      {"buffers",
-       {{{"byteLength", buffer.size()},
-         {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
+      {"buffers", embeddedBuffers(buffer)},
       {"bufferViews",
        {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 6}},
         {{"buffer", 0}, {"byteOffset", 8}, {"byteLength", 4}},
@@ -245,6 +243,55 @@ TEST(Gltf, SparseAccessorsAndEmissiveStrength) {
   EXPECT_EQ(p[1], glm::vec3(1, 0, 0));
   EXPECT_EQ(p[2], glm::vec3(0, 2, 0));
   EXPECT_EQ(scene.materials[0].emissive, glm::vec3(4.0f, 2.0f, 8.0f));
+}
+
+// Two primitives share one vertex buffer of six vertices, each drawing one triangle: each mesh
+// keeps only its own three vertices (with their UVs), and its triangle is where the file puts it.
+TEST(Gltf, PrimitivesKeepOnlyTheVerticesTheyUse) {
+  std::vector<std::uint8_t> buffer;
+  append(buffer, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 5, 0, 0, 6, 0, 0, 5, 1, 0});
+  append(buffer, std::vector<float>{0, 0, 1, 0, 0, 1, 0.5f, 0, 1, 0, 0.5f, 1});
+  append(buffer, std::vector<std::uint16_t>{0, 1, 2, 5, 3, 4});
+  const nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}},
+           {{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 3}}}}}}},
+      {"buffers", embeddedBuffers(buffer)},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 72}},
+        {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 48}},
+        {{"buffer", 0}, {"byteOffset", 120}, {"byteLength", 12}}}},
+      {"accessors",
+       {positionAccessor(0, 6, {0, 0, 0}, {6, 1, 0}),
+        {{"bufferView", 1}, {"componentType", 5126}, {"count", 6}, {"type", "VEC2"}},
+        {{"bufferView", 2}, {"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}},
+        {{"bufferView", 2},
+         {"byteOffset", 6},
+         {"componentType", 5123},
+         {"count", 3},
+         {"type", "SCALAR"}}}}};
+  TempDir dir;
+  std::ofstream(dir / "shared.gltf") << j.dump();
+  const Scene s = loadGltf((dir / "shared.gltf").string());
+  ASSERT_EQ(s.meshes.size(), 2u);
+  const glm::vec3 corners[2][3] = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},
+                                   {{5, 1, 0}, {5, 0, 0}, {6, 0, 0}}};
+  const glm::vec2 uvs[2][3] = {{{0, 0}, {1, 0}, {0, 1}}, {{0.5f, 1}, {0.5f, 0}, {1, 0}}};
+  for (int m = 0; m < 2; ++m) {
+    const Mesh& mesh = s.meshes[m];
+    EXPECT_EQ(mesh.positions.size(), 3u);
+    EXPECT_EQ(mesh.uvs.size(), 3u);
+    ASSERT_EQ(mesh.indices.size(), 3u);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(mesh.positions.at(mesh.indices[k]), corners[m][k]) << m << k;
+      EXPECT_EQ(mesh.uvs.at(mesh.indices[k]), uvs[m][k]) << m << k;
+    }
+  }
 }
 
 // A missing texture file and an unsupported required extension are named in the error.

@@ -40,6 +40,19 @@ void append(std::vector<std::uint8_t>& buf, const std::vector<T>& v) {
   buf.insert(buf.end(), p, p + v.size() * sizeof(T));
 }
 
+// The "buffers" array of a file whose one buffer is embedded as a data URI.
+inline nlohmann::json embeddedBuffers(const std::vector<std::uint8_t>& buffer) {
+  return {{{"byteLength", buffer.size()},
+           {"uri", "data:application/octet-stream;base64," + base64(buffer)}}};
+}
+
+// A float VEC3 POSITION accessor with the bounds glTF requires.
+inline nlohmann::json positionAccessor(int bufferView, std::size_t count, glm::vec3 lo,
+                                       glm::vec3 hi) {
+  return {{"bufferView", bufferView}, {"componentType", 5126},     {"count", count},
+          {"type", "VEC3"},           {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}};
+}
+
 // A 2 x 2 quad in the XY plane facing +Z, moved by a node translation, with a textured
 // material: the left two texel columns red, the right two blue; a flat normal map (no normals and
 // no tangents in the file: both must be generated). With secondUvSet, the base color reads
@@ -76,27 +89,19 @@ inline void writeTexturedQuad(const std::filesystem::path& path, bool secondUvSe
       {"images",
        {{{"uri", "data:image/png;base64," + base64(encodePng(tex))}},
         {{"uri", "data:image/png;base64," + base64(encodePng(flat))}}}},
-      {"buffers",
-       {{{"byteLength", buffer.size()},
-         {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
+      {"buffers", embeddedBuffers(buffer)},
       {"bufferViews",
        {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
         {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
         {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 12}}}},
       {"accessors",
-       {{{"bufferView", 0},
-         {"componentType", 5126},
-         {"count", 4},
-         {"type", "VEC3"},
-         {"min", {-1, -1, 0}},
-         {"max", {1, 1, 0}}},
+       {positionAccessor(0, 4, {-1, -1, 0}, {1, 1, 0}),
         {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
         {{"bufferView", 2}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}}};
   if (secondUvSet) {
     const std::size_t offset = buffer.size();
     append(buffer, std::vector<float>{1, 1, 0, 1, 0, 0, 1, 0});
-    j["buffers"][0] = {{"byteLength", buffer.size()},
-                       {"uri", "data:application/octet-stream;base64," + base64(buffer)}};
+    j["buffers"] = embeddedBuffers(buffer);
     j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", 32}});
     j["accessors"].push_back(
         {{"bufferView", 3}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}});
@@ -202,9 +207,7 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
             {"indices", 4},
             {"material", 0}}}}}}},
       {"materials", {material}},
-      {"buffers",
-       {{{"byteLength", buffer.size()},
-         {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
+      {"buffers", embeddedBuffers(buffer)},
       {"bufferViews",
        {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
         {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 48}},
@@ -212,12 +215,7 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
         {{"buffer", 0}, {"byteOffset", 128}, {"byteLength", 64}},
         {{"buffer", 0}, {"byteOffset", 192}, {"byteLength", 12}}}},
       {"accessors",
-       {{{"bufferView", 0},
-         {"componentType", 5126},
-         {"count", 4},
-         {"type", "VEC3"},
-         {"min", {-1, -1, 0}},
-         {"max", {1, 1, 0}}},
+       {positionAccessor(0, 4, {-1, -1, 0}, {1, 1, 0}),
         {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
         {{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
         {{"bufferView", 3}, {"componentType", 5126}, {"count", 4}, {"type", "VEC4"}},
