@@ -77,5 +77,6 @@ void main() {
     bool unused = false;
     value = integrateTexel(face, x, y, params.k2, n * k * n * k, unused);
   }
-  result[(face * n + y) * n + x] = vec4(value, 1.0);
+  // w: whether the texel is steep, for unsharpAreaBlur on the host.
+  result[(face * n + y) * n + x] = vec4(value, steep ? 1.0 : 0.0);
 }

@@ -187,7 +187,64 @@ void moveNegativeLobesToPeaks(Image& img) {
       [&](int, int y) { return equirectPixelSolidAngle(y, img.width, img.height); });
 }
 
+// The energy (radiance x solid angle) that unsharpening moves into texel 0 from its neighbour,
+// texel 1, of solid angles w0 and w1: alpha (L0 - L1) times the smaller solid angle, at most a
+// fifth of either texel's energy (four neighbours never take it all: no negative texel).
+// Written so that the flux from 1 into 0 is exactly minus the flux from 0 into 1.
+glm::vec3 unsharpFlux(glm::vec3 l0, double w0, glm::vec3 l1, double w1) {
+  constexpr float kAlpha = 1.0f / 24.0f;
+  const auto w = static_cast<float>(std::min(w0, w1));
+  glm::vec3 flux;
+  for (int c = 0; c < 3; ++c) {
+    const float limit = 0.2f * std::min(std::max(l0[c], 0.0f) * static_cast<float>(w0),
+                                        std::max(l1[c], 0.0f) * static_cast<float>(w1));
+    flux[c] = std::clamp(kAlpha * (l0[c] - l1[c]) * w, -limit, limit);
+  }
+  return flux;
+}
+
+// One step of the diffusion equation run backwards, as exchanges of energy between neighbours
+// (see unsharpAreaBlur in the header). Texel (x, y) gains unsharpFlux from each of its four
+// neighbours that is, like itself, not steep; `omega(x, y)` is its solid angle, columns wrap if
+// `wrapX`.
+template <typename Omega>
+void unsharpAreaBlur(Image& img, std::span<const std::uint8_t> steep, bool wrapX,
+                     const Omega& omega) {
+  const Image before = img;
+  const int w = img.width, h = img.height;
+  const auto smooth = [&](int x, int y) { return steep[static_cast<std::size_t>(y) * w + x] == 0; };
+  parallelFor(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      if (!smooth(x, y)) continue;
+      const double w0 = omega(x, y);
+      glm::vec3 gain(0.0f);
+      const int neighbours[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+      for (const auto& [nxRaw, ny] : neighbours) {
+        const int nx = wrapX ? (nxRaw + w) % w : nxRaw;
+        if (nx < 0 || nx >= w || ny < 0 || ny >= h || (nx == x && ny == y) || !smooth(nx, ny))
+          continue;
+        const double w1 = omega(nx, ny);
+        // The same expression on both sides of the pair (the lower-indexed texel first).
+        const bool first = ny < y || (ny == y && nx < x);
+        const glm::vec3 f = first ? -unsharpFlux(before.at(nx, ny), w1, before.at(x, y), w0)
+                                  : unsharpFlux(before.at(x, y), w0, before.at(nx, ny), w1);
+        gain += f;
+      }
+      img.at(x, y) += gain / static_cast<float>(w0);
+    }
+  });
+}
+
 }  // namespace
+
+void unsharpAreaBlur(CubeMap& cube, std::span<const std::uint8_t> steep) {
+  const int n = cube.size();
+  const std::vector<double> omega = faceTexelSolidAngles(n);
+  const std::size_t faceTexels = static_cast<std::size_t>(n) * n;
+  for (int f = 0; f < kFaceCount; ++f)
+    unsharpAreaBlur(cube.levels[0][f], steep.subspan(f * faceTexels, faceTexels), false,
+                    [&](int x, int y) { return omega[static_cast<std::size_t>(y) * n + x]; });
+}
 
 void moveNegativeLobesToPeaks(CubeMap& cube) {
   const int n = cube.size();
@@ -252,6 +309,7 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
     return sum / wsum;
   };
   CubeMap out(size, 1);
+  std::vector<std::uint8_t> steepTexels(static_cast<std::size_t>(kFaceCount) * size * size);
   parallelFor(0, kFaceCount * size, [&](int row) {
     const int face = row / size, y = row % size;
     // The k sub-rows of samples of this texel row, looked up together.
@@ -292,8 +350,10 @@ CubeMap resampleToCube(const Environment& env, int size, float rotateDegrees) {
         }
       out.levels[0][face].at(x, y) =
           steepTexel && k2 > k ? integrateRefined(face, x, y) : sum / wsum;
+      steepTexels[static_cast<std::size_t>(row) * size + x] = steepTexel ? 1 : 0;
     }
   });
+  unsharpAreaBlur(out, steepTexels);
   moveNegativeLobesToPeaks(out);
   return out;
 }
@@ -334,14 +394,18 @@ Image resampleToEquirect(const Environment& env, int width, float rotateDegrees)
     return sum / static_cast<float>(wsum);
   };
   Image out(width, height);
+  std::vector<std::uint8_t> steepPixels(static_cast<std::size_t>(width) * height);
   parallelFor(0, height, [&](int y) {
     for (int x = 0; x < width; ++x) {
       TapRange range;
-      glm::vec3 v = integrate(x, y, k, k2 > k ? &range : nullptr);
-      if (range.steep) v = integrate(x, y, k2, nullptr);
+      glm::vec3 v = integrate(x, y, k, &range);
+      if (range.steep && k2 > k) v = integrate(x, y, k2, nullptr);
       out.at(x, y) = v;
+      steepPixels[static_cast<std::size_t>(y) * width + x] = range.steep ? 1 : 0;
     }
   });
+  unsharpAreaBlur(out, steepPixels, true,
+                  [&](int, int y) { return equirectPixelSolidAngle(y, width, height); });
   moveNegativeLobesToPeaks(out);
   return out;
 }

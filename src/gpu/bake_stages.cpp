@@ -149,10 +149,15 @@ CubeMap resampleToCube(Context& context, const Environment& env, int size, float
   dispatch(context, env.isCube() ? "cube_to_cube" : "equirect_to_cube",
            {&source, &levels, &weights, &result}, bytesOf(params), groups(size, 8), groups(size, 8),
            6);
+  const std::vector<glm::vec4> texelsOut =
+      result.read<glm::vec4>(static_cast<std::size_t>(6) * size * size);
+  std::vector<std::uint8_t> steep(texelsOut.size());
+  for (std::size_t i = 0; i < steep.size(); ++i) steep[i] = texelsOut[i].w > 0.5f ? 1 : 0;
   CubeMap out;
-  out.levels.push_back(
-      unflatten(result.read<glm::vec4>(static_cast<std::size_t>(6) * size * size), size));
-  moveNegativeLobesToPeaks(out);  // on the host, as resampleToCube does
+  out.levels.push_back(unflatten(texelsOut, size));
+  // On the host, as resampleToCube does.
+  unsharpAreaBlur(out, steep);
+  moveNegativeLobesToPeaks(out);
   return out;
 }
 

@@ -161,9 +161,10 @@ TEST(Resample, CrossNeighboursShareEdges) {
     EXPECT_LT(glm::distance(cross.at(x, 15), cross.at(x, 16)), 0.1f);  // +Y above +Z
 }
 
-// As sharp as bilinear: a real HDRI sent to a cube 0.8x as dense and back comes back closer to
-// itself on average (mean per-pixel error), and within 5 % of it in the median, than with
-// bilinear point sampling both ways (computed here); the power stays within 0.1 %.
+// Sharper than bilinear: a real HDRI sent to a cube 0.8x as dense and back comes back closer to
+// itself, on average (mean per-pixel error) and in the median (by a tenth: the area integral
+// alone, without unsharpAreaBlur, is 3 % worse than bilinear), than with bilinear point
+// sampling both ways (computed here); the power stays within 0.1 %.
 TEST(Resample, RoundTripIsSharperThanBilinear) {
   DecodedFile file = readImageFile(hdriPath("park"));
   Image src = std::move(file.levels[0][0]);
@@ -197,7 +198,7 @@ TEST(Resample, RoundTripIsSharperThanBilinear) {
   const auto [median, mean] = errors(back);
   const auto [bilinearMedian, bilinearMean] = errors(bilinearBack);
   EXPECT_LT(mean, 0.95 * bilinearMean) << mean << " vs " << bilinearMean;
-  EXPECT_LT(median, 1.05 * bilinearMedian) << median << " vs " << bilinearMedian;
+  EXPECT_LT(median, 0.9 * bilinearMedian) << median << " vs " << bilinearMedian;
   const glm::dvec3 a = integrateEquirect(src), b = integrateCube(cube), c = integrateEquirect(back);
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(b[i] / a[i], 1.0, 1e-3);
@@ -211,4 +212,55 @@ TEST(Resample, RotationByWholeColumnsIsAnExactShift) {
   const Image turned = resampleToEquirect(equirectEnvironment(src), 64, 7 * 360.0f / 64);
   for (int y = 0; y < 32; ++y)
     for (int x = 0; x < 64; ++x) ASSERT_EQ(turned.at(x, y), src.at((x + 7) % 64, y)) << x << y;
+}
+
+// unsharpAreaBlur against the box blur it undoes: texels holding the exact box averages of
+// 1 + 0.5 cos(2 pi s / 8) (s in texels; the box scales the wave by sinc = sin(pi/8) / (pi/8),
+// 2.5 % too flat) get back to within 0.5 % of the wave's amplitude; on a random cube with steep
+// texels the power stays what it was and nothing turns negative.
+TEST(Resample, UnsharpeningUndoesTheBoxBlurAndKeepsThePower) {
+  const int n = 256;
+  const double pi = std::acos(-1.0);
+  const double sinc = std::sin(pi / 8.0) / (pi / 8.0);
+  CubeMap wave(n, 1);
+  for (auto& face : wave.levels[0])
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)
+        face.at(x, y) =
+            glm::vec3(static_cast<float>(1.0 + 0.5 * sinc * std::cos(2.0 * pi * (x + 0.5) / 8.0)));
+  // The wave's amplitude over the central rows of +Z (where texels are nearly equal in size),
+  // by projection onto the cosine.
+  const auto amplitude = [&](const CubeMap& c) {
+    double dot = 0.0, norm = 0.0;
+    for (int y = n / 2 - 8; y < n / 2 + 8; ++y)
+      for (int x = n / 2 - 32; x < n / 2 + 32; ++x) {
+        const double basis = std::cos(2.0 * pi * (x + 0.5) / 8.0);
+        dot += (c.levels[0][4].at(x, y).x - 1.0) * basis;
+        norm += basis * basis;
+      }
+    return dot / norm;
+  };
+  EXPECT_NEAR(amplitude(wave), 0.5 * sinc, 1e-4);
+  unsharpAreaBlur(wave, std::vector<std::uint8_t>(static_cast<std::size_t>(6) * n * n, 0));
+  EXPECT_NEAR(amplitude(wave) / 0.5, 1.0, 0.005);
+
+  CubeMap noisy(64, 1);
+  std::vector<std::uint8_t> steep;
+  std::mt19937 rng(5);
+  for (int f = 0; f < 6; ++f) {
+    noisy.levels[0][f] = randomImage(64, 64, 10u + f, 10.0f);
+    for (auto& p : noisy.levels[0][f].pixels) {
+      const bool dark = rng() % 4 == 0, bright = rng() % 50 == 0;
+      p = dark ? glm::vec3(0.0f) : bright ? p * 1000.0f : p;
+      steep.push_back(bright ? 1 : 0);
+    }
+  }
+  const glm::dvec3 before = integrateCube(noisy);
+  unsharpAreaBlur(noisy, steep);
+  const glm::dvec3 after = integrateCube(noisy);
+  // Exact up to float rounding (4e-11 here); dividing the exchanges by a wrong solid angle
+  // (the face center's) moves 3e-7.
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(after[c] / before[c], 1.0, 1e-8);
+  for (const auto& face : noisy.levels[0])
+    for (const auto& p : face.pixels) ASSERT_GE(std::min({p.x, p.y, p.z}), 0.0f);
 }

@@ -2,6 +2,8 @@
 // Area-filtered resampling between equirectangular maps and cube maps, with an optional
 // rotation about +Y.
 #include <array>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -22,6 +24,18 @@ glm::mat3 rotationY(float degrees);
 // by their exact solid angles; else sampled at texel centers. Power over the sphere is kept
 // (0.1 %), and a 4K panorama becomes a 64^2 cube without aliasing.
 CubeMap resampleToCube(const Environment& source, int size, float rotateDegrees = 0.0f);
+
+// Undoes, on level 0, the blur that integrating over each texel's area adds: a texel's box adds
+// a variance of 1/12 texel^2 along each axis (the Catmull-Rom reconstruction adds none: its
+// kernel's second moment is zero), and one explicit step of the diffusion equation run
+// backwards, moving energy alpha (L_i - L_j) min(omega_i, omega_j) between each pair of
+// neighbours i, j in a face, removes 2 alpha of it: alpha = 1/24. As exchanges between pairs
+// it keeps the power exactly. Texels flagged in `steep` (one byte per texel, face by face, row
+// by row: a window of the reconstruction spanned more than 16x) take no part, and no exchange
+// takes more than a fifth of a texel's energy, so nothing turns negative.
+// resampleToCube and resampleToEquirect apply it (the equirect -> cube -> equirect round trip's
+// median error falls below bilinear point sampling's).
+void unsharpAreaBlur(CubeMap& cube, std::span<const std::uint8_t> steep);
 
 // Removes the negative lobes a Catmull-Rom reconstruction leaves around a sun from level 0:
 // a texel below zero becomes zero, and its deficit is taken from the brightest texel of its
