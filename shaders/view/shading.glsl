@@ -1,6 +1,7 @@
 // The split-sum shading of a surface point: the formulas of ibl/shared/split_sum.h (which
 // shadeSplitSum in src/render/renderer.cpp calls too) with the GPU's lookups: samplerCube
 // trilinear filtering, the DFG table bilinear and clamped. Needs view/frame.glsl.
+#include "ibl/shared/lights.h"  // not used yet: the analytic lights of issue 12 will shade here
 #include "ibl/shared/sh.h"
 #include "ibl/shared/split_sum.h"
 
