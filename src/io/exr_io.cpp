@@ -21,6 +21,7 @@
 #include "ibl/core/version.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/io/pixel_formats.hpp"
+#include "ibl/math/color.hpp"
 
 namespace ibl {
 
@@ -225,11 +226,7 @@ Image decodeExr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     if (!layer && hasXyz) {
-      // CIE XYZ to linear Rec. 709 / sRGB primaries, D65 (IEC 61966-2-1).
-      for (auto& p : img.pixels)
-        p = glm::vec3(3.2404542f * p.x - 1.5371385f * p.y - 0.4985314f * p.z,
-                      -0.9692660f * p.x + 1.8760108f * p.y + 0.0415560f * p.z,
-                      0.0556434f * p.x - 0.2040259f * p.y + 1.0572252f * p.z);
+      for (auto& p : img.pixels) p = xyzToLinearRec709(p);
     } else if (!layer) {
       for (auto& p : img.pixels) p.y = p.z = p.x;  // Y: gray
     }

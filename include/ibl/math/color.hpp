@@ -1,5 +1,6 @@
 #pragma once
-// Color conversions: the exact sRGB transfer curve (IEC 61966-2-1) and Rec.709 luminance.
+// Color conversions: the exact sRGB transfer curve (IEC 61966-2-1), Rec.709 luminance, CIE XYZ
+// to Rec.709 and the color of a blackbody.
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -18,5 +19,15 @@ using shared::srgbToLinear;
 float srgb8ToLinear(std::uint8_t code);
 // Encodes a linear value to the nearest 8-bit sRGB code.
 std::uint8_t linearToSrgb8(float linear);
+
+// CIE 1931 XYZ to linear Rec.709 (sRGB primaries, D65 white; IEC 61966-2-1).
+glm::vec3 xyzToLinearRec709(glm::vec3 xyz);
+
+// The color of a blackbody at `kelvin` (a light's correlated color temperature, 1000 to 40000 K)
+// as linear Rec.709 of luminance 1: Planck's law integrated against the CIE 1931 2-degree
+// observer (the multi-lobe Gaussian fit of Wyman, Sloan & Shirley 2013, JCGT 2(2), eq. 2)
+// from 360 to 830 nm, then converted by xyzToLinearRec709 and divided by its luminance.
+// Below about 1900 K a component of the Rec.709 result is negative (outside the gamut).
+glm::vec3 blackbodyColor(float kelvin);
 
 }  // namespace ibl
