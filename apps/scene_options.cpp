@@ -19,7 +19,15 @@ namespace ibl::cli {
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("scene", o.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'")->required();
   cmd->add_option("--env", o.env,
-                  "Environment to bake and light with (default: the bundled sunset.exr)");
+                  "Environment to bake and light with (default: the bundled sunset.exr); "
+                  "'none': the lights alone, on black");
+  cmd->add_option("--lights", o.lightsFile,
+                  "Lights file (JSON, see the README) added to the scene's lights");
+  cmd->add_option("--spot-lumens", o.spotLumens,
+                  "A spot's lumens to candela: physical (spread over its cone) or frostbite "
+                  "(I = phi / pi)")
+      ->check(CLI::IsMember({"physical", "frostbite"}))
+      ->capture_default_str();
   cmd->add_option("--bake", o.bakeDir, "Use an existing bake directory instead of baking --env");
   cmd->add_option("--camera", o.camera, "perspective or ortho")
       ->check(CLI::IsMember({"perspective", "ortho"}))
@@ -102,7 +110,9 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {width, height};
 }
 
-Scene loadScene(const SceneCliOptions& o) {
+namespace {
+
+Scene loadSceneAlone(const SceneCliOptions& o) {
   if (o.scene != "sphere" && o.scene != "grid") return loadGltf(o.scene);
   const glm::vec3 base = parseVec3(o.baseColor, "--base-color");
   if (o.scene == "grid") return makeSphereGrid(base);
@@ -111,6 +121,23 @@ Scene loadScene(const SceneCliOptions& o) {
   m.metallic = o.metallic;
   m.roughness = o.roughness;
   return makeSphereScene(m);
+}
+
+}  // namespace
+
+bool environmentIsNone(const SceneCliOptions& o) {
+  return o.env == "none";
+}
+
+Scene loadScene(const SceneCliOptions& o) {
+  // The lights file first: a mistake in it is found before a large model loads.
+  std::vector<Light> lights;
+  if (!o.lightsFile.empty())
+    lights = readLightsFile(
+        o.lightsFile, o.spotLumens == "frostbite" ? SpotLumens::Frostbite : SpotLumens::Physical);
+  Scene scene = loadSceneAlone(o);
+  scene.lights.insert(scene.lights.end(), lights.begin(), lights.end());
+  return scene;
 }
 
 void checkLightingOptions(const SceneCliOptions& o) {
@@ -124,6 +151,16 @@ LoadedBake loadOrBake(const SceneCliOptions& o) {
   LoadedBake out;
   if (!o.bakeDir.empty()) {
     out.bake = loadBake(o.bakeDir, &out.options);
+    return out;
+  }
+  if (environmentIsNone(o)) {
+    // No environment: a black one, baked small, for the DFG table the shading still reads.
+    Environment black;
+    black.equirect = Image(64, 32);
+    out.options.specular.size = 16;
+    out.options.irradianceSize = 8;
+    out.options.dfgSamples = 256;
+    out.bake = bakeEnvironment(black, out.options);
     return out;
   }
   const LoadedEnvironment env =
@@ -187,6 +224,8 @@ RenderOptions shadingOptions(const SceneCliOptions& o) {
   r.multipleScattering = !o.noMultiscatter;
   r.dominantDirections = !o.noDominant;
   r.irradiance = o.irradiance == "sh" ? IrradianceSource::Sh : IrradianceSource::Cube;
+  r.environmentLight = !environmentIsNone(o);
+  if (!r.environmentLight) r.backgroundEnvironment = false;
   if (o.background != "env") {
     r.backgroundEnvironment = false;
     r.backgroundColor = parseVec3(o.background, "--background");

@@ -16,7 +16,9 @@ namespace ibl::cli {
 
 struct SceneCliOptions {
   std::string scene;
-  std::string env;  // empty: bundled default
+  std::string env;  // empty: bundled default; "none": lights only
+  std::string lightsFile;
+  std::string spotLumens = "physical";
   std::string bakeDir;
   std::string camera = "perspective";
   float fov = 40.0f;
@@ -46,7 +48,10 @@ glm::vec3 parseVec3(const std::string& text, const char* option);
 // --size as (width, height), 1 to 16384 each.
 std::pair<int, int> parseSize(const std::string& text);
 
+// The scene, with the lights of --lights added to its own.
 Scene loadScene(const SceneCliOptions& o);
+// --env none: no environment light.
+bool environmentIsNone(const SceneCliOptions& o);
 
 struct LoadedBake {
   BakeResult bake;

@@ -32,6 +32,11 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   const Scene scene = loadScene(o.scene);
+  if (!scene.lights.empty() && !global.quiet)
+    fmt::print(stderr,
+               "warning: ibl view does not draw analytic lights yet ({} in the scene); ibl render "
+               "does\n",
+               scene.lights.size());
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const LoadedBake baked = loadOrBake(o.scene);
   RenderOptions shading = shadingOptions(o.scene);

@@ -495,7 +495,8 @@ tinygltf::Model readGltfModel(const std::string& path) {
          fmt::format("not a readable glTF 2.0 file: {}", firstLine(err.empty() ? warn : err)));
   for (const std::string& ext : model.extensionsRequired)
     if (ext != "KHR_draco_mesh_compression" && ext != "KHR_materials_emissive_strength" &&
-        ext != "KHR_mesh_quantization" && ext != "EXT_meshopt_compression")
+        ext != "KHR_mesh_quantization" && ext != "EXT_meshopt_compression" &&
+        ext != "KHR_lights_punctual")
       fail(path, fmt::format("requires the extension {}, which ibl does not implement", ext));
   decodeMeshoptViews(model, meshopt, path);
   return model;
@@ -752,6 +753,7 @@ class NodeVisitor {
     if (node.camera >= 0 && !scene_.camera && node.camera < static_cast<int>(model_.cameras.size()))
       scene_.camera = cameraOf(model_.cameras[node.camera], world);
     if (node.mesh >= 0) addMesh(node.mesh, world);
+    addLight(node, world);
     for (int child : node.children) visit(child, world, depth + 1);
   }
 
@@ -769,6 +771,47 @@ class NodeVisitor {
       placeInWorld(mesh, world, scene_.materials[mesh.material].normalTexture);
       if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
     }
+  }
+
+  // KHR_lights_punctual: a node's light shines down the node's -Z from its origin, in the
+  // extension's units (cd for point and spot, lx for directional).
+  void addLight(const tinygltf::Node& node, const glm::mat4& world) {
+    const auto ext = node.extensions.find("KHR_lights_punctual");
+    if (ext == node.extensions.end() || !ext->second.Has("light")) return;
+    const tinygltf::Value& index = ext->second.Get("light");
+    const int i = index.IsInt() ? index.Get<int>() : -1;
+    if (i < 0 || i >= static_cast<int>(model_.lights.size()))
+      fail(path_,
+           fmt::format("node '{}': KHR_lights_punctual light index out of range", node.name));
+    const tinygltf::Light& gl = model_.lights[static_cast<std::size_t>(i)];
+    Light light;
+    light.name = fmt::format("{}: KHR_lights_punctual light {} ({})", path_, i,
+                             gl.name.empty() ? gl.type : gl.name);
+    if (gl.type == "point") {
+      light.type = LightType::Point;
+    } else if (gl.type == "spot") {
+      light.type = LightType::Spot;
+      light.innerAngle = static_cast<float>(gl.spot.innerConeAngle);
+      light.outerAngle = static_cast<float>(gl.spot.outerConeAngle);
+    } else if (gl.type == "directional") {
+      light.type = LightType::Sun;
+    } else {
+      fail(light.name, fmt::format("unknown light type '{}'", gl.type));
+    }
+    if (gl.color.size() == 3)
+      light.color = glm::vec3(static_cast<float>(gl.color[0]), static_cast<float>(gl.color[1]),
+                              static_cast<float>(gl.color[2]));
+    else if (!gl.color.empty())
+      fail(light.name, "color must have three components");
+    light.intensity = static_cast<float>(gl.intensity);
+    light.range = light.type == LightType::Sun ? 0.0f : static_cast<float>(gl.range);
+    light.position = glm::vec3(world[3]);
+    const glm::vec3 forward = -glm::vec3(world[2]);
+    if (!(glm::length(forward) > 0.0f)) fail(light.name, "the node's transform is degenerate");
+    // A directional light's direction is toward the sun, against where it shines.
+    light.direction = glm::normalize(light.type == LightType::Sun ? -forward : forward);
+    checkLight(light);
+    scene_.lights.push_back(std::move(light));
   }
 
   const tinygltf::Model& model_;

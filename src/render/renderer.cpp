@@ -17,6 +17,8 @@
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/math/sampling.hpp"
+#include "ibl/render/light_sampling.hpp"
+#include "ibl/shared/lights.h"
 #include "ibl/shared/material.h"
 #include "ibl/shared/split_sum.h"
 
@@ -269,10 +271,12 @@ class RayTracer {
     return h;
   }
 
-  bool occluded(glm::vec3 origin, glm::vec3 dir) const {
+  // Is anything between origin and origin + maxDistance dir?
+  bool occluded(glm::vec3 origin, glm::vec3 dir, float maxDistance = INFINITY) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray = embreeRay(origin, dir);
+    ray.tfar = maxDistance;
     rtcOccluded1(handle_, &context, &ray);
     return ray.tfar < 0.0f;
   }
@@ -417,34 +421,77 @@ float powerHeuristic(float a, float b) {
   return a * a / (a * a + b * b);
 }
 
-// One Monte Carlo estimate of the reflected radiance (one BRDF and one environment sample,
-// combined by multiple importance sampling with the power heuristic).
+// The nearest light the ray from p along w meets (lights do not hide one another beyond that):
+// its index, or -1.
+struct NearestLight {
+  int index = -1;
+  LightHit hit;
+};
+NearestLight nearestLight(const std::vector<Light>& lights, glm::vec3 p, glm::vec3 w) {
+  NearestLight best;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const std::optional<LightHit> h = intersectLight(lights[i], p, w);
+    if (h && (best.index < 0 || h->distance < best.hit.distance)) {
+      best.index = static_cast<int>(i);
+      best.hit = *h;
+    }
+  }
+  return best;
+}
+
+// One Monte Carlo estimate of the reflected radiance: per light, one light sample (punctual
+// lights exactly); one BRDF sample, which sees the nearest light or else the environment; one
+// environment sample. The sampled strategies are combined by multiple importance sampling
+// with the power heuristic (Veach 1997, section 9.2).
 glm::vec3 estimateReference(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
-                            const EnvironmentSampler& env, const RayTracer& tracer,
-                            const RenderOptions& o, Random& rng) {
+                            const EnvironmentSampler& env, const std::vector<Light>& lights,
+                            const RayTracer& tracer, const RenderOptions& o, Random& rng) {
   const glm::mat3 frame = tangentFrame(p.normal);
   const glm::mat3 toLocal = glm::transpose(frame);
   const glm::vec3 v = toLocal * view;
   const Brdf brdf = Brdf::of(p, o);
   const glm::vec3 offset = p.normal * 1e-4f * std::max(1.0f, glm::length(position));
-  const auto visible = [&](glm::vec3 worldDir) {
-    return !o.shadows || !tracer.occluded(position + offset, worldDir);
+  const auto visible = [&](glm::vec3 worldDir, float distance) {
+    // Stop short of an area light's surface: the light itself is not in the ray tracer.
+    return !o.shadows ||
+           !tracer.occluded(position + offset, worldDir,
+                            std::isfinite(distance) ? distance * (1.0f - 1e-4f) : INFINITY);
   };
   glm::vec3 sum(0.0f);
+  for (const Light& light : lights) {  // light samples
+    const LightSample ls = sampleLight(light, position + offset, rng.uniform2());
+    if (!(ls.delta || ls.pdf > 0.0f) || ls.radiance == glm::vec3(0.0f)) continue;
+    const glm::vec3 l = toLocal * ls.direction;
+    if (l.z <= 0.0f || !visible(ls.direction, ls.distance)) continue;
+    if (ls.delta) {
+      sum += brdf.evaluate(v, l) * ls.radiance;
+    } else {
+      sum += brdf.evaluate(v, l) * ls.radiance * (powerHeuristic(ls.pdf, brdf.pdf(v, l)) / ls.pdf);
+    }
+  }
   {  // BRDF sample
     const glm::vec3 l = brdf.sample(v, rng.uniform2(), rng.uniform());
     const float pb = brdf.pdf(v, l);
     if (pb > 0.0f) {
       const glm::vec3 w = frame * l;
-      if (visible(w))
+      const NearestLight hit = nearestLight(lights, position + offset, w);
+      if (hit.index >= 0) {
+        const Light& light = lights[static_cast<std::size_t>(hit.index)];
+        const float pl = lightPdf(light, position + offset, w);
+        if (hit.hit.radiance != glm::vec3(0.0f) && visible(w, hit.hit.distance))
+          sum += brdf.evaluate(v, l) * hit.hit.radiance * lightWindow(light, position) *
+                 (powerHeuristic(pb, pl) / pb);
+      } else if (o.environmentLight && visible(w, INFINITY)) {
         sum += brdf.evaluate(v, l) * env.radiance(w) * (powerHeuristic(pb, env.pdf(w)) / pb);
+      }
     }
   }
-  {  // environment sample
+  if (o.environmentLight) {  // environment sample (where no light hides the environment)
     const glm::vec3 w = env.sample(rng.uniform2());
     const glm::vec3 l = toLocal * w;
     const float pe = env.pdf(w);
-    if (l.z > 0.0f && pe > 0.0f && visible(w))
+    if (l.z > 0.0f && pe > 0.0f && nearestLight(lights, position + offset, w).index < 0 &&
+        visible(w, INFINITY))
       sum += brdf.evaluate(v, l) * env.radiance(w) * (powerHeuristic(pe, brdf.pdf(v, l)) / pe);
   }
   return sum + p.emissive;
@@ -470,12 +517,12 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   const shared::SplitSumLookup look = shared::splitSumLookup(p.normal, view, p.roughness, s);
   const glm::vec3 dfg = sampleDfgLut(bake.dfg, look.NoV, p.roughness);
   glm::vec3 prefiltered(0.0f), irradiance(0.0f);
-  if (o.only != ShadingTerms::Diffuse) {
+  if (o.environmentLight && o.only != ShadingTerms::Diffuse) {
     const float lod = specularLodForRoughness(p.roughness, bake.specular.levelCount(),
                                               bakeOptions.specular.mapping);
     prefiltered = sampleTrilinear(bake.specular, lod, look.specularDirection);
   }
-  if (o.only != ShadingTerms::Specular)
+  if (o.environmentLight && o.only != ShadingTerms::Specular)
     irradiance = o.irradiance == IrradianceSource::Cube
                      ? sampleBilinear(bake.irradiance, 0, look.diffuseDirection)
                      : irradianceSh9(bake.sh, look.diffuseDirection) / kPi;
@@ -486,6 +533,28 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   m.occlusion = p.occlusion;
   m.emissive = p.emissive;
   return shared::splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+}
+
+glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
+                              const std::vector<Light>& lights, glm::vec2 dfg,
+                              const RenderOptions& o) {
+  const shared::SplitSumSwitches s = splitSumSwitches(o);
+  shared::SplitSumMaterial m;
+  m.baseColor = p.baseColor;
+  m.metallic = p.metallic;
+  m.roughness = p.roughness;
+  m.occlusion = 1.0f;  // ambient occlusion darkens indirect light only
+  m.emissive = glm::vec3(0.0f);
+  glm::vec3 sum(0.0f);
+  for (const Light& light : lights) {
+    const shared::ShadingLight sl = shadingLightOf(light);
+    const shared::LightIncidence inc =
+        shared::lightIncidence(sl, position, p.normal, view, p.roughness, o.dominantDirections);
+    const float profile =
+        light.ies ? light.intensityToward(glm::normalize(position - light.position)) : 1.0f;
+    sum += sl.color * profile * shared::lightRadiance(m, p.normal, view, inc, dfg, s);
+  }
+  return sum;
 }
 
 RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeResult& bake,
@@ -520,17 +589,30 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
         const float jx = j.x, jy = j.y;
         const Ray ray = camera.generateRay(static_cast<float>(x) + jx, static_cast<float>(y) + jy);
         const RayTracer::Hit hit = tracer.intersect(ray);
+        const NearestLight seen = nearestLight(scene.lights, ray.origin, ray.direction);
         glm::vec3 c;
-        if (!hit.found) {
+        if (seen.index >= 0 && (!hit.found || seen.hit.distance < hit.t)) {
+          if (std::isfinite(seen.hit.distance))
+            ++covered;  // an emitter is a surface; the sun is not
+          c = seen.hit.radiance;
+        } else if (!hit.found) {
           c = o.backgroundEnvironment ? sampleBilinear(bake.source, 0, ray.direction)
                                       : o.backgroundColor;
         } else {
           ++covered;
           const SurfacePoint p = surfaceAt(scene, tracer, hit, ray);
           const glm::vec3 position = ray.origin + hit.t * ray.direction;
-          c = o.mode == RenderMode::SplitSum
-                  ? shadeSplitSum(p, -ray.direction, bake, bakeOptions, o)
-                  : estimateReference(p, position, -ray.direction, env, tracer, o, rng);
+          if (o.mode == RenderMode::SplitSum) {
+            c = shadeSplitSum(p, -ray.direction, bake, bakeOptions, o);
+            if (!scene.lights.empty()) {
+              const float NoV = std::max(glm::dot(p.normal, -ray.direction), 1e-4f);
+              const glm::vec3 dfg = sampleDfgLut(bake.dfg, NoV, p.roughness);
+              c +=
+                  shadeLightsRealTime(p, position, -ray.direction, scene.lights, glm::vec2(dfg), o);
+            }
+          } else {
+            c = estimateReference(p, position, -ray.direction, env, scene.lights, tracer, o, rng);
+          }
         }
         sum += glm::dvec3(c);
         ++taken;

@@ -27,7 +27,8 @@ struct RenderOptions {
   bool dominantDirections = true;  // split sum: Frostbite's dominant directions
   bool specularOcclusion = true;   // split sum: from the occlusion texture
   IrradianceSource irradiance = IrradianceSource::Cube;
-  bool shadows = false;               // reference: ray-traced visibility of the environment
+  bool shadows = false;  // reference: ray-traced visibility of the environment and the lights
+  bool environmentLight = true;       // false (--env none): the scene's lights alone
   bool backgroundEnvironment = true;  // else backgroundColor
   glm::vec3 backgroundColor{0.0f};
   unsigned seed = 1;
@@ -42,7 +43,9 @@ struct RenderResult {
 
 // Renders `scene` as seen by `camera`, lit by the baked environment (split sum: specular,
 // irradiance / SH, DFG; reference and background: the source cube's level 0, taken as
-// piecewise constant over its texels).
+// piecewise constant over its texels) and by the scene's lights (split sum: the approximations
+// of ibl/shared/lights.h; reference: light_sampling.hpp with multiple importance sampling).
+// Area lights and the sun are seen by the camera as their luminance.
 RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeResult& bake,
                          const BakeOptions& bakeOptions, const RenderOptions& options,
                          const std::function<void(float)>& progress = {});
@@ -64,5 +67,10 @@ shared::SplitSumSwitches splitSumSwitches(const RenderOptions& options);
 // cube or SH9, bilinear in the DFG table).
 glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult& bake,
                         const BakeOptions& bakeOptions, const RenderOptions& options);
+// The real-time shading of a point at `position` by the scene's lights (ibl/shared/lights.h,
+// IES profiles applied on the CPU); dfg: the DFG table's A, B at the point's n.v.
+glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
+                              const std::vector<Light>& lights, glm::vec2 dfg,
+                              const RenderOptions& options);
 
 }  // namespace ibl

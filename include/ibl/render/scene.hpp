@@ -1,6 +1,6 @@
 #pragma once
 // Scenes to render: triangle meshes with glTF metallic-roughness materials (from glTF 2.0
-// files), analytic spheres (the built-in scenes), and an optional camera.
+// files), analytic spheres (the built-in scenes), analytic lights, and an optional camera.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -13,6 +13,7 @@
 #include <glm/vec4.hpp>
 
 #include "ibl/core/image.hpp"
+#include "ibl/render/light.hpp"
 
 namespace ibl {
 
@@ -96,6 +97,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::optional<CameraDescription> camera;
+  std::vector<Light> lights;  // analytic lights (glTF KHR_lights_punctual, --lights files)
 
   // Axis-aligned bounds of everything.
   std::pair<glm::vec3, glm::vec3> bounds() const;

@@ -5,7 +5,9 @@
 // lm/sr), lx (illuminance, lm/m^2), nit (luminance, cd/m^2); lengths in metres.
 #ifndef IBL_SHARED_LIGHTS_H
 #define IBL_SHARED_LIGHTS_H
+#include "ibl/shared/brdf.h"
 #include "ibl/shared/lang.h"
+#include "ibl/shared/split_sum.h"
 
 IBL_BEGIN
 
@@ -104,6 +106,296 @@ IBL_FN float diskIlluminanceFactor(vec3 n, vec3 toLight, float radius, vec3 disk
   float r2 = radius * radius;
   float sinSigmaSqr = r2 / (r2 + max(r2, squaredDistance));
   return illuminanceSphereOrDisk(dot(n, l), sinSigmaSqr) * clamp(dot(diskNormal, -l), 0.0f, 1.0f);
+}
+
+// --- The real-time approximations (Frostbite section 4.7; Karis 2013) ---
+
+// ShadingLight.type.
+const int kLightPoint = 0;
+const int kLightSpot = 1;
+const int kLightSun = 2;
+const int kLightSphere = 3;
+const int kLightDisk = 4;
+const int kLightTube = 5;
+const int kLightRect = 6;
+
+// A light as the shading reads it, in world space and photometric units.
+struct ShadingLight {
+  int type;
+  vec3 position;   // punctual and area lights; tube: the segment's center; rect: its center
+  vec3 direction;  // spot: where it shines; sun: toward the sun; disk, rect: the emitting side;
+                   // tube: the segment's axis (unit vectors)
+  vec3 up;         // rect: along its height (unit, orthogonal to direction)
+  vec3 color;      // linear RGB x cd (point, spot), lx (sun) or nit (area lights)
+  float radius;    // sphere, disk, tube; sun: the angular radius in radians
+  float width;     // rect; tube: the segment's length
+  float height;    // rect
+  float cosInner;  // spot
+  float cosOuter;  // spot
+  float invSquaredRange;  // 1 / influence radius^2; 0: no window
+};
+
+// What a light delivers to a point, split as the approximations split it: the illuminance
+// (per unit of ShadingLight.color) the diffuse lobe receives and the direction it is evaluated
+// toward; the same for the specular lobe, whose GGX peak is scaled by specularNormalization
+// (Karis 2013's energy normalization of the representative point).
+struct LightIncidence {
+  vec3 diffuseDirection;
+  float diffuseIlluminance;
+  vec3 specularDirection;
+  float specularIlluminance;
+  float specularNormalization;
+};
+
+// The solid angle of the quadrilateral p0 p1 p2 p3 (in order around it) seen from the origin:
+// the spherical polygon's angle excess (Frostbite section 4.7.2.5, after Urena et al. 2013).
+IBL_FN float quadSolidAngle(vec3 p0, vec3 p1, vec3 p2, vec3 p3) {
+  vec3 n0 = normalize(cross(p0, p1));
+  vec3 n1 = normalize(cross(p1, p2));
+  vec3 n2 = normalize(cross(p2, p3));
+  vec3 n3 = normalize(cross(p3, p0));
+  float g0 = acos(clamp(dot(-n0, n1), -1.0f, 1.0f));
+  float g1 = acos(clamp(dot(-n1, n2), -1.0f, 1.0f));
+  float g2 = acos(clamp(dot(-n2, n3), -1.0f, 1.0f));
+  float g3 = acos(clamp(dot(-n3, n0), -1.0f, 1.0f));
+  return max(g0 + g1 + g2 + g3 - 2.0f * kPi, 0.0f);
+}
+
+// Frostbite's structured sampling of a quadrilateral's illuminance (section 4.7.2.5): its solid
+// angle times the mean clamped cosine of its four corners and its center (the clamp handles
+// the horizon). Corners relative to the shaded point, n its normal. Returns (E, solid angle).
+IBL_FN vec2 quadIlluminanceStructured(vec3 n, vec3 p0, vec3 p1, vec3 p2, vec3 p3, vec3 center) {
+  float omega = quadSolidAngle(p0, p1, p2, p3);
+  float c = clamp(dot(normalize(p0), n), 0.0f, 1.0f) + clamp(dot(normalize(p1), n), 0.0f, 1.0f) +
+            clamp(dot(normalize(p2), n), 0.0f, 1.0f) + clamp(dot(normalize(p3), n), 0.0f, 1.0f) +
+            clamp(dot(normalize(center), n), 0.0f, 1.0f);
+  return vec2(omega * 0.2f * c, omega);
+}
+
+// Karis 2013's normalization of a GGX peak widened by a source of angular half-extent
+// `halfExtent` (radians, about size / (2 distance)) in one direction: alpha / alpha', with
+// alpha' = saturate(alpha + halfExtent / 2). A round source widens both directions (square it).
+IBL_FN float widenedLobeNormalization(float alpha, float halfExtent) {
+  return alpha / clamp(alpha + 0.5f * halfExtent, 1e-4f, 1.0f);
+}
+
+// Frostbite's dominant direction for area lights (section 4.7.5): a lerp from n toward the
+// mirror direction r by 1 - roughness.
+IBL_FN vec3 specularDominantDirectionArea(vec3 n, vec3 r, float roughness) {
+  return normalize(mix(n, r, 1.0f - roughness));
+}
+
+// The point of a sphere (center c, radius, relative to the shaded point) closest to the ray
+// from the shaded point along unit r: the representative point of Karis 2013 (eq. 10).
+IBL_FN vec3 closestPointOnSphereToRay(vec3 c, float radius, vec3 r) {
+  vec3 centerToRay = dot(c, r) * r - c;
+  float len = max(length(centerToRay), 1e-7f);
+  return c + centerToRay * clamp(radius / len, 0.0f, 1.0f);
+}
+
+// The point of a segment a..b (relative to the shaded point) closest to the ray along unit r
+// (Karis 2013, eq. 13).
+IBL_FN vec3 closestPointOnSegmentToRay(vec3 a, vec3 b, vec3 r) {
+  vec3 ab = b - a;
+  float rab = dot(r, ab);
+  float t = (dot(r, a) * rab - dot(a, ab)) / max(dot(ab, ab) - rab * rab, 1e-12f);
+  return a + clamp(t, 0.0f, 1.0f) * ab;
+}
+
+// Where the ray along unit r from the shaded point meets the plane through c (relative to the
+// point) with normal m, as an offset from c within the plane; a ray parallel to or leaving the
+// plane gives the far point of r's projection on it.
+IBL_FN vec3 rayPlaneOffset(vec3 c, vec3 m, vec3 r) {
+  float rm = dot(r, m);
+  float t = dot(c, m) / (abs(rm) > 1e-6f ? rm : 1e-6f);
+  vec3 rInPlane = r - rm * m;
+  if (t > 0.0f) return t * r - c;
+  return rInPlane * 1e6f - (c - dot(c, m) * m);
+}
+
+IBL_FN LightIncidence punctualIncidence(ShadingLight light, vec3 toLight, vec3 n) {
+  LightIncidence inc;
+  float d2 = dot(toLight, toLight);
+  vec3 l = toLight / sqrt(max(d2, 1e-20f));
+  float e = distanceAttenuation(d2, light.invSquaredRange) * clamp(dot(n, l), 0.0f, 1.0f);
+  if (light.type == kLightSpot)
+    e *= spotAngleAttenuation(dot(light.direction, -l), light.cosInner, light.cosOuter);
+  inc.diffuseDirection = l;
+  inc.specularDirection = l;
+  inc.diffuseIlluminance = e;
+  inc.specularIlluminance = e;
+  inc.specularNormalization = 1.0f;
+  return inc;
+}
+
+// The sun as a disk (Frostbite section 4.7.1, listing 7): diffuse toward its center, specular
+// toward the disk's point closest to r.
+IBL_FN LightIncidence sunIncidence(ShadingLight light, vec3 n, vec3 r, float alpha) {
+  LightIncidence inc;
+  vec3 d = light.direction;
+  float sinSigma = sin(light.radius), cosSigma = cos(light.radius);
+  float DoR = dot(d, r);
+  vec3 s = r - DoR * d;
+  vec3 l =
+      DoR < cosSigma && dot(s, s) > 1e-12f ? normalize(cosSigma * d + normalize(s) * sinSigma) : r;
+  inc.diffuseDirection = d;
+  inc.diffuseIlluminance = clamp(dot(n, d), 0.0f, 1.0f);
+  inc.specularDirection = l;
+  inc.specularIlluminance = clamp(dot(n, l), 0.0f, 1.0f);
+  float w = widenedLobeNormalization(alpha, sinSigma);
+  inc.specularNormalization = w * w;
+  return inc;
+}
+
+IBL_FN LightIncidence sphereIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
+  LightIncidence inc;
+  float d2 = dot(c, c);
+  float window = smoothDistanceWindow(d2, light.invSquaredRange);
+  float sinSigmaSqr = min(light.radius * light.radius / d2, 0.9999f);
+  inc.diffuseDirection = c / sqrt(d2);
+  inc.diffuseIlluminance = sphereIlluminanceFactor(n, c, light.radius) * window;
+  vec3 l = normalize(closestPointOnSphereToRay(c, light.radius, r));
+  inc.specularDirection = l;
+  inc.specularIlluminance = kPi * sinSigmaSqr * clamp(dot(n, l), 0.0f, 1.0f) * window;
+  float w = widenedLobeNormalization(alpha, light.radius / sqrt(d2));
+  inc.specularNormalization = w * w;
+  return inc;
+}
+
+IBL_FN LightIncidence diskIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
+  LightIncidence inc;
+  float d2 = dot(c, c);
+  float window = smoothDistanceWindow(d2, light.invSquaredRange);
+  vec3 m = light.direction;
+  vec3 lc = c / sqrt(d2);
+  inc.diffuseDirection = lc;
+  inc.diffuseIlluminance = diskIlluminanceFactor(n, c, light.radius, m) * window;
+  vec3 q = rayPlaneOffset(c, m, r);
+  float ql = length(q);
+  vec3 onDisk = c + (ql > light.radius ? q * (light.radius / ql) : q);
+  vec3 l = normalize(onDisk);
+  float r2 = light.radius * light.radius;
+  float facing = clamp(dot(m, -lc), 0.0f, 1.0f);
+  inc.specularDirection = l;
+  inc.specularIlluminance = kPi * r2 / (r2 + d2) * facing * clamp(dot(n, l), 0.0f, 1.0f) * window;
+  float w = widenedLobeNormalization(alpha, light.radius / sqrt(d2));
+  inc.specularNormalization = w * w;
+  return inc;
+}
+
+IBL_FN LightIncidence rectIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
+  LightIncidence inc;
+  float d2 = dot(c, c);
+  float window = smoothDistanceWindow(d2, light.invSquaredRange);
+  vec3 m = light.direction;
+  vec3 up = light.up;
+  vec3 left = cross(up, m);
+  float hw = 0.5f * light.width, hh = 0.5f * light.height;
+  inc.diffuseDirection = c / sqrt(d2);
+  inc.specularDirection = inc.diffuseDirection;
+  inc.diffuseIlluminance = 0.0f;
+  inc.specularIlluminance = 0.0f;
+  inc.specularNormalization = 1.0f;
+  if (dot(c, m) >= 0.0f) return inc;  // behind the emitting side
+  vec3 p0 = c - left * hw + up * hh;
+  vec3 p1 = c - left * hw - up * hh;
+  vec3 p2 = c + left * hw - up * hh;
+  vec3 p3 = c + left * hw + up * hh;
+  vec2 e = quadIlluminanceStructured(n, p0, p1, p2, p3, c);
+  inc.diffuseIlluminance = e.x * window;
+  vec3 q = rayPlaneOffset(c, m, r);
+  vec3 onRect = c + left * clamp(dot(q, left), -hw, hw) + up * clamp(dot(q, up), -hh, hh);
+  vec3 l = normalize(onRect);
+  inc.specularDirection = l;
+  inc.specularIlluminance = e.y * clamp(dot(n, l), 0.0f, 1.0f) * window;
+  float d = sqrt(d2);
+  inc.specularNormalization =
+      widenedLobeNormalization(alpha, hw / d) * widenedLobeNormalization(alpha, hh / d);
+  return inc;
+}
+
+// The tube (a capsule) as Frostbite splits it (section 4.7.2.6): its cylinder as the rectangle
+// facing the point, its two caps as one sphere at the segment's point closest to the shaded
+// point (here with the exact, horizon-aware sphere formula); the specular toward the capsule's
+// point closest to r (Karis 2013, eqs. 13 and 10).
+IBL_FN LightIncidence tubeIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
+  LightIncidence inc;
+  float d2 = dot(c, c);
+  float window = smoothDistanceWindow(d2, light.invSquaredRange);
+  vec3 axis = light.direction;
+  float hl = 0.5f * light.width;
+  vec3 a = c - axis * hl, b = c + axis * hl;
+  vec3 onLine = c - dot(c, axis) * axis;  // the closest point of the infinite line
+  vec3 forward = normalize(onLine);
+  vec3 up = cross(axis, forward);
+  vec3 p0 = c - axis * hl + up * light.radius;
+  vec3 p1 = c - axis * hl - up * light.radius;
+  vec3 p2 = c + axis * hl - up * light.radius;
+  vec3 p3 = c + axis * hl + up * light.radius;
+  vec2 e = quadIlluminanceStructured(n, p0, p1, p2, p3, c);
+  vec3 onSegment = c + axis * clamp(-dot(c, axis), -hl, hl);
+  float capsE = sphereIlluminanceFactor(n, onSegment, light.radius);
+  inc.diffuseDirection = c / sqrt(d2);
+  inc.diffuseIlluminance = (e.x + capsE) * window;
+  vec3 l =
+      normalize(closestPointOnSphereToRay(closestPointOnSegmentToRay(a, b, r), light.radius, r));
+  float s2 = dot(onSegment, onSegment);
+  float capsOmega = kPi * min(light.radius * light.radius / s2, 0.9999f);
+  inc.specularDirection = l;
+  inc.specularIlluminance = (e.y + capsOmega) * clamp(dot(n, l), 0.0f, 1.0f) * window;
+  float ds = sqrt(s2);
+  inc.specularNormalization = widenedLobeNormalization(alpha, light.radius / ds) *
+                              widenedLobeNormalization(alpha, (light.radius + hl) / ds);
+  return inc;
+}
+
+// The light's incidence at a point (position p, unit normal n, unit view v, perceptual
+// roughness); `dominant`: the specular representative point follows the area dominant direction.
+IBL_FN LightIncidence lightIncidence(ShadingLight light, vec3 p, vec3 n, vec3 v, float roughness,
+                                     bool dominant) {
+  float alpha = max(alphaFromRoughness(roughness), 1e-3f);
+  vec3 r = 2.0f * dot(n, v) * n - v;
+  if (dominant) r = specularDominantDirectionArea(n, r, roughness);
+  vec3 c = light.position - p;
+  if (light.type == kLightSun) return sunIncidence(light, n, r, alpha);
+  if (light.type == kLightSphere) return sphereIncidence(light, c, n, r, alpha);
+  if (light.type == kLightDisk) return diskIncidence(light, c, n, r, alpha);
+  if (light.type == kLightRect) return rectIncidence(light, c, n, r, alpha);
+  if (light.type == kLightTube) return tubeIncidence(light, c, n, r, alpha);
+  return punctualIncidence(light, c, n);
+}
+
+// The radiance the standard material (the BRDF of the IBL path) reflects toward v from a light's
+// incidence, per unit of the light's color: diffuse (Disney or Lambert) x the diffuse
+// illuminance, GGX x the specular illuminance, with the multiple-scattering compensation of the
+// split sum (dfg: the DFG table's A, B at n.v). `profile` scales everything (an IES profile's
+// value toward the point, 1 without one).
+IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc, vec2 dfg,
+                          SplitSumSwitches s) {
+  float alpha = max(alphaFromRoughness(m.roughness), 1e-3f);
+  vec3 diffuseColor = m.baseColor * (1.0f - m.metallic);
+  vec3 f0 = mix(vec3(0.04f), m.baseColor, m.metallic);
+  float NoV = max(dot(n, v), 1e-4f);
+  vec3 color = vec3(0.0f);
+  if (s.terms != 2 && inc.diffuseIlluminance > 0.0f) {
+    vec3 l = inc.diffuseDirection;
+    float fd = 1.0f;
+    if (s.disneyDiffuse)
+      fd = disneyDiffuseRenormalized(NoV, clamp(dot(n, l), 0.0f, 1.0f), dot(l, normalize(v + l)),
+                                     m.roughness);
+    color += diffuseColor * (fd / kPi * inc.diffuseIlluminance);
+  }
+  if (s.terms != 1 && inc.specularIlluminance > 0.0f) {
+    vec3 l = inc.specularDirection;
+    vec3 h = normalize(v + l);
+    float NoL = max(dot(n, l), 1e-4f);
+    float dv = ggxDistribution(clamp(dot(n, h), 0.0f, 1.0f), alpha) * inc.specularNormalization *
+               smithGgxCorrelatedVisibility(NoV, NoL, alpha);
+    vec3 specular = dv * fresnelSchlick(f0, 1.0f, max(dot(v, h), 0.0f)) * inc.specularIlluminance;
+    if (s.multipleScattering) specular *= multipleScatteringCompensation(f0, dfg);
+    color += specular;
+  }
+  return color;
 }
 
 IBL_END
