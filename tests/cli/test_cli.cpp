@@ -177,6 +177,32 @@ TEST(Cli, RenderAndCompare) {
   EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
 }
 
+// --env none with the bundled lights file (the README's example); a bad lights file is one line
+// naming the file and the light, and writes nothing.
+TEST(Cli, RenderWithLightsOnly) {
+  TempDir dir;
+  const std::string lights = quote(dataDir() / "lights" / "studio.json");
+  CliRun r = runIbl("render sphere --env none --lights " + lights + " -o " +
+                    quote(dir / "lit.exr") + " --size 16x16 --spp 1 --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const DecodedFile lit = readImageFile(dir / "lit.exr");
+  EXPECT_GT(lit.levels[0][0].at(8, 8).x, 0.0f);           // the sphere is lit
+  EXPECT_EQ(lit.levels[0][0].at(0, 0), glm::vec3(0.0f));  // on black
+  {
+    std::ofstream f(dir / "bad.json");
+    f << R"({"lights": [{"type": "spot", "position": [0, 1, 0], "intensity": 5, "unit": "lux"}]})";
+  }
+  r = runIbl("render sphere --env none --lights " + quote(dir / "bad.json") + " -o " +
+             quote(dir / "bad.png") + " --size 16x16");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("bad.json: light 0 (spot): missing \"direction\""), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.png"));
+  r = runIbl("render sphere --env none --bake " + quote(dir.path()) + " -o " +
+             quote(dir / "c.png"));
+  EXPECT_EQ(r.status, 1) << r.output;
+}
+
 TEST(Cli, CameraOptionsAreCheckedOrHandled) {
   TempDir dir;
   const std::string base = "render sphere --size 8x8 --spp 1 --quiet -o " + quote(dir / "c.exr");

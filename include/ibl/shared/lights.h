@@ -180,9 +180,10 @@ IBL_FN float widenedLobeNormalization(float alpha, float halfExtent) {
 }
 
 // Frostbite's dominant direction for area lights (section 4.7.5): a lerp from n toward the
-// mirror direction r by 1 - roughness.
-IBL_FN vec3 specularDominantDirectionArea(vec3 n, vec3 r, float roughness) {
-  return normalize(mix(n, r, 1.0f - roughness));
+// mirror direction r by 1 - alpha (the GGX alpha: the document's code calls it roughness; with
+// the perceptual roughness, smooth surfaces lose their highlights, measured).
+IBL_FN vec3 specularDominantDirectionArea(vec3 n, vec3 r, float alpha) {
+  return normalize(mix(n, r, 1.0f - alpha));
 }
 
 // The point of a sphere (center c, radius, relative to the shaded point) closest to the ray
@@ -355,7 +356,7 @@ IBL_FN LightIncidence lightIncidence(ShadingLight light, vec3 p, vec3 n, vec3 v,
                                      bool dominant) {
   float alpha = max(alphaFromRoughness(roughness), 1e-3f);
   vec3 r = 2.0f * dot(n, v) * n - v;
-  if (dominant) r = specularDominantDirectionArea(n, r, roughness);
+  if (dominant) r = specularDominantDirectionArea(n, r, alpha);
   vec3 c = light.position - p;
   if (light.type == kLightSun) return sunIncidence(light, n, r, alpha);
   if (light.type == kLightSphere) return sphereIncidence(light, c, n, r, alpha);
