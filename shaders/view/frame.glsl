@@ -8,17 +8,23 @@ layout(std140, set = 0, binding = 0) uniform Frame {
   vec4 cameraUp;        // scaled by tan(fov / 2), orthographic: by the half height
   vec4 viewport;        // width, height
   vec4 background;      // rgb; w: 1 the environment, 0 this color
-  vec4 lods;            // specular levels - 1, 1 for the Frostbite roughness mapping, skybox lod
+  vec4 lods;            // specular levels - 1, 1 for the Frostbite roughness mapping, skybox lod,
+                        // 1 lit by the environment (0: --env none)
   ivec4 terms;          // only (0 both, 1 diffuse, 2 specular), multiple scattering, dominant
                         // directions, specular occlusion
   ivec4 models;         // diffuse (0 Disney, 1 Lambert), irradiance (0 cube, 1 SH9), samples
-                        // per pixel at the standard locations (0: unknown locations)
+                        // per pixel at the standard locations (0: unknown locations), lights
   vec4 sh[9];           // radiance SH9 times the cosine lobe's A_l / pi: irradiance / pi
 } frame;
 layout(set = 0, binding = 1) uniform samplerCube specularMap;
 layout(set = 0, binding = 2) uniform samplerCube irradianceMap;
 layout(set = 0, binding = 3) uniform sampler2D dfgLut;
 layout(set = 0, binding = 4) uniform samplerCube sourceMap;
+// The scene's lights, five vec4 each (lightsBuffer in src/gpu/scene_renderer.cpp): position and
+// type, direction and radius, up and width, color and height, (cos inner, cos outer, 1 / range^2).
+layout(std430, set = 0, binding = 5) readonly buffer Lights {
+  vec4 lightData[];
+};
 
 struct Ray {
   vec3 origin, direction;

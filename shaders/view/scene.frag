@@ -152,5 +152,5 @@ void main() {
   m.roughness = clamp(roughness, 0.0, 1.0);
   m.occlusion = occlusion;
   m.emissive = emissive;
-  outColor = vec4(shadeSplitSum(n, -ray, m), 1.0);
+  outColor = vec4(shadeSplitSum(position, n, -ray, m), 1.0);
 }

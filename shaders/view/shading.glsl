@@ -1,7 +1,7 @@
 // The split-sum shading of a surface point: the formulas of ibl/shared/split_sum.h (which
 // shadeSplitSum in src/render/renderer.cpp calls too) with the GPU's lookups: samplerCube
 // trilinear filtering, the DFG table bilinear and clamped. Needs view/frame.glsl.
-#include "ibl/shared/lights.h"  // not used yet: the analytic lights of issue 12 will shade here
+#include "ibl/shared/lights.h"
 #include "ibl/shared/sh.h"
 #include "ibl/shared/split_sum.h"
 
@@ -23,11 +23,43 @@ vec3 irradianceSh9OverPi(vec3 n) {
   return sum;
 }
 
-vec3 shadeSplitSum(vec3 n, vec3 view, SplitSumMaterial m) {
+ShadingLight lightAt(int i) {
+  ShadingLight l;
+  vec4 a = lightData[5 * i], b = lightData[5 * i + 1], c = lightData[5 * i + 2],
+       d = lightData[5 * i + 3], e = lightData[5 * i + 4];
+  l.type = int(a.w);
+  l.position = a.xyz;
+  l.direction = b.xyz;
+  l.radius = b.w;
+  l.up = c.xyz;
+  l.width = c.w;
+  l.color = d.xyz;
+  l.height = d.w;
+  l.cosInner = e.x;
+  l.cosOuter = e.y;
+  l.invSquaredRange = e.z;
+  return l;
+}
+
+// The environment's split sum plus the scene's lights (shadeSplitSum and shadeLightsRealTime in
+// src/render/renderer.cpp) at a point at `position`.
+vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m) {
   SplitSumSwitches s = frameSwitches();
   SplitSumLookup look = splitSumLookup(n, view, m.roughness, s);
   vec3 dfg = textureLod(dfgLut, vec2(look.NoV, m.roughness), 0.0).rgb;
   vec3 prefiltered = vec3(0.0), irradiance = vec3(0.0);
+  vec3 lit = vec3(0.0);
+  if (frame.models.w > 0) {
+    SplitSumMaterial direct = m;
+    direct.occlusion = 1.0;
+    direct.emissive = vec3(0.0);
+    for (int i = 0; i < frame.models.w; ++i) {
+      ShadingLight l = lightAt(i);
+      LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s.dominantDirections);
+      lit += l.color * lightRadiance(direct, n, view, inc, dfg.xy, s);
+    }
+  }
+  if (frame.lods.w < 0.5) return lit + splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
   if (s.terms != 1) {
     float lod = specularLodForRoughness(m.roughness, frame.lods.x, frame.lods.y > 0.5);
     prefiltered = textureLod(specularMap, look.specularDirection, lod).rgb;
@@ -35,5 +67,5 @@ vec3 shadeSplitSum(vec3 n, vec3 view, SplitSumMaterial m) {
   if (s.terms != 2)
     irradiance = frame.models.y == 0 ? textureLod(irradianceMap, look.diffuseDirection, 0.0).rgb
                                      : irradianceSh9OverPi(look.diffuseDirection);
-  return splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+  return lit + splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
 }

@@ -297,6 +297,26 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   for (int k = 0; k < 9; ++k)
     shIrradianceOverPi[k] = bake.sh[k] * (shCosineLobe(shBand(k)) / std::numbers::pi_v<float>);
 
+  // The lights, five vec4 each (view/frame.glsl); one zero light when there are none (a buffer
+  // is never empty). IES profiles are not applied here (their intensity is the profile's peak).
+  std::vector<glm::vec4> lightData(5 * std::max<std::size_t>(1, scene.lights.size()),
+                                   glm::vec4(0.0f));
+  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+    const shared::ShadingLight l = shadingLightOf(scene.lights[i]);
+    lightData[5 * i] = glm::vec4(l.position, static_cast<float>(l.type));
+    lightData[5 * i + 1] = glm::vec4(l.direction, l.radius);
+    lightData[5 * i + 2] = glm::vec4(l.up, l.width);
+    lightData[5 * i + 3] = glm::vec4(
+        scene.lights[i].ies ? l.color * scene.lights[i].iesScale * scene.lights[i].ies->maxCandela()
+                            : l.color,
+        l.height);
+    lightData[5 * i + 4] = glm::vec4(l.cosInner, l.cosOuter, l.invSquaredRange, 0.0f);
+  }
+  lightCount = static_cast<int>(scene.lights.size());
+  lightsBuffer =
+      std::make_unique<Buffer>(context, lightData.size() * sizeof(glm::vec4), BufferMemory::Host);
+  std::memcpy(lightsBuffer->mapped(), lightData.data(), lightData.size() * sizeof(glm::vec4));
+
   cubeSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, true);
   lutSampler = createSampler(device, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
   const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -305,6 +325,8 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   for (std::uint32_t b = 1; b <= 4; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  frameBindings.push_back(
+      {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
   std::vector<VkDescriptorSetLayoutBinding> materialBindings;
   for (std::uint32_t b = 0; b < 5; ++b)
@@ -322,8 +344,9 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
         "vkCreatePipelineLayout");
 
   const auto materialCount = static_cast<std::uint32_t>(materials.size());
-  const std::array<VkDescriptorPoolSize, 2> sizes{
+  const std::array<VkDescriptorPoolSize, 3> sizes{
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 + 5 * materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1 + materialCount;
@@ -362,6 +385,17 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   }
   for (std::uint32_t b = 0; b < 4; ++b)
     writes.push_back(imageWrite(frameSet, b + 1, &frameImages[b]));
+  const VkDescriptorBufferInfo lightsInfo{static_cast<VkBuffer>(lightsBuffer->handle()), 0,
+                                          VK_WHOLE_SIZE};
+  {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = frameSet;
+    w.dstBinding = 5;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &lightsInfo;
+    writes.push_back(w);
+  }
   for (std::size_t m = 0; m < materials.size(); ++m) {
     for (std::size_t b = 0; b < 5; ++b) {
       writes.push_back(
@@ -584,11 +618,11 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   u.viewport = glm::vec4(static_cast<float>(t.width), static_cast<float>(t.height), 0.0f, 0.0f);
   u.background = glm::vec4(o.backgroundColor, o.backgroundEnvironment ? 1.0f : 0.0f);
   u.lods = glm::vec4(specularMaxLod, frostbiteMapping ? 1.0f : 0.0f,
-                     std::clamp(skyboxLod, 0.0f, skyboxMaxLod), 0.0f);
+                     std::clamp(skyboxLod, 0.0f, skyboxMaxLod), o.environmentLight ? 1.0f : 0.0f);
   const shared::SplitSumSwitches s = splitSumSwitches(o);  // as the CPU's shadeSplitSum
   u.terms = glm::ivec4(s.terms, s.multipleScattering, s.dominantDirections, s.specularOcclusion);
   u.models = glm::ivec4(s.disneyDiffuse ? 0 : 1, o.irradiance == IrradianceSource::Cube ? 0 : 1,
-                        standardSampleLocations ? t.samples : 0, 0);
+                        standardSampleLocations ? t.samples : 0, lightCount);
   for (int k = 0; k < 9; ++k) u.sh[k] = glm::vec4(shIrradianceOverPi[k], 0.0f);
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
 

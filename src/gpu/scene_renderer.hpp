@@ -50,6 +50,8 @@ struct SceneRenderer::Impl {
   VkDescriptorSet frameSet = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> materialSets;
   std::unique_ptr<Buffer> frameUniforms;
+  std::unique_ptr<Buffer> lightsBuffer;  // the scene's lights (view/frame.glsl)
+  int lightCount = 0;
   VkShaderModule sceneVert = VK_NULL_HANDLE, sceneFrag = VK_NULL_HANDLE,
                  fullscreenVert = VK_NULL_HANDLE, skyboxFrag = VK_NULL_HANDLE;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;

@@ -131,6 +131,45 @@ TEST(Viewer, SphereGridMatchesTheSplitSumRenderWithMultisampling) {
   EXPECT_LT(c.coverageMismatch, 5e-3);
 }
 
+// Every light type (above the view, out of the picture: the viewer does not draw emitters)
+// shades the grid as the CPU does: the same ibl/shared/lights.h, with and without the
+// environment.
+TEST(Viewer, LightsMatchTheCpu) {
+  Scene scene = makeSphereGrid(glm::vec3(0.8f, 0.6f, 0.4f));
+  const auto add = [&](LightType type, glm::vec3 position, glm::vec3 direction, float intensity) {
+    Light l;
+    l.type = type;
+    l.name = "test light";
+    l.position = position;
+    l.direction = glm::normalize(direction);
+    l.up = glm::normalize(glm::cross(l.direction, glm::vec3(1, 0, 0)));
+    l.intensity = intensity;
+    l.radius = type == LightType::Tube ? 0.2f : 1.0f;
+    l.length = 4.0f;
+    l.width = 3.0f;
+    l.height = 1.5f;
+    l.range = type == LightType::Point ? 30.0f : 0.0f;
+    checkLight(l);
+    scene.lights.push_back(l);
+  };
+  add(LightType::Point, {-6, 9, 4}, {0, -1, 0}, 2000.0f);
+  add(LightType::Spot, {6, 9, 4}, {-0.5f, -1, -0.4f}, 3000.0f);
+  add(LightType::Sun, {0, 0, 0}, {0.3f, 0.6f, 1}, 5.0f);
+  add(LightType::Sphere, {-3, 9, 5}, {0, -1, 0}, 300.0f);
+  add(LightType::Disk, {0, 9, 5}, {0, -1, -0.6f}, 300.0f);
+  add(LightType::Tube, {3, 9, 5}, {1, 0, 0.2f}, 500.0f);
+  add(LightType::Rect, {0, 9, 8}, {0, -1, -0.8f}, 200.0f);
+  RenderOptions o;
+  o.spp = 1;
+  for (bool environment : {true, false}) {
+    o.environmentLight = environment;
+    o.backgroundEnvironment = environment;
+    const Comparison c = renderBoth(scene, lookingAt({0, 0, 20}, 320, 160), o);
+    EXPECT_LT(c.meanRelative, 2e-3) << environment;
+    EXPECT_LT(c.fractionOver1, 1e-2) << environment;
+  }
+}
+
 TEST(Viewer, ShadingSwitchesMatchTheCpu) {
   Material m;
   m.baseColor = glm::vec3(0.9f, 0.6f, 0.2f);
