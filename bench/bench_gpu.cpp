@@ -4,6 +4,7 @@
 // irradiance 32^2, SH9, DFG 128^2; the default bake with --device gpu; and the viewer's frame
 // (1280x720 sphere grid, split sum, 4x MSAA, read back to the host).
 #include <memory>
+#include <string>
 
 #include <benchmark/benchmark.h>
 
@@ -85,24 +86,53 @@ void BM_BakeDeviceGpu(benchmark::State& state) {
   state.SetLabel(context().device().name);
 }
 
-void BM_ViewerFrame1280x720(benchmark::State& state) {
+ibl::gpu::Context& graphicsContext() {
   static const std::unique_ptr<ibl::gpu::Context> graphics = [] {
     ibl::gpu::ContextOptions o;
     o.graphics = true;
     return ibl::gpu::Context::create(o);
   }();
+  return *graphics;
+}
+
+// Frames of `scene` at 1280x720 seen from +Z, lit by the default bake, `spp` samples per pixel.
+void viewerFrames(benchmark::State& state, const ibl::Scene& scene, int spp,
+                  const std::string& label) {
   ibl::BakeOptions o;
   const ibl::BakeResult bake = ibl::bakeEnvironment(environment(), o);
-  const ibl::Scene scene = ibl::makeSphereGrid(glm::vec3(1.0f));
-  ibl::gpu::SceneRenderer viewer(*graphics, scene, bake, o);
+  ibl::gpu::SceneRenderer viewer(graphicsContext(), scene, bake, o);
   ibl::Camera camera;
   camera.from = {0.0f, 0.0f, 20.0f};
   camera.width = 1280;
   camera.height = 720;
   ibl::RenderOptions shading;
-  shading.spp = static_cast<int>(state.range(0));
+  shading.spp = spp;
   for (auto _ : state) benchmark::DoNotOptimize(viewer.render(camera, shading));
-  state.SetLabel(graphics->device().name + ", " + std::to_string(viewer.samples()) + "x MSAA");
+  state.SetLabel(graphicsContext().device().name + ", " + std::to_string(viewer.samples()) +
+                 "x MSAA" + label);
+}
+
+void BM_ViewerFrame1280x720(benchmark::State& state) {
+  viewerFrames(state, ibl::makeSphereGrid(glm::vec3(1.0f)), static_cast<int>(state.range(0)), "");
+}
+
+// The same frame (1 sample per pixel) lit by N analytic lights as well, the seven types in
+// turn, above the grid.
+void BM_ViewerFrameWithLights(benchmark::State& state) {
+  ibl::Scene scene = ibl::makeSphereGrid(glm::vec3(1.0f));
+  for (int i = 0; i < state.range(0); ++i) {
+    ibl::Light l;
+    l.type = static_cast<ibl::LightType>(i % 7);
+    l.name = "bench light";
+    l.position = {-6.0f + 12.0f * static_cast<float>(i) / 64.0f, 6.0f, 4.0f};
+    l.direction = glm::normalize(glm::vec3(0.1f, -1.0f, -0.5f));
+    l.up = glm::normalize(glm::cross(l.direction, glm::vec3(1, 0, 0)));
+    l.intensity = 100.0f;
+    l.radius = 0.3f;
+    l.length = l.width = l.height = 1.0f;
+    scene.lights.push_back(l);
+  }
+  viewerFrames(state, scene, 1, ", " + std::to_string(state.range(0)) + " lights");
 }
 
 }  // namespace
@@ -117,4 +147,10 @@ BENCHMARK(BM_GpuPrefilterRings256)->Unit(benchmark::kMillisecond)->UseRealTime()
 // 0: the default bake (rings), 1: --method sampled.
 BENCHMARK(BM_BakeDeviceGpu)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ViewerFrame1280x720)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ViewerFrameWithLights)
+    ->Arg(1)
+    ->Arg(16)
+    ->Arg(64)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_MAIN();

@@ -179,6 +179,15 @@ IBL_FN float widenedLobeNormalization(float alpha, float halfExtent) {
   return alpha / clamp(alpha + 0.5f * halfExtent, 1e-4f, 1.0f);
 }
 
+// The illuminance the specular lobe is given: for a sharp lobe, the light's solid angle times
+// the cosine toward the representative point (what the lobe sees), for a wide lobe the
+// horizon-aware illuminance the diffuse lobe receives (the representative point says little
+// then, and it may sit above the horizon while most of the light is below); between them, a
+// blend by alpha (ours, measured in docs/lights.md).
+IBL_FN float specularIlluminanceBlend(float towardPoint, float diffuseIlluminance, float alpha) {
+  return mix(towardPoint, diffuseIlluminance, alpha);
+}
+
 // Frostbite's dominant direction for area lights (section 4.7.5): a lerp from n toward the
 // mirror direction r by 1 - alpha (the GGX alpha: the document's code calls it roughness; with
 // the perceptual roughness, smooth surfaces lose their highlights, measured).
@@ -257,7 +266,8 @@ IBL_FN LightIncidence sphereIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r
   inc.diffuseIlluminance = sphereIlluminanceFactor(n, c, light.radius) * window;
   vec3 l = normalize(closestPointOnSphereToRay(c, light.radius, r));
   inc.specularDirection = l;
-  inc.specularIlluminance = kPi * sinSigmaSqr * clamp(dot(n, l), 0.0f, 1.0f) * window;
+  inc.specularIlluminance = specularIlluminanceBlend(
+      kPi * sinSigmaSqr * clamp(dot(n, l), 0.0f, 1.0f) * window, inc.diffuseIlluminance, alpha);
   float w = widenedLobeNormalization(alpha, light.radius / sqrt(d2));
   inc.specularNormalization = w * w;
   return inc;
@@ -278,7 +288,9 @@ IBL_FN LightIncidence diskIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, 
   float r2 = light.radius * light.radius;
   float facing = clamp(dot(m, -lc), 0.0f, 1.0f);
   inc.specularDirection = l;
-  inc.specularIlluminance = kPi * r2 / (r2 + d2) * facing * clamp(dot(n, l), 0.0f, 1.0f) * window;
+  inc.specularIlluminance = specularIlluminanceBlend(
+      kPi * r2 / (r2 + d2) * facing * clamp(dot(n, l), 0.0f, 1.0f) * window, inc.diffuseIlluminance,
+      alpha);
   float w = widenedLobeNormalization(alpha, light.radius / sqrt(d2));
   inc.specularNormalization = w * w;
   return inc;
@@ -308,7 +320,8 @@ IBL_FN LightIncidence rectIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, 
   vec3 onRect = c + left * clamp(dot(q, left), -hw, hw) + up * clamp(dot(q, up), -hh, hh);
   vec3 l = normalize(onRect);
   inc.specularDirection = l;
-  inc.specularIlluminance = e.y * clamp(dot(n, l), 0.0f, 1.0f) * window;
+  inc.specularIlluminance = specularIlluminanceBlend(e.y * clamp(dot(n, l), 0.0f, 1.0f) * window,
+                                                     inc.diffuseIlluminance, alpha);
   float d = sqrt(d2);
   inc.specularNormalization =
       widenedLobeNormalization(alpha, hw / d) * widenedLobeNormalization(alpha, hh / d);
@@ -343,7 +356,8 @@ IBL_FN LightIncidence tubeIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, 
   float s2 = dot(onSegment, onSegment);
   float capsOmega = kPi * min(light.radius * light.radius / s2, 0.9999f);
   inc.specularDirection = l;
-  inc.specularIlluminance = (e.y + capsOmega) * clamp(dot(n, l), 0.0f, 1.0f) * window;
+  inc.specularIlluminance = specularIlluminanceBlend(
+      (e.y + capsOmega) * clamp(dot(n, l), 0.0f, 1.0f) * window, inc.diffuseIlluminance, alpha);
   float ds = sqrt(s2);
   inc.specularNormalization = widenedLobeNormalization(alpha, light.radius / ds) *
                               widenedLobeNormalization(alpha, (light.radius + hl) / ds);
