@@ -64,6 +64,11 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "Split sum: diffuse from the irradiance cube or SH9")
       ->check(CLI::IsMember({"cube", "sh"}))
       ->capture_default_str();
+  cmd->add_option("--area-lights", o.areaLights,
+                  "Split sum: sphere, disk, tube and rect lights through linearly transformed "
+                  "cosines (ltc, measured closer) or Frostbite's approximations (frostbite)")
+      ->check(CLI::IsMember({"ltc", "frostbite"}))
+      ->capture_default_str();
   cmd->add_option("--background", o.background, "'env' (the environment) or a color R,G,B")
       ->capture_default_str();
   cmd->add_option("--ev100", o.ev100,
@@ -224,6 +229,7 @@ RenderOptions shadingOptions(const SceneCliOptions& o) {
   r.multipleScattering = !o.noMultiscatter;
   r.dominantDirections = !o.noDominant;
   r.irradiance = o.irradiance == "sh" ? IrradianceSource::Sh : IrradianceSource::Cube;
+  r.areaLights = o.areaLights == "frostbite" ? AreaLightModel::Frostbite : AreaLightModel::Ltc;
   r.environmentLight = !environmentIsNone(o);
   if (!r.environmentLight) r.backgroundEnvironment = false;
   if (o.background != "env") {

@@ -34,6 +34,7 @@ struct SceneCliOptions {
   bool noMultiscatter = false;
   bool noDominant = false;
   std::string irradiance = "cube";
+  std::string areaLights = "ltc";
   std::string background = "env";
   std::string ev100;  // empty: automatic
   float aperture = 0.0f, shutter = 0.0f, iso = 0.0f;

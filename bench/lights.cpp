@@ -1,10 +1,12 @@
 // The error of each real-time light approximation against the reference renderer (the table in
 // docs/lights.md): every light type over a plane and a sphere, roughness 0.1 to 1, a gray
 // dielectric and a metal, multiple-scattering compensation off (the reference has none). Also
-// the CPU cost of each light per shaded pixel. Usage: ibl_lights [reference spp, default 1024]
-// [any second argument: the table alone]
+// the CPU cost of each light per shaded pixel. Area lights: Frostbite's approximations and LTCs.
+// Usage: ibl_lights [reference spp, default 1024] [any second argument: the table alone]
 #include <chrono>
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include <fmt/core.h>
 
@@ -33,20 +35,30 @@ int main(int argc, char** argv) {
     for (float r : roughnesses) fmt::print(" r = {} |", r);
     fmt::print("\n| --- |{}\n", std::string(std::size(roughnesses) * 6, '-') + " |");
     for (LightType type : types) {
-      fmt::print("| {} |", lightTypeName(type));
+      // Area lights: Frostbite's approximations and LTCs against the same reference.
+      const bool area = type >= LightType::Sphere;
+      std::vector<std::string> rows = {area ? std::string(lightTypeName(type)) + ", frostbite"
+                                            : std::string(lightTypeName(type))};
+      if (area) rows.push_back(std::string(lightTypeName(type)) + ", ltc");
+      for (std::string& row : rows) row = "| " + row + " |";
       for (float r : roughnesses) {
         m.roughness = r;
         const Light light = studyLight(type);
-        const ApproximationError plane =
-            measureApproximation(studyScene(StudyShape::Plane, light, m),
-                                 studyCamera(StudyShape::Plane, 64), bake, options, spp);
-        const ApproximationError sphere =
-            measureApproximation(studyScene(StudyShape::Sphere, light, m),
-                                 studyCamera(StudyShape::Sphere, 64), bake, options, spp);
-        fmt::print(" {:.1f} / {:.1f} % ({:.1f}) |", 100.0 * plane.relative, 100.0 * sphere.relative,
-                   100.0 * std::max(plane.noiseFloor, sphere.noiseFloor));
+        const std::vector<AreaLightModel> models =
+            area ? std::vector<AreaLightModel>{AreaLightModel::Frostbite, AreaLightModel::Ltc}
+                 : std::vector<AreaLightModel>{AreaLightModel::Ltc};
+        const auto plane =
+            measureApproximations(studyScene(StudyShape::Plane, light, m),
+                                  studyCamera(StudyShape::Plane, 64), bake, options, spp, models);
+        const auto sphere =
+            measureApproximations(studyScene(StudyShape::Sphere, light, m),
+                                  studyCamera(StudyShape::Sphere, 64), bake, options, spp, models);
+        for (std::size_t k = 0; k < rows.size(); ++k)
+          rows[k] += fmt::format(" {:.1f} / {:.1f} % ({:.1f}) |", 100.0 * plane[k].relative,
+                                 100.0 * sphere[k].relative,
+                                 100.0 * std::max(plane[k].noiseFloor, sphere[k].noiseFloor));
       }
-      fmt::print("\n");
+      for (const std::string& row : rows) fmt::print("{}\n", row);
     }
   }
   if (argc > 2) return 0;  // the table alone
@@ -70,11 +82,17 @@ int main(int argc, char** argv) {
   Scene none = studyScene(StudyShape::Plane, studyLight(LightType::Point), m);
   none.lights.clear();
   const double base = timeOf(none);
-  for (LightType type : types) {
-    Scene s = studyScene(StudyShape::Plane, studyLight(type), m);
-    s.lights.assign(16, s.lights[0]);
-    fmt::print("| {} | {:.0f} ns |\n", lightTypeName(type),
-               (timeOf(s) - base) / (16.0 * 512 * 512));
-  }
+  for (LightType type : types)
+    for (AreaLightModel model : {AreaLightModel::Frostbite, AreaLightModel::Ltc}) {
+      if (model == AreaLightModel::Ltc && type < LightType::Sphere) continue;
+      options.areaLights = model;
+      Scene s = studyScene(StudyShape::Plane, studyLight(type), m);
+      s.lights.assign(16, s.lights[0]);
+      fmt::print("| {}{} | {:.0f} ns |\n", lightTypeName(type),
+                 type < LightType::Sphere       ? ""
+                 : model == AreaLightModel::Ltc ? ", ltc"
+                                                : ", frostbite",
+                 (timeOf(s) - base) / (16.0 * 512 * 512));
+    }
   return 0;
 }

@@ -23,4 +23,4 @@ echo "== the default bake of a 1024x512 HDR as a whole process, stage by stage"
 echo "== peak memory of \`ibl render\` on a large glTF (4.9 M triangles, five 2048^2 textures)"
 ./build/bench/ibl_memory
 echo "== analytic lights: each real-time approximation against the reference, and the CPU cost"
-./build/bench/ibl_lights
+./build/bench/ibl_lights 256

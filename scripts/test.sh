@@ -35,7 +35,7 @@ echo "== ThreadSanitizer build and tests" >&2
 # off: OpenEXR locks inside its library and unlocks in header code inlined into ours.
 cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_TSAN=ON \
   -DIBL_WERROR=ON -DIBL_BUILD_BENCH=OFF >/dev/null
-ninja -C build-tsan
+ninja -C build-tsan ibl_tests
 TSAN_OPTIONS="halt_on_error=1 report_mutex_bugs=0 suppressions=$PWD/tests/tsan.supp" \
   ctest --test-dir build-tsan --output-on-failure -j "$jobs" \
   -R '^(CubeMap|Equirect|Resample|Sh|Sampling|Brdf|Dfg|Prefilter|Bake|Render|ShadingRules|Camera|Environment)\.'

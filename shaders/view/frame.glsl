@@ -6,7 +6,7 @@ layout(std140, set = 0, binding = 0) uniform Frame {
   vec4 cameraForward;   // unit
   vec4 cameraRight;     // scaled by aspect * tan(fov / 2), orthographic: by the half width
   vec4 cameraUp;        // scaled by tan(fov / 2), orthographic: by the half height
-  vec4 viewport;        // width, height
+  vec4 viewport;        // width, height, area lights (1 LTC, 0 Frostbite's)
   vec4 background;      // rgb; w: 1 the environment, 0 this color
   vec4 lods;            // specular levels - 1, 1 for the Frostbite roughness mapping, skybox lod,
                         // 1 lit by the environment (0: --env none)
@@ -25,6 +25,8 @@ layout(set = 0, binding = 4) uniform samplerCube sourceMap;
 layout(std430, set = 0, binding = 5) readonly buffer Lights {
   vec4 lightData[];
 };
+// The GGX table of linearly transformed cosines (src/render/ltc_table.inc), read by texelFetch.
+layout(set = 0, binding = 6) uniform sampler2D ltcTable;
 
 struct Ray {
   vec3 origin, direction;

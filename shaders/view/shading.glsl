@@ -13,6 +13,7 @@ SplitSumSwitches frameSwitches() {
   s.dominantDirections = frame.terms.z != 0;
   s.specularOcclusion = frame.terms.w != 0;
   s.disneyDiffuse = frame.models.x == 0;
+  s.ltcAreaLights = frame.viewport.z != 0.0;
   return s;
 }
 
@@ -41,6 +42,17 @@ ShadingLight lightAt(int i) {
   return l;
 }
 
+// The LTC table's entry, interpolated as ltcTableLookup (src/render/ltc.cpp) does.
+vec4 ltcTableEntry(float roughness, float NoV) {
+  int size = textureSize(ltcTable, 0).x;
+  vec2 p = ltcTablePosition(roughness, NoV, float(size));
+  ivec2 i = min(ivec2(p), ivec2(size - 2));
+  vec2 f = p - vec2(i);
+  return mix(mix(texelFetch(ltcTable, i, 0), texelFetch(ltcTable, i + ivec2(1, 0), 0), f.x),
+             mix(texelFetch(ltcTable, i + ivec2(0, 1), 0), texelFetch(ltcTable, i + ivec2(1, 1), 0), f.x),
+             f.y);
+}
+
 // The environment's split sum plus the scene's lights (shadeSplitSum and shadeLightsRealTime in
 // src/render/renderer.cpp) at a point at `position`.
 vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m) {
@@ -53,9 +65,11 @@ vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m) {
     SplitSumMaterial direct = m;
     direct.occlusion = 1.0;
     direct.emissive = vec3(0.0);
+    vec4 ltc = vec4(1.0, 0.0, 0.0, 1.0);
+    if (s.ltcAreaLights) ltc = ltcTableEntry(m.roughness, look.NoV);
     for (int i = 0; i < frame.models.w; ++i) {
       ShadingLight l = lightAt(i);
-      LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s.dominantDirections);
+      LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s, ltc);
       lit += l.color * lightRadiance(direct, n, view, inc, dfg.xy, s);
     }
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <span>
 
 #include <fmt/format.h>
 #include <glm/ext/matrix_clip_space.hpp>
@@ -16,6 +17,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/io/pixel_formats.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/render/ltc.hpp"
 
 namespace ibl::gpu {
 
@@ -46,7 +48,7 @@ Mesh sphereProxy(const Sphere& sphere) {
 // Vertex layout of shaders/view/scene.vert: position, normal, tangent, uv.
 constexpr std::uint32_t kVertexFloats = 3 + 3 + 4 + 2 + 2;
 
-std::vector<std::uint8_t> bytesOfFloats(const std::vector<float>& v) {
+std::vector<std::uint8_t> bytesOfFloats(std::span<const float> v) {
   std::vector<std::uint8_t> out(v.size() * sizeof(float));
   std::memcpy(out.data(), v.data(), out.size());
   return out;
@@ -69,16 +71,22 @@ std::unique_ptr<DeviceImage> uploadCube(Context& context, const CubeMap& cube) {
   return image;
 }
 
-std::unique_ptr<DeviceImage> uploadImage2d(Context& context, const Image& image) {
-  std::vector<float> texels;
-  for (const glm::vec3& p : image.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
+// An RGBA32F 2D texture of width x height texels (row-major, 4 floats each).
+std::unique_ptr<DeviceImage> uploadTexels2d(Context& context, std::span<const float> texels,
+                                            int width, int height) {
   DeviceImage::Description d;
-  d.width = static_cast<std::uint32_t>(image.width);
-  d.height = static_cast<std::uint32_t>(image.height);
+  d.width = static_cast<std::uint32_t>(width);
+  d.height = static_cast<std::uint32_t>(height);
   d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   auto out = std::make_unique<DeviceImage>(context, d);
   uploadImage(context, *out, bytesOfFloats(texels), 4 * sizeof(float));
   return out;
+}
+
+std::unique_ptr<DeviceImage> uploadImage2d(Context& context, const Image& image) {
+  std::vector<float> texels;
+  for (const glm::vec3& p : image.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
+  return uploadTexels2d(context, texels, image.width, image.height);
 }
 
 // The mip chain of an RGBA8 texture, level 0 first, each level the 2 x 2 box average of the one
@@ -291,6 +299,12 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   irradiance = uploadCube(context, bake.irradiance);
   source = uploadCube(context, bake.source);
   dfg = uploadImage2d(context, bake.dfg);
+  const LtcTable& ltcTable = ltcGgxTable();
+  ltc =
+      uploadTexels2d(context,
+                     std::span<const float>(reinterpret_cast<const float*>(ltcTable.entries.data()),
+                                            4 * ltcTable.entries.size()),
+                     ltcTable.size, ltcTable.size);
   specularMaxLod = static_cast<float>(bake.specular.levelCount() - 1);
   skyboxMaxLod = static_cast<float>(bake.source.levelCount() - 1);
   frostbiteMapping = bakeOptions.specular.mapping == RoughnessMapping::Frostbite;
@@ -327,6 +341,8 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameBindings.push_back(
       {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  frameBindings.push_back(
+      {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
   std::vector<VkDescriptorSetLayoutBinding> materialBindings;
   for (std::uint32_t b = 0; b < 5; ++b)
@@ -347,7 +363,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   const std::array<VkDescriptorPoolSize, 3> sizes{
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
-      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 + 5 * materialCount}};
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 + 5 * materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1 + materialCount;
   poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
@@ -373,6 +389,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
       VkDescriptorImageInfo{cubeSampler, irradiance->view(), readable},
       VkDescriptorImageInfo{lutSampler, dfg->view(), readable},
       VkDescriptorImageInfo{cubeSampler, source->view(), readable}};
+  const VkDescriptorImageInfo ltcImage{lutSampler, ltc->view(), readable};
   std::vector<VkWriteDescriptorSet> writes;
   {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -385,6 +402,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   }
   for (std::uint32_t b = 0; b < 4; ++b)
     writes.push_back(imageWrite(frameSet, b + 1, &frameImages[b]));
+  writes.push_back(imageWrite(frameSet, 6, &ltcImage));
   const VkDescriptorBufferInfo lightsInfo{static_cast<VkBuffer>(lightsBuffer->handle()), 0,
                                           VK_WHOLE_SIZE};
   {
@@ -615,7 +633,8 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   u.cameraForward = glm::vec4(forward, 0.0f);
   u.cameraRight = glm::vec4(right * (aspect * halfHeight), 0.0f);
   u.cameraUp = glm::vec4(up * halfHeight, 0.0f);
-  u.viewport = glm::vec4(static_cast<float>(t.width), static_cast<float>(t.height), 0.0f, 0.0f);
+  u.viewport = glm::vec4(static_cast<float>(t.width), static_cast<float>(t.height),
+                         o.areaLights == AreaLightModel::Ltc ? 1.0f : 0.0f, 0.0f);
   u.background = glm::vec4(o.backgroundColor, o.backgroundEnvironment ? 1.0f : 0.0f);
   u.lods = glm::vec4(specularMaxLod, frostbiteMapping ? 1.0f : 0.0f,
                      std::clamp(skyboxLod, 0.0f, skyboxMaxLod), o.environmentLight ? 1.0f : 0.0f);

@@ -18,6 +18,7 @@
 #include "ibl/math/color.hpp"
 #include "ibl/math/sampling.hpp"
 #include "ibl/render/light_sampling.hpp"
+#include "ibl/render/ltc.hpp"
 #include "ibl/shared/lights.h"
 #include "ibl/shared/material.h"
 #include "ibl/shared/split_sum.h"
@@ -506,6 +507,7 @@ shared::SplitSumSwitches splitSumSwitches(const RenderOptions& o) {
   s.dominantDirections = o.dominantDirections;
   s.specularOcclusion = o.specularOcclusion;
   s.disneyDiffuse = o.diffuse == DiffuseModel::Disney;
+  s.ltcAreaLights = o.areaLights == AreaLightModel::Ltc;
   return s;
 }
 
@@ -545,11 +547,14 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
   m.roughness = p.roughness;
   m.occlusion = 1.0f;  // ambient occlusion darkens indirect light only
   m.emissive = glm::vec3(0.0f);
+  const glm::vec4 ltc = s.ltcAreaLights
+                            ? ltcTableLookup(p.roughness, std::max(glm::dot(p.normal, view), 1e-4f))
+                            : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
   glm::vec3 sum(0.0f);
   for (const Light& light : lights) {
     const shared::ShadingLight sl = shadingLightOf(light);
     const shared::LightIncidence inc =
-        shared::lightIncidence(sl, position, p.normal, view, p.roughness, o.dominantDirections);
+        shared::lightIncidence(sl, position, p.normal, view, p.roughness, s, ltc);
     const float profile =
         light.ies ? light.intensityToward(glm::normalize(position - light.position)) : 1.0f;
     sum += sl.color * profile * shared::lightRadiance(m, p.normal, view, inc, dfg, s);

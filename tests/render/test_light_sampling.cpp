@@ -13,6 +13,7 @@
 
 #include "ibl/math/sampling.hpp"
 #include "ibl/render/light_sampling.hpp"
+#include "support/quadrature.hpp"
 
 using namespace ibl;
 
@@ -20,12 +21,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Two unit vectors completing `a` to an orthonormal frame.
-void frame(glm::dvec3 a, glm::dvec3& t, glm::dvec3& b) {
-  t = glm::normalize(
-      glm::cross(std::abs(a.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0), a));
-  b = glm::cross(a, t);
-}
+using ibl::test::completeFrame;
 
 // A patch of surface: position and unit normal at (u, v) in [0, 1]^2, and the area element.
 struct Patch {
@@ -57,7 +53,7 @@ double illuminanceByQuadrature(const std::vector<Patch>& patches, glm::dvec3 p, 
 // A sphere (or a hemisphere: vMax = 0.5) of radius r around c, axis a.
 Patch spherePatch(glm::dvec3 c, double r, glm::dvec3 a, double vFrom, double vTo) {
   glm::dvec3 t, b;
-  frame(a, t, b);
+  completeFrame(a, t, b);
   const auto dir = [=](double u, double v) {
     const double theta = (vFrom + (vTo - vFrom) * v) * kPi, phi = 2.0 * kPi * u;
     return std::cos(theta) * a + std::sin(theta) * (std::cos(phi) * t + std::sin(phi) * b);
@@ -76,7 +72,7 @@ std::vector<Patch> patchesOf(const Light& l) {
       return {spherePatch(c, l.radius, m, 0.0, 1.0)};
     case LightType::Disk: {
       glm::dvec3 t, b;
-      frame(m, t, b);
+      completeFrame(m, t, b);
       const double r = l.radius;
       return {{[=](double u, double v) {
                  const double rho = r * v, phi = 2.0 * kPi * u;
@@ -93,7 +89,7 @@ std::vector<Patch> patchesOf(const Light& l) {
     }
     case LightType::Tube: {
       glm::dvec3 t, b;
-      frame(m, t, b);
+      completeFrame(m, t, b);
       const double r = l.radius, len = l.length;
       Patch cylinder{[=](double u, double v) {
                        const double phi = 2.0 * kPi * u;

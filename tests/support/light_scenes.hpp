@@ -2,6 +2,7 @@
 // The scenes of the lights study, shared by the tests (tests/render/test_light_render.cpp) and
 // the error table (bench/lights.cpp): a plane and a sphere lit by one light of each type, and
 // the measured difference between the real-time shading and the reference.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -147,34 +148,28 @@ struct ApproximationError {
 };
 
 // Renders the scene both ways (the reference at `spp`, the real-time shading at as many pixel
-// positions, up to 256) and compares the pixels that see the
-// model and not the light (rays through the pixel's corners and center), lit by at least
-// 1/1000 of the brightest.
-inline ApproximationError measureApproximation(const Scene& scene, const Camera& camera,
-                                               const BlackBake& bake, RenderOptions options,
-                                               int spp) {
+// positions, up to 256, once per area-light model in `models`) and compares the pixels that see
+// the model and not the light (rays through the pixel's corners and center), lit by at least
+// 1/1000 of the brightest. One error per model, in order.
+inline std::vector<ApproximationError> measureApproximations(
+    const Scene& scene, const Camera& camera, const BlackBake& bake, RenderOptions options, int spp,
+    const std::vector<AreaLightModel>& models) {
   options.environmentLight = false;
   options.backgroundEnvironment = false;
-  options.mode = RenderMode::SplitSum;
-  options.spp = std::min(spp, 256);  // as many pixel positions: sharp highlights alias alike
-  const RenderResult fast = renderScene(scene, camera, bake.result, bake.options, options);
   options.mode = RenderMode::Reference;
   options.spp = spp;
   const RenderResult ref = renderScene(scene, camera, bake.result, bake.options, options);
   options.seed = 2;
   const RenderResult ref2 = renderScene(scene, camera, bake.result, bake.options, options);
-  std::vector<double> lum(ref.color.pixels.size());
+  const auto luminanceOf = [](glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
   double peak = 0.0;
-  for (std::size_t i = 0; i < lum.size(); ++i) {
-    const glm::vec3 c = ref.color.pixels[i];
-    lum[i] = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-    peak = std::max(peak, lum[i]);
-  }
-  double diff = 0.0, noise = 0.0, sumRef = 0.0, sumFast = 0.0;
+  for (const glm::vec3& c : ref.color.pixels) peak = std::max(peak, luminanceOf(c));
+  // The pixels compared: covered both ways, lit, not seeing the light.
+  std::vector<std::size_t> compared;
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * camera.width + x;
-      if (fast.alpha[i] < 1.0f || ref.alpha[i] < 1.0f || lum[i] < 1e-3 * peak) continue;
+      if (ref.alpha[i] < 1.0f || luminanceOf(ref.color.pixels[i]) < 1e-3 * peak) continue;
       bool seesLight = false;
       for (glm::vec2 o : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(0, 1), glm::vec2(1, 1),
                           glm::vec2(0.5f, 0.5f)}) {
@@ -182,24 +177,41 @@ inline ApproximationError measureApproximation(const Scene& scene, const Camera&
         for (const Light& l : scene.lights)
           seesLight = seesLight || intersectLight(l, r.origin, r.direction);
       }
-      if (seesLight) continue;
-      const auto luminanceOf = [](glm::vec3 c) {
-        return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-      };
-      const double a = luminanceOf(fast.color.pixels[i]), b = lum[i],
+      if (!seesLight) compared.push_back(i);
+    }
+  std::vector<ApproximationError> errors;
+  options.mode = RenderMode::SplitSum;
+  options.spp = std::min(spp, 256);  // as many pixel positions: sharp highlights alias alike
+  options.seed = 1;
+  for (AreaLightModel model : models) {
+    options.areaLights = model;
+    const RenderResult fast = renderScene(scene, camera, bake.result, bake.options, options);
+    double diff = 0.0, noise = 0.0, sumRef = 0.0, sumFast = 0.0;
+    for (std::size_t i : compared) {
+      if (fast.alpha[i] < 1.0f) continue;
+      const double a = luminanceOf(fast.color.pixels[i]), b = luminanceOf(ref.color.pixels[i]),
                    b2 = luminanceOf(ref2.color.pixels[i]);
       diff += std::abs(a - b);
       noise += std::abs(b2 - b);
       sumRef += b;
       sumFast += a;
     }
-  ApproximationError e;
-  if (sumRef > 0.0) {
-    e.relative = diff / sumRef;
-    e.noiseFloor = noise / sumRef;
-    e.meanRatio = sumFast / sumRef;
+    ApproximationError e;
+    if (sumRef > 0.0) {
+      e.relative = diff / sumRef;
+      e.noiseFloor = noise / sumRef;
+      e.meanRatio = sumFast / sumRef;
+    }
+    errors.push_back(e);
   }
-  return e;
+  return errors;
+}
+
+// The same for the options' own area-light model.
+inline ApproximationError measureApproximation(const Scene& scene, const Camera& camera,
+                                               const BlackBake& bake, const RenderOptions& options,
+                                               int spp) {
+  return measureApproximations(scene, camera, bake, options, spp, {options.areaLights})[0];
 }
 
 }  // namespace ibl::test

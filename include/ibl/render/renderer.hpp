@@ -16,6 +16,9 @@ enum class RenderMode { SplitSum, Reference };
 enum class DiffuseModel { Disney, Lambert };
 enum class ShadingTerms { Both, Diffuse, Specular };
 enum class IrradianceSource { Cube, Sh };
+// The real-time approximation of sphere, disk, tube and rect lights: Frostbite's (illuminance
+// formulas and a representative point) or linearly transformed cosines (ltc.hpp).
+enum class AreaLightModel { Frostbite, Ltc };
 
 struct RenderOptions {
   RenderMode mode = RenderMode::SplitSum;
@@ -27,6 +30,7 @@ struct RenderOptions {
   bool dominantDirections = true;  // split sum: Frostbite's dominant directions
   bool specularOcclusion = true;   // split sum: from the occlusion texture
   IrradianceSource irradiance = IrradianceSource::Cube;
+  AreaLightModel areaLights = AreaLightModel::Ltc;  // split sum (measured closer: docs/lights.md)
   bool shadows = false;  // reference: ray-traced visibility of the environment and the lights
   bool environmentLight = true;       // false (--env none): the scene's lights alone
   bool backgroundEnvironment = true;  // else backgroundColor
@@ -68,7 +72,8 @@ shared::SplitSumSwitches splitSumSwitches(const RenderOptions& options);
 glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult& bake,
                         const BakeOptions& bakeOptions, const RenderOptions& options);
 // The real-time shading of a point at `position` by the scene's lights (ibl/shared/lights.h,
-// IES profiles applied on the CPU); dfg: the DFG table's A, B at the point's n.v.
+// IES profiles applied on the CPU); dfg: the DFG table's A, B at the point's n.v (the LTC table
+// is looked up here, once for all the lights).
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
                               const std::vector<Light>& lights, glm::vec2 dfg,
                               const RenderOptions& options);

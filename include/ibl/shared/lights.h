@@ -7,6 +7,8 @@
 #define IBL_SHARED_LIGHTS_H
 #include "ibl/shared/brdf.h"
 #include "ibl/shared/lang.h"
+#include "ibl/shared/ltc.h"
+#include "ibl/shared/sampling.h"
 #include "ibl/shared/split_sum.h"
 
 IBL_BEGIN
@@ -138,14 +140,29 @@ struct ShadingLight {
 // What a light delivers to a point, split as the approximations split it: the illuminance
 // (per unit of ShadingLight.color) the diffuse lobe receives and the direction it is evaluated
 // toward; the same for the specular lobe, whose GGX peak is scaled by specularNormalization
-// (Karis 2013's energy normalization of the representative point).
+// (Karis 2013's energy normalization of the representative point). Or, for an area light
+// through LTCs, the fraction of the normalized GGX lobe the light covers (per unit luminance),
+// which the DFG table's Fresnel terms scale: specularLobeFraction, negative when unused.
 struct LightIncidence {
   vec3 diffuseDirection;
   float diffuseIlluminance;
   vec3 specularDirection;
   float specularIlluminance;
   float specularNormalization;
+  float specularLobeFraction;
 };
+
+// No light from direction l (what each approximation starts from).
+IBL_FN LightIncidence noIncidence(vec3 l) {
+  LightIncidence inc;
+  inc.diffuseDirection = l;
+  inc.diffuseIlluminance = 0.0f;
+  inc.specularDirection = l;
+  inc.specularIlluminance = 0.0f;
+  inc.specularNormalization = 1.0f;
+  inc.specularLobeFraction = -1.0f;
+  return inc;
+}
 
 // The solid angle of the quadrilateral p0 p1 p2 p3 (in order around it) seen from the origin:
 // the spherical polygon's angle excess (Frostbite section 4.7.2.5, after Urena et al. 2013).
@@ -224,31 +241,27 @@ IBL_FN vec3 rayPlaneOffset(vec3 c, vec3 m, vec3 r) {
 }
 
 IBL_FN LightIncidence punctualIncidence(ShadingLight light, vec3 toLight, vec3 n) {
-  LightIncidence inc;
   float d2 = dot(toLight, toLight);
   vec3 l = toLight / sqrt(max(d2, 1e-20f));
+  LightIncidence inc = noIncidence(l);
   float e = distanceAttenuation(d2, light.invSquaredRange) * clamp(dot(n, l), 0.0f, 1.0f);
   if (light.type == kLightSpot)
     e *= spotAngleAttenuation(dot(light.direction, -l), light.cosInner, light.cosOuter);
-  inc.diffuseDirection = l;
-  inc.specularDirection = l;
   inc.diffuseIlluminance = e;
   inc.specularIlluminance = e;
-  inc.specularNormalization = 1.0f;
   return inc;
 }
 
 // The sun as a disk (Frostbite section 4.7.1, listing 7): diffuse toward its center, specular
 // toward the disk's point closest to r.
 IBL_FN LightIncidence sunIncidence(ShadingLight light, vec3 n, vec3 r, float alpha) {
-  LightIncidence inc;
   vec3 d = light.direction;
+  LightIncidence inc = noIncidence(d);
   float sinSigma = sin(light.radius), cosSigma = cos(light.radius);
   float DoR = dot(d, r);
   vec3 s = r - DoR * d;
   vec3 l =
       DoR < cosSigma && dot(s, s) > 1e-12f ? normalize(cosSigma * d + normalize(s) * sinSigma) : r;
-  inc.diffuseDirection = d;
   inc.diffuseIlluminance = clamp(dot(n, d), 0.0f, 1.0f);
   inc.specularDirection = l;
   inc.specularIlluminance = clamp(dot(n, l), 0.0f, 1.0f);
@@ -258,11 +271,10 @@ IBL_FN LightIncidence sunIncidence(ShadingLight light, vec3 n, vec3 r, float alp
 }
 
 IBL_FN LightIncidence sphereIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
-  LightIncidence inc;
   float d2 = dot(c, c);
   float window = smoothDistanceWindow(d2, light.invSquaredRange);
   float sinSigmaSqr = min(light.radius * light.radius / d2, 0.9999f);
-  inc.diffuseDirection = c / sqrt(d2);
+  LightIncidence inc = noIncidence(c / sqrt(d2));
   inc.diffuseIlluminance = sphereIlluminanceFactor(n, c, light.radius) * window;
   vec3 l = normalize(closestPointOnSphereToRay(c, light.radius, r));
   inc.specularDirection = l;
@@ -274,12 +286,11 @@ IBL_FN LightIncidence sphereIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r
 }
 
 IBL_FN LightIncidence diskIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
-  LightIncidence inc;
   float d2 = dot(c, c);
   float window = smoothDistanceWindow(d2, light.invSquaredRange);
   vec3 m = light.direction;
   vec3 lc = c / sqrt(d2);
-  inc.diffuseDirection = lc;
+  LightIncidence inc = noIncidence(lc);
   inc.diffuseIlluminance = diskIlluminanceFactor(n, c, light.radius, m) * window;
   vec3 q = rayPlaneOffset(c, m, r);
   float ql = length(q);
@@ -296,25 +307,25 @@ IBL_FN LightIncidence diskIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, 
   return inc;
 }
 
+// The corners of a rect light, relative to the shaded point (its center at c), in order around
+// it; corner(i) for i = 0..3.
+IBL_FN vec3 rectCorner(ShadingLight light, vec3 c, int i) {
+  vec3 left = cross(light.up, light.direction);
+  float sx = i < 2 ? -0.5f : 0.5f, sy = i == 0 || i == 3 ? 0.5f : -0.5f;
+  return c + left * (sx * light.width) + light.up * (sy * light.height);
+}
+
 IBL_FN LightIncidence rectIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
-  LightIncidence inc;
   float d2 = dot(c, c);
   float window = smoothDistanceWindow(d2, light.invSquaredRange);
   vec3 m = light.direction;
   vec3 up = light.up;
   vec3 left = cross(up, m);
   float hw = 0.5f * light.width, hh = 0.5f * light.height;
-  inc.diffuseDirection = c / sqrt(d2);
-  inc.specularDirection = inc.diffuseDirection;
-  inc.diffuseIlluminance = 0.0f;
-  inc.specularIlluminance = 0.0f;
-  inc.specularNormalization = 1.0f;
+  LightIncidence inc = noIncidence(c / sqrt(d2));
   if (dot(c, m) >= 0.0f) return inc;  // behind the emitting side
-  vec3 p0 = c - left * hw + up * hh;
-  vec3 p1 = c - left * hw - up * hh;
-  vec3 p2 = c + left * hw - up * hh;
-  vec3 p3 = c + left * hw + up * hh;
-  vec2 e = quadIlluminanceStructured(n, p0, p1, p2, p3, c);
+  vec2 e = quadIlluminanceStructured(n, rectCorner(light, c, 0), rectCorner(light, c, 1),
+                                     rectCorner(light, c, 2), rectCorner(light, c, 3), c);
   inc.diffuseIlluminance = e.x * window;
   vec3 q = rayPlaneOffset(c, m, r);
   vec3 onRect = c + left * clamp(dot(q, left), -hw, hw) + up * clamp(dot(q, up), -hh, hh);
@@ -332,24 +343,38 @@ IBL_FN LightIncidence rectIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, 
 // facing the point, its two caps as one sphere at the segment's point closest to the shaded
 // point (here with the exact, horizon-aware sphere formula); the specular toward the capsule's
 // point closest to r (Karis 2013, eqs. 13 and 10).
+// The tube's cylinder as Frostbite approximates it: the rectangle through its axis that faces
+// the shaded point (length x diameter), as a rect light centered at c (relative to the point).
+IBL_FN ShadingLight tubeFacingRect(ShadingLight tube, vec3 c) {
+  vec3 axis = tube.direction;
+  vec3 onLine = c - dot(c, axis) * axis;  // the closest point of the infinite line
+  float distance = length(onLine);
+  ShadingLight rect = tube;
+  rect.direction = distance > 1e-6f ? -onLine / distance : tangentFrame(axis)[0];
+  rect.up = axis;
+  rect.width = 2.0f * tube.radius;
+  rect.height = tube.width;
+  return rect;
+}
+// The segment's point closest to the shaded point, relative to it: where Frostbite puts the
+// sphere that stands for the tube's two caps.
+IBL_FN vec3 tubeCapsCenter(ShadingLight tube, vec3 c) {
+  float hl = 0.5f * tube.width;
+  return c + tube.direction * clamp(-dot(c, tube.direction), -hl, hl);
+}
+
 IBL_FN LightIncidence tubeIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
-  LightIncidence inc;
   float d2 = dot(c, c);
   float window = smoothDistanceWindow(d2, light.invSquaredRange);
   vec3 axis = light.direction;
   float hl = 0.5f * light.width;
   vec3 a = c - axis * hl, b = c + axis * hl;
-  vec3 onLine = c - dot(c, axis) * axis;  // the closest point of the infinite line
-  vec3 forward = normalize(onLine);
-  vec3 up = cross(axis, forward);
-  vec3 p0 = c - axis * hl + up * light.radius;
-  vec3 p1 = c - axis * hl - up * light.radius;
-  vec3 p2 = c + axis * hl - up * light.radius;
-  vec3 p3 = c + axis * hl + up * light.radius;
-  vec2 e = quadIlluminanceStructured(n, p0, p1, p2, p3, c);
-  vec3 onSegment = c + axis * clamp(-dot(c, axis), -hl, hl);
+  ShadingLight rect = tubeFacingRect(light, c);
+  vec2 e = quadIlluminanceStructured(n, rectCorner(rect, c, 0), rectCorner(rect, c, 1),
+                                     rectCorner(rect, c, 2), rectCorner(rect, c, 3), c);
+  vec3 onSegment = tubeCapsCenter(light, c);
   float capsE = sphereIlluminanceFactor(n, onSegment, light.radius);
-  inc.diffuseDirection = c / sqrt(d2);
+  LightIncidence inc = noIncidence(c / sqrt(d2));
   inc.diffuseIlluminance = (e.x + capsE) * window;
   vec3 l =
       normalize(closestPointOnSphereToRay(closestPointOnSegmentToRay(a, b, r), light.radius, r));
@@ -364,14 +389,80 @@ IBL_FN LightIncidence tubeIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, 
   return inc;
 }
 
+// --- Area lights through linearly transformed cosines (ltc.h; Heitz et al. 2016) ---
+
+// The incidence of an area light from its two integrals: the diffuse lobe's (the cosine itself:
+// the exact form factor vector, in the frame of `diffuse`) and the GGX lobe's (the fraction of
+// the normalized lobe over the light), each per unit luminance, times the distance window.
+IBL_FN LightIncidence ltcIncidence(LtcFrame diffuse, vec3 formFactor, float lobeFraction,
+                                   float window) {
+  float len = length(formFactor);
+  LightIncidence inc =
+      noIncidence(len > 0.0f ? ltcFrameToWorld(diffuse, formFactor / len) : diffuse.n);
+  inc.diffuseIlluminance = kPi * formFactor.z * window;
+  inc.specularLobeFraction = lobeFraction * window;
+  return inc;
+}
+
+// A sphere of radius r at c covers the same directions as the disk facing the point, at c,
+// of radius d tan(sigma) (sin sigma = r / d): the disk's LTC integral is the sphere's.
+IBL_FN float sphereAsFacingDiskRadius(vec3 c, float radius) {
+  float sinSigmaSqr = min(radius * radius / dot(c, c), 0.9999f);
+  return length(c) * sqrt(sinSigmaSqr / (1.0f - sinSigmaSqr));
+}
+IBL_FN vec3 ltcSphereIntegral(LtcFrame f, vec3 c, float radius) {
+  mat3 t = tangentFrame(normalize(c));
+  return ltcDiskIntegral(f, c, t[0], t[1], sphereAsFacingDiskRadius(c, radius));
+}
+
+// The integrals of light over a shape in both frames, as (diffuse form factor vector, GGX
+// fraction); c is the light's position relative to the shaded point.
+IBL_FN LightIncidence ltcAreaIncidence(ShadingLight light, vec3 c, LtcFrame diffuse,
+                                       LtcFrame specular) {
+  float window = smoothDistanceWindow(dot(c, c), light.invSquaredRange);
+  if (light.type == kLightSphere) {
+    // The diffuse lobe: the exact cap formula, the same as the LTC's integral, at less cost.
+    LightIncidence inc =
+        ltcIncidence(diffuse, vec3(0.0f), ltcSphereIntegral(specular, c, light.radius).z, window);
+    inc.diffuseDirection = normalize(c);
+    inc.diffuseIlluminance = sphereIlluminanceFactor(diffuse.n, c, light.radius) * window;
+    return inc;
+  }
+  if (light.type == kLightDisk) {
+    if (dot(c, light.direction) >= 0.0f) return noIncidence(diffuse.n);  // behind it
+    mat3 t = tangentFrame(light.direction);
+    return ltcIncidence(diffuse, ltcDiskIntegral(diffuse, c, t[0], t[1], light.radius),
+                        ltcDiskIntegral(specular, c, t[0], t[1], light.radius).z, window);
+  }
+  // A rect, or the tube's facing rect plus its caps as one sphere (Frostbite's split).
+  ShadingLight rect = light;
+  if (light.type == kLightTube) rect = tubeFacingRect(light, c);
+  if (light.type == kLightRect && dot(c, light.direction) >= 0.0f) return noIncidence(diffuse.n);
+  vec3 p0 = rectCorner(rect, c, 0), p1 = rectCorner(rect, c, 1);
+  vec3 p2 = rectCorner(rect, c, 2), p3 = rectCorner(rect, c, 3);
+  vec3 formFactor = ltcQuadIntegral(diffuse, p0, p1, p2, p3);
+  float lobe = ltcQuadIntegral(specular, p0, p1, p2, p3).z;
+  if (light.type == kLightTube) {
+    vec3 caps = tubeCapsCenter(light, c);
+    formFactor += ltcSphereIntegral(diffuse, caps, light.radius);
+    lobe += ltcSphereIntegral(specular, caps, light.radius).z;
+  }
+  return ltcIncidence(diffuse, formFactor, lobe, window);
+}
+
 // The light's incidence at a point (position p, unit normal n, unit view v, perceptual
-// roughness); `dominant`: the specular representative point follows the area dominant direction.
+// roughness). s.dominantDirections: the specular representative point follows the area dominant
+// direction; s.ltcAreaLights: spheres, disks, tubes and rects through LTCs, with `ltc` the GGX
+// table's entry at (roughness, n.v) (ltcTableCoordinates).
 IBL_FN LightIncidence lightIncidence(ShadingLight light, vec3 p, vec3 n, vec3 v, float roughness,
-                                     bool dominant) {
+                                     SplitSumSwitches s, vec4 ltc) {
+  vec3 c = light.position - p;
+  if (s.ltcAreaLights && light.type >= kLightSphere)
+    return ltcAreaIncidence(light, c, ltcFrame(n, v, vec4(1.0f, 0.0f, 0.0f, 1.0f)),
+                            ltcFrame(n, v, ltc));
   float alpha = max(alphaFromRoughness(roughness), 1e-3f);
   vec3 r = 2.0f * dot(n, v) * n - v;
-  if (dominant) r = specularDominantDirectionArea(n, r, alpha);
-  vec3 c = light.position - p;
+  if (s.dominantDirections) r = specularDominantDirectionArea(n, r, alpha);
   if (light.type == kLightSun) return sunIncidence(light, n, r, alpha);
   if (light.type == kLightSphere) return sphereIncidence(light, c, n, r, alpha);
   if (light.type == kLightDisk) return diskIncidence(light, c, n, r, alpha);
@@ -383,8 +474,7 @@ IBL_FN LightIncidence lightIncidence(ShadingLight light, vec3 p, vec3 n, vec3 v,
 // The radiance the standard material (the BRDF of the IBL path) reflects toward v from a light's
 // incidence, per unit of the light's color: diffuse (Disney or Lambert) x the diffuse
 // illuminance, GGX x the specular illuminance, with the multiple-scattering compensation of the
-// split sum (dfg: the DFG table's A, B at n.v). `profile` scales everything (an IES profile's
-// value toward the point, 1 without one).
+// split sum (dfg: the DFG table's A, B at n.v).
 IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc, vec2 dfg,
                           SplitSumSwitches s) {
   float alpha = max(alphaFromRoughness(m.roughness), 1e-3f);
@@ -400,7 +490,13 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
                                      m.roughness);
     color += diffuseColor * (fd / kPi * inc.diffuseIlluminance);
   }
-  if (s.terms != 1 && inc.specularIlluminance > 0.0f) {
+  if (s.terms != 1 && inc.specularLobeFraction > 0.0f) {
+    // The LTC's fraction of the lobe, times the lobe's directional albedo with Schlick's Fresnel
+    // (the DFG table's F0 A + B, as the split sum scales the prefiltered map).
+    vec3 specular = (f0 * dfg.x + vec3(dfg.y)) * inc.specularLobeFraction;
+    if (s.multipleScattering) specular *= multipleScatteringCompensation(f0, dfg);
+    color += specular;
+  } else if (s.terms != 1 && inc.specularIlluminance > 0.0f) {
     vec3 l = inc.specularDirection;
     vec3 h = normalize(v + l);
     float NoL = max(dot(n, l), 1e-4f);

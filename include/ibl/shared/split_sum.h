@@ -23,6 +23,7 @@ struct SplitSumSwitches {
   bool dominantDirections;  // Frostbite listings 22 and 23
   bool specularOcclusion;   // Frostbite listing 26
   bool disneyDiffuse;       // Frostbite's renormalized Disney diffuse, else Lambert
+  bool ltcAreaLights;       // area lights through LTCs (lights.h), else Frostbite's
 };
 
 // The material at the point: glTF metallic-roughness, linear base color, perceptual roughness.
