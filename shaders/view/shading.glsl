@@ -42,6 +42,25 @@ ShadingLight lightAt(int i) {
   return l;
 }
 
+// The nearest emitter (area light or sun) the ray meets closer than maxDistance, as the CPU's
+// nearestLight (src/render/renderer.cpp) finds it: its luminance; `surface` false for the sun.
+bool nearestEmitter(Ray r, float maxDistance, out vec3 radiance, out bool surface) {
+  float best = maxDistance;
+  bool found = false;
+  radiance = vec3(0.0);
+  for (int i = 0; i < frame.models.w; ++i) {
+    ShadingLight l = lightAt(i);
+    float t = emitterDistance(l, r.origin, r.direction);
+    if (t >= 0.0 && t < best) {
+      best = t;
+      radiance = emitterRadiance(l, r.direction);
+      found = true;
+    }
+  }
+  surface = best < kSunDistance;
+  return found;
+}
+
 // The LTC table's entry, interpolated as ltcTableLookup (src/render/ltc.cpp) does.
 vec4 ltcTableEntry(float roughness, float NoV) {
   int size = textureSize(ltcTable, 0).x;

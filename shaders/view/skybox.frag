@@ -1,13 +1,23 @@
 #version 450
 // The background: the source cube seen along each pixel's ray (at a chosen mip level), or a
-// flat color. Alpha 0: no model there.
+// flat color, and the emitters seen against it. Alpha 0: no model there.
 #extension GL_GOOGLE_include_directive : require
 #include "view/frame.glsl"
+#include "view/shading.glsl"
 layout(location = 0) out vec4 outColor;
 
 void main() {
-  vec3 color = frame.background.w > 0.5
-                   ? textureLod(sourceMap, primaryRay(gl_FragCoord.xy).direction, frame.lods.z).rgb
-                   : frame.background.rgb;
-  outColor = vec4(color, 0.0);
+  Ray r = primaryRay(gl_FragCoord.xy);
+  vec3 color = frame.background.w > 0.5 ? textureLod(sourceMap, r.direction, frame.lods.z).rgb
+                                        : frame.background.rgb;
+  float alpha = 0.0;
+  // The scene's area lights and the sun in front of the background (an area light covers the
+  // pixel as a surface does; the sun does not).
+  vec3 emitted;
+  bool surface;
+  if (nearestEmitter(r, 3.0e38, emitted, surface)) {
+    color = emitted;
+    alpha = surface ? 1.0 : 0.0;
+  }
+  outColor = vec4(color, alpha);
 }

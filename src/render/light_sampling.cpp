@@ -63,68 +63,27 @@ float sunLuminance(const Light& l) {
   return l.intensity / (kPi * s * s);
 }
 
-// --- Ray and shape intersections (nearest t > 0) ---
+// --- Ray and shape intersections (ibl/shared/lights.h, which the viewer uses too), a miss as
+// infinity ---
+
+float finiteOrInfinity(float t) {
+  return t >= 0.0f ? t : kInfinity;
+}
 
 float raySphere(glm::vec3 o, glm::vec3 w, glm::vec3 center, float radius) {
-  const glm::vec3 oc = o - center;
-  const float b = glm::dot(oc, w);
-  // The discriminant written as r^2 - |oc - (oc.w) w|^2, accurate for distant spheres.
-  const glm::vec3 perp = oc - b * w;
-  const float disc = radius * radius - glm::dot(perp, perp);
-  if (disc < 0.0f) return kInfinity;
-  const float s = std::sqrt(disc);
-  const float t0 = -b - s, t1 = -b + s;
-  if (t0 > 0.0f) return t0;
-  return t1 > 0.0f ? t1 : kInfinity;
+  return finiteOrInfinity(shared::raySphereDistance(o, w, center, radius));
 }
 
-// The plane through c with normal m: t, or infinity.
-float rayPlane(glm::vec3 o, glm::vec3 w, glm::vec3 c, glm::vec3 m) {
-  const float wm = glm::dot(w, m);
-  if (std::abs(wm) < 1e-12f) return kInfinity;
-  const float t = glm::dot(c - o, m) / wm;
-  return t > 0.0f ? t : kInfinity;
-}
-
-// A capsule: the segment c +- axis length/2, radius r.
+// A capsule: the segment c +- axis length/2, radius r; `normal`: the surface's at the hit.
 float rayCapsule(glm::vec3 o, glm::vec3 w, const Light& l, glm::vec3* normal) {
-  const glm::vec3 a = l.direction;
-  const float hl = 0.5f * l.length;
-  float best = kInfinity;
-  // The cylinder: |(o + t w - c) - ((o + t w - c).a) a| = r.
-  const glm::vec3 oc = o - l.position;
-  const glm::vec3 op = oc - glm::dot(oc, a) * a, wp = w - glm::dot(w, a) * a;
-  const float qa = glm::dot(wp, wp), qb = glm::dot(op, wp),
-              qc = glm::dot(op, op) - l.radius * l.radius;
-  if (qa > 1e-12f) {
-    const float disc = qb * qb - qa * qc;
-    if (disc >= 0.0f) {
-      const float s = std::sqrt(disc);
-      for (float t : {(-qb - s) / qa, (-qb + s) / qa}) {
-        if (t <= 0.0f) continue;
-        const float z = glm::dot(oc + t * w, a);
-        if (std::abs(z) <= hl) {
-          best = t;
-          if (normal) *normal = glm::normalize(op + t * wp);
-          break;
-        }
-      }
-    }
+  const float t = finiteOrInfinity(
+      shared::rayCapsuleDistance(o, w, l.position, l.direction, l.length, l.radius));
+  if (normal && std::isfinite(t)) {
+    const glm::vec3 q = o + t * w - l.position;
+    const float along = std::clamp(glm::dot(q, l.direction), -0.5f * l.length, 0.5f * l.length);
+    *normal = glm::normalize(q - along * l.direction);
   }
-  for (float end : {-hl, hl}) {
-    const glm::vec3 center = l.position + end * a;
-    const float t = raySphere(o, w, center, l.radius);
-    if (t < best) {
-      const glm::vec3 q = o + t * w;
-      // A cap's point inside the cylinder's span is not on the capsule's surface.
-      if ((end > 0.0f && glm::dot(q - center, a) < 0.0f) ||
-          (end < 0.0f && glm::dot(q - center, a) > 0.0f))
-        continue;
-      best = t;
-      if (normal) *normal = glm::normalize(q - center);
-    }
-  }
-  return best;
+  return t;
 }
 
 glm::vec3 rectLeft(const Light& l) {
@@ -193,13 +152,6 @@ SphericalRect rectSeenFrom(const Light& l, glm::vec3 p) {
   const glm::vec3 left = rectLeft(l);
   const glm::vec3 s = l.position - 0.5f * l.width * left - 0.5f * l.height * l.up;
   return sphericalRect(p, s, l.width * left, l.height * l.up);
-}
-
-// Is the point q of the rect's plane within the rect?
-bool withinRect(const Light& l, glm::vec3 q) {
-  const glm::vec3 d = q - l.position;
-  return std::abs(glm::dot(d, rectLeft(l))) <= 0.5f * l.width &&
-         std::abs(glm::dot(d, l.up)) <= 0.5f * l.height;
 }
 
 // Area sampling's density per solid angle: d^2 / (A cos), 0 from the back.
@@ -324,13 +276,12 @@ float lightPdf(const Light& l, glm::vec3 p, glm::vec3 w) {
       return cap.valid && inCap(cap, w) ? capPdf(cap) : 0.0f;
     }
     case LightType::Disk: {
-      const float t = rayPlane(p, w, l.position, l.direction);
-      if (!std::isfinite(t) || glm::length(p + t * w - l.position) > l.radius) return 0.0f;
+      const float t = shared::emitterDistance(shadingLightOf(l), p, w);
+      if (t < 0.0f) return 0.0f;
       return areaPdf(w, t, l.direction, kPi * l.radius * l.radius);
     }
     case LightType::Rect: {
-      const float t = rayPlane(p, w, l.position, l.direction);
-      if (!std::isfinite(t) || !withinRect(l, p + t * w)) return 0.0f;
+      if (shared::emitterDistance(shadingLightOf(l), p, w) < 0.0f) return 0.0f;
       const SphericalRect r = rectSeenFrom(l, p);
       return r.solidAngle > 1e-9f ? 1.0f / r.solidAngle : 0.0f;
     }
@@ -345,36 +296,10 @@ float lightPdf(const Light& l, glm::vec3 p, glm::vec3 w) {
 }
 
 std::optional<LightHit> intersectLight(const Light& l, glm::vec3 p, glm::vec3 w) {
-  const glm::vec3 luminance = l.color * l.intensity;
-  switch (l.type) {
-    case LightType::Point:
-    case LightType::Spot:
-      return std::nullopt;
-    case LightType::Sun:
-      if (!inCap(sunCap(l), w)) return std::nullopt;
-      return LightHit{kInfinity, l.color * sunLuminance(l)};
-    case LightType::Sphere: {
-      const float t = raySphere(p, w, l.position, l.radius);
-      if (!std::isfinite(t)) return std::nullopt;
-      return LightHit{t, luminance};
-    }
-    case LightType::Disk: {
-      const float t = rayPlane(p, w, l.position, l.direction);
-      if (!std::isfinite(t) || glm::length(p + t * w - l.position) > l.radius) return std::nullopt;
-      return LightHit{t, glm::dot(w, l.direction) < 0.0f ? luminance : glm::vec3(0.0f)};
-    }
-    case LightType::Rect: {
-      const float t = rayPlane(p, w, l.position, l.direction);
-      if (!std::isfinite(t) || !withinRect(l, p + t * w)) return std::nullopt;
-      return LightHit{t, glm::dot(w, l.direction) < 0.0f ? luminance : glm::vec3(0.0f)};
-    }
-    case LightType::Tube: {
-      const float t = rayCapsule(p, w, l, nullptr);
-      if (!std::isfinite(t)) return std::nullopt;
-      return LightHit{t, luminance};
-    }
-  }
-  return std::nullopt;
+  const shared::ShadingLight s = shadingLightOf(l);
+  const float t = shared::emitterDistance(s, p, w);
+  if (t < 0.0f) return std::nullopt;
+  return LightHit{t == shared::kSunDistance ? kInfinity : t, shared::emitterRadiance(s, w)};
 }
 
 }  // namespace ibl

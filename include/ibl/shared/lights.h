@@ -389,6 +389,98 @@ IBL_FN LightIncidence tubeIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, 
   return inc;
 }
 
+// --- Rays meeting the emitting shapes: what the camera sees of area lights and the sun, and
+// where the reference's samples land (src/render/light_sampling.cpp) ---
+
+// Distances along a ray: a miss is negative, the sun (at infinity) kSunDistance.
+const float kSunDistance = 1e30f;
+
+// The nearest t > 0 where the ray o + t w (w unit) meets the sphere, or -1. The discriminant
+// written as r^2 - |oc - (oc.w) w|^2, accurate for distant spheres.
+IBL_FN float raySphereDistance(vec3 o, vec3 w, vec3 center, float radius) {
+  vec3 oc = o - center;
+  float b = dot(oc, w);
+  vec3 perp = oc - b * w;
+  float disc = radius * radius - dot(perp, perp);
+  if (disc < 0.0f) return -1.0f;
+  float sq = sqrt(disc);
+  float t0 = -b - sq, t1 = -b + sq;
+  if (t0 > 0.0f) return t0;
+  return t1 > 0.0f ? t1 : -1.0f;
+}
+
+// The t > 0 where the ray meets the plane through c with normal m, or -1.
+IBL_FN float rayPlaneDistance(vec3 o, vec3 w, vec3 c, vec3 m) {
+  float wm = dot(w, m);
+  if (abs(wm) < 1e-12f) return -1.0f;
+  float t = dot(c - o, m) / wm;
+  return t > 0.0f ? t : -1.0f;
+}
+
+// The nearest t > 0 where the ray meets a capsule (the segment center +- axis length / 2, radius
+// r), or -1: the cylinder within the segment's span, then the two end spheres outside it.
+IBL_FN float rayCapsuleDistance(vec3 o, vec3 w, vec3 center, vec3 axis, float len, float radius) {
+  float hl = 0.5f * len;
+  float best = -1.0f;
+  vec3 oc = o - center;
+  vec3 op = oc - dot(oc, axis) * axis, wp = w - dot(w, axis) * axis;
+  float qa = dot(wp, wp), qb = dot(op, wp), qc = dot(op, op) - radius * radius;
+  if (qa > 1e-12f) {
+    float disc = qb * qb - qa * qc;
+    if (disc >= 0.0f) {
+      float sq = sqrt(disc);
+      float tNear = (-qb - sq) / qa, tFar = (-qb + sq) / qa;
+      if (tNear > 0.0f && abs(dot(oc + tNear * w, axis)) <= hl)
+        best = tNear;
+      else if (tFar > 0.0f && abs(dot(oc + tFar * w, axis)) <= hl)
+        best = tFar;
+    }
+  }
+  for (int i = 0; i < 2; ++i) {
+    float end = i == 0 ? -hl : hl;
+    vec3 endCenter = center + end * axis;
+    float t = raySphereDistance(o, w, endCenter, radius);
+    if (t < 0.0f || (best >= 0.0f && t >= best)) continue;
+    // A cap's point within the cylinder's span is not on the capsule's surface.
+    float along = dot(o + t * w - endCenter, axis);
+    if ((end > 0.0f && along < 0.0f) || (end < 0.0f && along > 0.0f)) continue;
+    best = t;
+  }
+  return best;
+}
+
+// Where the ray (o, unit w) meets the light's emitting shape: its distance (negative: missed;
+// the sun: kSunDistance while w is within its disk). Punctual lights are never met.
+IBL_FN float emitterDistance(ShadingLight light, vec3 o, vec3 w) {
+  if (light.type == kLightSun)
+    return dot(light.direction, w) >= cos(light.radius) ? kSunDistance : -1.0f;
+  if (light.type == kLightSphere) return raySphereDistance(o, w, light.position, light.radius);
+  if (light.type == kLightTube)
+    return rayCapsuleDistance(o, w, light.position, light.direction, light.width, light.radius);
+  if (light.type != kLightDisk && light.type != kLightRect) return -1.0f;
+  float t = rayPlaneDistance(o, w, light.position, light.direction);
+  if (t < 0.0f) return -1.0f;
+  vec3 q = o + t * w - light.position;
+  if (light.type == kLightDisk) return dot(q, q) <= light.radius * light.radius ? t : -1.0f;
+  vec3 left = cross(light.up, light.direction);
+  return abs(dot(q, left)) <= 0.5f * light.width && abs(dot(q, light.up)) <= 0.5f * light.height
+             ? t
+             : -1.0f;
+}
+
+// The luminance the ray sees on the emitter it met (no distance window): area lights their
+// luminance (the back of a disk or rect black), the sun E / (pi sin^2 sigma) (Frostbite
+// section 4.7.1: E = L pi sin^2 sigma on a surface facing it).
+IBL_FN vec3 emitterRadiance(ShadingLight light, vec3 w) {
+  if (light.type == kLightSun) {
+    float sinSigma = sin(light.radius);
+    return light.color / (kPi * sinSigma * sinSigma);
+  }
+  if ((light.type == kLightDisk || light.type == kLightRect) && dot(w, light.direction) >= 0.0f)
+    return vec3(0.0f);
+  return light.color;
+}
+
 // --- Area lights through linearly transformed cosines (ltc.h; Heitz et al. 2016) ---
 
 // The incidence of an area light from its two integrals: the diffuse lobe's (the cosine itself:
