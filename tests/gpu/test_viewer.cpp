@@ -131,23 +131,35 @@ TEST(Viewer, SphereGridMatchesTheSplitSumRenderWithMultisampling) {
   EXPECT_LT(c.coverageMismatch, 5e-3);
 }
 
+namespace {
+
+// A light for the viewer's tests, its sizes scaled by `scale` (radius 1, tube radius 0.2, length
+// 4, rect 3 x 1.5), up orthogonal to its direction.
+Light viewerTestLight(LightType type, glm::vec3 position, glm::vec3 direction, float intensity,
+                      float scale) {
+  Light l;
+  l.type = type;
+  l.name = "test light";
+  l.position = position;
+  l.direction = glm::normalize(direction);
+  l.up = glm::normalize(glm::cross(l.direction, glm::vec3(1, 0, 0)));
+  l.intensity = intensity;
+  l.radius = (type == LightType::Tube ? 0.2f : 1.0f) * scale;
+  l.length = 4.0f * scale;
+  l.width = 3.0f * scale;
+  l.height = 1.5f * scale;
+  return l;
+}
+
+}  // namespace
+
 // Every light type (above the view, out of the picture) shades the grid as the CPU does: the same
 // ibl/shared/lights.h, with and without the environment, with Frostbite's area lights and with
 // LTCs.
 TEST(Viewer, LightsMatchTheCpu) {
   Scene scene = makeSphereGrid(glm::vec3(0.8f, 0.6f, 0.4f));
   const auto add = [&](LightType type, glm::vec3 position, glm::vec3 direction, float intensity) {
-    Light l;
-    l.type = type;
-    l.name = "test light";
-    l.position = position;
-    l.direction = glm::normalize(direction);
-    l.up = glm::normalize(glm::cross(l.direction, glm::vec3(1, 0, 0)));
-    l.intensity = intensity;
-    l.radius = type == LightType::Tube ? 0.2f : 1.0f;
-    l.length = 4.0f;
-    l.width = 3.0f;
-    l.height = 1.5f;
+    Light l = viewerTestLight(type, position, direction, intensity, 1.0f);
     l.range = type == LightType::Point ? 30.0f : 0.0f;
     checkLight(l);
     scene.lights.push_back(l);
@@ -176,22 +188,12 @@ TEST(Viewer, LightsMatchTheCpu) {
 // The emitters the camera sees, drawn as the CPU renderer draws them (ibl/shared/lights.h's ray
 // intersections for both): a rect, a disk, a sphere and a tube in front of the grid's spheres
 // and partly over the background, a rect and a disk seen from their black backs, and a
-// 4-degree sun behind the grid;
-// their luminance, and their coverage (an area light covers its pixels, the sun does not).
+// 4-degree sun behind the grid: their luminance, and their coverage (an area light covers its
+// pixels, the sun does not).
 TEST(Viewer, EmittersMatchTheCpu) {
   Scene scene = makeSphereGrid(glm::vec3(0.8f, 0.6f, 0.4f));
   const auto add = [&](LightType type, glm::vec3 position, glm::vec3 direction, float intensity) {
-    Light l;
-    l.type = type;
-    l.name = "test light";
-    l.position = position;
-    l.direction = glm::normalize(direction);
-    l.up = glm::normalize(glm::cross(l.direction, glm::vec3(1, 0, 0)));
-    l.intensity = intensity;
-    l.radius = type == LightType::Tube ? 0.3f : 0.8f;
-    l.length = 3.0f;
-    l.width = 2.0f;
-    l.height = 1.0f;
+    Light l = viewerTestLight(type, position, direction, intensity, 0.7f);
     l.angularDiameter = glm::radians(4.0f);
     checkLight(l);
     scene.lights.push_back(l);
