@@ -33,12 +33,6 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   const Scene scene = loadScene(o.scene);
-  const bool ies = std::any_of(scene.lights.begin(), scene.lights.end(),
-                               [](const Light& l) { return l.ies != nullptr; });
-  if (ies && !global.quiet)
-    fmt::print(stderr,
-               "warning: ibl view lights IES profiles evenly at their peak intensity (ibl render "
-               "applies them)\n");
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const LoadedBake baked = loadOrBake(o.scene);
   RenderOptions shading = shadingOptions(o.scene);

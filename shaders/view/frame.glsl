@@ -21,12 +21,15 @@ layout(set = 0, binding = 2) uniform samplerCube irradianceMap;
 layout(set = 0, binding = 3) uniform sampler2D dfgLut;
 layout(set = 0, binding = 4) uniform samplerCube sourceMap;
 // The scene's lights, five vec4 each (lightsBuffer in src/gpu/scene_renderer.cpp): position and
-// type, direction and radius, up and width, color and height, (cos inner, cos outer, 1 / range^2).
+// type, direction and radius, up and width, color and height, (cos inner, cos outer, 1 / range^2,
+// IES profile: its index in iesTable, -1 for none).
 layout(std430, set = 0, binding = 5) readonly buffer Lights {
   vec4 lightData[];
 };
 // The GGX table of linearly transformed cosines (src/render/ltc_table.inc), read by texelFetch.
 layout(set = 0, binding = 6) uniform sampler2D ltcTable;
+// The lights' IES profiles, kIesTableRows rows each (ibl/shared/lights.h), read by texelFetch.
+layout(set = 0, binding = 7) uniform sampler2D iesTable;
 
 struct Ray {
   vec3 origin, direction;

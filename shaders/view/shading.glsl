@@ -42,6 +42,21 @@ ShadingLight lightAt(int i) {
   return l;
 }
 
+// An IES profile's candela toward unit w leaving the light, over its peak (which the light's
+// color carries): the table's bilinear interpolation with exact weights; 1 without a profile.
+float iesProfileFactor(ShadingLight l, float profile, vec3 w) {
+  if (profile < 0.0) return 1.0;
+  vec2 angles = iesAngles(iesNadir(l), w);
+  vec2 p = vec2(angles.y / 360.0 * float(kIesTableColumns - 1),
+                angles.x / 180.0 * float(kIesTableRows - 1));
+  ivec2 i = min(ivec2(p), ivec2(kIesTableColumns - 2, kIesTableRows - 2));
+  vec2 f = p - vec2(i);
+  i.y += int(profile) * kIesTableRows;
+  return mix(mix(texelFetch(iesTable, i, 0).r, texelFetch(iesTable, i + ivec2(1, 0), 0).r, f.x),
+             mix(texelFetch(iesTable, i + ivec2(0, 1), 0).r, texelFetch(iesTable, i + ivec2(1, 1), 0).r, f.x),
+             f.y);
+}
+
 // The nearest emitter (area light or sun) the ray meets closer than maxDistance, as the CPU's
 // nearestLight (src/render/renderer.cpp) finds it: its luminance; `surface` false for the sun.
 bool nearestEmitter(Ray r, float maxDistance, out vec3 radiance, out bool surface) {
@@ -89,7 +104,8 @@ vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m) {
     for (int i = 0; i < frame.models.w; ++i) {
       ShadingLight l = lightAt(i);
       LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s, ltc);
-      lit += l.color * lightRadiance(direct, n, view, inc, dfg.xy, s);
+      float profile = iesProfileFactor(l, lightData[5 * i + 4].w, normalize(position - l.position));
+      lit += l.color * profile * lightRadiance(direct, n, view, inc, dfg.xy, s);
     }
   }
   if (frame.lods.w < 0.5) return lit + splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);

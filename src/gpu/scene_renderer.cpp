@@ -83,6 +83,25 @@ std::unique_ptr<DeviceImage> uploadTexels2d(Context& context, std::span<const fl
   return out;
 }
 
+// The light's IES profile's rows in the viewer's profile table (-1: none), tabulating the profile
+// there the first time it is seen: candela over the peak at the grid of ibl/shared/lights.h.
+float iesTableIndex(const Light& light, std::vector<const IesProfile*>& profiles,
+                    std::vector<float>& texels) {
+  if (!light.ies) return -1.0f;
+  const auto found = std::find(profiles.begin(), profiles.end(), light.ies.get());
+  if (found != profiles.end()) return static_cast<float>(found - profiles.begin());
+  profiles.push_back(light.ies.get());
+  const float peak = std::max(light.ies->maxCandela(), 1e-30f);
+  for (int row = 0; row < shared::kIesTableRows; ++row)
+    for (int column = 0; column < shared::kIesTableColumns; ++column) {
+      const float vertical = 180.0f * static_cast<float>(row) / (shared::kIesTableRows - 1);
+      const float horizontal = 360.0f * static_cast<float>(column) / (shared::kIesTableColumns - 1);
+      texels.insert(texels.end(),
+                    {light.ies->intensity(vertical, horizontal) / peak, 0.0f, 0.0f, 0.0f});
+    }
+  return static_cast<float>(profiles.size() - 1);
+}
+
 std::unique_ptr<DeviceImage> uploadImage2d(Context& context, const Image& image) {
   std::vector<float> texels;
   for (const glm::vec3& p : image.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
@@ -312,7 +331,10 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
     shIrradianceOverPi[k] = bake.sh[k] * (shCosineLobe(shBand(k)) / std::numbers::pi_v<float>);
 
   // The lights, five vec4 each (view/frame.glsl); one zero light when there are none (a buffer
-  // is never empty). IES profiles are not applied here (their intensity is the profile's peak).
+  // is never empty). An IES light's color carries the profile's peak; the profile's shape is a
+  // table (iesTableIndex).
+  std::vector<const IesProfile*> iesProfiles;
+  std::vector<float> iesTexels;
   std::vector<glm::vec4> lightData(5 * std::max<std::size_t>(1, scene.lights.size()),
                                    glm::vec4(0.0f));
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
@@ -324,9 +346,14 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
         scene.lights[i].ies ? l.color * scene.lights[i].iesScale * scene.lights[i].ies->maxCandela()
                             : l.color,
         l.height);
-    lightData[5 * i + 4] = glm::vec4(l.cosInner, l.cosOuter, l.invSquaredRange, 0.0f);
+    lightData[5 * i + 4] = glm::vec4(l.cosInner, l.cosOuter, l.invSquaredRange,
+                                     iesTableIndex(scene.lights[i], iesProfiles, iesTexels));
   }
   lightCount = static_cast<int>(scene.lights.size());
+  if (iesProfiles.empty()) iesTexels.assign(4, 1.0f);
+  ies = uploadTexels2d(
+      context, iesTexels, iesProfiles.empty() ? 1 : shared::kIesTableColumns,
+      iesProfiles.empty() ? 1 : shared::kIesTableRows * static_cast<int>(iesProfiles.size()));
   lightsBuffer =
       std::make_unique<Buffer>(context, lightData.size() * sizeof(glm::vec4), BufferMemory::Host);
   std::memcpy(lightsBuffer->mapped(), lightData.data(), lightData.size() * sizeof(glm::vec4));
@@ -341,8 +368,9 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameBindings.push_back(
       {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-  frameBindings.push_back(
-      {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  for (std::uint32_t b = 6; b <= 7; ++b)
+    frameBindings.push_back(
+        {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
   std::vector<VkDescriptorSetLayoutBinding> materialBindings;
   for (std::uint32_t b = 0; b < 5; ++b)
@@ -363,7 +391,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   const std::array<VkDescriptorPoolSize, 3> sizes{
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
-      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5 + 5 * materialCount}};
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6 + 5 * materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1 + materialCount;
   poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
@@ -390,6 +418,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
       VkDescriptorImageInfo{lutSampler, dfg->view(), readable},
       VkDescriptorImageInfo{cubeSampler, source->view(), readable}};
   const VkDescriptorImageInfo ltcImage{lutSampler, ltc->view(), readable};
+  const VkDescriptorImageInfo iesImage{lutSampler, ies->view(), readable};
   std::vector<VkWriteDescriptorSet> writes;
   {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -403,6 +432,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   for (std::uint32_t b = 0; b < 4; ++b)
     writes.push_back(imageWrite(frameSet, b + 1, &frameImages[b]));
   writes.push_back(imageWrite(frameSet, 6, &ltcImage));
+  writes.push_back(imageWrite(frameSet, 7, &iesImage));
   const VkDescriptorBufferInfo lightsInfo{static_cast<VkBuffer>(lightsBuffer->handle()), 0,
                                           VK_WHOLE_SIZE};
   {

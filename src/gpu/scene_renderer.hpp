@@ -37,7 +37,7 @@ struct SceneRenderer::Impl {
   std::map<std::pair<int, bool>, std::unique_ptr<DeviceImage>> textures;
   std::unique_ptr<DeviceImage> white;
   // The bake.
-  std::unique_ptr<DeviceImage> specular, irradiance, source, dfg, ltc;
+  std::unique_ptr<DeviceImage> specular, irradiance, source, dfg, ltc, ies;
   float specularMaxLod = 0.0f, skyboxMaxLod = 0.0f;
   bool frostbiteMapping = false;
   Sh9 shIrradianceOverPi{};

@@ -314,24 +314,17 @@ std::string_view lightTypeName(LightType type) {
 }
 
 glm::vec3 Light::iesNadir() const {
-  return type == LightType::Spot ? direction : glm::vec3(0.0f, -1.0f, 0.0f);
+  return shared::iesNadir(shadingLightOf(*this));
 }
 
 glm::vec3 Light::iesHorizontalAxis() const {
-  const glm::vec3 a = iesNadir();
-  const glm::vec3 ref = std::abs(a.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, -1);
-  return glm::normalize(ref - glm::dot(ref, a) * a);
+  return shared::iesHorizontalAxis(iesNadir());
 }
 
 float Light::intensityToward(glm::vec3 w) const {
   if (!ies) return intensity;
-  const glm::vec3 a = iesNadir(), h0 = iesHorizontalAxis();
-  // Counterclockwise seen from above (looking along the nadir): h90 = h0 x nadir.
-  const glm::vec3 h90 = glm::cross(h0, a);
-  const float vertical = glm::degrees(std::acos(std::clamp(glm::dot(w, a), -1.0f, 1.0f)));
-  float horizontal = glm::degrees(std::atan2(glm::dot(w, h90), glm::dot(w, h0)));
-  if (horizontal < 0.0f) horizontal += 360.0f;
-  return iesScale * ies->intensity(vertical, horizontal);
+  const glm::vec2 angles = shared::iesAngles(iesNadir(), w);
+  return iesScale * ies->intensity(angles.x, angles.y);
 }
 
 double Light::power() const {

@@ -389,6 +389,35 @@ IBL_FN LightIncidence tubeIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, 
   return inc;
 }
 
+// --- IES profiles: where a direction falls on the photometric web (LM-63 type C) ---
+
+// The profile's nadir (vertical angle 0): a spot's direction, straight down (-Y) for a point.
+IBL_FN vec3 iesNadir(ShadingLight light) {
+  return light.type == kLightSpot ? light.direction : vec3(0.0f, -1.0f, 0.0f);
+}
+// The horizontal angle 0 (the profile's 0-degree plane): +X made orthogonal to the nadir (-Z
+// when the nadir is close to X).
+IBL_FN vec3 iesHorizontalAxis(vec3 nadir) {
+  vec3 ref = abs(nadir.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 0.0f, -1.0f);
+  return normalize(ref - dot(ref, nadir) * nadir);
+}
+// The viewer's tables of IES profiles: each profile's candela over its peak at vertical angles
+// 0..180 degrees in kIesTableRows rows and horizontal angles 0..360 in kIesTableColumns columns
+// (2 and 5 degrees apart), read bilinearly (src/gpu/scene_renderer.cpp writes them).
+const int kIesTableRows = 91;
+const int kIesTableColumns = 73;
+
+// (vertical, horizontal) angles in degrees of the unit direction w leaving the light: vertical
+// from the nadir, horizontal counterclockwise seen from above (h90 = h0 x nadir) in [0, 360).
+IBL_FN vec2 iesAngles(vec3 nadir, vec3 w) {
+  vec3 h0 = iesHorizontalAxis(nadir);
+  vec3 h90 = cross(h0, nadir);
+  float vertical = acos(clamp(dot(w, nadir), -1.0f, 1.0f)) * (180.0f / kPi);
+  float horizontal = atan(dot(w, h90), dot(w, h0)) * (180.0f / kPi);
+  if (horizontal < 0.0f) horizontal += 360.0f;
+  return vec2(vertical, horizontal);
+}
+
 // --- Rays meeting the emitting shapes: what the camera sees of area lights and the sun, and
 // where the reference's samples land (src/render/light_sampling.cpp) ---
 
