@@ -141,8 +141,8 @@ void readIntensity(const LightReader& r, const std::string& unit, Light& light,
 // "ies": "file.ies" takes the profile's shape, scaled so that its peak is the light's intensity
 // (cd) or its flux the light's power (lm); "ies": {"file": "file.ies", "multiplier": m} takes
 // the file's candela times m, and then the light has no intensity or unit of its own.
-void readIes(const LightReader& r, const std::filesystem::path& baseDirectory, Light& light,
-             const std::string& unit, float value) {
+void attachIesProfile(const LightReader& r, const std::filesystem::path& baseDirectory,
+                      Light& light, const std::string& unit, float value) {
   const Json& j = r.json("ies");
   std::filesystem::path file;
   float multiplier = 1.0f;
@@ -166,7 +166,7 @@ void readIes(const LightReader& r, const std::filesystem::path& baseDirectory, L
     r.error("\"ies\" must be a file name or {\"file\": ..., \"multiplier\": ...}");
   }
   if (file.is_relative()) file = baseDirectory / file;
-  auto profile = std::make_shared<IesProfile>(ibl::readIes(file));
+  auto profile = std::make_shared<IesProfile>(readIes(file));
   if (absolute) {
     light.iesScale = multiplier;
   } else if (unit == "lm") {
@@ -268,8 +268,8 @@ Light readLight(const Json& j, const std::string& name, const std::filesystem::p
     readIntensity(r, r.string("unit"), light, spotLumens);
   }
   if (r.has("ies"))
-    readIes(r, baseDirectory, light, absoluteIes ? "" : r.string("unit"),
-            absoluteIes ? 0.0f : r.number("intensity"));
+    attachIesProfile(r, baseDirectory, light, absoluteIes ? "" : r.string("unit"),
+                     absoluteIes ? 0.0f : r.number("intensity"));
   if (r.has("color") && r.has("kelvin")) r.error("give \"color\" or \"kelvin\", not both");
   if (r.has("color")) {
     light.color = r.vec3("color");
