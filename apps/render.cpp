@@ -18,6 +18,7 @@ struct RenderCliOptions {
   std::string mode = "split-sum";
   float noise = 0.0f;
   bool shadows = false;
+  int bounces = 4;
   bool exrExposed = false;
   unsigned seed = 1;
 };
@@ -34,6 +35,7 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   r.spp = o.scene.spp > 0 ? o.scene.spp : (r.mode == RenderMode::Reference ? 256 : 4);
   r.noiseThreshold = o.noise;
   r.shadows = o.shadows;
+  r.bounces = o.bounces;
   r.seed = o.seed;
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
   const RenderResult result =
@@ -70,7 +72,13 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--noise", opts->noise, "Reference: stop a pixel at this relative standard error")
       ->check(CLI::Range(0.0f, 1.0f) & finiteNumber());
-  cmd->add_flag("--shadows", opts->shadows, "Reference: ray-traced visibility of the environment");
+  cmd->add_option("--bounces", opts->bounces,
+                  "Reference: bounces of indirect light between surfaces (path tracing, with "
+                  "shadows); 0: direct light only")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  cmd->add_flag("--shadows", opts->shadows,
+                "Reference with --bounces 0: ray-traced visibility of the environment and lights");
   cmd->add_flag("--exr-exposed", opts->exrExposed,
                 "Write the exposed, tone-mapped image to the EXR too");
   cmd->add_option("--seed", opts->seed, "Random seed of the reference")->capture_default_str();

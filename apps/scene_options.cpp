@@ -56,8 +56,9 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
       ->capture_default_str();
   cmd->add_option("--only", o.only, "Isolate a term: diffuse or specular")
       ->check(CLI::IsMember({"diffuse", "specular"}));
-  cmd->add_flag("--no-multiscatter", o.noMultiscatter,
-                "Split sum: no multiple-scattering compensation");
+  cmd->add_flag("--multiscatter,!--no-multiscatter", o.multiscatter,
+                "Multiple scattering between microfacets as energy compensation, in both modes "
+                "(default on: the split sum and the reference compute the same material)");
   cmd->add_flag("--no-dominant", o.noDominant,
                 "Split sum: sample along n and r, not the dominant directions");
   cmd->add_option("--irradiance", o.irradiance,
@@ -226,7 +227,7 @@ RenderOptions shadingOptions(const SceneCliOptions& o) {
   r.only = o.only == "diffuse"    ? ShadingTerms::Diffuse
            : o.only == "specular" ? ShadingTerms::Specular
                                   : ShadingTerms::Both;
-  r.multipleScattering = !o.noMultiscatter;
+  r.multipleScattering = o.multiscatter;
   r.dominantDirections = !o.noDominant;
   r.irradiance = o.irradiance == "sh" ? IrradianceSource::Sh : IrradianceSource::Cube;
   r.areaLights = o.areaLights == "frostbite" ? AreaLightModel::Frostbite : AreaLightModel::Ltc;

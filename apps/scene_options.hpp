@@ -31,7 +31,7 @@ struct SceneCliOptions {
   float roughness = 0.5f;
   std::string diffuse = "disney";
   std::string only;
-  bool noMultiscatter = false;
+  bool multiscatter = true;
   bool noDominant = false;
   std::string irradiance = "cube";
   std::string areaLights = "ltc";

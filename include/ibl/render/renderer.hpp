@@ -26,12 +26,18 @@ struct RenderOptions {
   ShadingTerms only = ShadingTerms::Both;
   int spp = 4;                  // samples per pixel (reference: the maximum)
   float noiseThreshold = 0.0f;  // reference: stop a pixel when its relative standard error is below
-  bool multipleScattering = true;  // split sum: energy compensation
+  bool multipleScattering = true;  // energy compensation (both modes: the same material)
   bool dominantDirections = true;  // split sum: Frostbite's dominant directions
   bool specularOcclusion = true;   // split sum: from the occlusion texture
   IrradianceSource irradiance = IrradianceSource::Cube;
   AreaLightModel areaLights = AreaLightModel::Ltc;  // split sum (measured closer: docs/lights.md)
   bool shadows = false;  // reference: ray-traced visibility of the environment and the lights
+  // Reference: bounces of indirect light between the scene's surfaces (0: direct light only;
+  // any bounce implies shadows). The command's default is 4.
+  int bounces = 0;
+  // Reference: the camera sees the surfaces' specular reflection (a probe capture leaves it
+  // out: it depends on the view, Frostbite section 4.9.3).
+  bool cameraSeesSpecular = true;
   bool environmentLight = true;       // false (--env none): the scene's lights alone
   bool backgroundEnvironment = true;  // else backgroundColor
   glm::vec3 backgroundColor{0.0f};
@@ -53,6 +59,14 @@ struct RenderResult {
 RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeResult& bake,
                          const BakeOptions& bakeOptions, const RenderOptions& options,
                          const std::function<void(float)>& progress = {});
+
+// The same for any rays: generateRay(pixel) for a point in pixels ((0, 0) the top-left corner
+// of pixel (0, 0)), pixels sampled as renderScene does. A probe capture renders a cube's faces.
+using RayGenerator = std::function<Ray(glm::vec2 pixel)>;
+RenderResult renderRays(const Scene& scene, int width, int height, const RayGenerator& generateRay,
+                        const BakeResult& bake, const BakeOptions& bakeOptions,
+                        const RenderOptions& options,
+                        const std::function<void(float)>& progress = {});
 
 // Shading of one surface point, exposed for the tests.
 struct SurfacePoint {

@@ -1,0 +1,249 @@
+#include "path_tracer.hpp"
+
+#include <numbers>
+
+#include "ibl/bake/dfg.hpp"
+#include "ibl/core/parallel.hpp"
+#include "ibl/math/brdf.hpp"
+#include "ibl/math/sampling.hpp"
+#include "ibl/shared/split_sum.h"
+
+namespace ibl {
+
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+constexpr float kMinAlpha = 1e-3f;  // GGX of alpha 0 is a delta; 1e-3 is a mirror in practice
+
+// E(n.v, r) = A + B, the share of a white furnace that a single-scattering GGX lobe with F0 = 1
+// reflects, bilinear between nodes that include the edges n.v = 0, 1 and r = 0, 1 (a DFG
+// table's texel centers stop half a texel short, 3 % off at r = 1): the reference's material
+// must not inherit the split sum's table error. Integrated once per process (~1M evaluations).
+float directionalAlbedo(float NoV, float roughness) {
+  constexpr int kNodes = 33;
+  static const std::vector<float> table = [] {
+    std::vector<float> t(kNodes * kNodes);
+    parallelFor(0, kNodes, [&](int j) {
+      for (int i = 0; i < kNodes; ++i) {
+        const glm::vec3 e = integrateDfg(std::max(static_cast<float>(i) / (kNodes - 1), 1e-3f),
+                                         static_cast<float>(j) / (kNodes - 1), 1024);
+        t[static_cast<std::size_t>(j) * kNodes + i] = e.x + e.y;
+      }
+    });
+    return t;
+  }();
+  const float x = std::clamp(NoV, 0.0f, 1.0f) * (kNodes - 1);
+  const float y = std::clamp(roughness, 0.0f, 1.0f) * (kNodes - 1);
+  const int i = std::min(static_cast<int>(x), kNodes - 2),
+            j = std::min(static_cast<int>(y), kNodes - 2);
+  const float fx = x - static_cast<float>(i), fy = y - static_cast<float>(j);
+  const auto at = [&](int a, int b) { return table[static_cast<std::size_t>(b) * kNodes + a]; };
+  return glm::mix(glm::mix(at(i, j), at(i + 1, j), fx),
+                  glm::mix(at(i, j + 1), at(i + 1, j + 1), fx), fy);
+}
+
+// The material's BRDF pieces at one point.
+struct Brdf {
+  glm::vec3 diffuseColor, f0;
+  float alpha, roughness;
+  DiffuseModel diffuseModel;
+  ShadingTerms only;
+  glm::vec3 multipleScattering;  // the specular lobe's scale for the bounces between microfacets
+
+  // The material at p seen from local direction v; `only` selects lobes.
+  static Brdf of(const SurfacePoint& p, glm::vec3 v, ShadingTerms only, const RenderOptions& o) {
+    Brdf b{p.baseColor * (1.0f - p.metallic),
+           glm::mix(glm::vec3(0.04f), p.baseColor, p.metallic),
+           std::max(alphaFromRoughness(p.roughness), kMinAlpha),
+           p.roughness,
+           o.diffuse,
+           only,
+           glm::vec3(1.0f)};
+    // The energy the single-scattering lobe loses to further bounces between microfacets,
+    // returned by the split sum's own compensation (Fdez-Aguera 2019, as Filament does): the
+    // lobe is scaled by 1 + F0 (1 / E(n.v) - 1). With F0 = 1 it
+    // reflects everything (a white furnace); both render modes compute the same material.
+    if (o.multipleScattering && only != ShadingTerms::Diffuse) {
+      const float e = directionalAlbedo(std::max(v.z, 1e-4f), p.roughness);
+      b.multipleScattering = shared::multipleScatteringCompensation(b.f0, glm::vec2(e, 0.0f));
+    }
+    return b;
+  }
+
+  // f(v, l) (n.l), with n = +Z of the local frame.
+  glm::vec3 evaluate(glm::vec3 v, glm::vec3 l) const {
+    const float NoV = std::max(v.z, 1e-4f), NoL = l.z;
+    if (NoL <= 0.0f) return glm::vec3(0.0f);
+    const glm::vec3 h = glm::normalize(v + l);
+    glm::vec3 result(0.0f);
+    if (only != ShadingTerms::Diffuse) {
+      const float VoH = std::max(glm::dot(v, h), 0.0f);
+      result += ggxDistribution(h.z, alpha) * smithGgxCorrelatedVisibility(NoV, NoL, alpha) *
+                fresnelSchlick(f0, 1.0f, VoH) * multipleScattering;
+    }
+    if (only != ShadingTerms::Specular) {
+      const float fd = diffuseModel == DiffuseModel::Disney
+                           ? disneyDiffuseRenormalized(NoV, NoL, glm::dot(l, h), roughness)
+                           : 1.0f;
+      result += diffuseColor * (fd / kPi);
+    }
+    return result * NoL;
+  }
+
+  // Probability of picking the specular lobe when sampling.
+  float specularProbability() const {
+    if (only == ShadingTerms::Diffuse) return 0.0f;
+    if (only == ShadingTerms::Specular) return 1.0f;
+    const float s = luminance(f0) + 0.04f, d = luminance(diffuseColor);
+    if (d <= 0.0f) return 1.0f;  // a metal: no diffuse lobe to sample
+    return std::clamp(s / (s + d), 0.1f, 0.9f);
+  }
+
+  float pdf(glm::vec3 v, glm::vec3 l) const {
+    if (l.z <= 0.0f) return 0.0f;
+    const float ps = specularProbability();
+    float p = (1.0f - ps) * l.z / kPi;
+    if (ps > 0.0f) {
+      const glm::vec3 h = glm::normalize(v + l);
+      const float NoV = std::max(v.z, 1e-4f);
+      // Visible normals, reflected: pdf(l) = G1(v) D(h) / (4 n.v).
+      p += ps * smithGgxMasking(NoV, alpha) * ggxDistribution(h.z, alpha) / (4.0f * NoV);
+    }
+    return p;
+  }
+
+  glm::vec3 sample(glm::vec3 v, glm::vec2 xi, float choose) const {
+    if (choose < specularProbability()) {
+      const glm::vec3 h = sampleGgxVisibleNormal(v, xi, alpha);
+      return 2.0f * glm::dot(v, h) * h - v;
+    }
+    return sampleCosineHemisphere(xi);
+  }
+};
+
+float powerHeuristic(float a, float b) {
+  return a * a / (a * a + b * b);
+}
+
+float maxComponent(glm::vec3 c) {
+  return std::max(c.x, std::max(c.y, c.z));
+}
+
+}  // namespace
+
+NearestLight nearestLight(const std::vector<Light>& lights, glm::vec3 p, glm::vec3 w) {
+  NearestLight best;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const std::optional<LightHit> h = intersectLight(lights[i], p, w);
+    if (h && (best.index < 0 || h->distance < best.hit.distance)) {
+      best.index = static_cast<int>(i);
+      best.hit = *h;
+    }
+  }
+  return best;
+}
+
+EnvironmentSampler::EnvironmentSampler(const std::array<Image, kFaceCount>& level)
+    : level_(level), n_(level[0].width) {
+  const std::size_t count = static_cast<std::size_t>(kFaceCount) * n_ * n_;
+  cdf_.resize(count);
+  double mean = 0.0;
+  for (int f = 0; f < kFaceCount; ++f)
+    for (const auto& p : level[f].pixels) mean += luminance(p);
+  mean /= static_cast<double>(count);
+  double total = 0.0;
+  std::size_t i = 0;
+  const std::vector<double> omega = faceTexelSolidAngles(n_);
+  for (int f = 0; f < kFaceCount; ++f)
+    for (int y = 0; y < n_; ++y)
+      for (int x = 0; x < n_; ++x, ++i) {
+        // A floor keeps every texel reachable, for MIS and for colors of low luminance.
+        total += (luminance(level[f].at(x, y)) + 1e-3 * mean + 1e-12) *
+                 omega[static_cast<std::size_t>(y) * n_ + x];
+        cdf_[i] = total;
+      }
+  for (auto& c : cdf_) c /= total;
+  texelArea_ = 4.0f / static_cast<float>(n_ * n_);
+}
+
+glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position, glm::vec3 view,
+                    Random& rng) {
+  const RenderOptions& o = s.options;
+  const std::vector<Light>& lights = s.scene.lights;
+  // Beyond direct light the path needs to know what the scene hides; --shadows asks for it
+  // with direct light alone.
+  const bool visibility = o.shadows || o.bounces > 0;
+  glm::vec3 sum(0.0f), throughput(1.0f);
+  for (int depth = 0;; ++depth) {
+    sum += throughput * p.emissive;
+    const glm::mat3 frame = tangentFrame(p.normal);
+    const glm::mat3 toLocal = glm::transpose(frame);
+    const glm::vec3 v = toLocal * view;
+    // A probe capture leaves out the view-dependent specular of the surfaces the camera sees.
+    const ShadingTerms only = depth == 0 && !o.cameraSeesSpecular ? ShadingTerms::Diffuse : o.only;
+    const Brdf brdf = Brdf::of(p, v, only, o);
+    const glm::vec3 origin = position + p.normal * 1e-4f * std::max(1.0f, glm::length(position));
+    const auto unoccluded = [&](glm::vec3 w, float distance) {
+      // Stop short of an area light's surface: the lights are not in the ray tracer.
+      return !visibility ||
+             !s.tracer.occluded(origin, w,
+                                std::isfinite(distance) ? distance * (1.0f - 1e-4f) : INFINITY);
+    };
+    // Next-event estimation: one sample of each light (punctual lights exactly) and one of the
+    // environment where no light hides it, each weighed against the BRDF's sampling.
+    for (const Light& light : lights) {
+      const LightSample ls = sampleLight(light, origin, rng.uniform2());
+      if (!(ls.delta || ls.pdf > 0.0f) || ls.radiance == glm::vec3(0.0f)) continue;
+      const glm::vec3 l = toLocal * ls.direction;
+      if (l.z <= 0.0f || !unoccluded(ls.direction, ls.distance)) continue;
+      const float weight = ls.delta ? 1.0f : powerHeuristic(ls.pdf, brdf.pdf(v, l)) / ls.pdf;
+      sum += throughput * brdf.evaluate(v, l) * ls.radiance * weight;
+    }
+    if (o.environmentLight) {
+      const glm::vec3 w = s.environment.sample(rng.uniform2());
+      const glm::vec3 l = toLocal * w;
+      const float pe = s.environment.pdf(w);
+      if (l.z > 0.0f && pe > 0.0f && nearestLight(lights, origin, w).index < 0 &&
+          unoccluded(w, INFINITY))
+        sum += throughput * brdf.evaluate(v, l) * s.environment.radiance(w) *
+               (powerHeuristic(pe, brdf.pdf(v, l)) / pe);
+    }
+    // The BRDF's sample: it ends on a light or the environment (weighed against their
+    // sampling), or goes on from the surface it meets.
+    const glm::vec3 l = brdf.sample(v, rng.uniform2(), rng.uniform());
+    const float pb = brdf.pdf(v, l);
+    if (!(pb > 0.0f)) break;
+    const glm::vec3 w = frame * l;
+    const glm::vec3 f = brdf.evaluate(v, l);
+    const Ray ray{origin, w};
+    const RayTracer::Hit hit = visibility ? s.tracer.intersect(ray) : RayTracer::Hit{};
+    const NearestLight seen = nearestLight(lights, origin, w);
+    if (seen.index >= 0 && (!hit.found || seen.hit.distance < hit.t)) {
+      const Light& light = lights[static_cast<std::size_t>(seen.index)];
+      const float pl = lightPdf(light, origin, w);
+      sum += throughput * f * seen.hit.radiance * lightWindow(light, position) *
+             (powerHeuristic(pb, pl) / pb);
+      break;
+    }
+    if (!hit.found) {
+      if (o.environmentLight)
+        sum += throughput * f * s.environment.radiance(w) *
+               (powerHeuristic(pb, s.environment.pdf(w)) / pb);
+      break;
+    }
+    if (depth >= o.bounces) break;
+    throughput *= f / pb;
+    // Russian roulette after two bounces: go on with the probability of the throughput.
+    if (depth >= 1) {
+      const float q = std::min(maxComponent(throughput), 0.95f);
+      if (!(rng.uniform() < q)) break;
+      throughput /= q;
+    }
+    p = surfaceAt(s.scene, s.tracer, hit, ray);
+    position = ray.origin + hit.t * ray.direction;
+    view = -w;
+  }
+  return sum;
+}
+
+}  // namespace ibl

@@ -1,0 +1,176 @@
+#include "ray_tracer.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+
+#include <glm/geometric.hpp>
+
+#include "ibl/core/error.hpp"
+#include "ibl/shared/material.h"
+
+namespace ibl {
+
+namespace {
+
+// The material's alpha at a hit (barycentrics u, v of triangle `primitive`).
+float alphaAt(const AlphaTest& a, unsigned primitive, float u, float v) {
+  float alpha = a.material->baseColorAlpha;
+  const std::vector<glm::vec2>& uvs =
+      a.material->baseColorTexture.texCoord == 1 ? a.mesh->uvs1 : a.mesh->uvs;
+  if (a.texture && !uvs.empty()) {
+    const std::uint32_t* i = &a.mesh->indices[3 * static_cast<std::size_t>(primitive)];
+    const glm::vec2 uv = uvs[i[0]] * (1.0f - u - v) + uvs[i[1]] * u + uvs[i[2]] * v;
+    alpha *= a.texture->sample(uv, false).w;
+  }
+  return alpha;
+}
+
+// A uniform number in [0, 1) from a ray and a triangle: the threshold of stochastic
+// transparency (each sample's ray differs, so BLEND averages to alpha over samples).
+float blendThreshold(const float (&ray)[6], unsigned primitive) {
+  std::uint32_t h = primitive * 0x9e3779b9u;
+  for (float f : ray) {
+    h ^= std::bit_cast<std::uint32_t>(f) + 0x7f4a7c15u + (h << 6) + (h >> 2);
+    h *= 0x85ebca6bu;
+    h ^= h >> 13;
+  }
+  h *= 0xc2b2ae35u;
+  h ^= h >> 16;
+  return static_cast<float>(h >> 8) * 0x1p-24f;
+}
+
+// Embree's filter for MASK and BLEND meshes, of intersections and of occlusion alike: a hit the
+// alpha does not cover is ignored, and the ray goes on.
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+  const auto* a = static_cast<const AlphaTest*>(args->geometryUserPtr);
+  for (unsigned k = 0; k < args->N; ++k) {
+    if (args->valid[k] != -1) continue;
+    const unsigned primitive = RTCHitN_primID(args->hit, args->N, k);
+    const float alpha =
+        alphaAt(*a, primitive, RTCHitN_u(args->hit, args->N, k), RTCHitN_v(args->hit, args->N, k));
+    const float ray[6] = {
+        RTCRayN_org_x(args->ray, args->N, k), RTCRayN_org_y(args->ray, args->N, k),
+        RTCRayN_org_z(args->ray, args->N, k), RTCRayN_dir_x(args->ray, args->N, k),
+        RTCRayN_dir_y(args->ray, args->N, k), RTCRayN_dir_z(args->ray, args->N, k)};
+    if (!shared::alphaCovers(static_cast<int>(a->material->alphaMode), alpha,
+                             a->material->alphaCutoff, blendThreshold(ray, primitive)))
+      args->valid[k] = 0;
+  }
+}
+
+}  // namespace
+
+RTCRay embreeRay(glm::vec3 origin, glm::vec3 dir) {
+  RTCRay ray{};
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.dir_x = dir.x;
+  ray.dir_y = dir.y;
+  ray.dir_z = dir.z;
+  ray.tnear = 0.0f;
+  ray.tfar = INFINITY;
+  ray.mask = 0xffffffffu;
+  return ray;
+}
+
+RayTracer::RayTracer(const Scene& scene) : scene_(scene) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) fail("embree", "cannot create a device");
+  handle_ = rtcNewScene(device_);
+  rtcSetSceneFlags(handle_, RTC_SCENE_FLAG_COMPACT);
+  alphaTests_.reserve(scene.meshes.size());  // stable addresses: Embree keeps pointers
+  for (const Mesh& m : scene.meshes) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
+    for (std::size_t i = 0; i < m.positions.size(); ++i)
+      for (int c = 0; c < 3; ++c) v[3 * i + c] = m.positions[i][c];
+    // The scene outlives the tracer: Embree reads the mesh's triangles where they are.
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
+                               3 * sizeof(std::uint32_t), m.indices.size() / 3);
+    const Material& mat = scene.materials[m.material];
+    if (mat.alphaMode != AlphaMode::Opaque) {
+      const int t = mat.baseColorTexture.index;
+      alphaTests_.push_back({&m, &mat, t >= 0 ? &scene.textures[t] : nullptr});
+      rtcSetGeometryUserData(g, &alphaTests_.back());
+      rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
+      rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
+    }
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(handle_, g);
+    rtcReleaseGeometry(g);
+  }
+  if (!scene.spheres.empty()) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), scene.spheres.size()));
+    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+      for (int c = 0; c < 3; ++c) v[4 * i + c] = scene.spheres[i].center[c];
+      v[4 * i + 3] = scene.spheres[i].radius;
+    }
+    rtcCommitGeometry(g);
+    sphereGeometry_ = rtcAttachGeometry(handle_, g);
+    rtcReleaseGeometry(g);
+  }
+  rtcCommitScene(handle_);
+}
+
+SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTracer::Hit& hit,
+                       const Ray& ray) {
+  SurfacePoint p{};
+  const Material* mat;
+  glm::vec3 n;
+  if (tracer.isSphere(hit.geometry)) {
+    const Sphere& s = scene.spheres[hit.primitive];
+    n = glm::normalize(ray.origin + hit.t * ray.direction - s.center);
+    mat = &scene.materials[s.material];
+    p.baseColor = mat->baseColor;
+    p.metallic = mat->metallic;
+    p.roughness = mat->roughness;
+    p.emissive = mat->emissive;
+  } else {
+    const Mesh& m = scene.meshes[hit.geometry];
+    mat = &scene.materials[m.material];
+    const std::uint32_t i0 = m.indices[3 * hit.primitive], i1 = m.indices[3 * hit.primitive + 1],
+                        i2 = m.indices[3 * hit.primitive + 2];
+    const float w0 = 1.0f - hit.u - hit.v, w1 = hit.u, w2 = hit.v;
+    n = glm::normalize(m.normals[i0] * w0 + m.normals[i1] * w1 + m.normals[i2] * w2);
+    glm::vec3 base = mat->baseColor;
+    float metallic = mat->metallic, roughness = mat->roughness;
+    glm::vec3 emissive = mat->emissive;
+    // Each slot reads its own UV set (glTF texCoord); a slot whose set the mesh lacks is off.
+    const auto lookup = [&](const TextureRef& ref, bool srgb, glm::vec4& texel) {
+      const std::vector<glm::vec2>& uvs = ref.texCoord == 1 ? m.uvs1 : m.uvs;
+      if (ref.index < 0 || uvs.empty()) return false;
+      const glm::vec2 uv = uvs[i0] * w0 + uvs[i1] * w1 + uvs[i2] * w2;
+      texel = scene.textures[ref.index].sample(uv, srgb);
+      return true;
+    };
+    glm::vec4 t;
+    if (lookup(mat->baseColorTexture, true, t)) base *= glm::vec3(t);
+    if (lookup(mat->metallicRoughnessTexture, false, t)) {
+      const glm::vec2 mr = shared::applyMetallicRoughnessTexel(metallic, roughness, t);
+      metallic = mr.x;
+      roughness = mr.y;
+    }
+    if (lookup(mat->occlusionTexture, false, t))
+      p.occlusion = shared::occlusionFromTexel(mat->occlusionStrength, t);
+    if (lookup(mat->emissiveTexture, true, t)) emissive *= glm::vec3(t);
+    if (!m.tangents.empty() && lookup(mat->normalTexture, false, t)) {
+      const glm::vec4 t4 = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
+      n = shared::applyNormalMap(n, t4, t, mat->normalScale);
+    }
+    p.baseColor = base;
+    p.metallic = std::clamp(metallic, 0.0f, 1.0f);
+    p.roughness = std::clamp(roughness, 0.0f, 1.0f);
+    p.emissive = emissive;
+  }
+  // Shade the side the ray sees.
+  if (glm::dot(n, ray.direction) > 0.0f) n = -n;
+  p.normal = n;
+  return p;
+}
+
+}  // namespace ibl
