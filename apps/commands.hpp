@@ -30,5 +30,6 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global);
 void addRenderCommand(CLI::App& app, const GlobalOptions& global);
 void addCompareCommand(CLI::App& app, const GlobalOptions& global);
 void addViewCommand(CLI::App& app, const GlobalOptions& global);
+void addProbeCommand(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace ibl::cli

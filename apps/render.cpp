@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "commands.hpp"
+#include "ibl/render/probe.hpp"
 #include "scene_options.hpp"
 
 namespace ibl::cli {
@@ -29,6 +30,7 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   const auto [width, height] = parseSize(o.scene.size);
   const Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
+  const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
   const LoadedBake baked = loadOrBake(o.scene);
   RenderOptions r = shadingOptions(o.scene);
   r.mode = o.mode == "reference" ? RenderMode::Reference : RenderMode::SplitSum;
@@ -36,6 +38,7 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   r.noiseThreshold = o.noise;
   r.shadows = o.shadows;
   r.bounces = o.bounces;
+  r.probes = &probes;
   r.seed = o.seed;
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
   const RenderResult result =

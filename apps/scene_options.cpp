@@ -59,6 +59,17 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_flag("--multiscatter,!--no-multiscatter", o.multiscatter,
                 "Multiple scattering between microfacets as energy compensation, in both modes "
                 "(default on: the split sum and the reference compute the same material)");
+  cmd->add_option("--probes", o.probes,
+                  "Split sum: local light probes (directories written by `ibl probe`: one probe, "
+                  "or a grid with probes.json), composed before the distant environment");
+  cmd->add_flag("--no-parallax", o.noParallax,
+                "Split sum: read the probes without parallax correction");
+  cmd->add_flag("--no-distance-roughness", o.noDistanceRoughness,
+                "Split sum: no distance-based roughness in the probes");
+  cmd->add_option("--ao", o.aoRays,
+                  "Split sum: ambient occlusion from N rays per pixel where the model has no "
+                  "occlusion texture (0: none)")
+      ->check(CLI::Range(0, 4096));
   cmd->add_flag("--no-dominant", o.noDominant,
                 "Split sum: sample along n and r, not the dominant directions");
   cmd->add_option("--irradiance", o.irradiance,
@@ -228,6 +239,9 @@ RenderOptions shadingOptions(const SceneCliOptions& o) {
            : o.only == "specular" ? ShadingTerms::Specular
                                   : ShadingTerms::Both;
   r.multipleScattering = o.multiscatter;
+  r.parallaxCorrection = !o.noParallax;
+  r.distanceRoughness = !o.noDistanceRoughness;
+  r.aoRays = o.aoRays;
   r.dominantDirections = !o.noDominant;
   r.irradiance = o.irradiance == "sh" ? IrradianceSource::Sh : IrradianceSource::Cube;
   r.areaLights = o.areaLights == "frostbite" ? AreaLightModel::Frostbite : AreaLightModel::Ltc;

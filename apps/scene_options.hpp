@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -35,6 +36,10 @@ struct SceneCliOptions {
   bool noDominant = false;
   std::string irradiance = "cube";
   std::string areaLights = "ltc";
+  std::vector<std::string> probes;  // local probe directories (split sum)
+  bool noParallax = false;
+  bool noDistanceRoughness = false;
+  int aoRays = 0;
   std::string background = "env";
   std::string ev100;  // empty: automatic
   float aperture = 0.0f, shutter = 0.0f, iso = 0.0f;

@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "commands.hpp"
+#include "ibl/core/error.hpp"
 #include "ibl/gpu/viewer.hpp"
 #include "scene_options.hpp"
 
@@ -32,6 +33,9 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   if (!o.screenshot.empty()) checkRenderedImagePath(o.screenshot);
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
+  if (!o.scene.probes.empty())
+    fail("--probes", "the viewer does not read local probes yet; use `ibl render --probes`");
+  if (o.scene.aoRays > 0) fail("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
   const Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const LoadedBake baked = loadOrBake(o.scene);

@@ -3,6 +3,7 @@
 // trilinear filtering, the DFG table bilinear and clamped. Needs view/frame.glsl.
 #include "ibl/shared/lights.h"
 #include "ibl/shared/sh.h"
+#include "ibl/shared/probes.h"
 #include "ibl/shared/split_sum.h"
 
 // The frame's shading switches (splitSumSwitches in src/render/renderer.cpp fills them).

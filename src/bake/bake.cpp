@@ -534,8 +534,11 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   addCube(plan, out, "source", "source", r.source, {});
   addDfg(plan, r, o, out);
   addSh(plan, r, o);
+  for (const auto& [role, cube] : out.extraCubes) addCube(plan, out, role, role, *cube, {});
   if (out.preview) addPreviews(plan, r, o, out.previewCell);
-  plan.addText("manifest.json", manifestJson(r, o, src, plan.outputs).dump(2) + "\n");
+  Json manifest = manifestJson(r, o, src, plan.outputs);
+  if (!out.manifestRecords.empty()) manifest.update(Json::parse(out.manifestRecords));
+  plan.addText("manifest.json", manifest.dump(2) + "\n");
   return writeAll(plan.files, outDir, out.force);
 }
 

@@ -155,8 +155,10 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
       metallic = mr.x;
       roughness = mr.y;
     }
-    if (lookup(mat->occlusionTexture, false, t))
+    if (lookup(mat->occlusionTexture, false, t)) {
       p.occlusion = shared::occlusionFromTexel(mat->occlusionStrength, t);
+      p.occlusionTexture = true;
+    }
     if (lookup(mat->emissiveTexture, true, t)) emissive *= glm::vec3(t);
     if (!m.tangents.empty() && lookup(mat->normalTexture, false, t)) {
       const glm::vec4 t4 = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
@@ -167,6 +169,7 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.roughness = std::clamp(roughness, 0.0f, 1.0f);
     p.emissive = emissive;
   }
+  p.position = ray.origin + hit.t * ray.direction;
   // Shade the side the ray sees.
   if (glm::dot(n, ray.direction) > 0.0f) n = -n;
   p.normal = n;

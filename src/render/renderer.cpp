@@ -14,6 +14,7 @@
 #include "ibl/math/sampling.hpp"
 #include "ibl/render/light_sampling.hpp"
 #include "ibl/render/ltc.hpp"
+#include "ibl/render/probe.hpp"
 #include "ibl/shared/lights.h"
 #include "ibl/shared/split_sum.h"
 #include "path_tracer.hpp"
@@ -24,6 +25,20 @@ namespace ibl {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
+
+// Ambient occlusion: the cosine-weighted share of `rays` hemisphere rays from p that meet
+// nothing within `distance` (the visibility the split sum's AO stands for).
+float ambientOcclusion(const RayTracer& tracer, const SurfacePoint& p, int rays, float distance,
+                       Random& rng) {
+  const glm::mat3 frame = tangentFrame(p.normal);
+  const glm::vec3 origin = p.position + p.normal * 1e-4f * std::max(1.0f, glm::length(p.position));
+  int open = 0;
+  for (int i = 0; i < rays; ++i) {
+    const glm::vec3 w = frame * sampleCosineHemisphere(rng.uniform2());
+    if (!tracer.occluded(origin, w, distance)) ++open;
+  }
+  return static_cast<float>(open) / static_cast<float>(rays);
+}
 
 }  // namespace
 
@@ -46,15 +61,24 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   const shared::SplitSumLookup look = shared::splitSumLookup(p.normal, view, p.roughness, s);
   const glm::vec3 dfg = sampleDfgLut(bake.dfg, look.NoV, p.roughness);
   glm::vec3 prefiltered(0.0f), irradiance(0.0f);
-  if (o.environmentLight && o.only != ShadingTerms::Diffuse) {
+  // Local probes first (smallest influence first), the distant environment for the rest.
+  float distant = 1.0f;
+  if (o.probes && !o.probes->empty()) {
+    const ProbeLighting local = lookupProbes(*o.probes, p.position, look.specularDirection,
+                                             look.diffuseDirection, p.roughness, o);
+    prefiltered = local.prefiltered;
+    irradiance = local.irradiance;
+    distant = 1.0f - local.coverage;
+  }
+  if (o.environmentLight && distant > 0.0f && o.only != ShadingTerms::Diffuse) {
     const float lod = specularLodForRoughness(p.roughness, bake.specular.levelCount(),
                                               bakeOptions.specular.mapping);
-    prefiltered = sampleTrilinear(bake.specular, lod, look.specularDirection);
+    prefiltered += distant * sampleTrilinear(bake.specular, lod, look.specularDirection);
   }
-  if (o.environmentLight && o.only != ShadingTerms::Specular)
-    irradiance = o.irradiance == IrradianceSource::Cube
-                     ? sampleBilinear(bake.irradiance, 0, look.diffuseDirection)
-                     : irradianceSh9(bake.sh, look.diffuseDirection) / kPi;
+  if (o.environmentLight && distant > 0.0f && o.only != ShadingTerms::Specular)
+    irradiance += distant * (o.irradiance == IrradianceSource::Cube
+                                 ? sampleBilinear(bake.irradiance, 0, look.diffuseDirection)
+                                 : irradianceSh9(bake.sh, look.diffuseDirection) / kPi);
   shared::SplitSumMaterial m;
   m.baseColor = p.baseColor;
   m.metallic = p.metallic;
@@ -106,6 +130,8 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   const RayTracer tracer(scene);
   const EnvironmentSampler env(bake.source.levels[0]);
   const PathTracerScene pathScene{scene, tracer, env, o};
+  const auto [lo, hi] = scene.bounds();
+  const float aoDistance = o.aoDistance > 0.0f ? o.aoDistance : 0.1f * glm::length(hi - lo);
   struct {
     int width, height;
   } const camera{width, height};
@@ -145,9 +171,11 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                                       : o.backgroundColor;
         } else {
           ++covered;
-          const SurfacePoint p = surfaceAt(scene, tracer, hit, ray);
-          const glm::vec3 position = ray.origin + hit.t * ray.direction;
+          SurfacePoint p = surfaceAt(scene, tracer, hit, ray);
+          const glm::vec3 position = p.position;
           if (o.mode == RenderMode::SplitSum) {
+            if (o.aoRays > 0 && !p.occlusionTexture)
+              p.occlusion = ambientOcclusion(tracer, p, o.aoRays, aoDistance, rng);
             c = shadeSplitSum(p, -ray.direction, bake, bakeOptions, o);
             if (!scene.lights.empty()) {
               const float NoV = std::max(glm::dot(p.normal, -ray.direction), 1e-4f);

@@ -12,6 +12,8 @@
 
 namespace ibl {
 
+struct LocalProbe;  // probe.hpp
+
 enum class RenderMode { SplitSum, Reference };
 enum class DiffuseModel { Disney, Lambert };
 enum class ShadingTerms { Both, Diffuse, Specular };
@@ -38,6 +40,15 @@ struct RenderOptions {
   // Reference: the camera sees the surfaces' specular reflection (a probe capture leaves it
   // out: it depends on the view, Frostbite section 4.9.3).
   bool cameraSeesSpecular = true;
+  // Split sum: local probes (probe.hpp), smallest influence first, composed before the distant
+  // environment; with parallax correction along the proxies and distance-based roughness.
+  const std::vector<LocalProbe>* probes = nullptr;
+  bool parallaxCorrection = true;
+  bool distanceRoughness = true;
+  // Split sum: ambient occlusion by casting this many rays per pixel over the hemisphere (up to
+  // aoDistance; 0: a tenth of the scene's size) where the material has no occlusion texture.
+  int aoRays = 0;
+  float aoDistance = 0.0f;
   bool environmentLight = true;       // false (--env none): the scene's lights alone
   bool backgroundEnvironment = true;  // else backgroundColor
   glm::vec3 backgroundColor{0.0f};
@@ -70,11 +81,13 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
 
 // Shading of one surface point, exposed for the tests.
 struct SurfacePoint {
-  glm::vec3 normal;     // shading normal, unit
+  glm::vec3 position{0.0f};  // world (local probes and ambient occlusion read it)
+  glm::vec3 normal;          // shading normal, unit
   glm::vec3 baseColor;  // linear
   float metallic;
   float roughness;  // perceptual
   float occlusion = 1.0f;
+  bool occlusionTexture = false;  // the occlusion comes from the material (else --ao may compute it)
   glm::vec3 emissive{0.0f};
 };
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the

@@ -1,0 +1,397 @@
+// `ibl probe`: local light probes captured inside a scene by the path tracer and baked like an
+// environment; one probe (--at), a grid (--grid, --bounds), a shard of a grid (--shard K/N),
+// and merging the shards' lists (--merge).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/render/probe.hpp"
+#include "scene_options.hpp"
+
+namespace ibl::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+struct ProbeCliOptions {
+  SceneCliOptions scene;  // scene, --env, --lights, --spot-lumens
+  std::string output;
+  std::string at;
+  std::string proxy;      // sphere:R | sphere:X,Y,Z,R | box:MINX,MINY,MINZ,MAXX,MAXY,MAXZ | none
+  std::string influence;  // the same forms; default: the proxy (a grid: each probe's cell)
+  std::string rotation = "0,0,0";
+  float fade = -1.0f;  // default: a quarter of the influence's smallest half size
+  std::string grid, bounds, shard;
+  std::string merge;
+  CaptureOptions capture;
+  bool force = false;
+};
+
+// N comma-separated finite numbers.
+std::vector<float> parseNumbers(const std::string& text, std::size_t count, const char* option) {
+  std::vector<float> v;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const float x = std::stof(item, &used);
+      if (used != item.size() || !std::isfinite(x)) throw std::invalid_argument(item);
+      v.push_back(x);
+    } catch (const std::exception&) {
+      fail(option, fmt::format("'{}' is not a number", item));
+    }
+  }
+  if (v.size() != count)
+    fail(option, fmt::format("expected {} comma-separated numbers, got '{}'", count, text));
+  return v;
+}
+
+// --proxy / --influence: a sphere or a box; `center` places `sphere:R`.
+ProbeVolume parseVolume(const std::string& text, glm::vec3 center, glm::vec3 rotation,
+                        const char* option) {
+  const auto colon = text.find(':');
+  const std::string shape = text.substr(0, colon);
+  const std::string args = colon == std::string::npos ? "" : text.substr(colon + 1);
+  if (shape == "sphere") {
+    const std::size_t commas = static_cast<std::size_t>(std::count(args.begin(), args.end(), ','));
+    const std::vector<float> v = parseNumbers(args, commas == 3 ? 4 : 1, option);
+    const float radius = v.back();
+    if (!(radius > 0.0f)) fail(option, fmt::format("'{}': an empty sphere (radius <= 0)", text));
+    return sphereVolume(commas == 3 ? glm::vec3(v[0], v[1], v[2]) : center, radius);
+  }
+  if (shape == "box") {
+    const std::vector<float> v = parseNumbers(args, 6, option);
+    const glm::vec3 lo(v[0], v[1], v[2]), hi(v[3], v[4], v[5]);
+    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+      fail(option, fmt::format("'{}': an empty box (min must be below max on every axis)", text));
+    return boxVolume(lo, hi, rotation);
+  }
+  fail(option, fmt::format("'{}': expected sphere:R, sphere:X,Y,Z,R or box:MINX,MINY,MINZ,MAXX,"
+                           "MAXY,MAXZ",
+                           text));
+}
+
+float smallestHalfSize(const ProbeVolume& v) {
+  return v.shape == 0 ? v.halfExtent.x
+                      : std::min(v.halfExtent.x, std::min(v.halfExtent.y, v.halfExtent.z));
+}
+
+// One probe to capture: where it goes and what it is.
+struct PlannedProbe {
+  ProbePlacement placement;
+  std::string directory;  // relative to OUTDIR ("" for a single probe: OUTDIR itself)
+  glm::ivec3 index{0};
+  int linear = 0;
+};
+
+// Captures, bakes and writes one probe (all its files or none).
+double captureAndBake(const ProbeCliOptions& o, const Scene& scene, const LoadedBake& env,
+                      const PlannedProbe& p, const fs::path& dir, bool showProgress) {
+  const ProbeCapture capture =
+      captureProbe(scene, p.placement.position, env.bake, env.options, o.capture, [&](float f) {
+        if (showProgress) fmt::print(stderr, "\r  capturing {:3.0f} %", 100.0f * f);
+      });
+  if (showProgress) fmt::print(stderr, "\r");
+  Environment captured;
+  captured.layout = Layout::Cube;
+  captured.cube = capture.radiance;
+  BakeOptions options;
+  options.specular.size = o.capture.size;
+  const BakeResult bake = bakeEnvironment(captured, options);
+  BakeOutputOptions output;
+  output.force = o.force;
+  output.preview = false;
+  output.extraCubes = {{"visibility", &capture.visibility}};
+  output.manifestRecords = fmt::format(
+      "{{\"probe\": {}}}", probeRecordJson(p.placement, o.capture, capture.milliseconds));
+  BakeSource source;
+  source.path = "";
+  source.format = "capture";
+  source.layout = "cube";
+  source.width = source.height = o.capture.size;
+  writeBakeOutputs(bake, options, output, source, dir);
+  return capture.milliseconds;
+}
+
+// The grid's probes: cell centers of --grid over --bounds, each influencing its cell grown by
+// the fade on every side, all with one proxy.
+std::vector<PlannedProbe> planGrid(const ProbeCliOptions& o, const ProbeVolume* proxy,
+                                   glm::vec3 rotation) {
+  const std::vector<float> g = parseNumbers(o.grid, 3, "--grid");
+  glm::ivec3 counts;
+  for (int i = 0; i < 3; ++i) {
+    if (g[i] < 1.0f || g[i] > 64.0f || g[i] != std::floor(g[i]))
+      fail("--grid", fmt::format("'{}': each count must be a whole number from 1 to 64", o.grid));
+    counts[i] = static_cast<int>(g[i]);
+  }
+  if (o.bounds.empty()) fail("--grid", "needs --bounds MINX,MINY,MINZ,MAXX,MAXY,MAXZ");
+  const std::vector<float> b = parseNumbers(o.bounds, 6, "--bounds");
+  const glm::vec3 lo(b[0], b[1], b[2]), hi(b[3], b[4], b[5]);
+  if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+    fail("--bounds", fmt::format("'{}': an empty box", o.bounds));
+  const glm::vec3 cell = (hi - lo) / glm::vec3(counts);
+  const float fade = o.fade >= 0.0f ? o.fade : 0.25f * std::min(cell.x, std::min(cell.y, cell.z));
+  std::vector<PlannedProbe> probes;
+  for (int k = 0; k < counts.z; ++k)
+    for (int j = 0; j < counts.y; ++j)
+      for (int i = 0; i < counts.x; ++i) {
+        PlannedProbe p;
+        p.index = {i, j, k};
+        p.linear = static_cast<int>(probes.size());
+        p.directory = fmt::format("probe_{}_{}_{}", i, j, k);
+        const glm::vec3 cellLo = lo + cell * glm::vec3(p.index);
+        p.placement.position = cellLo + 0.5f * cell;
+        p.placement.hasProxy = proxy != nullptr;
+        if (proxy) p.placement.proxy = *proxy;
+        p.placement.influence = boxVolume(cellLo - fade, cellLo + cell + fade);
+        p.placement.fade = fade;
+        p.placement.rotationDegrees = rotation;
+        probes.push_back(p);
+      }
+  return probes;
+}
+
+// --shard K/N: the probes whose index is K modulo N (neighbours land on different machines,
+// so every shard takes about as long).
+std::pair<int, int> parseShard(const std::string& text) {
+  int k = 0, n = 0;
+  char slash = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &k, &slash, &n, &extra) != 3 || slash != '/' || n < 1 ||
+      k < 0 || k >= n)
+    fail("--shard", fmt::format("'{}': expected K/N with 0 <= K < N", text));
+  return {k, n};
+}
+
+std::string shardListName(int k, int n) {
+  return fmt::format("probes.shard-{}-of-{}.json", k, n);
+}
+
+Json gridListJson(const ProbeCliOptions& o, const std::vector<PlannedProbe>& probes) {
+  Json list = Json::array();
+  for (const PlannedProbe& p : probes)
+    list.push_back(
+        {{"path", p.directory},
+         {"index", {p.index.x, p.index.y, p.index.z}},
+         {"linear", p.linear},
+         {"position", {p.placement.position.x, p.placement.position.y, p.placement.position.z}}});
+  return {{"grid", parseNumbers(o.grid, 3, "--grid")},
+          {"bounds", parseNumbers(o.bounds, 6, "--bounds")},
+          {"probes", list}};
+}
+
+// --merge OUTDIR: the shards' lists into probes.json, once every probe of the grid is there.
+void mergeShards(const std::string& dir, const GlobalOptions& global) {
+  std::vector<fs::path> parts;
+  if (fs::is_directory(dir))
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().filename().string().starts_with("probes.shard-")) parts.push_back(e.path());
+  if (parts.empty()) fail(dir, "holds no probes.shard-K-of-N.json to merge");
+  std::sort(parts.begin(), parts.end());
+  Json merged;
+  std::set<int> seen;
+  int total = -1;
+  for (const fs::path& part : parts) {
+    const auto bytes = readFileBytes(part);
+    try {
+      const Json j = Json::parse(bytes.begin(), bytes.end());
+      const int count =
+          j.at("grid")[0].get<int>() * j.at("grid")[1].get<int>() * j.at("grid")[2].get<int>();
+      if (merged.is_null()) {
+        merged = j;
+        merged["probes"] = Json::array();
+        total = count;
+      } else if (j.at("grid") != merged.at("grid") || j.at("bounds") != merged.at("bounds")) {
+        fail(part.string(), "belongs to another grid (its grid or bounds differ)");
+      }
+      for (const auto& p : j.at("probes")) {
+        if (!seen.insert(p.at("linear").get<int>()).second) continue;
+        if (!fs::is_regular_file(fs::path(dir) / p.at("path").get<std::string>() / "manifest.json"))
+          fail(part.string(), fmt::format("lists {} but it is missing", p.at("path").dump()));
+        merged["probes"].push_back(p);
+      }
+    } catch (const Error&) {
+      throw;
+    } catch (const std::exception& e) {
+      fail(part.string(), fmt::format("not a shard list: {}", e.what()));
+    }
+  }
+  if (static_cast<int>(seen.size()) != total)
+    fail(dir, fmt::format("the shards hold {} of the grid's {} probes; run the missing shards "
+                          "first",
+                          seen.size(), total));
+  std::sort(merged["probes"].begin(), merged["probes"].end(),
+            [](const Json& a, const Json& b) { return a["linear"] < b["linear"]; });
+  const std::string text = merged.dump(2) + "\n";
+  writeFileAtomic(fs::path(dir) / "probes.json",
+                  std::vector<std::uint8_t>(text.begin(), text.end()));
+  if (!global.quiet)
+    fmt::print(stderr, "merged {} shard lists into {}: {} probes\n", parts.size(),
+               (fs::path(dir) / "probes.json").string(), total);
+}
+
+void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
+  if (!o.merge.empty()) {
+    if (!o.scene.scene.empty() || !o.at.empty() || !o.grid.empty())
+      fail("--merge", "merges the lists of a grid's shards; it takes no scene, --at or --grid");
+    mergeShards(o.merge, global);
+    return;
+  }
+  if (o.scene.scene.empty()) fail("scene", "a scene is required (a glTF file, 'sphere', 'grid')");
+  if (o.output.empty()) fail("--output", "an output directory is required");
+  if (o.at.empty() == o.grid.empty())
+    fail(o.at.empty() ? "--at" : "--grid",
+         "give either --at X,Y,Z (one probe) or --grid with "
+         "--bounds (a grid of probes)");
+  if (!o.shard.empty() && o.grid.empty()) fail("--shard", "splits a grid: it needs --grid");
+  checkLightingOptions(o.scene);
+  const glm::vec3 rotation = parseVec3(o.rotation, "--rotation");
+  const Scene scene = loadScene(o.scene);
+  const auto [sceneLo, sceneHi] = scene.bounds();
+  // The default proxy: the scene's bounds (a room's walls).
+  std::optional<ProbeVolume> proxy;
+  if (o.proxy != "none")
+    proxy = o.proxy.empty()
+                ? boxVolume(sceneLo, sceneHi)
+                : parseVolume(o.proxy,
+                              o.at.empty() ? 0.5f * (sceneLo + sceneHi) : parseVec3(o.at, "--at"),
+                              rotation, "--proxy");
+  std::vector<PlannedProbe> probes;
+  if (!o.at.empty()) {
+    PlannedProbe p;
+    p.placement.position = parseVec3(o.at, "--at");
+    p.placement.hasProxy = proxy.has_value();
+    if (proxy) p.placement.proxy = *proxy;
+    p.placement.influence = !o.influence.empty() ? parseVolume(o.influence, p.placement.position,
+                                                               rotation, "--influence")
+                                                 : (proxy ? *proxy : boxVolume(sceneLo, sceneHi));
+    p.placement.fade = o.fade >= 0.0f ? o.fade : 0.25f * smallestHalfSize(p.placement.influence);
+    p.placement.rotationDegrees = rotation;
+    probes.push_back(p);
+  } else {
+    if (!o.influence.empty())
+      fail("--influence", "a grid's probes each influence their own cell; use --fade");
+    probes = planGrid(o, proxy ? &*proxy : nullptr, rotation);
+  }
+  // A probe outside the scene sees nothing of it: a mistake, most likely.
+  for (const PlannedProbe& p : probes) {
+    const glm::vec3 x = p.placement.position;
+    if (glm::any(glm::lessThan(x, sceneLo)) || glm::any(glm::greaterThan(x, sceneHi)))
+      fail(o.at.empty() ? "--bounds" : "--at",
+           fmt::format("the probe at ({}, {}, {}) lies outside the scene's bounds ({}, {}, {}) .. "
+                       "({}, {}, {})",
+                       x.x, x.y, x.z, sceneLo.x, sceneLo.y, sceneLo.z, sceneHi.x, sceneHi.y,
+                       sceneHi.z));
+  }
+  std::vector<PlannedProbe> mine;
+  std::string listName = "probes.json";
+  if (!o.shard.empty()) {
+    const auto [k, n] = parseShard(o.shard);
+    for (const PlannedProbe& p : probes)
+      if (p.linear % n == k) mine.push_back(p);
+    listName = shardListName(k, n);
+  } else {
+    mine = probes;
+  }
+  const LoadedBake env = loadOrBake(o.scene);
+  const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    const PlannedProbe& p = mine[i];
+    const fs::path dir =
+        p.directory.empty() ? fs::path(o.output) : fs::path(o.output) / p.directory;
+    const auto t0 = std::chrono::steady_clock::now();
+    const double captureMs = captureAndBake(o, scene, env, p, dir, showProgress);
+    const double totalMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (!global.quiet)
+      fmt::print(stderr,
+                 "[{}/{}] probe at ({:.3g}, {:.3g}, {:.3g}) into {}: capture {:.2f} s, "
+                 "bake {:.2f} s\n",
+                 i + 1, mine.size(), p.placement.position.x, p.placement.position.y,
+                 p.placement.position.z, dir.string(), captureMs / 1000.0,
+                 (totalMs - captureMs) / 1000.0);
+  }
+  if (!o.grid.empty()) {  // the list last: it names only probes that are complete
+    const std::string text = gridListJson(o, mine).dump(2) + "\n";
+    writeFileAtomic(fs::path(o.output) / listName,
+                    std::vector<std::uint8_t>(text.begin(), text.end()));
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!global.quiet)
+      fmt::print(stderr, "{} probes in {:.1f} s ({:.1f} probes per minute); list: {}\n",
+                 mine.size(), seconds, 60.0 * static_cast<double>(mine.size()) / seconds,
+                 (fs::path(o.output) / listName).string());
+  }
+}
+
+}  // namespace
+
+void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
+  auto opts = std::make_shared<ProbeCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "probe", "Capture local light probes inside a scene (path traced) and bake them");
+  cmd->add_option("scene", opts->scene.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'");
+  cmd->add_option("--env", opts->scene.env,
+                  "Distant environment lighting the scene (default: the bundled sunset.exr); "
+                  "'none': the scene's lights and emission alone");
+  cmd->add_option("--lights", opts->scene.lightsFile, "Lights file (JSON) added to the scene's");
+  cmd->add_option("--bake", opts->scene.bakeDir, "An existing bake of the distant environment");
+  cmd->add_option("-o,--output", opts->output,
+                  "Output directory: the probe's bake (--at), or one directory per probe and "
+                  "probes.json (--grid)");
+  cmd->add_option("--at", opts->at, "Capture one probe at X,Y,Z");
+  cmd->add_option("--grid", opts->grid,
+                  "A grid of NX,NY,NZ probes at the cell centers of --bounds");
+  cmd->add_option("--bounds", opts->bounds, "The grid's box MINX,MINY,MINZ,MAXX,MAXY,MAXZ");
+  cmd->add_option("--shard", opts->shard,
+                  "Capture the K-th of N disjoint parts of the grid (K/N, K from 0); merge the "
+                  "parts' lists with --merge");
+  cmd->add_option("--merge", opts->merge,
+                  "Merge the shard lists in this grid directory into probes.json");
+  cmd->add_option("--proxy", opts->proxy,
+                  "Parallax proxy: sphere:R (about --at), sphere:X,Y,Z,R, "
+                  "box:MINX,MINY,MINZ,MAXX,MAXY,MAXZ, or none (default: the scene's bounds)");
+  cmd->add_option("--influence", opts->influence,
+                  "Where the probe applies, as --proxy (default: the proxy)");
+  cmd->add_option("--rotation", opts->rotation,
+                  "Rotation of the box volumes about their centers, degrees about X,Y,Z")
+      ->capture_default_str();
+  cmd->add_option("--fade", opts->fade,
+                  "Width of the influence's fade at its border (default: a quarter of its "
+                  "smallest half size)")
+      ->check(CLI::NonNegativeNumber & finiteNumber());
+  cmd->add_option("--size", opts->capture.size, "Cube face size of the capture and bake")
+      ->check(CLI::IsMember({8, 16, 32, 64, 128, 256, 512, 1024}))
+      ->capture_default_str();
+  cmd->add_option("--spp", opts->capture.spp, "Path samples per texel")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  cmd->add_option("--bounces", opts->capture.bounces, "Indirect bounces of the path tracer")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  cmd->add_flag("--capture-specular", opts->capture.specular,
+                "Keep the view-dependent specular of the captured surfaces (default: diffuse "
+                "and emission only, as Frostbite captures)");
+  cmd->add_option("--seed", opts->capture.seed, "Random seed")->capture_default_str();
+  cmd->add_flag("--force", opts->force, "Replace earlier probes' files in the output directory");
+  cmd->callback([opts, &global] { runProbe(*opts, global); });
+}
+
+}  // namespace ibl::cli

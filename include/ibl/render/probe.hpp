@@ -1,0 +1,93 @@
+#pragma once
+// Local light probes: cube maps captured inside the scene by the path tracer and baked like an
+// environment, then looked up with parallax correction and blended by influence volumes
+// (Lagarde & de Rousiers 2014, section 4.9; the formulas are ibl/shared/probes.h).
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ibl/bake/bake.hpp"
+#include "ibl/env/cubemap.hpp"
+#include "ibl/render/renderer.hpp"
+#include "ibl/render/scene.hpp"
+#include "ibl/shared/probes.h"
+
+namespace ibl {
+
+using shared::ProbeVolume;
+
+// A sphere of `radius` about `center`.
+ProbeVolume sphereVolume(glm::vec3 center, float radius);
+// The box [lo, hi] (in its own axes), turned about its center by Euler angles in degrees
+// (about X, then Y, then Z). Throws when lo >= hi on an axis.
+ProbeVolume boxVolume(glm::vec3 lo, glm::vec3 hi, glm::vec3 rotationDegrees = glm::vec3(0.0f));
+// Its volume (for the composition order).
+float volumeSize(const ProbeVolume& v);
+// Whether p lies inside (or on) the volume.
+bool volumeContains(const ProbeVolume& v, glm::vec3 p);
+
+// Where a probe was captured and how it applies.
+struct ProbePlacement {
+  glm::vec3 position{0.0f};         // capture point (the cube map's center)
+  bool hasProxy = false;            // without a proxy the probe is a distant one (no parallax)
+  ProbeVolume proxy{};              // the scene's shape for parallax correction
+  ProbeVolume influence{};          // where the probe applies
+  float fade = 0.0f;                // width of the influence's border over which it fades out
+  glm::vec3 rotationDegrees{0.0f};  // of the box volumes (as given), for the manifest
+};
+
+struct CaptureOptions {
+  int size = 128;         // cube face size of the capture
+  int spp = 64;           // path samples per texel
+  int bounces = 4;        // indirect bounces of the path tracer
+  bool specular = false;  // keep the view-dependent specular of the surfaces the probe sees
+  unsigned seed = 1;
+};
+
+struct ProbeCapture {
+  CubeMap radiance;    // one level
+  CubeMap visibility;  // one level, RGB = the share of each texel that sees the distant environment
+  double milliseconds = 0.0;
+};
+
+// Renders the cube at `position` with the reference path tracer (the environment of `bake`, the
+// scene's lights and emission), texel by texel over the same area as the cube's texels.
+ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResult& bake,
+                          const BakeOptions& bakeOptions, const CaptureOptions& options,
+                          const std::function<void(float)>& progress = {});
+
+// The manifest's "probe" record (a JSON object as text) and back; `name` names the file in
+// errors.
+std::string probeRecordJson(const ProbePlacement& placement, const CaptureOptions& capture,
+                            double captureMilliseconds);
+ProbePlacement parseProbeRecord(const std::string& json, const std::string& name);
+
+// A baked probe, ready to shade with.
+struct LocalProbe {
+  ProbePlacement placement;
+  BakeResult bake;
+  BakeOptions options;
+  std::string path;
+};
+
+// Reads probe directories (each written by `ibl probe`, or a grid's directory with its
+// probes.json), sorted from the smallest influence volume to the largest.
+std::vector<LocalProbe> loadProbes(const std::vector<std::string>& paths);
+
+// What the probes give a point: the specular map's value along the (parallax-corrected)
+// reflection and the irradiance (E / pi), each already weighed by the probes' shares, and the
+// coverage the probes reached (the distant environment gets the rest).
+struct ProbeLighting {
+  glm::vec3 prefiltered{0.0f};
+  glm::vec3 irradiance{0.0f};
+  float coverage = 0.0f;
+};
+// position, normal, the dominant reflection r and diffuse directions, perceptual roughness.
+ProbeLighting lookupProbes(const std::vector<LocalProbe>& probes, glm::vec3 position,
+                           glm::vec3 reflection, glm::vec3 diffuseDirection, float roughness,
+                           const RenderOptions& options);
+
+}  // namespace ibl

@@ -1,0 +1,263 @@
+#include "ibl/render/probe.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "ibl/core/error.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/shared/split_sum.h"
+
+namespace ibl {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+Json vec3Json(glm::vec3 v) {
+  return Json::array({v.x, v.y, v.z});
+}
+
+glm::vec3 vec3Of(const Json& j) {
+  if (!j.is_array() || j.size() != 3) throw std::runtime_error("expected [x, y, z]");
+  glm::vec3 v;
+  for (int i = 0; i < 3; ++i) v[i] = j.at(static_cast<std::size_t>(i)).get<float>();
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw std::runtime_error("a coordinate is not finite");
+  return v;
+}
+
+Json volumeJson(const ProbeVolume& v, glm::vec3 rotationDegrees) {
+  if (v.shape == 0)
+    return {{"shape", "sphere"}, {"center", vec3Json(v.center)}, {"radius", v.halfExtent.x}};
+  return {{"shape", "box"},
+          {"min", vec3Json(v.center - v.halfExtent)},
+          {"max", vec3Json(v.center + v.halfExtent)},
+          {"rotation_degrees", vec3Json(rotationDegrees)}};
+}
+
+ProbeVolume volumeOf(const Json& j, glm::vec3* rotationDegrees) {
+  const std::string shape = j.at("shape").get<std::string>();
+  if (shape == "sphere") {
+    const float r = j.at("radius").get<float>();
+    if (!(r > 0.0f) || !std::isfinite(r)) throw std::runtime_error("a sphere's radius must be > 0");
+    return sphereVolume(vec3Of(j.at("center")), r);
+  }
+  if (shape == "box") {
+    const glm::vec3 rot =
+        j.contains("rotation_degrees") ? vec3Of(j.at("rotation_degrees")) : glm::vec3(0.0f);
+    if (rotationDegrees) *rotationDegrees = rot;
+    return boxVolume(vec3Of(j.at("min")), vec3Of(j.at("max")), rot);
+  }
+  throw std::runtime_error(fmt::format("unknown shape '{}'", shape));
+}
+
+}  // namespace
+
+ProbeVolume sphereVolume(glm::vec3 center, float radius) {
+  ProbeVolume v;
+  v.shape = 0;
+  v.center = center;
+  v.halfExtent = glm::vec3(radius, 0.0f, 0.0f);
+  v.worldToLocal = glm::mat3(1.0f);
+  return v;
+}
+
+ProbeVolume boxVolume(glm::vec3 lo, glm::vec3 hi, glm::vec3 rotationDegrees) {
+  if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+    throw Error(
+        fmt::format("box volume: min ({}, {}, {}) must be below max ({}, {}, {}) on every "
+                    "axis",
+                    lo.x, lo.y, lo.z, hi.x, hi.y, hi.z));
+  ProbeVolume v;
+  v.shape = 1;
+  v.center = 0.5f * (lo + hi);
+  v.halfExtent = 0.5f * (hi - lo);
+  const glm::vec3 r = glm::radians(rotationDegrees);
+  glm::mat4 m(1.0f);
+  m = glm::rotate(m, r.z, glm::vec3(0, 0, 1));
+  m = glm::rotate(m, r.y, glm::vec3(0, 1, 0));
+  m = glm::rotate(m, r.x, glm::vec3(1, 0, 0));
+  v.worldToLocal = glm::transpose(glm::mat3(m));  // local-to-world is the rotation
+  return v;
+}
+
+float volumeSize(const ProbeVolume& v) {
+  if (v.shape == 0) return 4.0f / 3.0f * kPi * v.halfExtent.x * v.halfExtent.x * v.halfExtent.x;
+  return 8.0f * v.halfExtent.x * v.halfExtent.y * v.halfExtent.z;
+}
+
+bool volumeContains(const ProbeVolume& v, glm::vec3 p) {
+  if (v.shape == 0) return glm::length(p - v.center) <= v.halfExtent.x;
+  const glm::vec3 o = glm::abs(v.worldToLocal * (p - v.center));
+  return o.x <= v.halfExtent.x && o.y <= v.halfExtent.y && o.z <= v.halfExtent.z;
+}
+
+ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResult& bake,
+                          const BakeOptions& bakeOptions, const CaptureOptions& options,
+                          const std::function<void(float)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const int n = options.size;
+  // The six faces side by side: pixel (x, y) of the strip is texel (x mod n, y) of face x / n,
+  // its rays spread over the texel's square on the face plane.
+  const RayGenerator faceRays = [&](glm::vec2 pixel) {
+    const int face = std::clamp(static_cast<int>(pixel.x) / n, 0, kFaceCount - 1);
+    const float sc = 2.0f * (pixel.x - static_cast<float>(face * n)) / static_cast<float>(n) - 1.0f;
+    const float tc = 2.0f * pixel.y / static_cast<float>(n) - 1.0f;
+    return Ray{position, glm::normalize(faceToDirection(face, sc, tc))};
+  };
+  RenderOptions o;
+  o.mode = RenderMode::Reference;
+  o.spp = options.spp;
+  o.bounces = options.bounces;
+  o.cameraSeesSpecular = options.specular;
+  o.seed = options.seed;
+  const RenderResult strip =
+      renderRays(scene, kFaceCount * n, n, faceRays, bake, bakeOptions, o, progress);
+  ProbeCapture c;
+  c.radiance = CubeMap(n, 1);
+  c.visibility = CubeMap(n, 1);
+  for (int f = 0; f < kFaceCount; ++f)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        c.radiance.face(0, f).at(x, y) = strip.color.at(f * n + x, y);
+        const float covered = strip.alpha[static_cast<std::size_t>(y) * kFaceCount * n + f * n + x];
+        c.visibility.face(0, f).at(x, y) = glm::vec3(1.0f - covered);
+      }
+  c.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return c;
+}
+
+std::string probeRecordJson(const ProbePlacement& p, const CaptureOptions& capture,
+                            double captureMilliseconds) {
+  Json j;
+  j["position"] = vec3Json(p.position);
+  j["proxy"] = p.hasProxy ? volumeJson(p.proxy, p.rotationDegrees) : Json(nullptr);
+  j["influence"] = volumeJson(p.influence, p.rotationDegrees);
+  j["fade"] = p.fade;
+  j["capture"] = {{"size", capture.size},       {"spp", capture.spp},
+                  {"bounces", capture.bounces}, {"specular", capture.specular},
+                  {"seed", capture.seed},       {"milliseconds", std::round(captureMilliseconds)}};
+  j["conventions"] = {
+      {"lookup",
+       "parallax-corrected along the proxy (Lagarde & Zanuttini 2012), blended back "
+       "toward the reflection by roughness; distance-based roughness (Frostbite, "
+       "appendix F)"},
+      {"composition",
+       "smallest influence first, share = saturate(weight - coverage), then the "
+       "distant environment (Frostbite 4.9.5)"},
+      {"visibility", "visibility.ktx2: the share of each texel that sees the distant environment"}};
+  return j.dump();
+}
+
+ProbePlacement parseProbeRecord(const std::string& text, const std::string& name) {
+  try {
+    const Json j = Json::parse(text);
+    ProbePlacement p;
+    p.position = vec3Of(j.at("position"));
+    if (!j.at("proxy").is_null()) {
+      p.proxy = volumeOf(j.at("proxy"), &p.rotationDegrees);
+      p.hasProxy = true;
+    }
+    p.influence = volumeOf(j.at("influence"), &p.rotationDegrees);
+    p.fade = j.at("fade").get<float>();
+    if (!(p.fade >= 0.0f) || !std::isfinite(p.fade)) throw std::runtime_error("fade must be >= 0");
+    return p;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    fail(name, fmt::format("not a probe record: {}", e.what()));
+  }
+}
+
+namespace {
+
+LocalProbe loadProbe(const fs::path& dir) {
+  const fs::path manifestPath = dir / "manifest.json";
+  if (!fs::is_regular_file(manifestPath))
+    fail(dir.string(), "is not a probe directory (no manifest.json)");
+  const auto bytes = readFileBytes(manifestPath);
+  Json manifest;
+  try {
+    manifest = Json::parse(bytes.begin(), bytes.end());
+  } catch (const std::exception& e) {
+    fail(manifestPath.string(), fmt::format("not valid JSON: {}", e.what()));
+  }
+  if (!manifest.contains("probe"))
+    fail(manifestPath.string(),
+         "has no probe record: a bake of a distant environment, not a probe "
+         "(bake probes with `ibl probe`)");
+  LocalProbe probe;
+  probe.placement = parseProbeRecord(manifest["probe"].dump(), manifestPath.string());
+  probe.bake = loadBake(dir, &probe.options);
+  probe.path = dir.string();
+  return probe;
+}
+
+}  // namespace
+
+std::vector<LocalProbe> loadProbes(const std::vector<std::string>& paths) {
+  std::vector<LocalProbe> probes;
+  for (const std::string& path : paths) {
+    const fs::path dir(path);
+    if (!fs::exists(dir)) fail(path, "no such probe directory");
+    if (fs::is_regular_file(dir / "probes.json")) {  // a grid: every probe it lists
+      const auto bytes = readFileBytes(dir / "probes.json");
+      Json grid;
+      try {
+        grid = Json::parse(bytes.begin(), bytes.end());
+        for (const auto& entry : grid.at("probes"))
+          probes.push_back(loadProbe(dir / entry.at("path").get<std::string>()));
+      } catch (const Error&) {
+        throw;
+      } catch (const std::exception& e) {
+        fail((dir / "probes.json").string(), fmt::format("not a probe grid: {}", e.what()));
+      }
+    } else {
+      probes.push_back(loadProbe(dir));
+    }
+  }
+  std::stable_sort(probes.begin(), probes.end(), [](const LocalProbe& a, const LocalProbe& b) {
+    return volumeSize(a.placement.influence) < volumeSize(b.placement.influence);
+  });
+  return probes;
+}
+
+ProbeLighting lookupProbes(const std::vector<LocalProbe>& probes, glm::vec3 position,
+                           glm::vec3 reflection, glm::vec3 diffuseDirection, float roughness,
+                           const RenderOptions& o) {
+  ProbeLighting result;
+  for (const LocalProbe& probe : probes) {
+    if (result.coverage >= 1.0f) break;
+    const ProbePlacement& pl = probe.placement;
+    const float weight = shared::influenceWeight(pl.influence, pl.fade, position);
+    const float share = shared::probeShare(weight, result.coverage);
+    if (share <= 0.0f) continue;
+    result.coverage = std::min(result.coverage + share, 1.0f);
+    shared::ParallaxLookup look;
+    look.direction = reflection;
+    look.roughness = roughness;
+    if (pl.hasProxy && o.parallaxCorrection)
+      look = shared::parallaxCorrectedLookup(pl.proxy, pl.position, position, reflection, roughness,
+                                             o.distanceRoughness);
+    if (o.only != ShadingTerms::Diffuse) {
+      const float lod = specularLodForRoughness(look.roughness, probe.bake.specular.levelCount(),
+                                                probe.options.specular.mapping);
+      result.prefiltered += share * sampleTrilinear(probe.bake.specular, lod, look.direction);
+    }
+    if (o.only != ShadingTerms::Specular)
+      result.irradiance += share * sampleBilinear(probe.bake.irradiance, 0, diffuseDirection);
+  }
+  return result;
+}
+
+}  // namespace ibl
