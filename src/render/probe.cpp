@@ -119,6 +119,7 @@ ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResu
   o.spp = options.spp;
   o.bounces = options.bounces;
   o.cameraSeesSpecular = options.specular;
+  o.cameraSeesEmitters = false;
   o.seed = options.seed;
   const RenderResult strip =
       renderRays(scene, kFaceCount * n, n, faceRays, bake, bakeOptions, o, progress);

@@ -160,7 +160,9 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
         const float jx = j.x, jy = j.y;
         const Ray ray = generateRay({static_cast<float>(x) + jx, static_cast<float>(y) + jy});
         const RayTracer::Hit hit = tracer.intersect(ray);
-        const NearestLight seen = nearestLight(scene.lights, ray.origin, ray.direction);
+        const NearestLight seen = o.cameraSeesEmitters
+                                      ? nearestLight(scene.lights, ray.origin, ray.direction)
+                                      : NearestLight{};
         glm::vec3 c;
         if (seen.index >= 0 && (!hit.found || seen.hit.distance < hit.t)) {
           if (std::isfinite(seen.hit.distance))

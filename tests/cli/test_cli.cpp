@@ -428,3 +428,41 @@ TEST(Cli, BakeCopiesAsEquirectOrStrips) {
   EXPECT_EQ(readImageFile(dir / "s" / "preview.png").levels[0][0].width, 120);
   EXPECT_EQ(readImageFile(dir / "s" / "irradiance.hdr").levels[0][0].height, 6 * 32);
 }
+
+TEST(Cli, ProbeCapturesBakesAndRendersAndRejectsBadInput) {
+  const TempDir dir;
+  const auto out = dir.path() / "probe";
+  // One probe between the grid's spheres, a box proxy; then a render that reads it.
+  CliRun r = runIbl("probe grid --at 0,0,0.2 --proxy box:-7,-2,-1,7,2,1 --size 16 --spp 4 -o " +
+                    quote(out));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(out / "specular.ktx2"));
+  EXPECT_TRUE(std::filesystem::exists(out / "visibility.ktx2"));
+  r = runIbl("render grid --probes " + quote(out) + " --size 32x16 -o " +
+             quote(dir.path() / "r.png"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  // A grid in two shards, merged.
+  const auto grid = dir.path() / "grid";
+  for (const char* shard : {"0/2", "1/2"}) {
+    r = runIbl("probe grid --grid 2,1,1 --bounds -3,-1,-0.5,3,1,0.5 --size 8 --spp 2 --shard " +
+               std::string(shard) + " -o " + quote(grid));
+    ASSERT_EQ(r.status, 0) << r.output;
+  }
+  r = runIbl("probe --merge " + quote(grid));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(grid / "probes.json"));
+  r = runIbl("render grid --probes " + quote(grid) + " --size 32x16 -o " +
+             quote(dir.path() / "g.png"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  // Bad input: outside the scene, an empty proxy, a folder that holds no probe.
+  r = runIbl("probe grid --at 0,0,9 -o " + quote(dir.path() / "x"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("outside the scene's bounds"), std::string::npos) << r.output;
+  r = runIbl("probe grid --at 0,0,0 --proxy box:1,1,1,1,2,2 -o " + quote(dir.path() / "x"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("an empty box"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "x"));
+  r = runIbl("render grid --probes " + quote(dir.path()) + " -o " + quote(dir.path() / "y.png"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("is not a probe directory"), std::string::npos) << r.output;
+}

@@ -40,6 +40,9 @@ struct RenderOptions {
   // Reference: the camera sees the surfaces' specular reflection (a probe capture leaves it
   // out: it depends on the view, Frostbite section 4.9.3).
   bool cameraSeesSpecular = true;
+  // The camera sees the area lights and the sun (a probe capture does not: the split sum adds
+  // the lights' own reflections analytically).
+  bool cameraSeesEmitters = true;
   // Split sum: local probes (probe.hpp), smallest influence first, composed before the distant
   // environment; with parallax correction along the proxies and distance-based roughness.
   const std::vector<LocalProbe>* probes = nullptr;
