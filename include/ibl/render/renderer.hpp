@@ -86,11 +86,12 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
 struct SurfacePoint {
   glm::vec3 position{0.0f};  // world (local probes and ambient occlusion read it)
   glm::vec3 normal;          // shading normal, unit
-  glm::vec3 baseColor;  // linear
+  glm::vec3 baseColor;       // linear
   float metallic;
   float roughness;  // perceptual
   float occlusion = 1.0f;
-  bool occlusionTexture = false;  // the occlusion comes from the material (else --ao may compute it)
+  bool occlusionTexture =
+      false;  // the occlusion comes from the material (else --ao may compute it)
   glm::vec3 emissive{0.0f};
 };
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
