@@ -33,11 +33,10 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   if (!o.screenshot.empty()) checkRenderedImagePath(o.screenshot);
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
-  if (!o.scene.probes.empty())
-    fail("--probes", "the viewer does not read local probes yet; use `ibl render --probes`");
   if (o.scene.aoRays > 0) fail("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
   const Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
+  const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
   const LoadedBake baked = loadOrBake(o.scene);
   RenderOptions shading = shadingOptions(o.scene);
   shading.spp = o.scene.spp > 0 ? o.scene.spp : 4;
@@ -46,7 +45,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     gpu::ContextOptions co;
     co.graphics = true;
     const auto context = gpu::Context::create(co);
-    gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options);
+    gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes);
     const RenderResult result = renderer.render(camera, shading, o.skyboxMip);
     if (renderer.samples() < shading.spp && !global.quiet)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
@@ -75,7 +74,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     writeRenderedImage(path, result, ev100, curve, false);
     if (!global.quiet) fmt::print(stderr, "screenshot {}\n", path);
   };
-  const gpu::WindowStats stats = gpu::runViewerWindow(scene, baked.bake, baked.options, w);
+  const gpu::WindowStats stats = gpu::runViewerWindow(scene, baked.bake, baked.options, w, probes);
   if (!global.quiet) {
     if (stats.samples < shading.spp)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",

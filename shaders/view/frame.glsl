@@ -14,6 +14,8 @@ layout(std140, set = 0, binding = 0) uniform Frame {
                         // directions, specular occlusion
   ivec4 models;         // diffuse (0 Disney, 1 Lambert), irradiance (0 cube, 1 SH9), samples
                         // per pixel at the standard locations (0: unknown locations), lights
+  vec4 probes;          // local probes: count, their specular levels - 1, flags (1 parallax
+                        // correction, 2 distance-based roughness, 4 Frostbite's roughness mapping)
   vec4 sh[9];           // radiance SH9 times the cosine lobe's A_l / pi: irradiance / pi
 } frame;
 layout(set = 0, binding = 1) uniform samplerCube specularMap;
@@ -45,3 +47,11 @@ Ray primaryRay(vec2 p) {
   return Ray(frame.cameraPosition.xyz,
              normalize(frame.cameraForward.xyz + x * frame.cameraRight.xyz + y * frame.cameraUp.xyz));
 }
+// The local probes, smallest influence first (uploadProbes in src/gpu/scene_renderer.cpp), 11
+// vec4 each: (capture point, has a proxy), proxy (center and shape, half extent, the three
+// columns of its world-to-local rotation), influence (the same; the half extent's w: the fade).
+layout(std430, set = 0, binding = 8) readonly buffer Probes {
+  vec4 probeData[];
+};
+layout(set = 0, binding = 9) uniform samplerCubeArray probeSpecularMaps;
+layout(set = 0, binding = 10) uniform samplerCubeArray probeIrradianceMaps;

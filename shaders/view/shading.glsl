@@ -88,6 +88,46 @@ vec4 ltcTableEntry(float roughness, float NoV) {
              f.y);
 }
 
+ProbeVolume probeVolumeAt(int base) {
+  ProbeVolume v;
+  v.center = probeData[base].xyz;
+  v.shape = int(probeData[base].w);
+  v.halfExtent = probeData[base + 1].xyz;
+  v.worldToLocal = mat3(probeData[base + 2].xyz, probeData[base + 3].xyz, probeData[base + 4].xyz);
+  return v;
+}
+
+// The local probes' share of the lighting (lookupProbes in src/render/probe.cpp, with the GPU's
+// lookups): prefiltered and irradiance weighed by each probe's share; returns the coverage.
+float localProbes(vec3 position, vec3 r, vec3 d, float roughness, int terms,
+                  out vec3 prefiltered, out vec3 irradiance) {
+  prefiltered = vec3(0.0);
+  irradiance = vec3(0.0);
+  float coverage = 0.0;
+  int flags = int(frame.probes.z);
+  for (int i = 0; i < int(frame.probes.x) && coverage < 1.0; ++i) {
+    int base = 11 * i;
+    ProbeVolume influence = probeVolumeAt(base + 6);
+    float weight = influenceWeight(influence, probeData[base + 7].w, position);
+    float share = probeShare(weight, coverage);
+    if (share <= 0.0) continue;
+    coverage = min(coverage + share, 1.0);
+    ParallaxLookup look;
+    look.direction = r;
+    look.roughness = roughness;
+    if (probeData[base].w > 0.5 && (flags & 1) != 0)
+      look = parallaxCorrectedLookup(probeVolumeAt(base + 1), probeData[base].xyz, position, r,
+                                     roughness, (flags & 2) != 0);
+    if (terms != 1) {
+      float lod = specularLodForRoughness(look.roughness, frame.probes.y, (flags & 4) != 0);
+      prefiltered += share * textureLod(probeSpecularMaps, vec4(look.direction, float(i)), lod).rgb;
+    }
+    if (terms != 2)
+      irradiance += share * textureLod(probeIrradianceMaps, vec4(d, float(i)), 0.0).rgb;
+  }
+  return coverage;
+}
+
 // The environment's split sum plus the scene's lights (shadeSplitSum and shadeLightsRealTime in
 // src/render/renderer.cpp) at a point at `position`.
 vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m) {
@@ -109,13 +149,20 @@ vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m) {
       lit += l.color * profile * lightRadiance(direct, n, view, inc, dfg.xy, s);
     }
   }
-  if (frame.lods.w < 0.5) return lit + splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+  // Local probes first, the distant environment for the rest.
+  float distant = 1.0;
+  if (frame.probes.x > 0.0)
+    distant = 1.0 - localProbes(position, look.specularDirection, look.diffuseDirection,
+                                m.roughness, s.terms, prefiltered, irradiance);
+  if (frame.lods.w < 0.5 || distant <= 0.0)
+    return lit + splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
   if (s.terms != 1) {
     float lod = specularLodForRoughness(m.roughness, frame.lods.x, frame.lods.y > 0.5);
-    prefiltered = textureLod(specularMap, look.specularDirection, lod).rgb;
+    prefiltered += distant * textureLod(specularMap, look.specularDirection, lod).rgb;
   }
   if (s.terms != 2)
-    irradiance = frame.models.y == 0 ? textureLod(irradianceMap, look.diffuseDirection, 0.0).rgb
-                                     : irradianceSh9OverPi(look.diffuseDirection);
+    irradiance += distant * (frame.models.y == 0
+                                 ? textureLod(irradianceMap, look.diffuseDirection, 0.0).rgb
+                                 : irradianceSh9OverPi(look.diffuseDirection));
   return lit + splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
 }

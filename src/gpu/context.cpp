@@ -341,6 +341,12 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   deviceInfo.pQueueCreateInfos = &queueInfo;
   deviceInfo.enabledExtensionCount = options.swapchain ? 1 : 0;
   deviceInfo.ppEnabledExtensionNames = &swapchain;
+  // Cube map arrays where the device has them: the viewer's local probes are one array.
+  VkPhysicalDeviceFeatures supported{}, enabled{};
+  vkGetPhysicalDeviceFeatures(impl->physical, &supported);
+  enabled.imageCubeArray = supported.imageCubeArray;
+  impl->imageCubeArray = supported.imageCubeArray == VK_TRUE;
+  deviceInfo.pEnabledFeatures = &enabled;
   check(vkCreateDevice(impl->physical, &deviceInfo, nullptr, &impl->device), "vkCreateDevice");
   vkGetDeviceQueue(impl->device, impl->family, 0, &impl->queue);
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -550,7 +556,9 @@ DeviceImage::DeviceImage(Context& context, const Description& d)
   }
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   viewInfo.image = image_;
-  viewInfo.viewType = d.cube ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_2D;
+  viewInfo.viewType = !d.cube       ? VK_IMAGE_VIEW_TYPE_2D
+                      : d.cubeArray ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY
+                                    : VK_IMAGE_VIEW_TYPE_CUBE;
   viewInfo.format = d.format;
   viewInfo.subresourceRange = {d.aspect, 0, d.levels, 0, d.layers};
   const VkResult r = vkCreateImageView(c_->device, &viewInfo, nullptr, &view_);

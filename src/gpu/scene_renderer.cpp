@@ -28,9 +28,13 @@ struct FrameUniforms {
   glm::mat4 viewProjection;
   glm::vec4 cameraPosition, cameraForward, cameraRight, cameraUp, viewport, background, lods;
   glm::ivec4 terms, models;
+  glm::vec4 probes;  // count, the probes' specular levels - 1, flags (view/frame.glsl)
   std::array<glm::vec4, 9> sh;
 };
-static_assert(sizeof(FrameUniforms) == 64 + 9 * 16 + 9 * 16);
+static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16);
+
+// vec4s per probe in the probes buffer (view/frame.glsl).
+constexpr int kProbeVec4s = 11;
 
 // Segments around the polyhedron drawn for a sphere (the fragment shader ray traces the sphere
 // inside it, so that silhouettes and normals are exact).
@@ -54,17 +58,21 @@ std::vector<std::uint8_t> bytesOfFloats(std::span<const float> v) {
   return out;
 }
 
-// Every level and face of a cube map as RGBA32F texels, in upload order.
-std::unique_ptr<DeviceImage> uploadCube(Context& context, const CubeMap& cube) {
+// Cube maps of one size and level count as RGBA32F texels in upload order (level by level,
+// cube by cube, face by face): one cube, or (array) a cube map array.
+std::unique_ptr<DeviceImage> uploadCubes(Context& context, const std::vector<const CubeMap*>& cubes,
+                                         bool array) {
   std::vector<float> texels;
-  for (const auto& level : cube.levels)
-    for (const Image& face : level)
-      for (const glm::vec3& p : face.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
+  for (int m = 0; m < cubes[0]->levelCount(); ++m)
+    for (const CubeMap* cube : cubes)
+      for (const Image& face : cube->levels[m])
+        for (const glm::vec3& p : face.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
   DeviceImage::Description d;
-  d.width = d.height = static_cast<std::uint32_t>(cube.size());
-  d.levels = static_cast<std::uint32_t>(cube.levelCount());
-  d.layers = kFaceCount;
+  d.width = d.height = static_cast<std::uint32_t>(cubes[0]->size());
+  d.levels = static_cast<std::uint32_t>(cubes[0]->levelCount());
+  d.layers = static_cast<std::uint32_t>(kFaceCount * cubes.size());
   d.cube = true;
+  d.cubeArray = array;
   d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
   auto image = std::make_unique<DeviceImage>(context, d);
   uploadImage(context, *image, bytesOfFloats(texels), 4 * sizeof(float));
@@ -233,11 +241,59 @@ glm::mat4 viewProjectionOf(const Camera& camera, std::pair<glm::vec3, glm::vec3>
 
 }  // namespace
 
+void SceneRenderer::Impl::uploadProbes(const std::vector<LocalProbe>& probes,
+                                       const BakeResult& bake) {
+  // Without probes the environment's cubes stand in (the shader reads none of them).
+  std::vector<const CubeMap*> specularCubes{&bake.specular}, irradianceCubes{&bake.irradiance};
+  std::vector<glm::vec4> data(kProbeVec4s, glm::vec4(0.0f));
+  if (!probes.empty()) {
+    if (!context.impl().imageCubeArray)
+      fail("--probes", fmt::format("the Vulkan device ({}) has no cube map arrays, which the "
+                                   "viewer's probes need",
+                                   context.device().name));
+    specularCubes.clear();
+    irradianceCubes.clear();
+    data.clear();
+    const LocalProbe& first = probes.front();
+    for (const LocalProbe& p : probes) {
+      if (p.bake.specular.size() != first.bake.specular.size() ||
+          p.bake.specular.levelCount() != first.bake.specular.levelCount() ||
+          p.bake.irradiance.size() != first.bake.irradiance.size() ||
+          p.options.specular.mapping != first.options.specular.mapping)
+        fail(p.path,
+             fmt::format("the viewer needs probes of one size and level count; {} has "
+                         "{}^2 x {} levels, {} has {}^2 x {}",
+                         p.path, p.bake.specular.size(), p.bake.specular.levelCount(), first.path,
+                         first.bake.specular.size(), first.bake.specular.levelCount()));
+      specularCubes.push_back(&p.bake.specular);
+      irradianceCubes.push_back(&p.bake.irradiance);
+      const ProbePlacement& pl = p.placement;
+      const auto volume = [&](const ProbeVolume& v) {
+        data.push_back(glm::vec4(v.center, static_cast<float>(v.shape)));
+        data.push_back(glm::vec4(v.halfExtent, 0.0f));
+        for (int c = 0; c < 3; ++c) data.push_back(glm::vec4(v.worldToLocal[c], 0.0f));
+      };
+      data.push_back(glm::vec4(pl.position, pl.hasProxy ? 1.0f : 0.0f));
+      volume(pl.hasProxy ? pl.proxy : pl.influence);
+      volume(pl.influence);
+      data[data.size() - 4].w = pl.fade;  // the influence's half extent carries the fade
+    }
+    probeCount = static_cast<int>(probes.size());
+    probeMaxLod = static_cast<float>(first.bake.specular.levelCount() - 1);
+    probeFrostbiteMapping = first.options.specular.mapping == RoughnessMapping::Frostbite;
+  }
+  probeSpecular = uploadCubes(context, specularCubes, true);
+  probeIrradiance = uploadCubes(context, irradianceCubes, true);
+  probesBuffer =
+      std::make_unique<Buffer>(context, data.size() * sizeof(glm::vec4), BufferMemory::Host);
+  std::memcpy(probesBuffer->mapped(), data.data(), data.size() * sizeof(glm::vec4));
+}
+
 SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake,
-                          const BakeOptions& bakeOptions)
+                          const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes)
     : context(c), device(c.impl().device) {
   try {
-    create(scene, bake, bakeOptions);
+    create(scene, bake, bakeOptions, probes);
   } catch (...) {
     destroy();  // a destructor does not run for a constructor that throws
     throw;
@@ -245,7 +301,8 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake
 }
 
 void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
-                                 const BakeOptions& bakeOptions) {
+                                 const BakeOptions& bakeOptions,
+                                 const std::vector<LocalProbe>& probes) {
   if (!context.impl().graphics) fail("vulkan", "the device's queue cannot rasterize");
   bounds = scene.bounds();
   // Meshes: the scene's, then polyhedra around its spheres.
@@ -314,9 +371,10 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   }
 
   // The bake.
-  specular = uploadCube(context, bake.specular);
-  irradiance = uploadCube(context, bake.irradiance);
-  source = uploadCube(context, bake.source);
+  specular = uploadCubes(context, {&bake.specular}, false);
+  irradiance = uploadCubes(context, {&bake.irradiance}, false);
+  source = uploadCubes(context, {&bake.source}, false);
+  uploadProbes(probes, bake);
   dfg = uploadImage2d(context, bake.dfg);
   const LtcTable& ltcTable = ltcGgxTable();
   ltc =
@@ -371,6 +429,11 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   for (std::uint32_t b = 6; b <= 7; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  frameBindings.push_back(
+      {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  for (std::uint32_t b = 9; b <= 10; ++b)
+    frameBindings.push_back(
+        {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
   std::vector<VkDescriptorSetLayoutBinding> materialBindings;
   for (std::uint32_t b = 0; b < 5; ++b)
@@ -390,8 +453,8 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   const auto materialCount = static_cast<std::uint32_t>(materials.size());
   const std::array<VkDescriptorPoolSize, 3> sizes{
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
-      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 6 + 5 * materialCount}};
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8 + 5 * materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1 + materialCount;
   poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
@@ -433,15 +496,20 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
     writes.push_back(imageWrite(frameSet, b + 1, &frameImages[b]));
   writes.push_back(imageWrite(frameSet, 6, &ltcImage));
   writes.push_back(imageWrite(frameSet, 7, &iesImage));
-  const VkDescriptorBufferInfo lightsInfo{static_cast<VkBuffer>(lightsBuffer->handle()), 0,
-                                          VK_WHOLE_SIZE};
-  {
+  const VkDescriptorImageInfo probeImages[2] = {{cubeSampler, probeSpecular->view(), readable},
+                                                {cubeSampler, probeIrradiance->view(), readable}};
+  writes.push_back(imageWrite(frameSet, 9, &probeImages[0]));
+  writes.push_back(imageWrite(frameSet, 10, &probeImages[1]));
+  const VkDescriptorBufferInfo buffers[2] = {
+      {static_cast<VkBuffer>(lightsBuffer->handle()), 0, VK_WHOLE_SIZE},
+      {static_cast<VkBuffer>(probesBuffer->handle()), 0, VK_WHOLE_SIZE}};
+  for (std::uint32_t i = 0; i < 2; ++i) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = frameSet;
-    w.dstBinding = 5;
+    w.dstBinding = i == 0 ? 5 : 8;
     w.descriptorCount = 1;
     w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = &lightsInfo;
+    w.pBufferInfo = &buffers[i];
     writes.push_back(w);
   }
   for (std::size_t m = 0; m < materials.size(); ++m) {
@@ -672,6 +740,11 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   u.terms = glm::ivec4(s.terms, s.multipleScattering, s.dominantDirections, s.specularOcclusion);
   u.models = glm::ivec4(s.disneyDiffuse ? 0 : 1, o.irradiance == IrradianceSource::Cube ? 0 : 1,
                         standardSampleLocations ? t.samples : 0, lightCount);
+  u.probes =
+      glm::vec4(static_cast<float>(probeCount), probeMaxLod,
+                static_cast<float>((o.parallaxCorrection ? 1 : 0) | (o.distanceRoughness ? 2 : 0) |
+                                   (probeFrostbiteMapping ? 4 : 0)),
+                0.0f);
   for (int k = 0; k < 9; ++k) u.sh[k] = glm::vec4(shIrradianceOverPi[k], 0.0f);
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
 
@@ -712,8 +785,8 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
 }
 
 SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const BakeResult& bake,
-                             const BakeOptions& bakeOptions)
-    : impl_(std::make_unique<Impl>(context, scene, bake, bakeOptions)) {}
+                             const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes)
+    : impl_(std::make_unique<Impl>(context, scene, bake, bakeOptions, probes)) {}
 SceneRenderer::~SceneRenderer() = default;
 
 int SceneRenderer::samples() const {

@@ -9,6 +9,7 @@
 #include "gpu/buffers.hpp"
 #include "gpu/vulkan.hpp"
 #include "ibl/gpu/viewer.hpp"
+#include "ibl/render/probe.hpp"
 
 namespace ibl::gpu {
 
@@ -41,6 +42,12 @@ struct SceneRenderer::Impl {
   float specularMaxLod = 0.0f, skyboxMaxLod = 0.0f;
   bool frostbiteMapping = false;
   Sh9 shIrradianceOverPi{};
+  // Local probes: specular and irradiance cube map arrays, placements (view/frame.glsl).
+  std::unique_ptr<DeviceImage> probeSpecular, probeIrradiance;
+  std::unique_ptr<Buffer> probesBuffer;
+  int probeCount = 0;
+  float probeMaxLod = 0.0f;
+  bool probeFrostbiteMapping = false;
   // Samplers, layouts, descriptors.
   VkSampler cubeSampler = VK_NULL_HANDLE, lutSampler = VK_NULL_HANDLE;
   std::vector<std::pair<TextureSampler, VkSampler>> textureSamplers;  // one per glTF sampler kind
@@ -67,8 +74,8 @@ struct SceneRenderer::Impl {
   std::optional<Targets> targets;
   std::pair<glm::vec3, glm::vec3> bounds;
 
-  Impl(Context& context, const Scene& scene, const BakeResult& bake,
-       const BakeOptions& bakeOptions);
+  Impl(Context& context, const Scene& scene, const BakeResult& bake, const BakeOptions& bakeOptions,
+       const std::vector<LocalProbe>& probes);
   ~Impl();
   // The largest power-of-two multisample count <= `requested` the device renders RGBA32F with.
   int supportedSamples(int requested) const;
@@ -81,7 +88,10 @@ struct SceneRenderer::Impl {
 
  private:
   // The constructor's work; if it throws, the constructor frees what it had made (destroy).
-  void create(const Scene& scene, const BakeResult& bake, const BakeOptions& bakeOptions);
+  void create(const Scene& scene, const BakeResult& bake, const BakeOptions& bakeOptions,
+              const std::vector<LocalProbe>& probes);
+  // The probes' cube map arrays and placements (or stand-ins when there are none).
+  void uploadProbes(const std::vector<LocalProbe>& probes, const BakeResult& bake);
   // Frees every Vulkan object made so far (null handles are skipped by Vulkan itself).
   void destroy();
   void destroyTargets();

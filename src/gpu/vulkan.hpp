@@ -29,6 +29,7 @@ struct Context::Impl {
   VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;  // with IBL_VULKAN_VALIDATION
   VkPhysicalDeviceLimits limits{};
   bool mappableDeviceMemory = false;  // device-local memory the host can map (no staging)
+  bool imageCubeArray = false;        // cube map arrays are enabled (the viewer's probes)
   DeviceInfo info;
   struct Pipeline {
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
@@ -63,6 +64,7 @@ class DeviceImage {
     VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     bool cube = false;
+    bool cubeArray = false;  // with cube: viewed as an array of layers / 6 cubes
   };
   DeviceImage(Context& context, const Description& description);
   ~DeviceImage();

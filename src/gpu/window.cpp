@@ -339,7 +339,8 @@ void createTonemapPass(WindowResources& r, VkFormat format) {
 }  // namespace
 
 WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
-                            const BakeOptions& bakeOptions, const WindowOptions& o) {
+                            const BakeOptions& bakeOptions, const WindowOptions& o,
+                            const std::vector<LocalProbe>& probes) {
   WindowResources r;
   if (!glfwInit()) fail("window", "cannot open a window (no display?); use --screenshot");
   if (!glfwVulkanSupported()) fail("window", "GLFW finds no Vulkan loader for windows");
@@ -363,7 +364,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   const VkSurfaceFormatKHR format = chooseSurfaceFormat(c.physical, r.surface);
   createTonemapPass(r, format.format);
   createSwapchain(r, format);
-  r.renderer = std::make_unique<SceneRenderer>(*r.context, scene, bake, bakeOptions);
+  r.renderer = std::make_unique<SceneRenderer>(*r.context, scene, bake, bakeOptions, probes);
   auto& renderer = r.renderer->impl();
   const int samples = renderer.supportedSamples(std::max(o.render.spp, 1));
 

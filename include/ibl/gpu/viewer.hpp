@@ -6,10 +6,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "ibl/bake/bake.hpp"
 #include "ibl/gpu/compute.hpp"
 #include "ibl/render/camera.hpp"
+#include "ibl/render/probe.hpp"
 #include "ibl/render/renderer.hpp"
 #include "ibl/render/scene.hpp"
 
@@ -21,8 +23,9 @@ class SceneRenderer {
   // Uploads the scene (spheres: ray traced inside a bounding polyhedron) and the bake's specular,
   // irradiance, source cubes, DFG table and SH9. The context needs a graphics queue
   // (ContextOptions::graphics).
+  // probes: local light probes (loadProbes order), all of one size and level count.
   SceneRenderer(Context& context, const Scene& scene, const BakeResult& bake,
-                const BakeOptions& bakeOptions);
+                const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes = {});
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -69,6 +72,7 @@ struct WindowStats {
 // R resets the view; the title shows the frame time. Throws Error("window: ...") without a
 // display.
 WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
-                            const BakeOptions& bakeOptions, const WindowOptions& options);
+                            const BakeOptions& bakeOptions, const WindowOptions& options,
+                            const std::vector<LocalProbe>& probes = {});
 
 }  // namespace ibl::gpu
