@@ -19,8 +19,9 @@ constexpr float kMinAlpha = 1e-3f;  // GGX of alpha 0 is a delta; 1e-3 is a mirr
 // reflects, bilinear between nodes that include the edges n.v = 0, 1 and r = 0, 1 (a DFG
 // table's texel centers stop half a texel short, 3 % off at r = 1): the reference's material
 // must not inherit the split sum's table error. Integrated once per process (~1M evaluations).
-float directionalAlbedo(float NoV, float roughness) {
-  constexpr int kNodes = 33;
+constexpr int kNodes = 33;
+
+const std::vector<float>& directionalAlbedoTable() {
   static const std::vector<float> table = [] {
     std::vector<float> t(kNodes * kNodes);
     parallelFor(0, kNodes, [&](int j) {
@@ -32,6 +33,11 @@ float directionalAlbedo(float NoV, float roughness) {
     });
     return t;
   }();
+  return table;
+}
+
+float directionalAlbedo(float NoV, float roughness) {
+  const std::vector<float>& table = directionalAlbedoTable();
   const float x = std::clamp(NoV, 0.0f, 1.0f) * (kNodes - 1);
   const float y = std::clamp(roughness, 0.0f, 1.0f) * (kNodes - 1);
   const int i = std::min(static_cast<int>(x), kNodes - 2),
@@ -164,6 +170,10 @@ EnvironmentSampler::EnvironmentSampler(const std::array<Image, kFaceCount>& leve
       }
   for (auto& c : cdf_) c /= total;
   texelArea_ = 4.0f / static_cast<float>(n_ * n_);
+}
+
+void preparePathTracer() {
+  directionalAlbedoTable();
 }
 
 glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position, glm::vec3 view,

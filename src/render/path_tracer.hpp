@@ -104,6 +104,11 @@ struct PathTracerScene {
   const RenderOptions& options;
 };
 
+// Computes what tracePath reads once per process (the multiple-scattering table). Call it
+// outside parallel work: a table built lazily inside a task could be re-entered by the same
+// thread through oneTBB's work stealing.
+void preparePathTracer();
+
 // The radiance that surface point `p` at `position` sends toward unit direction `view` (its
 // emission included): direct light from every light, the environment and (up to
 // options.bounces) the light other surfaces reflect. Unbiased but for the environment's texels.

@@ -129,6 +129,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   const auto start = std::chrono::steady_clock::now();
   const RayTracer tracer(scene);
   const EnvironmentSampler env(bake.source.levels[0]);
+  if (o.mode == RenderMode::Reference) preparePathTracer();
   const PathTracerScene pathScene{scene, tracer, env, o};
   const auto [lo, hi] = scene.bounds();
   const float aoDistance = o.aoDistance > 0.0f ? o.aoDistance : 0.1f * glm::length(hi - lo);

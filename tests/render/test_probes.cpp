@@ -2,6 +2,7 @@
 // split sum with probes against the path-traced reference in a box room.
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -282,4 +283,42 @@ TEST(Probes, BoxCorrectionBeatsTheDistantEnvironmentInARoom) {
       distant, plain, sphereCorrected, boxCorrected, boxDistance, noiseFloor);
   EXPECT_LT(boxCorrected, 0.5 * distant);
   EXPECT_LT(boxCorrected, plain);
+}
+
+TEST(Probes, RayCastAmbientOcclusionMatchesTheWallFormula) {
+  // A floor meeting a wall far larger than the occlusion distance D, under a white sky; a white
+  // Lambertian floor then shows its ambient occlusion. Rays of a cosine-weighted hemisphere
+  // project uniformly onto the unit disk (Malley), so at distance x from the wall the share
+  // that meets it within D is the disk's segment beyond c = x / D:
+  // AO = 1 - (acos c - c sqrt(1 - c^2)) / pi.
+  Scene scene;
+  Material white = diffuse(glm::vec3(1.0f));
+  scene.materials.push_back(white);
+  addQuad(scene, {-50, 0, -50}, {100, 0, 0}, {0, 0, 100}, 0, {0, 1, 0});  // the floor, y = 0
+  addQuad(scene, {0, 0, -50}, {0, 100, 0}, {0, 0, 100}, 0, {-1, 50, 0});  // the wall, x = 0
+  const Bake sky = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
+  Camera camera;
+  camera.perspective = false;
+  camera.from = glm::vec3(-0.55f, 5.0f, 0.0f);
+  camera.at = glm::vec3(-0.55f, 0.0f, 0.0f);
+  camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
+  camera.orthoWidth = 1.1f;  // x from -1.1 to 0
+  camera.width = 22;
+  camera.height = 1;
+  RenderOptions o;
+  o.diffuse = DiffuseModel::Lambert;
+  o.only = ShadingTerms::Diffuse;
+  o.dominantDirections = false;
+  o.spp = 1;
+  o.aoRays = 16384;
+  o.aoDistance = 1.0f;
+  const RenderResult r = renderScene(scene, camera, sky.result, sky.options, o);
+  for (int px = 0; px < camera.width; px += 3) {
+    const Ray ray = camera.generateRay(static_cast<float>(px) + 0.5f, 0.5f);
+    const float x = -ray.origin.x;  // distance to the wall
+    const float c = std::min(x / o.aoDistance, 1.0f);
+    const float expected =
+        1.0f - (std::acos(c) - c * std::sqrt(1.0f - c * c)) / std::numbers::pi_v<float>;
+    EXPECT_NEAR(r.color.at(px, 0).y, expected, 0.015f) << "x " << x;
+  }
 }
