@@ -6,9 +6,11 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
 #include <glm/geometric.hpp>
 
 #include "ibl/bake/dfg.hpp"
+#include "ibl/core/error.hpp"
 #include "ibl/core/parallel.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/math/sampling.hpp"
@@ -126,6 +128,8 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
 RenderResult renderRays(const Scene& scene, int width, int height, const RayGenerator& generateRay,
                         const BakeResult& bake, const BakeOptions& bakeOptions,
                         const RenderOptions& o, const std::function<void(float)>& progress) {
+  if (width < 1 || height < 1)
+    fail("render", fmt::format("an image of {} x {} pixels is empty", width, height));
   const auto start = std::chrono::steady_clock::now();
   const RayTracer tracer(scene);
   const EnvironmentSampler env(bake.source.levels[0]);
@@ -133,19 +137,16 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   const PathTracerScene pathScene{scene, tracer, env, o};
   const auto [lo, hi] = scene.bounds();
   const float aoDistance = o.aoDistance > 0.0f ? o.aoDistance : 0.1f * glm::length(hi - lo);
-  struct {
-    int width, height;
-  } const camera{width, height};
   RenderResult result;
   result.color = Image(width, height);
   result.alpha.assign(static_cast<std::size_t>(width) * height, 0.0f);
   std::atomic<int> rowsDone{0};
   std::atomic<std::uint64_t> samples{0};
   const int spp = std::max(1, o.spp);
-  parallelFor(0, camera.height, [&](int y) {
+  parallelFor(0, height, [&](int y) {
     std::uint64_t rowSamples = 0;
-    for (int x = 0; x < camera.width; ++x) {
-      Random rng(o.seed, static_cast<std::uint64_t>(y) * camera.width + x);
+    for (int x = 0; x < width; ++x) {
+      Random rng(o.seed, static_cast<std::uint64_t>(y) * width + x);
       glm::dvec3 sum(0.0);
       double lumSum = 0.0, lumSq = 0.0;
       int covered = 0, taken = 0;
@@ -153,7 +154,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
         // Positions in the pixel from a scrambled Sobol sequence, decorrelated per pixel: any
         // prefix is spread over the whole pixel (for early stops and any spp); one sample is
         // the pixel center.
-        const std::uint32_t pixel = static_cast<std::uint32_t>(y * camera.width + x);
+        const std::uint32_t pixel = static_cast<std::uint32_t>(y * width + x);
         const glm::vec2 j =
             spp == 1 ? glm::vec2(0.5f)
                      : sobolOwen2D(static_cast<std::uint32_t>(s),
@@ -203,14 +204,14 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
         }
       }
       result.color.at(x, y) = glm::vec3(sum / static_cast<double>(taken));
-      result.alpha[static_cast<std::size_t>(y) * camera.width + x] =
+      result.alpha[static_cast<std::size_t>(y) * width + x] =
           static_cast<float>(covered) / static_cast<float>(taken);
       rowSamples += static_cast<std::uint64_t>(taken);
     }
     samples += rowSamples;
     const int done = ++rowsDone;
     if (progress && done % 16 == 0)
-      progress(static_cast<float>(done) / static_cast<float>(camera.height));
+      progress(static_cast<float>(done) / static_cast<float>(height));
   });
   result.samples = static_cast<double>(samples.load());
   result.milliseconds =

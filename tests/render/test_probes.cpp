@@ -2,6 +2,8 @@
 // split sum with probes against the path-traced reference in a box room.
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -10,6 +12,7 @@
 #include "ibl/core/stats.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/render/probe.hpp"
+#include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
 #include "support/room.hpp"
 
@@ -321,4 +324,74 @@ TEST(Probes, RayCastAmbientOcclusionMatchesTheWallFormula) {
         1.0f - (std::acos(c) - c * std::sqrt(1.0f - c * c)) / std::numbers::pi_v<float>;
     EXPECT_NEAR(r.color.at(px, 0).y, expected, 0.015f) << "x " << x;
   }
+}
+
+TEST(Probes, GltfRoomThroughTheCommands) {
+  // What a user runs: a room written as glTF (colored walls, a metal and a plastic sphere), a
+  // sphere light in a lights file, no sky; `ibl probe` at the room's center (the default proxy,
+  // the scene's bounds, is the walls), `ibl render` of the split sum with and without the probe
+  // and of the path-traced reference, `ibl compare`.
+  const TempDir dir;
+  RoomDescription room;
+  const std::array<glm::vec3, 6> colors = {glm::vec3(0.8f, 0.2f, 0.2f),
+                                           glm::vec3(0.2f, 0.7f, 0.3f),
+                                           glm::vec3(0.6f),
+                                           glm::vec3(0.8f),
+                                           glm::vec3(0.2f, 0.3f, 0.8f),
+                                           glm::vec3(0.7f)};
+  for (int w = 0; w < 6; ++w) room.walls[w] = {diffuse(colors[w]), diffuse(0.5f * colors[w])};
+  Scene scene = makeRoom(room);
+  Material metal;
+  metal.baseColor = glm::vec3(0.95f, 0.9f, 0.8f);
+  metal.metallic = 1.0f;
+  metal.roughness = 0.3f;
+  scene.materials.push_back(metal);
+  scene.spheres.push_back(
+      {{-0.8f, 0.6f, -0.5f}, 0.5f, static_cast<int>(scene.materials.size()) - 1});
+  scene.materials.push_back(diffuse(glm::vec3(0.9f)));
+  scene.spheres.push_back(
+      {{0.8f, 0.6f, -0.3f}, 0.5f, static_cast<int>(scene.materials.size()) - 1});
+  const auto gltf = dir.path() / "room.gltf";
+  writeSceneAsGltf(scene, gltf);
+  const auto lights = dir.path() / "lamp.json";
+  std::ofstream(lights) << R"({"lights": [{"type": "sphere", "position": [-0.5, 2.5, 1.6], )"
+                        << R"("radius": 0.4, "intensity": 20, "unit": "nit"}]})";
+  const std::string common = quote(gltf) + " --env none --lights " + quote(lights);
+  const std::string view = " --look-from -1.2,2,1.9 --look-at 0,0.6,-0.3 --fov 60 --size 48x36 ";
+  CliRun r = runIbl("probe " + common + " --at 0,1.5,0 --size 32 --spp 32 -o " +
+                    quote(dir.path() / "probe"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl("render " + common + view + "--probes " + quote(dir.path() / "probe") + " -o " +
+             quote(dir.path() / "probed.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl("render " + common + view + "-o " + quote(dir.path() / "plain.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl("render " + common + view + "--mode reference --spp 256 -o " +
+             quote(dir.path() / "reference.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto relativeMse = [&](const char* image) {
+    const CliRun c = runIbl("compare --json " + quote(dir.path() / image) + " " +
+                            quote(dir.path() / "reference.exr"));
+    EXPECT_EQ(c.status, 0) << c.output;
+    return nlohmann::json::parse(c.output).at("overall").at("relative_mse").get<double>();
+  };
+  const auto meanLuminance = [&](const char* image) {
+    const CliRun c = runIbl("info --json " + quote(dir.path() / image));
+    EXPECT_EQ(c.status, 0) << c.output;
+    const nlohmann::json mean = nlohmann::json::parse(c.output).at("mean");
+    return luminance(glm::vec3(mean[0].get<float>(), mean[1].get<float>(), mean[2].get<float>()));
+  };
+  const double probed = relativeMse("probed.exr"), plain = relativeMse("plain.exr");
+  const double reference = meanLuminance("reference.exr");
+  const double probedGap = std::abs(meanLuminance("probed.exr") / reference - 1.0);
+  const double plainGap = std::abs(meanLuminance("plain.exr") / reference - 1.0);
+  std::printf(
+      "glTF room through the commands: relative squared error %.3f with the probe, %.3f "
+      "with the lights alone; mean luminance %.1f %% and %.1f %% off\n",
+      probed, plain, 100.0 * probedGap, 100.0 * plainGap);
+  // The lights alone miss the light the walls pass on (48 %); the probe brings most of it back
+  // (12 % short: indirect light near the walls and under the spheres). Per pixel the two are
+  // about as far from the reference at this size (its noise, and the metal sphere's reflection
+  // of the ceiling's bright spot above the lamp); tests above measure the per-pixel error.
+  EXPECT_LT(probedGap, 0.5 * plainGap);
 }

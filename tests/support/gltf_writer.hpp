@@ -1,5 +1,6 @@
 #pragma once
 // Writes small glTF files for the tests (embedded buffers and images).
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -336,6 +337,85 @@ inline void writeMeshoptMesh(const std::filesystem::path& path, const Mesh& mesh
   le32(0x004E4942u);  // "BIN"
   file.insert(file.end(), compressed.begin(), compressed.end());
   out.write(reinterpret_cast<const char*>(file.data()), static_cast<std::streamsize>(file.size()));
+}
+
+// A scene's meshes (and its spheres, tessellated) as a glTF file: positions, normals and
+// indices in one embedded buffer, one node per mesh, the metallic-roughness materials with their
+// emission (past 1 through KHR_materials_emissive_strength). Textures and lights are left out.
+inline void writeSceneAsGltf(const Scene& scene, const std::filesystem::path& path) {
+  std::vector<Mesh> meshes = scene.meshes;
+  for (const Sphere& sphere : scene.spheres) {
+    Mesh m = tessellateSphere(sphere, 48);
+    m.material = sphere.material;
+    meshes.push_back(std::move(m));
+  }
+  std::vector<std::uint8_t> buffer;
+  nlohmann::json views = nlohmann::json::array(), accessors = nlohmann::json::array(),
+                 gltfMeshes = nlohmann::json::array(), nodes = nlohmann::json::array(),
+                 materials = nlohmann::json::array();
+  const auto view = [&](const auto& data, int target) {
+    const std::size_t offset = buffer.size();
+    append(buffer, data);
+    while (buffer.size() % 4) buffer.push_back(0);
+    views.push_back({{"buffer", 0},
+                     {"byteOffset", offset},
+                     {"byteLength", data.size() * sizeof(data[0])},
+                     {"target", target}});
+    return static_cast<int>(views.size()) - 1;
+  };
+  for (const Mesh& m : meshes) {
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const glm::vec3& p : m.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    const int positions = static_cast<int>(accessors.size());
+    accessors.push_back(positionAccessor(view(m.positions, 34962), m.positions.size(), lo, hi));
+    accessors.push_back({{"bufferView", view(m.normals, 34962)},
+                         {"componentType", 5126},
+                         {"count", m.normals.size()},
+                         {"type", "VEC3"}});
+    accessors.push_back({{"bufferView", view(m.indices, 34963)},
+                         {"componentType", 5125},
+                         {"count", m.indices.size()},
+                         {"type", "SCALAR"}});
+    gltfMeshes.push_back({{"primitives",
+                           {{{"attributes", {{"POSITION", positions}, {"NORMAL", positions + 1}}},
+                             {"indices", positions + 2},
+                             {"material", m.material}}}}});
+    nodes.push_back({{"mesh", static_cast<int>(gltfMeshes.size()) - 1}});
+  }
+  for (const Material& m : scene.materials) {
+    const float strength =
+        std::max(1.0f, std::max(m.emissive.x, std::max(m.emissive.y, m.emissive.z)));
+    nlohmann::json material = {
+        {"pbrMetallicRoughness",
+         {{"baseColorFactor", {m.baseColor.x, m.baseColor.y, m.baseColor.z, 1.0f}},
+          {"metallicFactor", m.metallic},
+          {"roughnessFactor", m.roughness}}},
+        {"emissiveFactor",
+         {m.emissive.x / strength, m.emissive.y / strength, m.emissive.z / strength}}};
+    if (strength > 1.0f)
+      material["extensions"] = {
+          {"KHR_materials_emissive_strength", {{"emissiveStrength", strength}}}};
+    materials.push_back(material);
+  }
+  nlohmann::json sceneNodes = nlohmann::json::array();
+  for (std::size_t i = 0; i < nodes.size(); ++i) sceneNodes.push_back(i);
+  nlohmann::json gltf = {{"asset", {{"version", "2.0"}}},
+                         {"scene", 0},
+                         {"scenes", {{{"nodes", sceneNodes}}}},
+                         {"nodes", nodes},
+                         {"meshes", gltfMeshes},
+                         {"materials", materials},
+                         {"accessors", accessors},
+                         {"bufferViews", views},
+                         {"buffers", embeddedBuffers(buffer)}};
+  if (std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+        return glm::any(glm::greaterThan(m.emissive, glm::vec3(1.0f)));
+      }))
+    gltf["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  std::ofstream(path) << gltf.dump();
 }
 
 }  // namespace ibl::test
