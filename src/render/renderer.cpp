@@ -210,8 +210,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
     }
     samples += rowSamples;
     const int done = ++rowsDone;
-    if (progress && done % 16 == 0)
-      progress(static_cast<float>(done) / static_cast<float>(height));
+    if (progress && done % 16 == 0) progress(static_cast<float>(done) / static_cast<float>(height));
   });
   result.samples = static_cast<double>(samples.load());
   result.milliseconds =
