@@ -137,6 +137,15 @@ TEST(Probes, InfluenceFadesFromTheInnerVolumeToTheBorder) {
   EXPECT_FLOAT_EQ(shared::probeShare(1.0f, coverage), 0.0f);
 }
 
+TEST(Probes, DistanceBasedRoughnessFollowsTheDocument) {
+  // Frostbite appendix F, worked by hand: receiver 1 from the hit, probe center 2, r = 0.4:
+  // clamp(1 / 2 x 0.4, 0, 0.4) = 0.2, then lerp(0.2, 0.4, 0.4) = 0.28. Farther from the
+  // receiver than from the center the scaled value clamps to r itself.
+  EXPECT_NEAR(shared::distanceBasedRoughness(1.0f, 2.0f, 0.4f), 0.28f, 1e-6f);
+  EXPECT_NEAR(shared::distanceBasedRoughness(3.0f, 1.0f, 0.4f), 0.4f, 1e-6f);
+  EXPECT_NEAR(shared::distanceBasedRoughness(0.5f, 2.0f, 0.0f), 0.0f, 1e-6f);  // a mirror stays one
+}
+
 TEST(Probes, ParallaxIsExactForAMirrorInABoxRoom) {
   // Walls that emit (tiles of two radiances, no reflection), a probe captured at the room's
   // center without the sphere, a mirror sphere off center: along the box-corrected direction
