@@ -19,6 +19,7 @@
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/io/file_io.hpp"
+#include "ibl/io/json_file.hpp"
 #include "ibl/render/probe.hpp"
 #include "scene_options.hpp"
 
@@ -208,9 +209,8 @@ void mergeShards(const std::string& dir, const GlobalOptions& global) {
   std::set<int> seen;
   int total = -1;
   for (const fs::path& part : parts) {
-    const auto bytes = readFileBytes(part);
+    const Json j = readJsonFile(part);
     try {
-      const Json j = Json::parse(bytes.begin(), bytes.end());
       const int count =
           j.at("grid")[0].get<int>() * j.at("grid")[1].get<int>() * j.at("grid")[2].get<int>();
       if (merged.is_null()) {

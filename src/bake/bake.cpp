@@ -21,6 +21,7 @@
 #include "ibl/gpu/compute.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
+#include "ibl/io/json_file.hpp"
 #include "ibl/io/ktx2.hpp"
 
 namespace ibl {
@@ -447,8 +448,7 @@ std::set<fs::path> filesOfEarlierBake(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_regular_file(dir / "manifest.json", ec)) return listed;
   try {
-    const auto bytes = readFileBytes(dir / "manifest.json");
-    const Json manifest = Json::parse(bytes.begin(), bytes.end());
+    const Json manifest = readJsonFile(dir / "manifest.json");
     const auto add = [&](const Json& p) {
       if (!p.is_string()) return;
       const fs::path rel = fs::path(p.get<std::string>()).lexically_normal();
@@ -544,13 +544,7 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
 
 BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
   const fs::path manifestPath = dir / "manifest.json";
-  const auto bytes = readFileBytes(manifestPath);
-  Json manifest;
-  try {
-    manifest = Json::parse(bytes.begin(), bytes.end());
-  } catch (const std::exception& e) {
-    fail(manifestPath.string(), fmt::format("not valid JSON: {}", e.what()));
-  }
+  const Json manifest = readJsonFile(manifestPath);
   BakeResult r;
   const auto cube = [&](const std::string& file) {
     const DecodedFile d = readImageFile(dir / file);

@@ -11,6 +11,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/io/file_io.hpp"
+#include "ibl/io/json_file.hpp"
 #include "ibl/shared/split_sum.h"
 
 namespace ibl {
@@ -186,13 +187,7 @@ LocalProbe loadProbe(const fs::path& dir) {
   const fs::path manifestPath = dir / "manifest.json";
   if (!fs::is_regular_file(manifestPath))
     fail(dir.string(), "is not a probe directory (no manifest.json)");
-  const auto bytes = readFileBytes(manifestPath);
-  Json manifest;
-  try {
-    manifest = Json::parse(bytes.begin(), bytes.end());
-  } catch (const std::exception& e) {
-    fail(manifestPath.string(), fmt::format("not valid JSON: {}", e.what()));
-  }
+  const Json manifest = readJsonFile(manifestPath);
   if (!manifest.contains("probe"))
     fail(manifestPath.string(),
          "has no probe record: a bake of a distant environment, not a probe "
@@ -212,10 +207,8 @@ std::vector<LocalProbe> loadProbes(const std::vector<std::string>& paths) {
     const fs::path dir(path);
     if (!fs::exists(dir)) fail(path, "no such probe directory");
     if (fs::is_regular_file(dir / "probes.json")) {  // a grid: every probe it lists
-      const auto bytes = readFileBytes(dir / "probes.json");
-      Json grid;
+      const Json grid = readJsonFile(dir / "probes.json");
       try {
-        grid = Json::parse(bytes.begin(), bytes.end());
         for (const auto& entry : grid.at("probes"))
           probes.push_back(loadProbe(dir / entry.at("path").get<std::string>()));
       } catch (const Error&) {

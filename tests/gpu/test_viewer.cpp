@@ -21,6 +21,7 @@
 #include "ibl/render/gltf.hpp"
 #include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
+#include "support/probe_capture.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
@@ -207,25 +208,13 @@ TEST(Viewer, LightsMatchTheCpu) {
 TEST(Viewer, ProbesMatchTheCpu) {
   const Scene scene = makeSphereGrid(glm::vec3(0.8f, 0.6f, 0.4f));
   const Baked& b = sunsetBake();
+  CaptureOptions capture;
+  capture.size = 32;
+  capture.spp = 4;
+  capture.bounces = 1;
   const auto probeAt = [&](glm::vec3 at, ProbeVolume proxy, ProbeVolume influence, float fade) {
-    CaptureOptions capture;
-    capture.size = 32;
-    capture.spp = 4;
-    capture.bounces = 1;
-    const ProbeCapture c = captureProbe(scene, at, b.bake, b.options, capture);
-    Environment captured;
-    captured.layout = Layout::Cube;
-    captured.cube = c.radiance;
-    LocalProbe p;
-    p.options.specular.size = capture.size;
-    p.options.dfgSamples = 64;
-    p.bake = bakeEnvironment(captured, p.options);
-    p.placement.position = at;
-    p.placement.hasProxy = true;
-    p.placement.proxy = proxy;
-    p.placement.influence = influence;
-    p.placement.fade = fade;
-    return p;
+    return captureAndBakeProbe(scene, b.bake, b.options, placementAt(at, proxy, influence, fade),
+                               capture);
   };
   std::vector<LocalProbe> probes = {
       probeAt({-2.5f, 0.0f, 1.5f}, boxVolume({-9, -4, -3}, {9, 4, 3}, {0, 20, 0}),

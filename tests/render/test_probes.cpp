@@ -14,6 +14,7 @@
 #include "ibl/render/probe.hpp"
 #include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
+#include "support/probe_capture.hpp"
 #include "support/room.hpp"
 
 using namespace ibl;
@@ -65,20 +66,8 @@ Bake bakeOf(const RadianceFn& f, int size) {
 // Captures and bakes a probe in memory, as `ibl probe` does.
 LocalProbe probeAt(const Scene& scene, const Bake& env, glm::vec3 at, const ProbeVolume& proxy,
                    const CaptureOptions& capture) {
-  LocalProbe p;
-  const ProbeCapture c = captureProbe(scene, at, env.result, env.options, capture);
-  Environment captured;
-  captured.layout = Layout::Cube;
-  captured.cube = c.radiance;
-  p.options.specular.size = capture.size;
-  p.options.dfgSamples = 64;
-  p.bake = bakeEnvironment(captured, p.options);
-  p.placement.position = at;
-  p.placement.hasProxy = true;
-  p.placement.proxy = proxy;
-  p.placement.influence = proxy;
-  p.placement.fade = 0.0f;
-  return p;
+  return captureAndBakeProbe(scene, env.result, env.options, placementAt(at, proxy, proxy, 0.0f),
+                             capture);
 }
 
 // Pixels whose center ray meets the sphere (computed here, not by the renderer).
