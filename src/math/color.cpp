@@ -33,15 +33,14 @@ double lobe(double lambda, double mu, double sigma1, double sigma2) {
   return std::exp(-0.5 * t * t);
 }
 
-// The CIE 1931 color matching functions at `lambda` nm (Wyman, Sloan & Shirley 2013, eq. 2).
+}  // namespace
+
 glm::dvec3 colorMatching(double lambda) {
   return {1.056 * lobe(lambda, 599.8, 37.9, 31.0) + 0.362 * lobe(lambda, 442.0, 16.0, 26.7) -
               0.065 * lobe(lambda, 501.1, 20.4, 26.2),
           0.821 * lobe(lambda, 568.8, 46.9, 40.5) + 0.286 * lobe(lambda, 530.9, 16.3, 31.1),
           1.217 * lobe(lambda, 437.0, 11.8, 36.0) + 0.681 * lobe(lambda, 459.0, 26.0, 13.8)};
 }
-
-}  // namespace
 
 glm::vec3 blackbodyColor(float kelvin) {
   // Planck's law, up to a constant factor (the result is normalized): lambda^-5 /

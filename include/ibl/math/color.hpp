@@ -3,6 +3,7 @@
 // to Rec.709 and the color of a blackbody.
 #include <cstdint>
 
+#include <glm/ext/vector_double3.hpp>
 #include <glm/vec3.hpp>
 
 #include "ibl/shared/color.h"
@@ -22,6 +23,10 @@ std::uint8_t linearToSrgb8(float linear);
 
 // CIE 1931 XYZ to linear Rec.709 (sRGB primaries, D65 white; IEC 61966-2-1).
 glm::vec3 xyzToLinearRec709(glm::vec3 xyz);
+
+// The CIE 1931 2-degree color matching functions (x-bar, y-bar, z-bar) at `lambda` nm: the
+// multi-lobe Gaussian fit of Wyman, Sloan & Shirley 2013, JCGT 2(2), eq. 2.
+glm::dvec3 colorMatching(double lambda);
 
 // The color of a blackbody at `kelvin` (a light's correlated color temperature, 1000 to 40000 K)
 // as linear Rec.709 of luminance 1: Planck's law integrated against the CIE 1931 2-degree

@@ -47,6 +47,7 @@ using glm::clamp;
 using glm::cos;
 using glm::cross;
 using glm::dot;
+using glm::exp;
 using glm::exp2;
 using glm::floor;
 using glm::length;
