@@ -31,5 +31,6 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global);
 void addCompareCommand(CLI::App& app, const GlobalOptions& global);
 void addViewCommand(CLI::App& app, const GlobalOptions& global);
 void addProbeCommand(CLI::App& app, const GlobalOptions& global);
+void addSkyCommand(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace ibl::cli

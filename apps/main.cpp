@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   ibl::cli::addConvertCommand(app, global);
   ibl::cli::addRenderCommand(app, global);
   ibl::cli::addProbeCommand(app, global);
+  ibl::cli::addSkyCommand(app, global);
   ibl::cli::addCompareCommand(app, global);
   ibl::cli::addViewCommand(app, global);
   ibl::cli::addInfoCommand(app, global);

@@ -434,6 +434,16 @@ std::vector<Light> parseLights(std::string_view text, const std::string& name,
   return lights;
 }
 
+std::string sunLightJson(const Light& sun) {
+  const Json j = {{"type", "sun"},
+                  {"direction", {sun.direction.x, sun.direction.y, sun.direction.z}},
+                  {"intensity", sun.intensity},
+                  {"unit", "lx"},
+                  {"color", {sun.color.x, sun.color.y, sun.color.z}},
+                  {"angular_diameter", glm::degrees(sun.angularDiameter)}};
+  return j.dump();
+}
+
 std::vector<Light> readLightsFile(const std::filesystem::path& path, SpotLumens spotLumens) {
   const std::vector<std::uint8_t> bytes = readFileBytes(path);
   return parseLights(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),

@@ -72,6 +72,11 @@ std::vector<Light> parseLights(std::string_view text, const std::string& name,
 std::vector<Light> readLightsFile(const std::filesystem::path& path,
                                   SpotLumens spotLumens = SpotLumens::Physical);
 
+// A sun as one entry of a lights file (JSON text of the object: type, direction, intensity in
+// lx, color, angular_diameter in degrees): what `ibl sky --sun-json` and the manifests of bakes
+// with a sun hold, and parseLights reads back.
+std::string sunLightJson(const Light& sun);
+
 // Throws Error(light.name: ...) unless the light's fields are finite and in range (sizes > 0,
 // 0 <= inner <= outer <= 90 degrees, unit directions, ...). Every reader calls it.
 void checkLight(const Light& light);

@@ -1,0 +1,170 @@
+// `ibl sky`: a physically based clear sky as an HDR panorama or cube map, and its sun as a
+// lights file.
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+
+#include "commands.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/env/export.hpp"
+#include "ibl/env/sky.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/render/light.hpp"
+
+namespace ibl::cli {
+
+namespace {
+
+struct SkyCliOptions {
+  std::string output;
+  std::optional<float> elevation, azimuth;
+  std::string date, time;
+  std::optional<double> utcOffset, latitude, longitude;
+  float altitude = 0.0f;
+  float turbidity = 2.0f;
+  float ozone = 300.0f;
+  float groundAlbedo = 0.3f;
+  std::string size = "2048x1024";
+  std::string sunJson;
+  bool sunDisk = false;
+  bool singleScattering = false;
+};
+
+SkyParameters skyParameters(const SkyCliOptions& o) {
+  SkyParameters p;
+  p.altitude = o.altitude;
+  p.turbidity = o.turbidity;
+  p.ozone = o.ozone;
+  p.groundAlbedo = o.groundAlbedo;
+  p.multipleScattering = !o.singleScattering;
+  const bool angles = o.elevation || o.azimuth;
+  const bool clock = !o.date.empty() || !o.time.empty();
+  if (angles && clock)
+    fail("--date",
+         "contradicts --sun-elevation/--sun-azimuth: give the sun's angles or a date "
+         "and time");
+  if (!clock && (o.utcOffset || o.latitude || o.longitude))
+    fail("--latitude",
+         "--latitude, --longitude and --utc-offset place --date and --time: give "
+         "those too");
+  if (o.elevation) p.sunElevation = *o.elevation;
+  if (o.azimuth) p.sunAzimuth = *o.azimuth;
+  if (clock) {
+    if (o.date.empty() || o.time.empty() || !o.latitude || !o.longitude)
+      fail("--date", "a date and time need --date, --time, --latitude and --longitude");
+    DateTime when;
+    parseDate(o.date, when, "--date");
+    parseClockTime(o.time, when, "--time");
+    when.utcOffset = o.utcOffset.value_or(0.0);
+    const SolarPosition sun = solarPosition(when, *o.latitude, *o.longitude, o.altitude);
+    p.sunElevation = static_cast<float>(sun.elevation);
+    p.sunAzimuth = static_cast<float>(sun.azimuth);
+  }
+  checkSkyParameters(p, "ibl sky");
+  return p;
+}
+
+void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
+  const auto start = std::chrono::steady_clock::now();
+  const SkyParameters p = skyParameters(o);
+  int width = 0, height = 0;
+  if (std::sscanf(o.size.c_str(), "%dx%d", &width, &height) != 2 || width < 8 || height < 4 ||
+      width > 16384 || height > 8192 || fmt::format("{}x{}", width, height) != o.size)
+    fail("--size", fmt::format("\"{}\" is not WxH from 8x4 to 16384x8192", o.size));
+  if (o.sunDisk && !o.sunJson.empty())
+    fail("--sun-json",
+         "contradicts --sun-disk: the sun is painted into the image or written as a "
+         "light, not both");
+  ExportOptions e;
+  e.output = o.output;
+  e.exrType = ExrPixelType::Float;  // cd/m^2 of the sun's disk exceed half floats
+  e.ktx2Format = o.sunDisk ? PixelFormat::Rgba32f : PixelFormat::Rgba16f;
+  e.warn = [&](const std::string& message) {
+    if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
+  };
+  checkExportOptions(e);
+
+  const SkyModel sky(p);
+  Environment env;
+  env.layout = Layout::Equirect;
+  env.equirect = sky.panorama(width, height, o.sunDisk);
+  std::vector<EncodedFile> files = encodeEnvironment(env, e);
+  const Light sun = sky.sun();
+  if (!o.sunJson.empty()) {
+    const std::string text = sun.intensity > 0.0f
+                                 ? fmt::format("{{\"lights\": [{}]}}\n", sunLightJson(sun))
+                                 : std::string("{\"lights\": []}\n");
+    files.push_back({o.sunJson, std::vector<std::uint8_t>(text.begin(), text.end())});
+  }
+  writeFilesTogether(files);
+  if (global.quiet) return;
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print(stderr,
+             "sky: sun at elevation {:.2f}, azimuth {:.2f} degrees: {:.0f} lx direct, color "
+             "{:.3f},{:.3f},{:.3f}{}\n",
+             p.sunElevation, p.sunAzimuth, sun.intensity, sun.color.x, sun.color.y, sun.color.z,
+             o.sunDisk ? " (painted into the image)" : "");
+  for (const auto& f : files)
+    fmt::print(stderr, "wrote {} ({} bytes)\n", f.path.string(), f.bytes.size());
+  fmt::print(stderr, "{}x{} in {:.2f} s\n", width, height, seconds);
+}
+
+}  // namespace
+
+void addSkyCommand(CLI::App& app, const GlobalOptions& global) {
+  auto opts = std::make_shared<SkyCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "sky",
+      "A physically based clear sky (Rayleigh, Mie, ozone, multiple scattering; spectral) as "
+      "linear Rec.709 radiance in cd/m^2, and its sun as a light in lux");
+  cmd->add_option("-o,--output", opts->output,
+                  "Output file: .exr (equirect, 32-bit float), .hdr, or .ktx2 (cube map)")
+      ->required();
+  cmd->add_option("--sun-elevation", opts->elevation,
+                  "The sun's elevation above the horizon, degrees (default 30)")
+      ->check(CLI::Range(-90.0f, 90.0f));
+  cmd->add_option("--sun-azimuth", opts->azimuth,
+                  "The sun's compass azimuth, degrees from north (-Z) toward east (+X) (default "
+                  "180: south)")
+      ->check(CLI::Range(-360.0f, 360.0f));
+  cmd->add_option("--date", opts->date, "Date YYYY-MM-DD (with --time, --latitude, --longitude)");
+  cmd->add_option("--time", opts->time, "Local clock time HH:MM[:SS]");
+  cmd->add_option("--utc-offset", opts->utcOffset,
+                  "Hours east of UTC of the local time (default 0)")
+      ->check(CLI::Range(-14.0, 14.0));
+  cmd->add_option("--latitude", opts->latitude, "Degrees, north positive")
+      ->check(CLI::Range(-90.0, 90.0));
+  cmd->add_option("--longitude", opts->longitude, "Degrees, east positive")
+      ->check(CLI::Range(-180.0, 180.0));
+  cmd->add_option("--altitude", opts->altitude, "The observer's altitude above the ground, meters")
+      ->check(CLI::Range(0.0f, 80000.0f))
+      ->capture_default_str();
+  cmd->add_option("--turbidity", opts->turbidity,
+                  "1 + aerosol optical depth / molecular optical depth at 550 nm (1: pure air, "
+                  "2: clear, 4+: hazy)")
+      ->check(CLI::Range(1.0f, 20.0f))
+      ->capture_default_str();
+  cmd->add_option("--ozone", opts->ozone, "Ozone column, Dobson units")
+      ->check(CLI::Range(0.0f, 1000.0f))
+      ->capture_default_str();
+  cmd->add_option("--ground-albedo", opts->groundAlbedo, "Albedo of the (Lambertian) ground")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--size", opts->size, "Panorama size WxH")->capture_default_str();
+  cmd->add_option("--sun-json", opts->sunJson,
+                  "Also write the sun as a lights file ({\"lights\": [{\"type\": \"sun\", ...}]}: "
+                  "direction, lux after the atmosphere, color, angular diameter) for --lights");
+  cmd->add_flag("--sun-disk", opts->sunDisk,
+                "Paint the sun's limb-darkened disk into the image instead (carrying its full "
+                "illuminance)");
+  cmd->add_flag("--single-scattering", opts->singleScattering,
+                "Leave out multiple scattering (for comparison)");
+  cmd->callback([opts, &global] { runSky(*opts, global); });
+}
+
+}  // namespace ibl::cli
