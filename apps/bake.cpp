@@ -45,6 +45,7 @@ struct BakeCliOptions {
   bool noPreview = false;
   int previewSize = 96;
   bool force = false;
+  bool extractSun = false;
   std::string device = "cpu";
   bool listDevices = false;
 };
@@ -71,12 +72,9 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
   LoadOptions loadOptions;
   if (!o.inputLayout.empty()) loadOptions.layout = parseLayout(o.inputLayout);
   loadOptions.layer = o.layer;
-  const std::string name =
-      input.empty() ? std::string(kDefaultEnvironmentName) + " (bundled)" : input;
-  LoadedEnvironment loaded =
-      input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), name, loadOptions)
-                    : loadEnvironment(input, loadOptions);
-  if (!input.empty()) warnAboutReplacedPixels(name, loaded.replaced, global);  // not ours
+  SourceEnvironment source = loadSourceEnvironment(input, loadOptions, o.extractSun, global);
+  const std::string& name = source.name;
+  LoadedEnvironment& loaded = source.loaded;
   requireLight(loaded.environment, name);
   RangeLoss clampLoss;
   if (o.clamp > 0.0f) {
@@ -114,20 +112,21 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
   output.preview = !o.noPreview;
   output.previewCell = o.previewSize;
   output.force = o.force;
+  output.manifestRecords = source.manifestRecords;
   output.warn = [&](const std::string& message) {
     if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
   };
   const Environment& env = loaded.environment;
-  BakeSource source{input,
-                    loaded.format,
-                    std::string(layoutName(env.layout)),
-                    env.isCube() ? env.cube.size() : env.equirect.width,
-                    env.isCube() ? env.cube.size() : env.equirect.height,
-                    loaded.replaced,
-                    o.clamp,
-                    clampLoss};
+  BakeSource facts{input,
+                   loaded.format,
+                   std::string(layoutName(env.layout)),
+                   env.isCube() ? env.cube.size() : env.equirect.width,
+                   env.isCube() ? env.cube.size() : env.equirect.height,
+                   loaded.replaced,
+                   o.clamp,
+                   clampLoss};
   progress("writing outputs");
-  const auto files = writeBakeOutputs(result, options, output, source, outDir);
+  const auto files = writeBakeOutputs(result, options, output, facts, outDir);
   return fmt::format("baked {} into {}: {} files in {:.2f} s (bake {:.0f} ms)", name, outDir,
                      files.size(), elapsed(), result.timingsMs.at("total"));
 }
@@ -180,8 +179,9 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
       "bake", "Bake an HDR environment into IBL assets (specular, irradiance, SH9, DFG)");
   cmd->add_option("inputs", opts->inputs,
                   "Environments (any `ibl convert` input; a quoted pattern such as 'hdri/*.exr' "
-                  "is expanded); default: the bundled sunset.exr. Several: each is baked into "
-                  "OUTDIR/<name>/");
+                  "is expanded; or a physical sky, sky:elevation=30,azimuth=120 (see ibl sky), "
+                  "its sun listed in the manifest); default: the bundled sunset.exr. Several: "
+                  "each is baked into OUTDIR/<name>/");
   cmd->add_option("--list", opts->list,
                   "Also bake the files this text file lists, one per line (a batch)");
   cmd->add_option("-o,--output", opts->output,
@@ -250,6 +250,9 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                 "Write into an existing, non-empty OUTDIR: replace the earlier bake's files "
                 "(and remove those it listed that this bake does not write); keep others");
   cmd->add_flag("--no-preview", opts->noPreview, "Skip the PNG previews");
+  cmd->add_flag("--extract-sun", opts->extractSun,
+                "Take the sun (the brightest compact source) out of the HDRI, fill its disk from "
+                "the sky around it, and list it in the manifest as a sun light (lux)");
   cmd->add_option("--preview-size", opts->previewSize,
                   "Pixels per sphere of preview.png (6 x 2 spheres: 6N x 2N)")
       ->check(CLI::Range(8, 1024))

@@ -4,9 +4,14 @@
 #include <cstdio>
 
 #include <fmt/core.h>
+#include <glm/trigonometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "ibl/core/error.hpp"
 #include "ibl/core/stats.hpp"
+#include "ibl/env/default_environment.hpp"
+#include "ibl/env/sky.hpp"
+#include "ibl/env/sun_extraction.hpp"
 
 namespace ibl::cli {
 
@@ -45,6 +50,69 @@ void requireLight(const Environment& env, std::string_view name) {
   if (!brightestDirection(env))
     fail(std::string(name),
          "holds no light: every pixel is zero, NaN, infinite or negative after loading");
+}
+
+SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOptions& options,
+                                        bool removeSun, const GlobalOptions& global) {
+  SourceEnvironment s;
+  if (isSkySpec(input)) {
+    if (removeSun)
+      fail("--extract-sun", fmt::format("contradicts {}: a sky's sun is a light already", input));
+    const SkySpec spec = parseSkySpec(input);
+    const SkyModel sky(spec.parameters);
+    s.name = input;
+    s.loaded.format = "sky";
+    s.loaded.environment.layout = Layout::Equirect;
+    s.loaded.environment.equirect = sky.panorama(spec.width, spec.height, false);
+    const Light sun = sky.sun();
+    const SkyParameters& p = spec.parameters;
+    nlohmann::json records = {{"sky",
+                               {{"description", input},
+                                {"sun_elevation", p.sunElevation},
+                                {"sun_azimuth", p.sunAzimuth},
+                                {"altitude", p.altitude},
+                                {"turbidity", p.turbidity},
+                                {"ozone", p.ozone},
+                                {"ground_albedo", p.groundAlbedo}}},
+                              {"lights", nlohmann::json::array()}};
+    if (sun.intensity > 0.0f) {
+      s.lights.push_back(sun);
+      records["lights"].push_back(nlohmann::json::parse(sunLightJson(sun)));
+    }
+    s.manifestRecords = records.dump();
+    return s;
+  }
+  s.name = input.empty() ? std::string(kDefaultEnvironmentName) + " (bundled)" : input;
+  s.loaded = input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), s.name, options)
+                           : loadEnvironment(input, options);
+  if (!input.empty()) warnAboutReplacedPixels(s.name, s.loaded.replaced, global);
+  if (!removeSun) return s;
+  Environment& env = s.loaded.environment;
+  if (env.layout != Layout::Equirect) {
+    // Found and filled on a panorama of the cube's resolution (4 n wide).
+    if (env.isCube()) env.equirect = flatFromCube(env.cube, 0, Layout::Equirect);
+    env.layout = Layout::Equirect;
+    env.cube = CubeMap();
+  }
+  const auto sun = extractSun(env.equirect);
+  if (!sun)
+    fail(s.name,
+         "--extract-sun: no compact bright source (the brightest pixel is not 50 times "
+         "its surroundings, or it spans more than 20 degrees)");
+  Light light = sun->light;
+  light.name = fmt::format("{}: extracted sun", s.name);
+  s.lights.push_back(light);
+  nlohmann::json records;
+  records["lights"] = nlohmann::json::array({nlohmann::json::parse(sunLightJson(light))});
+  records["extracted_sun"] = {{"pixels", sun->pixels}, {"peak_over_surroundings", sun->peakRatio}};
+  s.manifestRecords = records.dump();
+  if (!global.quiet)
+    fmt::print(stderr,
+               "ibl: note: {}: extracted the sun ({:.4g} lx, {:.2f} degrees across, direction "
+               "{:.4f},{:.4f},{:.4f}; {} pixels filled)\n",
+               s.name, light.intensity, glm::degrees(light.angularDiameter), light.direction.x,
+               light.direction.y, light.direction.z, sun->pixels);
+  return s;
 }
 
 }  // namespace ibl::cli

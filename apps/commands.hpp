@@ -1,11 +1,14 @@
 #pragma once
 // The subcommands of the `ibl` executable: each registers its options and a callback.
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "ibl/core/image.hpp"
 #include "ibl/env/environment.hpp"
+#include "ibl/render/light.hpp"
 
 namespace ibl::cli {
 
@@ -23,6 +26,18 @@ void requireLight(const Environment& env, std::string_view name);
 
 // Rejects NaN and infinite values of a numeric option (CLI11 parses "nan" and "inf").
 const CLI::Validator& finiteNumber();
+
+// An environment named on the command line (a file, a sky description "sky:...", or the
+// bundled default when `input` is empty) with the lights it brings: the sky's sun, or the sun
+// --extract-sun took out of an HDRI.
+struct SourceEnvironment {
+  LoadedEnvironment loaded;
+  std::string name;             // for messages
+  std::vector<Light> lights;    // the sun, if any
+  std::string manifestRecords;  // JSON object: {"lights": [...], "sky": {...}} (may be empty)
+};
+SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOptions& options,
+                                        bool extractSun, const GlobalOptions& global);
 
 void addConvertCommand(CLI::App& app, const GlobalOptions& global);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global);

@@ -11,6 +11,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/env/environment.hpp"
 #include "ibl/env/export.hpp"
+#include "ibl/env/sky.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 
@@ -31,6 +32,8 @@ struct ConvertOptions {
   float exposure = 0.0f;
   float rotate = 0.0f;
   bool mips = false;
+  bool extractSun = false;
+  std::string sunJson;
 };
 
 // Converts `input` into `output`; returns the summary line.
@@ -59,9 +62,16 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
   std::optional<Layout> inLayout;
   if (!o.inputLayout.empty()) inLayout = parseLayout(o.inputLayout);
 
-  const LoadedEnvironment loaded = loadEnvironment(input, {inLayout, o.layer});
-  warnAboutReplacedPixels(input, loaded.replaced, global);
-  const std::vector<EncodedFile> files = encodeEnvironment(loaded.environment, e);
+  const SourceEnvironment source =
+      loadSourceEnvironment(input, {inLayout, o.layer}, o.extractSun, global);
+  std::vector<EncodedFile> files = encodeEnvironment(source.loaded.environment, e);
+  if (!o.sunJson.empty()) {
+    std::string text = "{\"lights\": [";
+    for (std::size_t i = 0; i < source.lights.size(); ++i)
+      text += (i ? ", " : "") + sunLightJson(source.lights[i]);
+    text += "]}\n";
+    files.push_back({o.sunJson, std::vector<std::uint8_t>(text.begin(), text.end())});
+  }
   // All files or none: an error (a full disk) leaves nothing behind.
   writeFilesTogether(files);
   std::string line;
@@ -73,6 +83,10 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
 
 void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
   if (o.inputs.empty() && o.list.empty()) throw CLI::RequiredError("an input (or --list FILE)");
+  if (o.extractSun && o.sunJson.empty())
+    fail("--extract-sun", "needs --sun-json FILE: where the sun taken out of the image goes");
+  if (!o.sunJson.empty() && !o.extractSun && !isSkySpec(o.inputs.empty() ? "" : o.inputs[0]))
+    fail("--sun-json", "applies with --extract-sun or a sky: input (the sun it brings)");
   const bool batch =
       o.inputs.size() > 1 || !o.list.empty() || o.output.find("{name}") != std::string::npos;
   if (!batch) {
@@ -82,6 +96,7 @@ void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
   }
   if (o.output.find("{name}") == std::string::npos)
     fail(o.output, "several inputs need {name} in the output (out/{name}.ktx2)");
+  if (!o.sunJson.empty()) fail("--sun-json", "takes one input, not a batch");
   const std::vector<std::string> inputs = expandInputs(o.inputs, o.list);
   runBatch(
       inputs,
@@ -102,7 +117,8 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
       "convert", "Convert an environment between formats (hdr, exr, png, jpg, ktx2) and layouts");
   cmd->add_option("inputs", opts->inputs,
                   "Input files; a path with {face} names six face files (px nx py ny pz nz); "
-                  "a quoted pattern such as 'hdri/*.exr' is expanded");
+                  "a quoted pattern such as 'hdri/*.exr' is expanded; or a physical sky, "
+                  "sky:elevation=30,azimuth=120 (see ibl sky)");
   cmd->add_option("--list", opts->list,
                   "Also convert the files this text file lists, one per line (a batch)");
   cmd->add_option("-o,--output", opts->output,
@@ -141,6 +157,11 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_flag("--mips", opts->mips,
                 "Write the full mip chain of a cube map (one KTX2, or _m<level> files)");
+  cmd->add_flag("--extract-sun", opts->extractSun,
+                "Take the sun (the brightest compact source) out of the image, fill its disk "
+                "from the sky around it, and write it with --sun-json");
+  cmd->add_option("--sun-json", opts->sunJson,
+                  "Write the extracted sun (or a sky: input's sun) as a lights file for --lights");
   cmd->callback([opts, &global] { runConvert(*opts, global); });
 }
 

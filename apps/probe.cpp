@@ -262,7 +262,7 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   if (!o.shard.empty() && o.grid.empty()) fail("--shard", "splits a grid: it needs --grid");
   checkLightingOptions(o.scene);
   const glm::vec3 rotation = parseVec3(o.rotation, "--rotation");
-  const Scene scene = loadScene(o.scene);
+  Scene scene = loadScene(o.scene);
   const auto [sceneLo, sceneHi] = scene.bounds();
   // The default proxy: the scene's bounds (a room's walls).
   std::optional<ProbeVolume> proxy;
@@ -309,7 +309,8 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   } else {
     mine = probes;
   }
-  const LoadedBake env = loadOrBake(o.scene);
+  const LoadedBake env = loadOrBake(o.scene, global);
+  scene.lights.insert(scene.lights.end(), env.lights.begin(), env.lights.end());
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
   const auto start = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < mine.size(); ++i) {

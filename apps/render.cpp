@@ -28,10 +28,11 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   checkRenderedImagePath(o.output);
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
-  const Scene scene = loadScene(o.scene);
+  Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
-  const LoadedBake baked = loadOrBake(o.scene);
+  const LoadedBake baked = loadOrBake(o.scene, global);
+  scene.lights.insert(scene.lights.end(), baked.lights.begin(), baked.lights.end());
   RenderOptions r = shadingOptions(o.scene);
   r.mode = o.mode == "reference" ? RenderMode::Reference : RenderMode::SplitSum;
   r.spp = o.scene.spp > 0 ? o.scene.spp : (r.mode == RenderMode::Reference ? 256 : 4);

@@ -7,11 +7,13 @@
 #include <fmt/core.h>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/default_environment.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
+#include "ibl/io/json_file.hpp"
 #include "ibl/render/gltf.hpp"
 
 namespace ibl::cli {
@@ -19,8 +21,9 @@ namespace ibl::cli {
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("scene", o.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'")->required();
   cmd->add_option("--env", o.env,
-                  "Environment to bake and light with (default: the bundled sunset.exr); "
-                  "'none': the lights alone, on black");
+                  "Environment to bake and light with (default: the bundled sunset.exr); a "
+                  "physical sky, sky:elevation=30,azimuth=120 (see ibl sky; its sun is added "
+                  "as a light); 'none': the lights alone, on black");
   cmd->add_option("--lights", o.lightsFile,
                   "Lights file (JSON, see the README) added to the scene's lights");
   cmd->add_option("--spot-lumens", o.spotLumens,
@@ -164,10 +167,16 @@ void checkLightingOptions(const SceneCliOptions& o) {
                               o.bakeDir));
 }
 
-LoadedBake loadOrBake(const SceneCliOptions& o) {
+LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global) {
   LoadedBake out;
   if (!o.bakeDir.empty()) {
     out.bake = loadBake(o.bakeDir, &out.options);
+    // The sun the bake's environment brought (a sky's, or one extracted from the HDRI).
+    const std::filesystem::path manifest = std::filesystem::path(o.bakeDir) / "manifest.json";
+    const nlohmann::json m = readJsonFile(manifest);
+    if (m.contains("lights"))
+      out.lights = parseLights(nlohmann::json({{"lights", m["lights"]}}).dump(), manifest.string(),
+                               o.bakeDir);
     return out;
   }
   if (environmentIsNone(o)) {
@@ -180,12 +189,11 @@ LoadedBake loadOrBake(const SceneCliOptions& o) {
     out.bake = bakeEnvironment(black, out.options);
     return out;
   }
-  const LoadedEnvironment env =
-      o.env.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), kDefaultEnvironmentName)
-                    : loadEnvironment(o.env);
-  requireLight(env.environment, o.env.empty() ? kDefaultEnvironmentName : o.env);
+  const SourceEnvironment env = loadSourceEnvironment(o.env, {}, false, global);
+  requireLight(env.loaded.environment, env.name);
+  out.lights = env.lights;
   out.options.dfgSamples = 256;
-  out.bake = bakeEnvironment(env.environment, out.options);
+  out.bake = bakeEnvironment(env.loaded.environment, out.options);
   return out;
 }
 

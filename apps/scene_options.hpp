@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "commands.hpp"
 #include "ibl/bake/bake.hpp"
 #include "ibl/render/camera.hpp"
 #include "ibl/render/renderer.hpp"
@@ -62,11 +63,12 @@ bool environmentIsNone(const SceneCliOptions& o);
 struct LoadedBake {
   BakeResult bake;
   BakeOptions options;
+  std::vector<Light> lights;  // the environment's sun (a sky's, or extracted), to add to the scene
 };
 // The --bake directory, or a bake of --env (or the bundled environment) on the CPU.
 // Fails on lighting options that contradict each other (--env with --bake).
 void checkLightingOptions(const SceneCliOptions& o);
-LoadedBake loadOrBake(const SceneCliOptions& o);
+LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global);
 
 // The camera: the options, else the scene file's, else one framing the scene from +Z.
 Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height);

@@ -34,10 +34,11 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   if (o.scene.aoRays > 0) fail("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
-  const Scene scene = loadScene(o.scene);
+  Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
-  const LoadedBake baked = loadOrBake(o.scene);
+  const LoadedBake baked = loadOrBake(o.scene, global);
+  scene.lights.insert(scene.lights.end(), baked.lights.begin(), baked.lights.end());
   RenderOptions shading = shadingOptions(o.scene);
   shading.spp = o.scene.spp > 0 ? o.scene.spp : 4;
 

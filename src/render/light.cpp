@@ -438,7 +438,7 @@ std::string sunLightJson(const Light& sun) {
   const Json j = {{"type", "sun"},
                   {"direction", {sun.direction.x, sun.direction.y, sun.direction.z}},
                   {"intensity", sun.intensity},
-                  {"unit", "lx"},
+                  {"unit", "lux"},
                   {"color", {sun.color.x, sun.color.y, sun.color.z}},
                   {"angular_diameter", glm::degrees(sun.angularDiameter)}};
   return j.dump();

@@ -1,0 +1,149 @@
+// Sun extraction on a synthetic HDRI whose sun is known, and the renders before and after.
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "ibl/bake/bake.hpp"
+#include "ibl/env/equirect.hpp"
+#include "ibl/env/sky.hpp"
+#include "ibl/env/sun_extraction.hpp"
+#include "ibl/math/color.hpp"
+#include "ibl/render/renderer.hpp"
+#include "ibl/render/scene.hpp"
+#include "support/helpers.hpp"
+#include "support/light_scenes.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A smooth sky (bluer up, a gradient around) without any compact source.
+glm::vec3 smoothSky(glm::vec3 d) {
+  return {400.0f + 300.0f * d.y * d.y + 100.0f * d.x, 700.0f + 50.0f * d.z,
+          1200.0f + 400.0f * std::max(d.y, 0.0f)};
+}
+
+struct SyntheticSun {
+  glm::vec3 direction = sunDirection(32.0f, 110.0f);
+  float diameter = static_cast<float>(2.0 * kPi / 180.0);  // 2 degrees: ~3 pixels at 512
+  glm::vec3 irradiance{60000.0f, 50000.0f, 36000.0f};      // lux per channel
+};
+
+// The smooth sky plus a uniform disk carrying `sun.irradiance`, each pixel's coverage
+// supersampled 16 x 16 (written here, independently of the extraction's fill and moments).
+Image skyWithSun(int width, const SyntheticSun& sun) {
+  Image img = equirectFromFunction(width, smoothSky);
+  const double omega = 2.0 * kPi * (1.0 - std::cos(0.5 * sun.diameter));
+  const glm::vec3 radiance = sun.irradiance / static_cast<float>(omega);
+  const float cosRadius = std::cos(0.5f * sun.diameter);
+  const int h = img.height;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < width; ++x) {
+      const glm::vec3 c = equirectToDirection((x + 0.5f) / static_cast<float>(width),
+                                              (y + 0.5f) / static_cast<float>(h));
+      if (glm::dot(c, sun.direction) < std::cos(3.0f * sun.diameter)) continue;
+      int inside = 0;
+      for (int a = 0; a < 16; ++a)
+        for (int b = 0; b < 16; ++b)
+          inside +=
+              glm::dot(equirectToDirection((x + (b + 0.5f) / 16.0f) / static_cast<float>(width),
+                                           (y + (a + 0.5f) / 16.0f) / static_cast<float>(h)),
+                       sun.direction) >= cosRadius;
+      img.at(x, y) += radiance * static_cast<float>(inside / 256.0);
+    }
+  // The painted disk's own discrete illuminance is what the extraction can recover.
+  return img;
+}
+
+}  // namespace
+
+TEST(SunExtraction, FindsAKnownSun) {
+  const SyntheticSun truth;
+  Image img = skyWithSun(512, truth);
+  // The illuminance actually painted (the pixel grid's quadrature of the disk).
+  glm::dvec3 painted(0.0);
+  const Image sky = equirectFromFunction(512, smoothSky);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      painted += glm::dvec3(img.at(x, y) - sky.at(x, y)) * equirectPixelSolidAngle(y, 512, 256);
+  const auto sun = extractSun(img);
+  ASSERT_TRUE(sun.has_value());
+  const Light& l = sun->light;
+  const double angle = std::acos(std::min(1.0f, glm::dot(l.direction, truth.direction)));
+  std::printf(
+      "direction off by %.4f deg, lux %.0f (painted %.0f), diameter %.3f deg, %d pixels, "
+      "peak/surroundings %.0f\n",
+      angle * 180.0 / kPi, l.intensity, luminance(glm::vec3(painted)),
+      glm::degrees(l.angularDiameter), sun->pixels, sun->peakRatio);
+  EXPECT_LT(angle, glm::radians(0.05));
+  EXPECT_NEAR(l.intensity, luminance(glm::vec3(painted)), 0.005 * l.intensity);
+  const glm::vec3 color = glm::vec3(painted) / luminance(glm::vec3(painted));
+  EXPECT_NEAR(l.color.x, color.x, 0.01f);
+  EXPECT_NEAR(l.color.z, color.z, 0.01f);
+  EXPECT_NEAR(glm::degrees(l.angularDiameter), 2.0, 0.4);
+  // The hole is filled with sky: within 3 % of the smooth sky everywhere.
+  double worst = 0.0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      worst = std::max(worst, maxRelativeError(img.at(x, y), sky.at(x, y)));
+  EXPECT_LT(worst, 0.03);
+}
+
+TEST(SunExtraction, NoCompactSourceLeavesTheImage) {
+  Image img = equirectFromFunction(256, smoothSky);
+  const Image before = img;
+  EXPECT_FALSE(extractSun(img).has_value());
+  EXPECT_EQ(img.pixels, before.pixels);
+}
+
+TEST(SunExtraction, RenderWithoutTheSunPlusTheSunLightMatchesTheOriginal) {
+  // The reference renderer (Monte Carlo over the environment and the lights) on a rough
+  // dielectric sphere over a plane it shadows: the original HDRI against the de-sunned one plus
+  // the extracted sun light.
+  SyntheticSun truth;
+  truth.diameter = static_cast<float>(1.0 * kPi / 180.0);
+  Image original = skyWithSun(512, truth);
+  Image desunned = original;
+  const auto sun = extractSun(desunned);
+  ASSERT_TRUE(sun.has_value());
+  Material m;
+  m.baseColor = glm::vec3(0.8f);
+  m.roughness = 0.6f;
+  Scene scene = makeSphereScene(m);
+  Mesh ground = planeMesh(8.0f, -1.0f);
+  ground.material = 0;
+  scene.meshes.push_back(ground);
+  Camera camera;
+  camera.from = {0.0f, 2.0f, 5.0f};
+  camera.width = camera.height = 32;
+  RenderOptions o;
+  o.mode = RenderMode::Reference;
+  o.spp = 512;
+  o.backgroundEnvironment = false;
+  const auto render = [&](const Image& env, const std::vector<Light>& lights) {
+    BakeOptions b;
+    b.specular.size = 128;
+    b.dfgSamples = 64;
+    const BakeResult baked = bakeEnvironment(equirectEnvironment(env), b);
+    Scene s = scene;
+    s.lights = lights;
+    return renderScene(s, camera, baked, b, o);
+  };
+  const RenderResult a = render(original, {});
+  const RenderResult c = render(desunned, {sun->light});
+  double sumA = 0.0, sumC = 0.0, diff = 0.0;
+  for (std::size_t i = 0; i < a.color.pixels.size(); ++i) {
+    sumA += luminance(a.color.pixels[i]);
+    sumC += luminance(c.color.pixels[i]);
+    diff += std::abs(luminance(a.color.pixels[i]) - luminance(c.color.pixels[i]));
+  }
+  std::printf("mean luminance %.1f vs %.1f, mean |difference| %.4f of the mean\n",
+              sumA / a.color.pixels.size(), sumC / c.color.pixels.size(), diff / sumA);
+  EXPECT_NEAR(sumC / sumA, 1.0, 0.01);
+  EXPECT_LT(diff / sumA, 0.05);
+}
