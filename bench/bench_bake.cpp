@@ -7,6 +7,8 @@
 #include "ibl/bake/bake.hpp"
 #include "ibl/bake/dfg.hpp"
 #include "ibl/env/resample.hpp"
+#include "ibl/env/sky.hpp"
+#include "ibl/env/sun_extraction.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 
@@ -97,6 +99,45 @@ void BM_DefaultBakeEndToEnd(benchmark::State& state) {
   fs::remove_all(out);
 }
 
+// The sky's tables (optical depth, multiple scattering, ground irradiance) for one sun.
+void BM_SkyModel(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(ibl::SkyModel(ibl::SkyParameters{}));
+}
+
+// A panorama of W x W/2 from a new model (what ibl sky and sky: environments do), sun painted.
+void BM_SkyPanorama(benchmark::State& state) {
+  const int w = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const ibl::SkyModel sky(ibl::SkyParameters{});
+    benchmark::DoNotOptimize(sky.panorama(w, w / 2, true));
+  }
+}
+
+// Time of day: a new sky and its bake at the viewer's sizes (256 specular, CPU).
+void BM_SkyAndBake(benchmark::State& state) {
+  float elevation = 5.0f;
+  for (auto _ : state) {
+    ibl::SkyParameters p;
+    p.sunElevation = elevation;
+    elevation = elevation > 80.0f ? 5.0f : elevation + 7.0f;
+    const ibl::SkyModel sky(p);
+    ibl::Environment env;
+    env.equirect = sky.panorama(1024, 512, false);
+    ibl::BakeOptions o;
+    o.dfgSamples = 64;
+    benchmark::DoNotOptimize(ibl::bakeEnvironment(env, o));
+  }
+}
+
+// Sun extraction on a 2048 x 1024 sky with its sun painted in.
+void BM_ExtractSun2048(benchmark::State& state) {
+  const ibl::Image painted = ibl::SkyModel(ibl::SkyParameters{}).panorama(2048, 1024, true);
+  for (auto _ : state) {
+    ibl::Image copy = painted;
+    benchmark::DoNotOptimize(ibl::extractSun(copy));
+  }
+}
+
 }  // namespace
 
 BENCHMARK(BM_ReadHdr2048)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -107,4 +148,8 @@ BENCHMARK(BM_Sh9)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Dfg128)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DefaultBake)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DefaultBakeEndToEnd)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SkyModel)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SkyPanorama)->Arg(512)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SkyAndBake)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ExtractSun2048)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();
