@@ -112,6 +112,13 @@ float tableIndex(float x, int n) {
 
 }  // namespace
 
+AtmosphereShape skyAtmosphereShape() {
+  return earth();
+}
+float skyMieAsymmetry() {
+  return kMieAsymmetry;
+}
+
 glm::vec3 sunDirection(float elevationDegrees, float azimuthDegrees) {
   const float e = glm::radians(elevationDegrees), a = glm::radians(azimuthDegrees);
   return {std::cos(e) * std::sin(a), std::sin(e), -std::cos(e) * std::cos(a)};

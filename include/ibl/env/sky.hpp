@@ -13,6 +13,7 @@
 
 #include "ibl/core/image.hpp"
 #include "ibl/render/light.hpp"
+#include "ibl/shared/sky.h"
 
 namespace ibl {
 
@@ -51,6 +52,11 @@ struct AtmosphereCoefficients {
   Spectrum ozoneAbsorption{};
 };
 AtmosphereCoefficients atmosphereCoefficients(const SkyParameters& p);
+
+// The planet and the constituents' profiles (Earth: 6371 km, 100 km of atmosphere), and the
+// aerosols' asymmetry parameter (0.8).
+shared::AtmosphereShape skyAtmosphereShape();
+float skyMieAsymmetry();
 
 // The solar spectral irradiance at the top of the atmosphere, W m^-2 nm^-1 per band: a
 // blackbody at the Sun's effective temperature seen at 1 au (about 1361 W m^-2 in all).
@@ -94,6 +100,14 @@ class SkyModel {
   SkyParameters params_;
   std::unique_ptr<Tables> tables_;
 };
+
+// A Monte Carlo reference for SkyModel::radiance (src/env/sky_reference.cpp): a spectral
+// volumetric path tracer of the same atmosphere, every order of scattering and the ground's
+// reflections traced (no tables, no multiple-scattering approximation), `paths` paths per band.
+// For measuring the model (tests, docs/sky.md): seconds per direction. `orders` bounds the
+// scattering events (and ground reflections) of a path: 1 is single scattering.
+Spectrum pathTracedSkyRadiance(const SkyParameters& p, glm::vec3 direction, int paths,
+                               unsigned seed = 1, int orders = 200);
 
 // The solar position for a date and time at a place (Meeus 1998, "Astronomical Algorithms",
 // chapters 7, 12, 13 and 25, low-accuracy solar coordinates: about 0.01 degree from 1950 to
