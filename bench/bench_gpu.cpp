@@ -10,6 +10,7 @@
 
 #include "ibl/bake/bake.hpp"
 #include "ibl/env/resample.hpp"
+#include "ibl/env/sky.hpp"
 #include "ibl/gpu/compute.hpp"
 #include "ibl/gpu/viewer.hpp"
 
@@ -141,6 +142,26 @@ void BM_ViewerFrameWithLights(benchmark::State& state) {
                ltc ? ibl::AreaLightModel::Ltc : ibl::AreaLightModel::Frostbite);
 }
 
+// The viewer's time of day on this device: a new sky (CPU, 1024 x 512) and its bake on the
+// viewer's device, uploaded into a running viewer (SceneRenderer::setEnvironment).
+void BM_TimeOfDayRebake(benchmark::State& state) {
+  ibl::BakeOptions o;
+  ibl::gpu::SceneRenderer viewer(graphicsContext(), ibl::makeSphereGrid(glm::vec3(0.8f)),
+                                 ibl::bakeEnvironment(environment(), o), o);
+  float elevation = 5.0f;
+  for (auto _ : state) {
+    ibl::SkyParameters p;
+    p.sunElevation = elevation;
+    elevation = elevation > 80.0f ? 5.0f : elevation + 7.0f;
+    const ibl::SkyModel sky(p);
+    ibl::Environment env;
+    env.equirect = sky.panorama(1024, 512, false);
+    const ibl::BakeResult bake = ibl::bakeEnvironment(env, o, {}, &graphicsContext());
+    viewer.setEnvironment(bake, o, {});
+  }
+  state.SetLabel(graphicsContext().device().name);
+}
+
 }  // namespace
 
 BENCHMARK(BM_GpuEquirectToCube256)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -157,4 +178,5 @@ BENCHMARK(BM_ViewerFrameWithLights)
     ->ArgsProduct({{1, 16, 64}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(BM_TimeOfDayRebake)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(4);
 BENCHMARK_MAIN();

@@ -13,7 +13,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "ibl/core/parallel.hpp"
 #include "ibl/env/sky.hpp"
 #include "ibl/shared/sky.h"
 
@@ -159,7 +158,8 @@ Spectrum pathTracedSkyRadiance(const SkyParameters& p, glm::vec3 direction, int 
   const glm::dvec3 sun(model.sunDirection());
   const glm::dvec3 view = glm::normalize(glm::dvec3(direction));
   Spectrum out{};
-  parallelFor(0, kSkyBands, [&](int band) {
+  // Band after band (a measuring tool: simple and reproducible rather than fast).
+  for (int band = 0; band < kSkyBands; ++band) {
     Medium m = base;
     m.rayleigh = c.rayleighScattering[band];
     m.mieScattering = c.mieScattering[band];
@@ -169,7 +169,7 @@ Spectrum pathTracedSkyRadiance(const SkyParameters& p, glm::vec3 direction, int 
     out[band] = static_cast<float>(
         traceBand(m, origin, view, sun, skyMieAsymmetry(), p.groundAlbedo, paths, orders, rng) *
         solarIrradianceAtTop()[band]);
-  });
+  }
   return out;
 }
 

@@ -289,6 +289,66 @@ void SceneRenderer::Impl::uploadProbes(const std::vector<LocalProbe>& probes,
   std::memcpy(probesBuffer->mapped(), data.data(), data.size() * sizeof(glm::vec4));
 }
 
+namespace {
+
+// The lights as view/frame.glsl reads them, five vec4 each; one zero light when there are none
+// (a buffer is never empty). An IES light's color carries the profile's peak; the profile's
+// shape is a table (iesTableIndex), its profile added to `iesProfiles` and `iesTexels`.
+std::vector<glm::vec4> lightRecords(const std::vector<Light>& lights,
+                                    std::vector<const IesProfile*>& iesProfiles,
+                                    std::vector<float>& iesTexels) {
+  std::vector<glm::vec4> data(5 * std::max<std::size_t>(1, lights.size()), glm::vec4(0.0f));
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const shared::ShadingLight l = shadingLightOf(lights[i]);
+    data[5 * i] = glm::vec4(l.position, static_cast<float>(l.type));
+    data[5 * i + 1] = glm::vec4(l.direction, l.radius);
+    data[5 * i + 2] = glm::vec4(l.up, l.width);
+    data[5 * i + 3] = glm::vec4(
+        lights[i].ies ? l.color * lights[i].iesScale * lights[i].ies->maxCandela() : l.color,
+        l.height);
+    data[5 * i + 4] = glm::vec4(l.cosInner, l.cosOuter, l.invSquaredRange,
+                                iesTableIndex(lights[i], iesProfiles, iesTexels));
+  }
+  return data;
+}
+
+}  // namespace
+
+void SceneRenderer::Impl::uploadBake(const BakeResult& bake, const BakeOptions& bakeOptions) {
+  specular = uploadCubes(context, {&bake.specular}, false);
+  irradiance = uploadCubes(context, {&bake.irradiance}, false);
+  source = uploadCubes(context, {&bake.source}, false);
+  dfg = uploadImage2d(context, bake.dfg);
+  specularMaxLod = static_cast<float>(bake.specular.levelCount() - 1);
+  skyboxMaxLod = static_cast<float>(bake.source.levelCount() - 1);
+  frostbiteMapping = bakeOptions.specular.mapping == RoughnessMapping::Frostbite;
+  for (int k = 0; k < 9; ++k)
+    shIrradianceOverPi[k] = bake.sh[k] * (shCosineLobe(shBand(k)) / std::numbers::pi_v<float>);
+}
+
+void SceneRenderer::Impl::setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
+                                         const std::vector<Light>& lights) {
+  if (static_cast<int>(lights.size()) != lightCount)
+    fail("viewer", fmt::format("a new environment brings {} lights; the scene has {}",
+                               lights.size(), lightCount));
+  vkDeviceWaitIdle(device);  // nothing in flight reads what is replaced
+  uploadBake(bake, bakeOptions);
+  std::vector<const IesProfile*> iesProfiles;
+  std::vector<float> iesTexels;
+  const std::vector<glm::vec4> data = lightRecords(lights, iesProfiles, iesTexels);
+  std::memcpy(lightsBuffer->mapped(), data.data(), data.size() * sizeof(glm::vec4));
+  const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  const std::array<VkDescriptorImageInfo, 4> images{
+      VkDescriptorImageInfo{cubeSampler, specular->view(), readable},
+      VkDescriptorImageInfo{cubeSampler, irradiance->view(), readable},
+      VkDescriptorImageInfo{lutSampler, dfg->view(), readable},
+      VkDescriptorImageInfo{cubeSampler, source->view(), readable}};
+  std::array<VkWriteDescriptorSet, 4> writes{};
+  for (std::uint32_t b = 0; b < 4; ++b) writes[b] = imageWrite(frameSet, b + 1, &images[b]);
+  vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
+                         nullptr);
+}
+
 SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake,
                           const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes)
     : context(c), device(c.impl().device) {
@@ -371,42 +431,21 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   }
 
   // The bake.
-  specular = uploadCubes(context, {&bake.specular}, false);
-  irradiance = uploadCubes(context, {&bake.irradiance}, false);
-  source = uploadCubes(context, {&bake.source}, false);
+  uploadBake(bake, bakeOptions);
   uploadProbes(probes, bake);
-  dfg = uploadImage2d(context, bake.dfg);
   const LtcTable& ltcTable = ltcGgxTable();
   ltc =
       uploadTexels2d(context,
                      std::span<const float>(reinterpret_cast<const float*>(ltcTable.entries.data()),
                                             4 * ltcTable.entries.size()),
                      ltcTable.size, ltcTable.size);
-  specularMaxLod = static_cast<float>(bake.specular.levelCount() - 1);
-  skyboxMaxLod = static_cast<float>(bake.source.levelCount() - 1);
-  frostbiteMapping = bakeOptions.specular.mapping == RoughnessMapping::Frostbite;
-  for (int k = 0; k < 9; ++k)
-    shIrradianceOverPi[k] = bake.sh[k] * (shCosineLobe(shBand(k)) / std::numbers::pi_v<float>);
 
   // The lights, five vec4 each (view/frame.glsl); one zero light when there are none (a buffer
   // is never empty). An IES light's color carries the profile's peak; the profile's shape is a
   // table (iesTableIndex).
   std::vector<const IesProfile*> iesProfiles;
   std::vector<float> iesTexels;
-  std::vector<glm::vec4> lightData(5 * std::max<std::size_t>(1, scene.lights.size()),
-                                   glm::vec4(0.0f));
-  for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-    const shared::ShadingLight l = shadingLightOf(scene.lights[i]);
-    lightData[5 * i] = glm::vec4(l.position, static_cast<float>(l.type));
-    lightData[5 * i + 1] = glm::vec4(l.direction, l.radius);
-    lightData[5 * i + 2] = glm::vec4(l.up, l.width);
-    lightData[5 * i + 3] = glm::vec4(
-        scene.lights[i].ies ? l.color * scene.lights[i].iesScale * scene.lights[i].ies->maxCandela()
-                            : l.color,
-        l.height);
-    lightData[5 * i + 4] = glm::vec4(l.cosInner, l.cosOuter, l.invSquaredRange,
-                                     iesTableIndex(scene.lights[i], iesProfiles, iesTexels));
-  }
+  const std::vector<glm::vec4> lightData = lightRecords(scene.lights, iesProfiles, iesTexels);
   lightCount = static_cast<int>(scene.lights.size());
   if (iesProfiles.empty()) iesTexels.assign(4, 1.0f);
   ies = uploadTexels2d(
@@ -788,6 +827,15 @@ SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const BakeRes
                              const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes)
     : impl_(std::make_unique<Impl>(context, scene, bake, bakeOptions, probes)) {}
 SceneRenderer::~SceneRenderer() = default;
+
+void SceneRenderer::setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
+                                   const std::vector<Light>& lights) {
+  impl_->setEnvironment(bake, bakeOptions, lights);
+}
+
+Context& SceneRenderer::context() {
+  return impl_->context;
+}
 
 int SceneRenderer::samples() const {
   return impl_->targets ? impl_->targets->samples : 0;

@@ -85,11 +85,16 @@ struct SceneRenderer::Impl {
   void record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& options,
               float skyboxLod);
   const DeviceImage& output() const { return *targets->resolved; }
+  // SceneRenderer::setEnvironment.
+  void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
+                      const std::vector<Light>& lights);
 
  private:
   // The constructor's work; if it throws, the constructor frees what it had made (destroy).
   void create(const Scene& scene, const BakeResult& bake, const BakeOptions& bakeOptions,
               const std::vector<LocalProbe>& probes);
+  // The bake's cube maps, DFG table and SH9 on the device (the descriptors are written apart).
+  void uploadBake(const BakeResult& bake, const BakeOptions& bakeOptions);
   // The probes' cube map arrays and placements (or stand-ins when there are none).
   void uploadProbes(const std::vector<LocalProbe>& probes, const BakeResult& bake);
   // Frees every Vulkan object made so far (null handles are skipped by Vulkan itself).

@@ -29,6 +29,7 @@ struct Interaction {
   Camera initial;
   float maxSkyboxLod = 0.0f;
   bool screenshotRequested = false;
+  int timeStep = 0;  // , or . pressed: the sun lower (-1) or higher (+1)
 
   void orbitFrom(const Camera& c) {
     target = c.at;
@@ -88,6 +89,12 @@ void onKey(GLFWwindow* window, int key, int, int action, int) {
       break;
     case GLFW_KEY_R:
       s.orbitFrom(s.initial);
+      break;
+    case GLFW_KEY_COMMA:
+      s.timeStep = -1;
+      break;
+    case GLFW_KEY_PERIOD:
+      s.timeStep = 1;
       break;
     case GLFW_KEY_P:
     case GLFW_KEY_F12:
@@ -450,6 +457,20 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     shading.only = state.diffuse && state.specular ? ShadingTerms::Both
                    : state.diffuse                 ? ShadingTerms::Diffuse
                                                    : ShadingTerms::Specular;
+    if (state.timeStep != 0 && o.timeOfDay) {
+      const auto start = Clock::now();
+      const auto change = o.timeOfDay(state.timeStep, *r.context);
+      if (change) {
+        renderer.setEnvironment(change->bake, change->options, change->lights);
+        state.maxSkyboxLod = renderer.skyboxMaxLod;
+        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        fmt::print(stderr, "ibl view: {}: new sky and bake in {:.0f} ms\n", change->label, ms);
+        glfwSetWindowTitle(r.window,
+                           fmt::format("{} - {} ({:.0f} ms)", o.title, change->label, ms).c_str());
+        lastTitle = Clock::now();  // the frame-time title waits a moment
+      }
+    }
+    state.timeStep = 0;
     if (state.screenshotRequested) {
       state.screenshotRequested = false;
       if (o.screenshot)

@@ -13,6 +13,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "ibl/env/cubemap.hpp"
+#include "ibl/env/sky.hpp"
 #include "ibl/gpu/viewer.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/ies.hpp"
@@ -199,6 +200,51 @@ TEST(Viewer, LightsMatchTheCpu) {
       EXPECT_LT(c.meanRelative, 2e-3) << environment << static_cast<int>(model);
       EXPECT_LT(c.fractionOver1, 1e-2) << environment << static_cast<int>(model);
     }
+}
+
+// Time of day: a viewer made with one sky, given another sky's bake (baked on the viewer's own
+// device) and sun, draws what a viewer made with the second sky from the start draws.
+TEST(Viewer, NewSkyAndSunReplaceTheEnvironment) {
+  Scene scene = makeSphereGrid(glm::vec3(0.8f, 0.6f, 0.4f));
+  const auto skyAt = [&](float elevation, gpu::Context* device) {
+    SkyParameters p;
+    p.sunElevation = elevation;
+    p.sunAzimuth = 160.0f;
+    const SkyModel sky(p);
+    Environment env;
+    env.equirect = sky.panorama(256, 128, false);
+    Baked b;
+    b.options.specular.size = 64;
+    b.options.irradianceSize = 16;
+    b.options.dfgSize = 64;
+    b.options.dfgSamples = 128;
+    b.bake = bakeEnvironment(env, b.options, {}, device);
+    return std::pair{b, sky.sun()};
+  };
+  const auto [morning, morningSun] = skyAt(10.0f, nullptr);
+  const auto [noon, noonSun] = skyAt(60.0f, &graphicsContext());
+  Scene atNoon = scene;
+  atNoon.lights = {noonSun};
+  scene.lights = {morningSun};
+  const Camera camera = lookingAt({0, 0, 20}, 160, 80);
+  RenderOptions o;
+  o.spp = 1;
+  gpu::SceneRenderer fresh(graphicsContext(), atNoon, noon.bake, noon.options);
+  const RenderResult expected = fresh.render(camera, o);
+  gpu::SceneRenderer changed(graphicsContext(), scene, morning.bake, morning.options);
+  const RenderResult before = changed.render(camera, o);
+  changed.setEnvironment(noon.bake, noon.options, atNoon.lights);
+  const RenderResult after = changed.render(camera, o);
+  EXPECT_EQ(after.color.pixels, expected.color.pixels);
+  EXPECT_GT(compare(before, expected).meanRelative, 0.1);  // the change is visible
+  // The GPU bake of the new sky matches the CPU's (the time of day bakes on the viewer's device).
+  const auto [cpuNoon, sun] = skyAt(60.0f, nullptr);
+  const RenderResult cpu =
+      gpu::SceneRenderer(graphicsContext(), atNoon, cpuNoon.bake, cpuNoon.options)
+          .render(camera, o);
+  EXPECT_LT(compare(cpu, expected).meanRelative, 5e-3);
+  // Another number of lights than the scene's: an error.
+  EXPECT_THROW(changed.setEnvironment(noon.bake, noon.options, {}), Error);
 }
 
 // Local probes: three probes of the sphere grid (box proxies and influences of different sizes

@@ -36,12 +36,27 @@ class SceneRenderer {
   RenderResult render(const Camera& camera, const RenderOptions& options, float skyboxLod = 0.0f);
   // Multisample count of the last frame.
   int samples() const;
+  // Replaces the environment (the bake's maps and SH9) and the scene's lights, as when the time
+  // of day changes: `lights` must be as many as the scene's (the sun's new direction, color and
+  // illuminance; an IES light keeps its profile). Waits for the device to be idle.
+  void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
+                      const std::vector<Light>& lights);
+  // The device it draws on (a bake can run there: bakeEnvironment's `device`).
+  Context& context();
 
   struct Impl;
   Impl& impl() { return *impl_; }
 
  private:
   std::unique_ptr<Impl> impl_;
+};
+
+// A new environment for a running viewer (time of day): its bake and the scene's lights.
+struct EnvironmentChange {
+  BakeResult bake;
+  BakeOptions options;
+  std::vector<Light> lights;  // as many as the scene's
+  std::string label;          // for the title and the log: "sun at 35 degrees"
 };
 
 struct WindowOptions {
@@ -56,6 +71,10 @@ struct WindowOptions {
   // Called with the current view rendered offscreen (linear radiance), its EV100 and tone
   // curve when the user presses P or F12; none: the keys do nothing.
   std::function<void(const RenderResult&, float ev100, ToneMap)> screenshot;
+  // Time of day: called with -1 or +1 when the user presses , or . (the sun lower / higher), and
+  // the viewer's device to bake on; returns the new environment, or nothing. The title and
+  // stderr show how long the change took.
+  std::function<std::optional<EnvironmentChange>(int step, Context& device)> timeOfDay;
 };
 
 struct WindowStats {
