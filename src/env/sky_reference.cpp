@@ -151,11 +151,10 @@ double traceBand(const Medium& m, glm::dvec3 origin, glm::dvec3 view, glm::dvec3
 Spectrum pathTracedSkyRadiance(const SkyParameters& p, glm::vec3 direction, int paths,
                                unsigned seed, int orders) {
   const AtmosphereCoefficients c = atmosphereCoefficients(p);
-  const SkyModel model(p);  // for its planet and sun direction only
   Medium base;
   base.shape = skyAtmosphereShape();
   const glm::dvec3 origin(0.0, base.shape.bottomRadius + std::max(p.altitude, 0.0f) + 1e-3, 0.0);
-  const glm::dvec3 sun(model.sunDirection());
+  const glm::dvec3 sun(sunDirection(p.sunElevation, p.sunAzimuth));
   const glm::dvec3 view = glm::normalize(glm::dvec3(direction));
   Spectrum out{};
   // Band after band (a measuring tool: simple and reproducible rather than fast).
