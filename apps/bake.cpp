@@ -50,18 +50,6 @@ struct BakeCliOptions {
   bool listDevices = false;
 };
 
-// The GPU context for --device gpu (required) or auto (a real GPU if there is one; the
-// software device is slower than the CPU path, so auto does not pick it).
-std::unique_ptr<gpu::Context> openDevice(const std::string& choice) {
-  if (choice == "cpu") return nullptr;
-  if (choice == "auto") {
-    bool realGpu = false;
-    for (const auto& d : gpu::listDevices()) realGpu |= d.type != "cpu";
-    if (!realGpu) return nullptr;
-  }
-  return gpu::Context::create();
-}
-
 // Bakes one input ("" for the bundled default) into `outDir`; returns the summary line.
 std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std::string& outDir,
                     bool showProgress, gpu::Context* device, const GlobalOptions& global) {
@@ -72,7 +60,8 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
   LoadOptions loadOptions;
   if (!o.inputLayout.empty()) loadOptions.layout = parseLayout(o.inputLayout);
   loadOptions.layer = o.layer;
-  SourceEnvironment source = loadSourceEnvironment(input, loadOptions, o.extractSun, global);
+  SourceEnvironment source =
+      loadSourceEnvironment(input, loadOptions, o.extractSun, global, device);
   const std::string& name = source.name;
   LoadedEnvironment& loaded = source.loaded;
   requireLight(loaded.environment, name);

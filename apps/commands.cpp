@@ -12,6 +12,7 @@
 #include "ibl/env/default_environment.hpp"
 #include "ibl/env/sky.hpp"
 #include "ibl/env/sun_extraction.hpp"
+#include "ibl/gpu/compute.hpp"
 
 namespace ibl::cli {
 
@@ -52,19 +53,31 @@ void requireLight(const Environment& env, std::string_view name) {
          "holds no light: every pixel is zero, NaN, infinite or negative after loading");
 }
 
+std::unique_ptr<gpu::Context> openDevice(const std::string& choice) {
+  if (choice == "cpu") return nullptr;
+  if (choice == "auto") {
+    bool realGpu = false;
+    for (const auto& d : gpu::listDevices()) realGpu |= d.type != "cpu";
+    if (!realGpu) return nullptr;
+  }
+  return gpu::Context::create();
+}
+
 SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOptions& options,
-                                        bool removeSun, const GlobalOptions& global) {
+                                        bool removeSun, const GlobalOptions& global,
+                                        gpu::Context* device) {
   SourceEnvironment s;
   if (isSkySpec(input)) {
     if (removeSun)
       fail("--extract-sun", fmt::format("contradicts {}: a sky's sun is a light already", input));
     const SkySpec spec = parseSkySpec(input);
-    const SkyModel sky(spec.parameters);
     s.name = input;
     s.loaded.format = "sky";
     s.loaded.environment.layout = Layout::Equirect;
-    s.loaded.environment.equirect = sky.panorama(spec.width, spec.height, false);
-    const Light sun = sky.sun();
+    s.loaded.environment.equirect =
+        device ? gpu::skyPanorama(*device, spec.parameters, spec.width, spec.height, false)
+               : SkyModel(spec.parameters).panorama(spec.width, spec.height, false);
+    const Light sun = skySun(spec.parameters);
     const SkyParameters& p = spec.parameters;
     nlohmann::json records = {{"sky",
                                {{"description", input},

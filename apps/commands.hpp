@@ -1,5 +1,6 @@
 #pragma once
 // The subcommands of the `ibl` executable: each registers its options and a callback.
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -9,6 +10,10 @@
 #include "ibl/core/image.hpp"
 #include "ibl/env/environment.hpp"
 #include "ibl/render/light.hpp"
+
+namespace ibl::gpu {
+class Context;
+}
 
 namespace ibl::cli {
 
@@ -27,9 +32,14 @@ void requireLight(const Environment& env, std::string_view name);
 // Rejects NaN and infinite values of a numeric option (CLI11 parses "nan" and "inf").
 const CLI::Validator& finiteNumber();
 
+// The Vulkan context for --device gpu (required: throws when there is none), none for cpu, and
+// for auto a real GPU if there is one (the software device is slower than the CPU paths, so
+// auto does not pick it).
+std::unique_ptr<gpu::Context> openDevice(const std::string& choice);
+
 // An environment named on the command line (a file, a sky description "sky:...", or the
 // bundled default when `input` is empty) with the lights it brings: the sky's sun, or the sun
-// --extract-sun took out of an HDRI.
+// --extract-sun took out of an HDRI. A sky is computed on `device` when one is given.
 struct SourceEnvironment {
   LoadedEnvironment loaded;
   std::string name;             // for messages
@@ -37,7 +47,8 @@ struct SourceEnvironment {
   std::string manifestRecords;  // JSON object: {"lights": [...], "sky": {...}} (may be empty)
 };
 SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOptions& options,
-                                        bool extractSun, const GlobalOptions& global);
+                                        bool extractSun, const GlobalOptions& global,
+                                        gpu::Context* device = nullptr);
 
 void addConvertCommand(CLI::App& app, const GlobalOptions& global);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global);

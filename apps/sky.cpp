@@ -12,6 +12,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/env/export.hpp"
 #include "ibl/env/sky.hpp"
+#include "ibl/gpu/compute.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/render/light.hpp"
 
@@ -32,6 +33,7 @@ struct SkyCliOptions {
   std::string sunJson;
   bool sunDisk = false;
   bool singleScattering = false;
+  std::string device = "cpu";
 };
 
 SkyParameters skyParameters(const SkyCliOptions& o) {
@@ -88,12 +90,13 @@ void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
   };
   checkExportOptions(e);
 
-  const SkyModel sky(p);
+  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
   Environment env;
   env.layout = Layout::Equirect;
-  env.equirect = sky.panorama(width, height, o.sunDisk);
+  env.equirect = device ? gpu::skyPanorama(*device, p, width, height, o.sunDisk)
+                        : SkyModel(p).panorama(width, height, o.sunDisk);
   std::vector<EncodedFile> files = encodeEnvironment(env, e);
-  const Light sun = sky.sun();
+  const Light sun = skySun(p);
   if (!o.sunJson.empty()) {
     const std::string text = sun.intensity > 0.0f
                                  ? fmt::format("{{\"lights\": [{}]}}\n", sunLightJson(sun))
@@ -111,7 +114,8 @@ void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
              o.sunDisk ? " (painted into the image)" : "");
   for (const auto& f : files)
     fmt::print(stderr, "wrote {} ({} bytes)\n", f.path.string(), f.bytes.size());
-  fmt::print(stderr, "{}x{} in {:.2f} s\n", width, height, seconds);
+  fmt::print(stderr, "{}x{} in {:.2f} s on {}\n", width, height, seconds,
+             device ? device->device().name : std::string("the CPU"));
 }
 
 }  // namespace
@@ -162,6 +166,11 @@ void addSkyCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--sun-disk", opts->sunDisk,
                 "Paint the sun's limb-darkened disk into the image instead (carrying its full "
                 "illuminance)");
+  cmd->add_option("--device", opts->device,
+                  "cpu, gpu (the sky's tables and panorama in Vulkan compute), or auto (a real "
+                  "GPU if present)")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}))
+      ->capture_default_str();
   cmd->add_flag("--single-scattering", opts->singleScattering,
                 "Leave out multiple scattering (for comparison)");
   cmd->callback([opts, &global] { runSky(*opts, global); });

@@ -48,7 +48,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   std::optional<SkySpec> skySpec;
   if (sky) {
     skySpec = parseSkySpec(o.scene.env);
-    if (baked.lights.empty()) scene.lights.push_back(SkyModel(skySpec->parameters).sun());
+    if (baked.lights.empty()) scene.lights.push_back(skySun(skySpec->parameters));
   }
   RenderOptions shading = shadingOptions(o.scene);
   shading.spp = o.scene.spp > 0 ? o.scene.spp : 4;
@@ -96,16 +96,17 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
       if (elevation == parameters.sunElevation) return std::nullopt;
       parameters.sunElevation = elevation;
       gpu::EnvironmentChange change;
-      const SkyModel model(parameters);
-      Environment env;
-      env.equirect = model.panorama(skySpec->width, skySpec->height, false);
-      change.options = baked.options;
-      // On the viewer's GPU; on the CPU when that is the software rasterizer (lavapipe bakes
-      // in 4 s what the CPU path bakes in 0.5 s).
+      // The sky and its bake on the viewer's GPU; on the CPU when that is the software
+      // rasterizer (lavapipe takes seconds where the CPU paths take under one).
       const bool gpu = device.device().type != "cpu";
+      Environment env;
+      env.equirect =
+          gpu ? gpu::skyPanorama(device, parameters, skySpec->width, skySpec->height, false)
+              : SkyModel(parameters).panorama(skySpec->width, skySpec->height, false);
+      change.options = baked.options;
       change.bake = bakeEnvironment(env, change.options, {}, gpu ? &device : nullptr);
       change.lights = ownLights;
-      change.lights.push_back(model.sun());
+      change.lights.push_back(skySun(parameters));
       change.label = fmt::format("sun at {:.0f} degrees, {:.0f} lx, baked on {}", elevation,
                                  change.lights.back().intensity,
                                  gpu ? device.device().name : std::string("the CPU"));

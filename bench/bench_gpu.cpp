@@ -142,7 +142,16 @@ void BM_ViewerFrameWithLights(benchmark::State& state) {
                ltc ? ibl::AreaLightModel::Ltc : ibl::AreaLightModel::Frostbite);
 }
 
-// The viewer's time of day on this device: a new sky (CPU, 1024 x 512) and its bake on the
+// The sky of W x W/2 on this device (ibl sky --device gpu): its tables and panorama, sun painted.
+void BM_GpuSkyPanorama(benchmark::State& state) {
+  const int w = static_cast<int>(state.range(0));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        ibl::gpu::skyPanorama(graphicsContext(), ibl::SkyParameters{}, w, w / 2, true));
+  state.SetLabel(graphicsContext().device().name);
+}
+
+// The viewer's time of day on this device: a new sky (1024 x 512) and its bake, both on the
 // viewer's device, uploaded into a running viewer (SceneRenderer::setEnvironment).
 void BM_TimeOfDayRebake(benchmark::State& state) {
   ibl::BakeOptions o;
@@ -153,9 +162,8 @@ void BM_TimeOfDayRebake(benchmark::State& state) {
     ibl::SkyParameters p;
     p.sunElevation = elevation;
     elevation = elevation > 80.0f ? 5.0f : elevation + 7.0f;
-    const ibl::SkyModel sky(p);
     ibl::Environment env;
-    env.equirect = sky.panorama(1024, 512, false);
+    env.equirect = ibl::gpu::skyPanorama(graphicsContext(), p, 1024, 512, false);
     const ibl::BakeResult bake = ibl::bakeEnvironment(env, o, {}, &graphicsContext());
     viewer.setEnvironment(bake, o, {});
   }
@@ -178,5 +186,6 @@ BENCHMARK(BM_ViewerFrameWithLights)
     ->ArgsProduct({{1, 16, 64}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(BM_GpuSkyPanorama)->Arg(512)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_TimeOfDayRebake)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(4);
 BENCHMARK_MAIN();

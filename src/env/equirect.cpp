@@ -30,13 +30,6 @@ glm::vec2 directionToEquirect(glm::vec3 d) {
   return {u, v};
 }
 
-glm::vec3 equirectToDirection(float u, float v) {
-  const float phi = 2.0f * kPiF * (u - 0.5f);
-  const float theta = kPiF * v;
-  const float st = std::sin(theta);
-  return {st * std::cos(phi), std::cos(theta), st * std::sin(phi)};
-}
-
 double equirectPixelSolidAngle(int y, int width, int height) {
   return 2.0 * kPi / width * (std::cos(kPi * y / height) - std::cos(kPi * (y + 1) / height));
 }

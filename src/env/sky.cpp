@@ -19,11 +19,36 @@
 namespace ibl {
 
 using shared::AtmosphereShape;
+using shared::BandCoefficients;
+using shared::bandExtinction;
+using shared::bandInscatteringSource;
+using shared::bandScattering;
+using shared::columnDensitiesToTop;
 using shared::constituentDensities;
+using shared::depthTableCoordinates;
+using shared::depthTableRadiusAndCosine;
 using shared::distanceToGround;
 using shared::distanceToSphereFar;
+using shared::groundSkyDirection;
+using shared::kDepthTableMu;
+using shared::kDepthTableR;
+using shared::kGroundSkyRings;
+using shared::kGroundSkySectors;
+using shared::kMultipleTableMu;
+using shared::kMultipleTableR;
+using shared::kSkyViewAzimuths;
+using shared::kSkyViewRows;
+using shared::multipleTableCoordinates;
+using shared::multipleTableRadiusAndCosine;
+using shared::quadraticStep;
 using shared::radiusAndCosineAfter;
 using shared::rayMeetsGround;
+using shared::skyViewCoordinates;
+using shared::skyViewTexelDirection;
+using shared::sphereStratumDirection;
+using shared::stepIntegral;
+using shared::sunCosineAfter;
+using shared::tableIndex;
 
 namespace {
 
@@ -105,11 +130,6 @@ double planck(double lambdaNm, double kelvin) {
   return b * 1e-9;
 }
 
-// Texel-centered table coordinates: x in [0, 1] to a continuous index in [0, n - 1].
-float tableIndex(float x, int n) {
-  return std::clamp(x, 0.0f, 1.0f) * static_cast<float>(n - 1);
-}
-
 }  // namespace
 
 AtmosphereShape skyAtmosphereShape() {
@@ -170,119 +190,111 @@ const Spectrum& solarIrradianceAtTop() {
   return e;
 }
 
+glm::dvec3 skyBandXyz(int band) {
+  return colorMatching(skyWavelength(band)) * (kLuminousEfficacy * kSkyBandWidth);
+}
+
 glm::vec3 spectrumToXyz(const Spectrum& s) {
   glm::dvec3 xyz(0.0);
-  for (int i = 0; i < kSkyBands; ++i)
-    xyz += static_cast<double>(s[i]) * colorMatching(skyWavelength(i));
-  return glm::vec3(xyz * (kLuminousEfficacy * kSkyBandWidth));
+  for (int i = 0; i < kSkyBands; ++i) xyz += static_cast<double>(s[i]) * skyBandXyz(i);
+  return glm::vec3(xyz);
 }
 
 // ---------------------------------------------------------------------------------------------
-// The tables. Optical depth: the column densities of the three constituents (relative to their
-// reference densities) from (r, mu) to the top of the atmosphere, for rays that miss the ground,
-// in Bruneton's parameterization (Bruneton 2017, functions GetTransmittanceTextureUvFromRMu and
-// its inverse). Multiple scattering: Hillaire 2020's Psi_ms(r, mu_s), per band.
+// The tables, with the parameterizations of ibl/shared/sky.h (shaders/env/sky_*.comp build the
+// same ones on the GPU). Optical depth: the column densities of the three constituents from
+// (r, mu) to the top of the atmosphere, for rays that miss the ground. Multiple scattering:
+// Hillaire 2020's Psi_ms(r, mu_s), per band. Sky view: the sky's radiance over directions.
+
+namespace {
+
+std::array<BandCoefficients, kSkyBands> bandCoefficients(const AtmosphereCoefficients& c) {
+  std::array<BandCoefficients, kSkyBands> bands{};
+  for (int i = 0; i < kSkyBands; ++i)
+    bands[i] = {c.rayleighScattering[i], c.mieScattering[i], c.mieExtinction[i],
+                c.ozoneAbsorption[i]};
+  return bands;
+}
+
+// Bilinear interpolation in a row-major table at continuous texel indices (x, y): the four
+// texels and their weights.
+struct BilinearTap {
+  std::size_t i00, i01, i10, i11;  // [y][x]
+  float fx, fy;
+};
+BilinearTap bilinearTap(float x, float y, int width, int height) {
+  const int x0 = std::min(static_cast<int>(x), width - 2);
+  const int y0 = std::min(static_cast<int>(y), height - 2);
+  const std::size_t row = static_cast<std::size_t>(y0) * width;
+  return {row + x0,
+          row + x0 + 1,
+          row + width + x0,
+          row + width + x0 + 1,
+          x - static_cast<float>(x0),
+          y - static_cast<float>(y0)};
+}
+template <typename T>
+T bilinear(const T* table, const BilinearTap& t) {
+  return glm::mix(glm::mix(table[t.i00], table[t.i01], t.fx),
+                  glm::mix(table[t.i10], table[t.i11], t.fx), t.fy);
+}
+
+}  // namespace
 
 struct SkyModel::Tables {
   AtmosphereShape shape = earth();
-  AtmosphereCoefficients coefficients;
+  std::array<BandCoefficients, kSkyBands> bands{};
   Spectrum top{};  // solar irradiance at the top of the atmosphere
   float observerRadius = 0.0f;
   glm::vec3 sun{0.0f, 1.0f, 0.0f};
 
-  static constexpr int kDepthMu = 256, kDepthR = 64;
-  std::vector<glm::vec3> depth;  // [r][mu]
-  static constexpr int kMsMu = 32, kMsR = 32;
+  std::vector<glm::vec3> depth;    // [r][mu]
   std::vector<Spectrum> multiple;  // [r][mu_s], per unit solar irradiance
   Spectrum groundSky{};            // sky irradiance on the ground, per unit solar irradiance
 
-  float horizonDistance() const {
-    return std::sqrt(shape.topRadius * shape.topRadius - shape.bottomRadius * shape.bottomRadius);
-  }
-
-  glm::vec3 integrateDepth(float r, float mu) const {
-    const float length = distanceToSphereFar(r, mu, shape.topRadius);
-    constexpr int kSteps = 256;
-    glm::dvec3 sum(0.0);
-    // Quadratic spacing: short steps near the start, where the density changes fastest.
-    for (int i = 0; i < kSteps; ++i) {
-      const float s0 = static_cast<float>(i) / kSteps, s1 = static_cast<float>(i + 1) / kSteps;
-      const float t = length * 0.5f * (s0 * s0 + s1 * s1);
-      const float dt = length * (s1 * s1 - s0 * s0);
-      const float h = radiusAndCosineAfter(r, mu, t).x - shape.bottomRadius;
-      sum += glm::dvec3(constituentDensities(shape, h)) * static_cast<double>(dt);
-    }
-    return glm::vec3(sum);
-  }
-
   void buildDepth() {
-    depth.resize(static_cast<std::size_t>(kDepthMu) * kDepthR);
-    const float H = horizonDistance();
-    parallelFor(0, kDepthR, [&](int j) {
-      const float rho = H * static_cast<float>(j) / (kDepthR - 1);
-      const float r = std::sqrt(rho * rho + shape.bottomRadius * shape.bottomRadius);
-      for (int i = 0; i < kDepthMu; ++i) {
-        const float dMin = shape.topRadius - r, dMax = rho + H;
-        const float d = dMin + static_cast<float>(i) / (kDepthMu - 1) * (dMax - dMin);
-        const float mu =
-            d == 0.0f ? 1.0f
-                      : std::clamp((H * H - rho * rho - d * d) / (2.0f * r * d), -1.0f, 1.0f);
-        depth[static_cast<std::size_t>(j) * kDepthMu + i] = integrateDepth(r, mu);
+    depth.resize(static_cast<std::size_t>(kDepthTableMu) * kDepthTableR);
+    parallelFor(0, kDepthTableR, [&](int j) {
+      for (int i = 0; i < kDepthTableMu; ++i) {
+        const glm::vec2 rm =
+            depthTableRadiusAndCosine(shape, static_cast<float>(i) / (kDepthTableMu - 1),
+                                      static_cast<float>(j) / (kDepthTableR - 1));
+        depth[static_cast<std::size_t>(j) * kDepthTableMu + i] =
+            columnDensitiesToTop(shape, rm.x, rm.y);
       }
     });
-  }
-
-  // Column densities from (r, mu) to the top; the ray must miss the ground.
-  glm::vec3 columnDensities(float r, float mu) const {
-    const float H = horizonDistance();
-    const float rho = std::sqrt(std::max(r * r - shape.bottomRadius * shape.bottomRadius, 0.0f));
-    const float d = distanceToSphereFar(r, mu, shape.topRadius);
-    const float dMin = shape.topRadius - r, dMax = rho + H;
-    const float x = tableIndex(dMax > dMin ? (d - dMin) / (dMax - dMin) : 0.0f, kDepthMu);
-    const float y = tableIndex(rho / H, kDepthR);
-    const int x0 = std::min(static_cast<int>(x), kDepthMu - 2);
-    const int y0 = std::min(static_cast<int>(y), kDepthR - 2);
-    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
-    const auto at = [&](int yy, int xx) {
-      return depth[static_cast<std::size_t>(yy) * kDepthMu + xx];
-    };
-    return glm::mix(glm::mix(at(y0, x0), at(y0, x0 + 1), fx),
-                    glm::mix(at(y0 + 1, x0), at(y0 + 1, x0 + 1), fx), fy);
   }
 
   // The transmittance to the top from (r, mu), per band; 0 through the ground.
   Spectrum transmittanceToTop(float r, float mu) const {
     Spectrum t{};
     if (rayMeetsGround(r, mu, shape.bottomRadius)) return t;
-    const glm::vec3 c = columnDensities(r, mu);
-    for (int i = 0; i < kSkyBands; ++i)
-      t[i] =
-          std::exp(-(coefficients.rayleighScattering[i] * c.x +
-                     coefficients.mieExtinction[i] * c.y + coefficients.ozoneAbsorption[i] * c.z));
+    const glm::vec2 xy = depthTableCoordinates(shape, r, mu);
+    const glm::vec3 column = bilinear(
+        depth.data(), bilinearTap(tableIndex(xy.x, kDepthTableMu), tableIndex(xy.y, kDepthTableR),
+                                  kDepthTableMu, kDepthTableR));
+    for (int i = 0; i < kSkyBands; ++i) t[i] = std::exp(-bandExtinction(bands[i], column));
     return t;
   }
 
   Spectrum multipleAt(float r, float muS) const {
-    const float x = tableIndex(0.5f + 0.5f * muS, kMsMu);
-    const float y =
-        tableIndex((r - shape.bottomRadius) / (shape.topRadius - shape.bottomRadius), kMsR);
-    const int x0 = std::min(static_cast<int>(x), kMsMu - 2);
-    const int y0 = std::min(static_cast<int>(y), kMsR - 2);
-    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
-    const auto& a = multiple[static_cast<std::size_t>(y0) * kMsMu + x0];
-    const auto& b = multiple[static_cast<std::size_t>(y0) * kMsMu + x0 + 1];
-    const auto& c = multiple[static_cast<std::size_t>(y0 + 1) * kMsMu + x0];
-    const auto& d = multiple[static_cast<std::size_t>(y0 + 1) * kMsMu + x0 + 1];
+    const glm::vec2 xy = multipleTableCoordinates(shape, r, muS);
+    const BilinearTap tap =
+        bilinearTap(tableIndex(xy.x, kMultipleTableMu), tableIndex(xy.y, kMultipleTableR),
+                    kMultipleTableMu, kMultipleTableR);
     Spectrum s;
+    const float w00 = (1.0f - tap.fy) * (1.0f - tap.fx), w01 = (1.0f - tap.fy) * tap.fx;
+    const float w10 = tap.fy * (1.0f - tap.fx), w11 = tap.fy * tap.fx;
     for (int i = 0; i < kSkyBands; ++i)
-      s[i] = (1.0f - fy) * ((1.0f - fx) * a[i] + fx * b[i]) + fy * ((1.0f - fx) * c[i] + fx * d[i]);
+      s[i] = w00 * multiple[tap.i00][i] + w01 * multiple[tap.i01][i] + w10 * multiple[tap.i10][i] +
+             w11 * multiple[tap.i11][i];
     return s;
   }
 
   // Hillaire 2020, section 5.5: from a point at radius r with the sun at zenith cosine muS, the
   // second-order light L2 (single scattering with an isotropic phase, and the lit ground, seen
   // over the whole sphere) and the transfer f_ms of isotropic light to the point; the infinite
-  // series of orders is L2 / (1 - f_ms) (eq. 9).
+  // series of orders is L2 / (1 - f_ms) (eq. 9). shaders/env/sky_multiple.comp is its twin.
   Spectrum multipleScatteringAt(float r, float muS, float albedo) const {
     constexpr int kDirections = 8;  // 8 x 8 stratified over the sphere
     constexpr int kSteps = 20;
@@ -290,11 +302,7 @@ struct SkyModel::Tables {
     const glm::vec3 sunDir(std::sqrt(std::max(1.0f - muS * muS, 0.0f)), muS, 0.0f);
     for (int a = 0; a < kDirections; ++a)
       for (int b = 0; b < kDirections; ++b) {
-        const float cosTheta = 1.0f - 2.0f * (static_cast<float>(a) + 0.5f) / kDirections;
-        const float phi =
-            2.0f * static_cast<float>(kPi) * (static_cast<float>(b) + 0.5f) / kDirections;
-        const float sinTheta = std::sqrt(std::max(1.0f - cosTheta * cosTheta, 0.0f));
-        const glm::vec3 d(sinTheta * std::cos(phi), cosTheta, sinTheta * std::sin(phi));
+        const glm::vec3 d = sphereStratumDirection(a, b, kDirections);
         const float mu = d.y, nu = glm::dot(d, sunDir);
         const bool ground = rayMeetsGround(r, mu, shape.bottomRadius);
         const float length = ground ? distanceToGround(r, mu, shape.bottomRadius)
@@ -305,30 +313,25 @@ struct SkyModel::Tables {
         for (int s = 0; s < kSteps; ++s) {
           const float t = (static_cast<float>(s) + 0.5f) * dt;
           const glm::vec2 rm = radiusAndCosineAfter(r, mu, t);
-          const float muSt = std::clamp((r * muS + t * nu) / rm.x, -1.0f, 1.0f);
+          const float muSt = sunCosineAfter(r, muS, nu, t, rm.x);
           const glm::vec3 rho = constituentDensities(shape, rm.x - shape.bottomRadius);
           const Spectrum sunT = transmittanceToTop(rm.x, muSt);
           for (int i = 0; i < kSkyBands; ++i) {
-            const float scattering =
-                coefficients.rayleighScattering[i] * rho.x + coefficients.mieScattering[i] * rho.y;
-            const float extinction = coefficients.rayleighScattering[i] * rho.x +
-                                     coefficients.mieExtinction[i] * rho.y +
-                                     coefficients.ozoneAbsorption[i] * rho.z;
+            const float extinction = bandExtinction(bands[i], rho);
             const float stepT = std::exp(-extinction * dt);
-            const float integral = extinction > 0.0f ? (1.0f - stepT) / extinction : dt;
-            const float isotropic = 1.0f / (4.0f * static_cast<float>(kPi));
-            l2[i] += throughput[i] * scattering * integral * sunT[i] * isotropic;
-            fms[i] += throughput[i] * scattering * integral;
+            const float scattered =
+                throughput[i] * bandScattering(bands[i], rho) * stepIntegral(extinction, dt, stepT);
+            l2[i] += scattered * sunT[i] / (4.0f * shared::kPi);  // the isotropic phase function
+            fms[i] += scattered;
             throughput[i] *= stepT;
           }
         }
         if (ground && albedo > 0.0f) {
           const glm::vec2 rm = radiusAndCosineAfter(r, mu, length);
-          const float muSg = std::clamp((r * muS + length * nu) / rm.x, -1.0f, 1.0f);
+          const float muSg = sunCosineAfter(r, muS, nu, length, rm.x);
           const Spectrum sunT = transmittanceToTop(shape.bottomRadius, muSg);
           for (int i = 0; i < kSkyBands; ++i)
-            l2[i] +=
-                throughput[i] * sunT[i] * std::max(muSg, 0.0f) * albedo / static_cast<float>(kPi);
+            l2[i] += throughput[i] * sunT[i] * std::max(muSg, 0.0f) * albedo / shared::kPi;
         }
       }
     // Uniform directions over the sphere: the mean over them is the integral against the
@@ -341,19 +344,20 @@ struct SkyModel::Tables {
   }
 
   void buildMultiple(float albedo, bool enabled) {
-    multiple.assign(static_cast<std::size_t>(kMsMu) * kMsR, Spectrum{});
+    multiple.assign(static_cast<std::size_t>(kMultipleTableMu) * kMultipleTableR, Spectrum{});
     if (!enabled) return;
-    parallelFor(0, kMsR * kMsMu, [&](int k) {
-      const int j = k / kMsMu, i = k % kMsMu;
-      const float r = shape.bottomRadius + (shape.topRadius - shape.bottomRadius) *
-                                               std::max(static_cast<float>(j) / (kMsR - 1), 1e-4f);
-      const float muS = -1.0f + 2.0f * static_cast<float>(i) / (kMsMu - 1);
-      multiple[static_cast<std::size_t>(k)] = multipleScatteringAt(r, muS, albedo);
+    parallelFor(0, kMultipleTableR * kMultipleTableMu, [&](int k) {
+      const int j = k / kMultipleTableMu, i = k % kMultipleTableMu;
+      const glm::vec2 rm =
+          multipleTableRadiusAndCosine(shape, static_cast<float>(i) / (kMultipleTableMu - 1),
+                                       static_cast<float>(j) / (kMultipleTableR - 1));
+      multiple[static_cast<std::size_t>(k)] = multipleScatteringAt(rm.x, rm.y, albedo);
     });
   }
 
   // In-scattered radiance toward a point at radius r0 from direction d (zenith +Y), per unit
   // solar irradiance, and where the ray meets the ground, the ground's reflection.
+  // shaders/env/sky_march.glsl is its twin.
   Spectrum inscattered(float r0, glm::vec3 d, float albedo, bool withGround) const {
     const float mu = d.y, muS = sun.y, nu = glm::dot(d, sun);
     const bool ground = rayMeetsGround(r0, mu, shape.bottomRadius);
@@ -365,36 +369,28 @@ struct SkyModel::Tables {
     throughput.fill(1.0f);
     constexpr int kSteps = 40;
     for (int s = 0; s < kSteps && length > 0.0f; ++s) {
-      const float s0 = static_cast<float>(s) / kSteps, s1 = static_cast<float>(s + 1) / kSteps;
-      const float t = length * 0.5f * (s0 * s0 + s1 * s1);
-      const float dt = length * (s1 * s1 - s0 * s0);
-      const glm::vec2 rm = radiusAndCosineAfter(r0, mu, t);
-      const float muSt = std::clamp((r0 * muS + t * nu) / rm.x, -1.0f, 1.0f);
+      const glm::vec2 step = quadraticStep(length, s, kSteps);
+      const glm::vec2 rm = radiusAndCosineAfter(r0, mu, step.x);
+      const float muSt = sunCosineAfter(r0, muS, nu, step.x, rm.x);
       const glm::vec3 rho = constituentDensities(shape, rm.x - shape.bottomRadius);
       const Spectrum sunT = transmittanceToTop(rm.x, muSt);
       const Spectrum psi = multipleAt(rm.x, muSt);
       for (int i = 0; i < kSkyBands; ++i) {
-        const float rayleigh = coefficients.rayleighScattering[i] * rho.x;
-        const float mie = coefficients.mieScattering[i] * rho.y;
-        const float extinction = rayleigh + coefficients.mieExtinction[i] * rho.y +
-                                 coefficients.ozoneAbsorption[i] * rho.z;
-        const float source =
-            rayleigh * (phaseR * sunT[i] + psi[i]) + mie * (phaseM * sunT[i] + psi[i]);
-        const float stepT = std::exp(-extinction * dt);
-        // The source's integral over the step with the step's own attenuation (Hillaire 2020,
-        // eq. 6 note: energy-conserving integration).
-        const float integral = extinction > 0.0f ? (1.0f - stepT) / extinction : dt;
-        l[i] += throughput[i] * source * integral;
+        const float extinction = bandExtinction(bands[i], rho);
+        const float stepT = std::exp(-extinction * step.y);
+        l[i] += throughput[i] *
+                bandInscatteringSource(bands[i], rho, phaseR, phaseM, sunT[i], psi[i]) *
+                stepIntegral(extinction, step.y, stepT);
         throughput[i] *= stepT;
       }
     }
     if (ground && withGround && albedo > 0.0f) {
       const glm::vec2 rm = radiusAndCosineAfter(r0, mu, length);
-      const float muSg = std::clamp((r0 * muS + length * nu) / rm.x, -1.0f, 1.0f);
+      const float muSg = sunCosineAfter(r0, muS, nu, length, rm.x);
       const Spectrum sunT = transmittanceToTop(shape.bottomRadius, muSg);
       for (int i = 0; i < kSkyBands; ++i)
-        l[i] += throughput[i] * albedo / static_cast<float>(kPi) *
-                (sunT[i] * std::max(muSg, 0.0f) + groundSky[i]);
+        l[i] +=
+            throughput[i] * albedo / shared::kPi * (sunT[i] * std::max(muSg, 0.0f) + groundSky[i]);
     }
     return l;
   }
@@ -403,21 +399,13 @@ struct SkyModel::Tables {
   // midpoint quadrature over the upper hemisphere).
   void buildGroundSky() {
     groundSky.fill(0.0f);
-    constexpr int kTheta = 32, kPhi = 64;
-    std::vector<Spectrum> rows(kTheta);
-    parallelFor(0, kTheta, [&](int a) {
+    std::vector<Spectrum> rows(kGroundSkyRings);
+    parallelFor(0, kGroundSkyRings, [&](int a) {
       Spectrum row{};
-      const double t0 = 0.5 * kPi * a / kTheta, t1 = 0.5 * kPi * (a + 1) / kTheta;
-      const float theta = static_cast<float>(0.5 * (t0 + t1));
-      // The integral of cos(theta) over the ring, divided among its cells.
-      const float weight = static_cast<float>(0.5 * (std::cos(2.0 * t0) - std::cos(2.0 * t1)) *
-                                              0.5 * 2.0 * kPi / kPhi);
-      for (int b = 0; b < kPhi; ++b) {
-        const float phi = static_cast<float>(2.0 * kPi * (b + 0.5) / kPhi);
-        const glm::vec3 d(std::sin(theta) * std::cos(phi), std::cos(theta),
-                          std::sin(theta) * std::sin(phi));
-        const Spectrum l = inscattered(shape.bottomRadius, d, 0.0f, false);
-        for (int i = 0; i < kSkyBands; ++i) row[i] += l[i] * weight;
+      for (int b = 0; b < kGroundSkySectors; ++b) {
+        const glm::vec4 d = groundSkyDirection(a, b);
+        const Spectrum l = inscattered(shape.bottomRadius, glm::vec3(d), 0.0f, false);
+        for (int i = 0; i < kSkyBands; ++i) row[i] += l[i] * d.w;
       }
       rows[static_cast<std::size_t>(a)] = row;
     });
@@ -425,80 +413,44 @@ struct SkyModel::Tables {
       for (int i = 0; i < kSkyBands; ++i) groundSky[i] += row[i];
   }
 
-  // The sky-view table (after Hillaire 2020, section 5.3): the sky's radiance as linear Rec.709
-  // over the view's azimuth from the sun's (0 to pi: the sky is symmetric about the sun's
-  // vertical plane) and its elevation, in two halves that meet at the horizon (the ground's edge
-  // is a discontinuity no interpolation may cross), each with rows crowded toward the horizon
-  // (elevation from it proportional to the square of the row coordinate).
-  static constexpr int kViewAzimuths = 256, kViewRows = 160;  // rows per half
-  std::vector<glm::vec3> skyView;                             // [half][row][azimuth]
-  std::once_flag skyViewBuilt;                                // by the first panorama
-  float horizonElevation = 0.0f;                              // radians, <= 0
-
-  // The elevation (radians) of row j of half `below` (0: above the horizon).
-  float viewRowElevation(int below, int j) const {
-    const float t = static_cast<float>(j) / (kViewRows - 1);
-    const float span = below ? horizonElevation + 0.5f * static_cast<float>(kPi)
-                             : 0.5f * static_cast<float>(kPi) - horizonElevation;
-    return horizonElevation + (below ? -1.0f : 1.0f) * span * t * t;
-  }
-
-  // The direction at elevation e and azimuth a from the sun's.
-  glm::vec3 viewDirection(float e, float a) const {
-    const float sunAzimuth = std::atan2(sun.x, -sun.z);  // compass, from north (-Z) toward +X
-    const float compass = sunAzimuth + a;
-    return {std::cos(e) * std::sin(compass), std::sin(e), -std::cos(e) * std::cos(compass)};
-  }
+  // The sky-view table ([half][row][azimuth], built by the first panorama).
+  std::vector<glm::vec3> skyView;
+  std::once_flag skyViewBuilt;
+  float horizon = 0.0f;  // the horizon's elevation, radians, <= 0
 
   void buildSkyView(float albedo) {
-    skyView.resize(static_cast<std::size_t>(2) * kViewRows * kViewAzimuths);
-    parallelFor(0, 2 * kViewRows, [&](int row) {
-      const int below = row / kViewRows, j = row % kViewRows;
-      // The horizon rows sit just on their side of it.
-      const float e = viewRowElevation(below, j) + (j == 0 ? (below ? -1e-5f : 1e-5f) : 0.0f);
-      for (int i = 0; i < kViewAzimuths; ++i) {
-        const float a = static_cast<float>(kPi) * static_cast<float>(i) / (kViewAzimuths - 1);
-        Spectrum l = inscattered(observerRadius, viewDirection(e, a), albedo, true);
+    skyView.resize(static_cast<std::size_t>(2) * kSkyViewRows * kSkyViewAzimuths);
+    parallelFor(0, 2 * kSkyViewRows, [&](int row) {
+      for (int i = 0; i < kSkyViewAzimuths; ++i) {
+        Spectrum l =
+            inscattered(observerRadius, skyViewTexelDirection(horizon, sun, row, i), albedo, true);
         for (int k = 0; k < kSkyBands; ++k) l[k] *= top[k];
-        skyView[static_cast<std::size_t>(row) * kViewAzimuths + i] =
+        skyView[static_cast<std::size_t>(row) * kSkyViewAzimuths + i] =
             glm::max(xyzToLinearRec709(spectrumToXyz(l)), glm::vec3(0.0f));
       }
     });
   }
 
   glm::vec3 skyViewAt(glm::vec3 d) const {
-    const float e = std::asin(std::clamp(d.y, -1.0f, 1.0f));
-    const int below = e < horizonElevation ? 1 : 0;
-    const float span = below ? horizonElevation + 0.5f * static_cast<float>(kPi)
-                             : 0.5f * static_cast<float>(kPi) - horizonElevation;
-    const float y = tableIndex(
-        span > 0.0f ? std::sqrt(std::abs(e - horizonElevation) / span) : 0.0f, kViewRows);
-    const float sunAzimuth = std::atan2(sun.x, -sun.z);
-    float a = std::abs(std::atan2(d.x, -d.z) - sunAzimuth);
-    if (a > static_cast<float>(kPi)) a = 2.0f * static_cast<float>(kPi) - a;
-    const float x = tableIndex(a / static_cast<float>(kPi), kViewAzimuths);
-    const int x0 = std::min(static_cast<int>(x), kViewAzimuths - 2);
-    const int y0 = std::min(static_cast<int>(y), kViewRows - 2);
-    const float fx = x - static_cast<float>(x0), fy = y - static_cast<float>(y0);
-    const auto at = [&](int yy, int xx) {
-      return skyView[(static_cast<std::size_t>(below) * kViewRows + yy) * kViewAzimuths + xx];
-    };
-    return glm::mix(glm::mix(at(y0, x0), at(y0, x0 + 1), fx),
-                    glm::mix(at(y0 + 1, x0), at(y0 + 1, x0 + 1), fx), fy);
+    const glm::vec3 c = skyViewCoordinates(horizon, sun, d);
+    const BilinearTap tap =
+        bilinearTap(tableIndex(c.x, kSkyViewAzimuths), tableIndex(c.y, kSkyViewRows),
+                    kSkyViewAzimuths, kSkyViewRows);
+    return bilinear(skyView.data() + (c.z > 0.5f ? kSkyViewRows * kSkyViewAzimuths : 0), tap);
   }
 };
 
 SkyModel::SkyModel(const SkyParameters& p) : params_(p), tables_(std::make_unique<Tables>()) {
   checkSkyParameters(p, "sky");
   Tables& t = *tables_;
-  t.coefficients = atmosphereCoefficients(p);
+  t.bands = bandCoefficients(atmosphereCoefficients(p));
   t.top = solarIrradianceAtTop();
   t.observerRadius = t.shape.bottomRadius + std::max(p.altitude, 0.0f);
   t.sun = ibl::sunDirection(p.sunElevation, p.sunAzimuth);
   t.buildDepth();
   t.buildMultiple(p.groundAlbedo, p.multipleScattering);
   if (p.groundAlbedo > 0.0f) t.buildGroundSky();
-  t.horizonElevation = -std::acos(std::min(t.shape.bottomRadius / t.observerRadius, 1.0f));
+  t.horizon = shared::horizonElevation(t.shape, t.observerRadius);
 }
 
 SkyModel::~SkyModel() = default;
@@ -523,20 +475,32 @@ Spectrum SkyModel::radiance(glm::vec3 d) const {
   return l;
 }
 
-Light SkyModel::sun() const {
-  const Tables& t = *tables_;
-  Spectrum e = t.transmittanceToTop(t.observerRadius, t.sun.y);
-  for (int i = 0; i < kSkyBands; ++i) e[i] *= t.top[i];
+Light skySun(const SkyParameters& p) {
+  checkSkyParameters(p, "sky");
+  const AtmosphereShape shape = earth();
+  const glm::vec3 direction = sunDirection(p.sunElevation, p.sunAzimuth);
+  const float r = shape.bottomRadius + p.altitude;
+  Spectrum e{};
+  if (!rayMeetsGround(r, direction.y, shape.bottomRadius)) {
+    const glm::vec3 column = columnDensitiesToTop(shape, r, direction.y);
+    const auto bands = bandCoefficients(atmosphereCoefficients(p));
+    for (int i = 0; i < kSkyBands; ++i)
+      e[i] = solarIrradianceAtTop()[i] * std::exp(-bandExtinction(bands[i], column));
+  }
   const glm::vec3 xyz = spectrumToXyz(e);
   Light light;
   light.type = LightType::Sun;
   light.name = "sky: sun";
-  light.direction = t.sun;
+  light.direction = direction;
   light.angularDiameter = static_cast<float>(kSunAngularDiameter);
   light.intensity = std::max(xyz.y, 0.0f);
   const glm::vec3 rgb = xyzToLinearRec709(xyz);
   light.color = xyz.y > 0.0f ? rgb / xyz.y : glm::vec3(1.0f);
   return light;
+}
+
+Light SkyModel::sun() const {
+  return skySun(params_);
 }
 
 Image SkyModel::panorama(int width, int height, bool paintSun) const {
@@ -552,12 +516,17 @@ Image SkyModel::panorama(int width, int height, bool paintSun) const {
       image.at(x, y) = tables_->skyViewAt(d);
     }
   });
-  if (!paintSun) return image;
-  const Light s = sun();
-  if (s.intensity <= 0.0f) return image;
+  if (paintSun) paintSunDisk(image, sun());
+  return image;
+}
+
+void paintSunDisk(Image& image, const Light& s) {
+  if (s.intensity <= 0.0f) return;
+  const int width = image.width, height = image.height;
+  const float w = static_cast<float>(width), h = static_cast<float>(height);
   // The disk, limb-darkened, supersampled 16 x 16 per pixel near it, then scaled so that the
   // pixels' radiance times their solid angle adds up to the sun's illuminance exactly.
-  const double radius = 0.5 * kSunAngularDiameter;
+  const double radius = 0.5 * static_cast<double>(s.angularDiameter);
   const glm::vec2 c = directionToEquirect(s.direction);
   const int cy = static_cast<int>(c.y * h);
   const double pixelAngle = kPi / height;
@@ -591,11 +560,10 @@ Image SkyModel::panorama(int width, int height, bool paintSun) const {
       weighted += relative * equirectPixelSolidAngle(y, width, height);
     }
   }
-  if (weighted <= 0.0) return image;
+  if (weighted <= 0.0) return;
   const glm::vec3 irradiance = s.color * s.intensity;  // Rec.709 "lux" per channel
   for (const auto& [index, relative] : covered)
     image.pixels[index] += irradiance * static_cast<float>(relative / weighted);
-  return image;
 }
 
 }  // namespace ibl

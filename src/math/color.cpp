@@ -19,12 +19,6 @@ std::uint8_t linearToSrgb8(float l) {
   return static_cast<std::uint8_t>(std::lround(linearToSrgb(l) * 255.0f));
 }
 
-glm::vec3 xyzToLinearRec709(glm::vec3 c) {
-  return {3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z,
-          -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,
-          0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z};
-}
-
 namespace {
 
 // A piecewise Gaussian: exp(-((lambda - mu) / sigma)^2 / 2), sigma1 below mu, sigma2 above.

@@ -42,7 +42,8 @@ inline float atan2Approx(float y, float x) {
   return y < 0.0f ? -a : a;
 }
 
-glm::vec3 equirectToDirection(float u, float v);
+// The direction of (u, v), defined once for C++ and GLSL in ibl/shared/cube.h.
+using shared::equirectToDirection;
 
 // Exact solid angle of one pixel of row y in a width x height map.
 double equirectPixelSolidAngle(int y, int width, int height);

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include <glm/ext/vector_double3.hpp>
 #include <glm/vec3.hpp>
 
 #include "ibl/core/image.hpp"
@@ -19,7 +20,7 @@ namespace ibl {
 
 // The wavelengths the sky is computed at: the centers of 20 bands 20 nm wide from 380 to 780 nm
 // (390, 410, ... 770 nm; the color matching functions are integrated by the midpoint rule).
-inline constexpr int kSkyBands = 20;
+inline constexpr int kSkyBands = shared::kSkyBands;
 inline constexpr float kSkyFirstWavelength = 390.0f, kSkyBandWidth = 20.0f;
 using Spectrum = std::array<float, kSkyBands>;
 
@@ -62,6 +63,10 @@ float skyMieAsymmetry();
 // blackbody at the Sun's effective temperature seen at 1 au (about 1361 W m^-2 in all).
 const Spectrum& solarIrradianceAtTop();
 
+// The photometric XYZ weights of band i: spectrumToXyz(s) is the sum over the bands of s[i] times
+// these (the color matching functions at the band's wavelength times 683 lm/W times its width).
+glm::dvec3 skyBandXyz(int band);
+
 // The photometric XYZ of a spectral radiance (W m^-2 sr^-1 nm^-1 per band) or irradiance: 683
 // lm/W times the integral against the CIE 1931 color matching functions (cd/m^2 or lux in Y).
 glm::vec3 spectrumToXyz(const Spectrum& s);
@@ -100,6 +105,15 @@ class SkyModel {
   SkyParameters params_;
   std::unique_ptr<Tables> tables_;
 };
+
+// The sun of the sky `p` as a light (SkyModel::sun, without building the model's tables): the
+// solar spectrum at the top of the atmosphere seen through the atmosphere's column toward it.
+Light skySun(const SkyParameters& p);
+
+// Draws the sun's disk, limb-darkened, into an equirect panorama so that the added radiance
+// times the pixels' solid angles sums to the light's illuminance (its color times its lux).
+// Nothing for a light of 0 lux.
+void paintSunDisk(Image& panorama, const Light& sun);
 
 // A Monte Carlo reference for SkyModel::radiance (src/env/sky_reference.cpp): a spectral
 // volumetric path tracer of the same atmosphere, every order of scattering and the ground's

@@ -11,6 +11,7 @@
 #include "ibl/core/image.hpp"
 #include "ibl/env/cubemap.hpp"
 #include "ibl/env/environment.hpp"
+#include "ibl/env/sky.hpp"
 #include "ibl/math/sh.hpp"
 
 namespace ibl::gpu {
@@ -75,5 +76,11 @@ CubeMap prefilterGgxSampled(Context& context, const CubeMap& source,
 Image integrateDfgLut(Context& context, int width, int height, int samples);
 CubeMap convolveIrradiance(Context& context, const CubeMap& source, int size, int sourceLevel);
 Sh9 projectSh9(Context& context, const CubeMap& cube, int level);
+
+// SkyModel(p).panorama(width, height, paintSun) computed on the device: shaders/sky/*.comp build
+// the optical-depth, multiple-scattering, ground and sky-view tables with the CPU's per-point math
+// (ibl/shared/sky.h) and marches, then the panorama; the sun's disk is painted on the host.
+// Throws Error("sky: ...") for parameters or a size out of range, as the CPU path does.
+Image skyPanorama(Context& context, const SkyParameters& p, int width, int height, bool paintSun);
 
 }  // namespace ibl::gpu

@@ -11,18 +11,17 @@
 namespace ibl {
 
 // Defined once for C++ and GLSL in ibl/shared/color.h: the exact sRGB curve both ways
-// (srgbToLinear clamps its input to [0, 1]; linearToSrgb clamps its output), luminance.
+// (srgbToLinear clamps its input to [0, 1]; linearToSrgb clamps its output), luminance, and CIE
+// 1931 XYZ to linear Rec.709 (sRGB primaries, D65 white; IEC 61966-2-1).
 using shared::linearToSrgb;
 using shared::luminance;
 using shared::srgbToLinear;
+using shared::xyzToLinearRec709;
 
 // Decodes an 8-bit sRGB code with a 256-entry table.
 float srgb8ToLinear(std::uint8_t code);
 // Encodes a linear value to the nearest 8-bit sRGB code.
 std::uint8_t linearToSrgb8(float linear);
-
-// CIE 1931 XYZ to linear Rec.709 (sRGB primaries, D65 white; IEC 61966-2-1).
-glm::vec3 xyzToLinearRec709(glm::vec3 xyz);
 
 // The CIE 1931 2-degree color matching functions (x-bar, y-bar, z-bar) at `lambda` nm: the
 // multi-lobe Gaussian fit of Wyman, Sloan & Shirley 2013, JCGT 2(2), eq. 2.

@@ -27,6 +27,13 @@ IBL_FN float luminance(vec3 c) {
   return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
 }
 
+// CIE 1931 XYZ to linear Rec.709 (sRGB primaries, D65 white; IEC 61966-2-1).
+IBL_FN vec3 xyzToLinearRec709(vec3 c) {
+  return vec3(3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z,
+              -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,
+              0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z);
+}
+
 // Hable's filmic curve ("Uncharted 2 Tonemapping", 2010), before the white-point division.
 IBL_FN vec3 hableFilmic(vec3 x) {
   float a = 0.15f, b = 0.50f, c = 0.10f, d = 0.20f, e = 0.02f, f = 0.30f;

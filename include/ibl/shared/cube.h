@@ -20,6 +20,15 @@ IBL_FN vec3 faceToDirection(int face, float sc, float tc) {
   return vec3(-sc, -tc, -1.0f);
 }
 
+// The direction of equirect coordinates (u, v) (docs/conventions.md: u = 0.5 + atan2(z, x) / 2 pi,
+// v = acos(y) / pi; row 0 straight up, the image's center toward +X).
+IBL_FN vec3 equirectToDirection(float u, float v) {
+  float phi = 2.0f * kPi * (u - 0.5f);
+  float theta = kPi * v;
+  float st = sin(theta);
+  return vec3(st * cos(phi), cos(theta), st * sin(phi));
+}
+
 // The face's axes, read off the table: which = 0 the major axis (the face center), 1 the
 // direction in which s grows, 2 the direction in which t grows; a point of the face plane is
 // axis + sc * sAxis + tc * tAxis.

@@ -42,6 +42,7 @@ using glm::vec4;
 // GLSL's built-in functions, as glm defines them (glm also brings std's scalar overloads).
 using glm::abs;
 using glm::acos;
+using glm::asin;
 using glm::atan;
 using glm::clamp;
 using glm::cos;
