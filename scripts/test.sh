@@ -8,30 +8,33 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="$(nproc)"
+# Each phase's start, in seconds since the script began (CI's budget is 30 minutes in all).
+phase() { echo "== $1 (at ${SECONDS} s)" >&2; }
 
 bash scripts/setup.sh
 
-echo "== release build and tests" >&2
+phase "release build and tests"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DIBL_WERROR=ON >/dev/null
 ninja -C build
 ctest --test-dir build --output-on-failure -j "$jobs"
 
-echo "== clang-format" >&2
+phase "clang-format"
 git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format --dry-run --Werror
 
-echo "== fuzzing the readers" >&2
+phase "fuzzing the readers"
 bash scripts/fuzz.sh "${IBL_FUZZ_SECONDS:-15}"
 
-echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests" >&2
+phase "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_SANITIZE=ON \
   -DIBL_WERROR=ON -DIBL_BUILD_BENCH=OFF >/dev/null
 ninja -C build-asan
 ctest --test-dir build-asan --output-on-failure -j "$jobs"
 
-echo "== ThreadSanitizer build and tests" >&2
+phase "ThreadSanitizer build and tests"
 # The suites that run the library's own parallel code (oneTBB, through include/ibl/core/
-# parallel.hpp, which annotates fork and join). Left out: the GPU tests (the Vulkan driver's
-# threads) and the command-line tests (the same code through the executable). Mutex reports are
+# parallel.hpp, which annotates fork and join); a ThreadSanitizer build compiles only their files
+# (tests/CMakeLists.txt). Left out: the GPU tests (the Vulkan driver's threads) and the
+# command-line tests (the same code through the executable). Mutex reports are
 # off: OpenEXR locks inside its library and unlocks in header code inlined into ours.
 cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_TSAN=ON \
   -DIBL_WERROR=ON -DIBL_BUILD_BENCH=OFF >/dev/null
@@ -39,3 +42,4 @@ ninja -C build-tsan ibl_tests
 TSAN_OPTIONS="halt_on_error=1 report_mutex_bugs=0 suppressions=$PWD/tests/tsan.supp" \
   ctest --test-dir build-tsan --output-on-failure -j "$jobs" \
   -R '^(CubeMap|Equirect|Resample|Sh|Sampling|Brdf|Dfg|Prefilter|Bake|Render|ShadingRules|Camera|Environment|Sky|SunExtraction)\.'
+phase "done"
