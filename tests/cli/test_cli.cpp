@@ -154,11 +154,16 @@ TEST(Cli, BakeBytesDoNotDependOnThreads) {
 
 TEST(Cli, RenderAndCompare) {
   TempDir dir;
-  CliRun r = runIbl("render sphere -o " + quote(dir / "a.exr") +
-                    " --size 24x16 --spp 1 --roughness 0.4 --quiet");
+  // A small bake lights both renders (a render of the default environment bakes it in full).
+  CliRun r = runIbl("bake -o " + quote(dir / "bake") +
+                    " --size 32 --dfg-size 16 --dfg-samples 64 --no-preview --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string bake = " --bake " + quote(dir / "bake");
+  r = runIbl("render sphere -o " + quote(dir / "a.exr") +
+             " --size 24x16 --spp 1 --roughness 0.4 --quiet" + bake);
   ASSERT_EQ(r.status, 0) << r.output;
   r = runIbl("render sphere -o " + quote(dir / "b.exr") +
-             " --size 24x16 --spp 1 --roughness 0.6 --quiet");
+             " --size 24x16 --spp 1 --roughness 0.6 --quiet" + bake);
   ASSERT_EQ(r.status, 0) << r.output;
   const DecodedFile a = readImageFile(dir / "a.exr");
   EXPECT_EQ(a.channels, 4);  // RGB + alpha
@@ -206,8 +211,9 @@ TEST(Cli, RenderWithLightsOnly) {
 TEST(Cli, CameraOptionsAreCheckedOrHandled) {
   TempDir dir;
   const std::string base = "render sphere --size 8x8 --spp 1 --quiet -o " + quote(dir / "c.exr");
-  // Looking straight down with the default up: another up is picked, the image is complete.
-  CliRun r = runIbl(base + " --look-from 0,10,0");
+  // Looking straight down with the default up: another up is picked, the image is complete
+  // (lit by nothing: the environment is beside the point).
+  CliRun r = runIbl(base + " --look-from 0,10,0 --env none");
   ASSERT_EQ(r.status, 0) << r.output;
   const DecodedFile d = readImageFile(dir / "c.exr");
   EXPECT_EQ(d.levels[0][0].width, 8);
@@ -265,8 +271,9 @@ TEST(Cli, RenderFromAnExistingBake) {
 // print one line with the same prefix, and nothing is written.
 TEST(Cli, ContradictoryOrMeaninglessOptionsAreErrors) {
   TempDir dir;
-  ASSERT_EQ(runIbl("render sphere --size 8x8 --spp 1 -q -o " + quote(dir / "lin.exr")).status, 0);
-  ASSERT_EQ(runIbl("render sphere --size 8x8 --spp 1 -q -o " + quote(dir / "ldr.png")).status, 0);
+  const std::string unlit = "render sphere --env none --size 8x8 --spp 1 -q -o ";
+  ASSERT_EQ(runIbl(unlit + quote(dir / "lin.exr")).status, 0);
+  ASSERT_EQ(runIbl(unlit + quote(dir / "ldr.png")).status, 0);
   const std::string out = quote(dir / "out");
   const std::string park = quote(hdriPath("park"));
   struct Case {

@@ -446,8 +446,13 @@ TEST(Viewer, TexturedAndCompressedMeshesMatchTheCpu) {
 TEST(Viewer, ScreenshotLookingStraightDownMatchesTheCpu) {
   TempDir dir;
   ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
-  const std::string view = " --size 48x48 --spp 1 -q --look-from 0,6,0 --background 0.2,0.3,0.4";
-  CliRun r = runIbl("view sphere --screenshot " + quote(dir / "gpu.exr") + view);
+  // Both lit by one small bake (each would otherwise bake the default environment in full).
+  CliRun r = runIbl("bake -o " + quote(dir / "bake") +
+                    " --size 64 --dfg-size 16 --dfg-samples 64 --no-preview -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string view = " --size 48x48 --spp 1 -q --look-from 0,6,0 --background 0.2,0.3,0.4" +
+                           std::string(" --bake ") + quote(dir / "bake");
+  r = runIbl("view sphere --screenshot " + quote(dir / "gpu.exr") + view);
   ASSERT_EQ(r.status, 0) << r.output;
   r = runIbl("render sphere -o " + quote(dir / "cpu.exr") + view);
   ASSERT_EQ(r.status, 0) << r.output;
@@ -469,7 +474,12 @@ TEST(Viewer, CliWritesAScreenshot) {
   TempDir dir;
   ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
   const auto png = dir / "grid.png";
-  CliRun r = runIbl("view grid --size 96x48 --screenshot " + quote(png));
+  // Every image lit by one small bake (each would otherwise bake the default environment).
+  CliRun r = runIbl("bake -o " + quote(dir / "bake") +
+                    " --size 64 --dfg-size 16 --dfg-samples 64 --no-preview -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string bake = " --bake " + quote(dir / "bake");
+  r = runIbl("view grid --size 96x48 --screenshot " + quote(png) + bake);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("MSAA"), std::string::npos) << r.output;
   const Image shot = readImageFile(png).levels[0][0];
@@ -477,9 +487,9 @@ TEST(Viewer, CliWritesAScreenshot) {
   EXPECT_EQ(shot.height, 48);
   // The same view from `ibl render` (pixel centers both), through the same exposure and curve.
   const auto cpu = dir / "cpu.png";
-  r = runIbl("render grid --size 96x48 --spp 1 -q -o " + quote(cpu));
+  r = runIbl("render grid --size 96x48 --spp 1 -q -o " + quote(cpu) + bake);
   ASSERT_EQ(r.status, 0) << r.output;
-  r = runIbl("view grid --size 96x48 --spp 1 -q --screenshot " + quote(png));
+  r = runIbl("view grid --size 96x48 --spp 1 -q --screenshot " + quote(png) + bake);
   ASSERT_EQ(r.status, 0) << r.output;
   const Image a = readImageFile(png).levels[0][0], b = readImageFile(cpu).levels[0][0];
   ASSERT_EQ(a.pixels.size(), b.pixels.size());
