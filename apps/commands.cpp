@@ -63,6 +63,11 @@ std::unique_ptr<gpu::Context> openDevice(const std::string& choice) {
   return gpu::Context::create();
 }
 
+Image skyImage(const SkyParameters& p, int width, int height, bool paintSun, gpu::Context* device) {
+  return device ? gpu::skyPanorama(*device, p, width, height, paintSun)
+                : SkyModel(p).panorama(width, height, paintSun);
+}
+
 SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOptions& options,
                                         bool removeSun, const GlobalOptions& global,
                                         gpu::Context* device) {
@@ -75,8 +80,7 @@ SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOpti
     s.loaded.format = "sky";
     s.loaded.environment.layout = Layout::Equirect;
     s.loaded.environment.equirect =
-        device ? gpu::skyPanorama(*device, spec.parameters, spec.width, spec.height, false)
-               : SkyModel(spec.parameters).panorama(spec.width, spec.height, false);
+        skyImage(spec.parameters, spec.width, spec.height, false, device);
     const Light sun = skySun(spec.parameters);
     const SkyParameters& p = spec.parameters;
     nlohmann::json records = {{"sky",

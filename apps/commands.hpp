@@ -9,6 +9,7 @@
 
 #include "ibl/core/image.hpp"
 #include "ibl/env/environment.hpp"
+#include "ibl/env/sky.hpp"
 #include "ibl/render/light.hpp"
 
 namespace ibl::gpu {
@@ -36,6 +37,10 @@ const CLI::Validator& finiteNumber();
 // for auto a real GPU if there is one (the software device is slower than the CPU paths, so
 // auto does not pick it).
 std::unique_ptr<gpu::Context> openDevice(const std::string& choice);
+
+// The sky's panorama of `p` on `device`, or on the CPU without one (gpu::skyPanorama,
+// SkyModel::panorama).
+Image skyImage(const SkyParameters& p, int width, int height, bool paintSun, gpu::Context* device);
 
 // An environment named on the command line (a file, a sky description "sky:...", or the
 // bundled default when `input` is empty) with the lights it brings: the sky's sun, or the sun

@@ -93,8 +93,7 @@ void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
   const std::unique_ptr<gpu::Context> device = openDevice(o.device);
   Environment env;
   env.layout = Layout::Equirect;
-  env.equirect = device ? gpu::skyPanorama(*device, p, width, height, o.sunDisk)
-                        : SkyModel(p).panorama(width, height, o.sunDisk);
+  env.equirect = skyImage(p, width, height, o.sunDisk, device.get());
   std::vector<EncodedFile> files = encodeEnvironment(env, e);
   const Light sun = skySun(p);
   if (!o.sunJson.empty()) {

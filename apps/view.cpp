@@ -101,8 +101,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
       const bool gpu = device.device().type != "cpu";
       Environment env;
       env.equirect =
-          gpu ? gpu::skyPanorama(device, parameters, skySpec->width, skySpec->height, false)
-              : SkyModel(parameters).panorama(skySpec->width, skySpec->height, false);
+          skyImage(parameters, skySpec->width, skySpec->height, false, gpu ? &device : nullptr);
       change.options = baked.options;
       change.bake = bakeEnvironment(env, change.options, {}, gpu ? &device : nullptr);
       change.lights = ownLights;
