@@ -475,6 +475,11 @@ Spectrum SkyModel::radiance(glm::vec3 d) const {
   return l;
 }
 
+void checkSkyPanoramaSize(int width, int height) {
+  if (width < 2 || height < 1 || width > 16384 || height > 8192)
+    fail("sky", fmt::format("panorama size {}x{} out of range", width, height));
+}
+
 Light skySun(const SkyParameters& p) {
   checkSkyParameters(p, "sky");
   const AtmosphereShape shape = earth();
@@ -504,8 +509,7 @@ Light SkyModel::sun() const {
 }
 
 Image SkyModel::panorama(int width, int height, bool paintSun) const {
-  if (width < 2 || height < 1 || width > 16384 || height > 8192)
-    fail("sky", fmt::format("panorama size {}x{} out of range", width, height));
+  checkSkyPanoramaSize(width, height);
   std::call_once(tables_->skyViewBuilt, [&] { tables_->buildSkyView(params_.groundAlbedo); });
   Image image(width, height);
   const float w = static_cast<float>(width), h = static_cast<float>(height);

@@ -31,10 +31,6 @@ struct TexelBuffers {
   }
 };
 
-std::uint32_t groups(std::size_t count, std::uint32_t size) {
-  return static_cast<std::uint32_t>((count + size - 1) / size);
-}
-
 }  // namespace
 
 Image integrateDfgLut(Context& context, int width, int height, int samples) {

@@ -63,6 +63,11 @@ class Buffer {
   void* mapped_ = nullptr;
 };
 
+// The work groups of `size` invocations that cover `count` items.
+inline std::uint32_t groups(std::size_t count, std::uint32_t size) {
+  return static_cast<std::uint32_t>((count + size - 1) / size);
+}
+
 // Runs `shader` once with the buffers bound at 0, 1, ... and waits for it.
 void dispatch(Context& context, std::string_view shader, std::initializer_list<Buffer*> buffers,
               std::span<const std::uint8_t> pushConstants, std::uint32_t groupsX,

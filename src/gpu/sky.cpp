@@ -3,11 +3,9 @@
 // marches, then the panorama; the host supplies the physical constants and paints the sun.
 #include <array>
 
-#include <fmt/format.h>
 #include <glm/vec4.hpp>
 
 #include "gpu/buffers.hpp"
-#include "ibl/core/error.hpp"
 #include "ibl/env/sky.hpp"
 #include "ibl/gpu/compute.hpp"
 
@@ -45,16 +43,11 @@ SkyConstants skyConstants(const SkyParameters& p) {
   return k;
 }
 
-std::uint32_t groups(std::size_t count, std::uint32_t size) {
-  return static_cast<std::uint32_t>((count + size - 1) / size);
-}
-
 }  // namespace
 
 Image skyPanorama(Context& context, const SkyParameters& p, int width, int height, bool paintSun) {
   checkSkyParameters(p, "sky");
-  if (width < 2 || height < 1 || width > 16384 || height > 8192)
-    fail("sky", fmt::format("panorama size {}x{} out of range", width, height));
+  checkSkyPanoramaSize(width, height);
   SkyConstants k = skyConstants(p);
   Buffer constants(context, sizeof(SkyConstants));
   constants.upload(&k, sizeof(k));

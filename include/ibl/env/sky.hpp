@@ -106,6 +106,9 @@ class SkyModel {
   std::unique_ptr<Tables> tables_;
 };
 
+// Throws Error("sky: ...") unless a panorama of width x height is in 2x1 to 16384x8192.
+void checkSkyPanoramaSize(int width, int height);
+
 // The sun of the sky `p` as a light (SkyModel::sun, without building the model's tables): the
 // solar spectrum at the top of the atmosphere seen through the atmosphere's column toward it.
 Light skySun(const SkyParameters& p);
