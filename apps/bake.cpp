@@ -32,6 +32,8 @@ struct BakeCliOptions {
   std::string method = "direct";
   int samples = 64;
   bool fresnelWeighted = false;
+  bool sheen = false;
+  std::vector<std::string> targets = {"ibl"};
   int irradianceSize = 32;
   int dfgSize = 128;
   int dfgSamples = 512;
@@ -81,6 +83,12 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
       o.method == "sampled" ? PrefilterMethod::Sampled : PrefilterMethod::Direct;
   options.specular.samples = o.samples;
   options.fresnelWeighted = o.fresnelWeighted;
+  options.sheen = o.sheen;
+  options.targets.clear();
+  for (const std::string& t : o.targets) {
+    const EngineTarget target = *parseEngineTarget(t);
+    if (!options.wants(target)) options.targets.push_back(target);
+  }
   options.irradianceSize = o.irradianceSize;
   options.dfgSize = o.dfgSize;
   options.dfgSamples = o.dfgSamples;
@@ -207,6 +215,16 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_flag("--fresnel-weighted", opts->fresnelWeighted,
                 "Also bake the C(n,l)-weighted specular pair (specular_f0_0, specular_f0_1)");
+  cmd->add_flag("--sheen", opts->sheen,
+                "Also bake the sheen (Charlie) prefiltered cube and its table (sheen, sheen_dfg)");
+  cmd->add_option("--target", opts->targets,
+                  "What to write, one or several (comma-separated): ibl (our KTX2 set), filament "
+                  "(cmgen --deploy's KTX files and sh.txt), gltf-sample-viewer "
+                  "(glTF-IBL-Sampler's ggx/, lambertian/, charlie/ and LUT PNGs), dds (DDS cube "
+                  "maps with mips). Several: ibl in OUTDIR, the others in OUTDIR/<target>/")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"ibl", "filament", "gltf-sample-viewer", "dds"}))
+      ->capture_default_str();
   cmd->add_option("--irradiance-size", opts->irradianceSize, "Irradiance cube size")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();

@@ -1,5 +1,6 @@
 #include "ibl/bake/bake.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -23,11 +24,11 @@
 #include "ibl/io/image_io.hpp"
 #include "ibl/io/json_file.hpp"
 #include "ibl/io/ktx2.hpp"
+#include "output_plan.hpp"
 
 namespace ibl {
 
 namespace fs = std::filesystem;
-using Json = nlohmann::ordered_json;
 
 constexpr int kPreviewColumns = 6;
 
@@ -56,8 +57,31 @@ class StageTimer {
 
 }  // namespace
 
+// Records in a manifest entry, and warns, what a format's range clamps of an output.
+void noteRangeLoss(Json& entry, const BakeOutputOptions& out, const std::string& file,
+                   const RangeLoss& loss, std::string_view format) {
+  if (loss.clamped == 0) return;
+  entry["clamped"] = {
+      {"values", loss.clamped}, {"brightest", loss.brightest}, {"lost_power", loss.lostPower}};
+  if (out.warn)
+    out.warn(
+        fmt::format("{}: {} values above the {} range clamped (brightest {:g}), {:.3g} % of "
+                    "the power of its worst level lost; bake with --format rgba32f, or "
+                    "--clamp MAX to choose the limit",
+                    file, loss.clamped, format, loss.brightest, 100.0 * loss.lostPower));
+}
+
+bool BakeOptions::wants(EngineTarget t) const {
+  return std::find(targets.begin(), targets.end(), t) != targets.end();
+}
+
 BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const ProgressFn& progress,
                            gpu::Context* device) {
+  if (o.wants(EngineTarget::GltfSampleViewer) && o.specular.mapping != RoughnessMapping::Linear)
+    fail("--target gltf-sample-viewer",
+         fmt::format("the glTF Sample Viewer reads roughness r at lod r (mipCount - 1); bake it "
+                     "with --mapping linear, not {}",
+                     mappingName(o.specular.mapping)));
   BakeResult r;
   if (device) r.device = device->device().name;
   StageTimer time(r.timingsMs);
@@ -95,6 +119,25 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
           variant.weight = PrefilterWeight::FresnelF0One;
           r.specularF0One = time("specular_f0_1", prefilter);
         }
+        const auto prefilter = [&](const PrefilterOptions& chain) {
+          return device ? gpu::prefilterGgx(*device, r.source, chain)
+                        : prefilterGgx(r.source, chain);
+        };
+        if (o.wantsSheen()) {
+          // The specular chain's levels and mapping, so that one lod serves both lobes.
+          PrefilterOptions sheen = o.specular;
+          sheen.weight = PrefilterWeight::Charlie;
+          sheen.method = PrefilterMethod::Direct;
+          if (progress) progress("sheen (Charlie) prefilter");
+          r.sheen = time("sheen", [&] { return prefilter(sheen); });
+        }
+        if (o.wants(EngineTarget::Filament)) {
+          PrefilterOptions filament = o.specular;
+          filament.levels = filamentLevelCount(o.specular.size);
+          filament.mapping = RoughnessMapping::Filament;
+          if (progress) progress("Filament's specular chain");
+          r.filamentSpecular = time("filament_specular", [&] { return prefilter(filament); });
+        }
         if (progress)
           progress(fmt::format("irradiance {}x{} and SH9", o.irradianceSize, o.irradianceSize));
         r.irradiance = time("irradiance", [&] {
@@ -116,6 +159,10 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
           return device ? gpu::integrateDfgLut(*device, o.dfgSize, o.dfgSize, o.dfgSamples)
                         : integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples);
         });
+        if (o.wantsSheen())
+          r.sheenDfg = time("sheen_dfg", [&] {
+            return integrateSheenDfgLut(o.dfgSize, o.dfgSize, 4 * o.dfgSamples);
+          });
       });
   r.timingsMs["total"] =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -166,7 +213,7 @@ Json conventionsJson(const BakeOptions& o, const BakeResult& r) {
   for (const auto& l : r.specularLevels) levels.push_back(l.roughness);
   c["specular"] = {
       {"model", "split sum (Karis 2013), n = v = r, GGX with alpha = r^2"},
-      {"mapping", o.specular.mapping == RoughnessMapping::Linear ? "linear" : "frostbite"},
+      {"mapping", std::string(mappingName(o.specular.mapping))},
       {"level_roughness",
        o.specular.mapping == RoughnessMapping::Linear ? "r = m / (L - 1)" : "r = (m / (L - 1))^2"},
       {"lod_from_roughness", o.specular.mapping == RoughnessMapping::Linear
@@ -207,25 +254,6 @@ Json conventionsJson(const BakeOptions& o, const BakeResult& r) {
   return c;
 }
 
-// The files of a bake before they are written: each with a function that encodes it (run for
-// all files in parallel, before the first byte is written) and the manifest's `outputs`.
-struct PendingFile {
-  fs::path path;  // relative to the output directory
-  std::function<std::vector<std::uint8_t>()> encode;
-  std::vector<std::uint8_t> bytes;
-};
-struct OutputPlan {
-  std::vector<PendingFile> files;
-  Json outputs = Json::array();
-
-  void add(const std::string& path, std::function<std::vector<std::uint8_t>()> encode) {
-    files.push_back({path, std::move(encode), {}});
-  }
-  void addText(const std::string& path, const std::string& text) {
-    add(path, [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); });
-  }
-};
-
 // One cube map as flat files (cross or six faces) in `format` (EXR or HDR), level by level.
 void addFlatCube(OutputPlan& plan, const Json& entry, const CubeMap& cube, const std::string& stem,
                  FileFormat format, Layout layout) {
@@ -259,20 +287,6 @@ void addFlatCube(OutputPlan& plan, const Json& entry, const CubeMap& cube, const
     }
     plan.outputs.push_back(e);
   }
-}
-
-// Records in a manifest entry, and warns, what a format's range clamps of an output.
-void noteRangeLoss(Json& entry, const BakeOutputOptions& out, const std::string& file,
-                   const RangeLoss& loss, std::string_view format) {
-  if (loss.clamped == 0) return;
-  entry["clamped"] = {
-      {"values", loss.clamped}, {"brightest", loss.brightest}, {"lost_power", loss.lostPower}};
-  if (out.warn)
-    out.warn(
-        fmt::format("{}: {} values above the {} range clamped (brightest {:g}), {:.3g} % of "
-                    "the power of its worst level lost; bake with --format rgba32f, or "
-                    "--clamp MAX to choose the limit",
-                    file, loss.clamped, format, loss.brightest, 100.0 * loss.lostPower));
 }
 
 // A cube map as `stem`.ktx2 (all levels) and, if asked, as EXR / HDR files; `extra` joins each
@@ -318,8 +332,7 @@ void addSpecular(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
                        {"computed_size", l.computedSize},
                        {"samples", l.samples}});
   }
-  const std::string mapping =
-      o.specular.mapping == RoughnessMapping::Linear ? "linear" : "frostbite";
+  const std::string mapping(mappingName(o.specular.mapping));
   addCube(plan, out, "specular", "specular", r.specular,
           {{"variant", "standard"},
            {"roughness", roughness},
@@ -435,6 +448,9 @@ Json manifestJson(const BakeResult& r, const BakeOptions& o, const BakeSource& s
                                    {"values", src.clampLoss.clamped},
                                    {"brightest", src.clampLoss.brightest},
                                    {"lost_power", src.clampLoss.lostPower}};
+  Json targets = Json::array();
+  for (EngineTarget t : o.targets) targets.push_back(std::string(targetName(t)));
+  manifest["targets"] = targets;
   manifest["conventions"] = conventionsJson(o, r);
   manifest["outputs"] = outputs;
   shortenFloats(manifest);
@@ -523,19 +539,60 @@ std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path
   return paths;
 }
 
+// The sheen pair of the ibl set: sheen.ktx2 (Charlie-prefiltered) and sheen_dfg.ktx2.
+void addSheen(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
+              const BakeOutputOptions& out) {
+  Json roughness = Json::array();
+  for (int m = 0; m < r.sheen->levelCount(); ++m)
+    roughness.push_back(std::max(roughnessForLevel(m, r.sheen->levelCount(), o.specular.mapping),
+                                 kMinSheenRoughness));
+  addCube(plan, out, "sheen", "sheen", *r.sheen,
+          {{"lobe", "Charlie (Estevez & Kulla 2017): D(h) (n.l), n = v"},
+           {"roughness", roughness},
+           {"mapping", std::string(mappingName(o.specular.mapping))},
+           {"minimum_roughness", kMinSheenRoughness}});
+  Ktx2Texture tex;
+  tex.format = PixelFormat::Rgba16f;
+  tex.levels = {{*r.sheenDfg}};
+  plan.add("sheen_dfg.ktx2", [tex] { return encodeKtx2(tex); });
+  plan.outputs.push_back({{"role", "sheen_dfg"},
+                          {"path", "sheen_dfg.ktx2"},
+                          {"format", "ktx2"},
+                          {"pixel_format", "rgba16f"},
+                          {"vk_format", vulkanFormatName(PixelFormat::Rgba16f)},
+                          {"size", {r.sheenDfg->width, r.sheenDfg->height}},
+                          {"faces", 1},
+                          {"levels", 1},
+                          {"u", "n.v = (i + 0.5) / W"},
+                          {"v", "r = (j + 0.5) / H, row 0 first"},
+                          {"channels", {"E", "0", "0"}},
+                          {"r",
+                           "E = integral of D_charlie V_neubelt (n.l): sheen = sheenColor * "
+                           "prefiltered sheen * E; base layer scaled by "
+                           "1 - max(sheenColor) * E"}});
+}
+
 }  // namespace
 
 std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o,
                                        const BakeOutputOptions& out, const BakeSource& src,
                                        const fs::path& outDir) {
   OutputPlan plan;
-  addSpecular(plan, r, o, out);
-  addCube(plan, out, "irradiance", "irradiance", r.irradiance, {{"stores", "E / pi"}});
-  addCube(plan, out, "source", "source", r.source, {});
-  addDfg(plan, r, o, out);
-  addSh(plan, r, o);
-  for (const auto& [role, cube] : out.extraCubes) addCube(plan, out, role, role, *cube, {});
-  if (out.preview) addPreviews(plan, r, o, out.previewCell);
+  if (o.wants(EngineTarget::Ibl)) {
+    addSpecular(plan, r, o, out);
+    addCube(plan, out, "irradiance", "irradiance", r.irradiance, {{"stores", "E / pi"}});
+    addCube(plan, out, "source", "source", r.source, {});
+    addDfg(plan, r, o, out);
+    addSh(plan, r, o);
+    if (r.sheen && r.sheenDfg) addSheen(plan, r, o, out);
+    for (const auto& [role, cube] : out.extraCubes) addCube(plan, out, role, role, *cube, {});
+    if (out.preview) addPreviews(plan, r, o, out.previewCell);
+  }
+  const bool panorama =
+      src.layout == "equirect" || src.layout == "mirrorball" || src.layout == "angular";
+  std::string name = outDir.filename().string();
+  if (name.empty()) name = outDir.parent_path().filename().string();  // "dir/"
+  addTargetOutputs(plan, r, o, out, name, panorama);
   Json manifest = manifestJson(r, o, src, plan.outputs);
   if (!out.manifestRecords.empty()) manifest.update(Json::parse(out.manifestRecords));
   plan.addText("manifest.json", manifest.dump(2) + "\n");

@@ -53,13 +53,15 @@ struct TexelArrays {
 // The lobe weight as a function of c = n.l (n = v): proportional to the integrand of the
 // prefiltered radiance, zero for c <= 0. With n = v, n.h = v.h = sqrt((1 + c) / 2).
 struct LobeWeight {
-  enum class Kind { Cosine, Ggx, GgxVisibility, GgxVisibilityFresnel } kind;
+  enum class Kind { Cosine, Ggx, GgxVisibility, GgxVisibilityFresnel, Charlie } kind;
   float a2 = 0.0f;  // alpha^2
 
   static LobeWeight forLevel(float roughness, PrefilterWeight w) {
+    if (w == PrefilterWeight::Charlie) roughness = std::max(roughness, kMinSheenRoughness);
     const float alpha = alphaFromRoughness(roughness);
     const Kind kind = w == PrefilterWeight::Standard       ? Kind::Ggx
                       : w == PrefilterWeight::FresnelF0One ? Kind::GgxVisibility
+                      : w == PrefilterWeight::Charlie      ? Kind::Charlie
                                                            : Kind::GgxVisibilityFresnel;
     return {kind, alpha * alpha};
   }
@@ -143,6 +145,11 @@ template <int kWindow>
     case LobeWeight::Kind::GgxVisibilityFresnel:
       run([=](float c) IBL_INLINE { return shared::ggxVisibilityFresnelLobe(c, a2); });
       break;
+    case LobeWeight::Kind::Charlie: {
+      const float exponent = 0.5f / std::sqrt(a2);  // shared::charlieLobe, its root hoisted
+      run([=](float c) IBL_INLINE { return c * std::pow(std::max(1.0f - c, 0.0f), exponent); });
+      break;
+    }
   }
 }
 
@@ -346,32 +353,44 @@ ConvolutionSums convolvePass(const std::array<Image, kFaceCount>& sourceLevel, i
 
 namespace {
 
-// The F0 = 0 lobe of the Fresnel-weighted variant, (1 - v.h)^5 D V (n.l), vanishes on its axis
-// and grows toward grazing angles whatever the roughness: not a core with tails (no rings),
-// but a broad function of n.l that varies on scales of kFresnelLobeScale radians or more. One
-// direct pass over the sphere with texels an eighth of that, computed at no more than 32^2
-// (smooth on that scale) and interpolated up. Measured against brute-force quadrature: 5e-6.
-std::array<Image, kFaceCount> prefilterLevelFresnelZero(const CubeMap& source, int size,
-                                                        float roughness, LevelMethod* info,
-                                                        const ConvolutionPassFn& pass) {
-  constexpr float kFresnelLobeScale = 0.35f;
-  const int level = levelForTexelAngle(source, kFresnelLobeScale / 8.0f);
-  const int coarse = std::min(size, 32);
+// Broad lobes, computed in one direct pass over the sphere at no more than `maxSize`^2 and
+// interpolated up, reading the level with texels of `texelAngle`:
+// - the F0 = 0 lobe of the Fresnel-weighted variant, (1 - v.h)^5 D V (n.l), vanishes on its
+//   axis and grows toward grazing angles whatever the roughness: not a core with tails (no
+//   rings), but a broad function of n.l that varies on scales of 0.35 rad or more; texels an
+//   eighth of that, 32^2. Measured against brute-force quadrature: 5e-6.
+// - the Charlie lobe (1 - c)^(1 / (2 alpha)) c peaks at c = 1 / (1 + 1 / (2 alpha)), near the
+//   horizon for smooth sheen, over a width of about that much in c; the prefiltered radiance
+//   averages a whole ring around n, smooth on the scale of 16^2 texels.
+std::array<Image, kFaceCount> prefilterLevelBroad(const CubeMap& source, int size, float roughness,
+                                                  PrefilterWeight weight, LevelMethod* info,
+                                                  const ConvolutionPassFn& pass) {
+  float texelAngle = 0.35f / 8.0f;
+  int maxSize = 32;
+  if (weight == PrefilterWeight::Charlie) {
+    const float alpha = alphaFromRoughness(std::max(roughness, kMinSheenRoughness));
+    const float peak = 1.0f / (1.0f + 0.5f / alpha);  // in c, about the lobe's width too
+    texelAngle = std::max(peak / 2.0f, 2.0f / 64.0f);
+    maxSize = 16;
+  }
+  const int level = levelForTexelAngle(source, texelAngle);
+  const int coarse = std::min(size, maxSize);
   if (info) {
     info->method = "direct";
     info->sourceSize = source.levels[level][0].width;
     info->computedSize = coarse;
   }
-  CubeMap result;
-  result.levels = {normalize(pass(source.levels[level], coarse, roughness,
-                                  PrefilterWeight::FresnelF0Zero, RadialWindow{}, 0.0f))};
-  if (coarse == size) return result.levels[0];
+  std::array<Image, kFaceCount> result =
+      normalize(pass(source.levels[level], coarse, roughness, weight, RadialWindow{}, 0.0f));
+  if (coarse == size) return result;
+  CubeMap cube;
+  cube.levels = {std::move(result)};
   std::array<Image, kFaceCount> out;
   for (auto& face : out) face = Image(size, size);
   parallelFor(0, kFaceCount * size, [&](int row) {
     const int face = row / size, y = row % size;
     for (int x = 0; x < size; ++x)
-      out[face].at(x, y) = sampleBilinear(result, 0, texelDirection(face, x, y, size));
+      out[face].at(x, y) = sampleBilinear(cube, 0, texelDirection(face, x, y, size));
   });
   return out;
 }
@@ -418,8 +437,8 @@ std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int siz
   constexpr float kPiF = std::numbers::pi_v<float>;
   // Ring 0, the lobe's core: texels at most a third of its half width, cap 2 b1.
   const float b1 = 2.0f * theta;
-  if (weight == PrefilterWeight::FresnelF0Zero)
-    return prefilterLevelFresnelZero(source, size, roughness, info, pass);
+  if (weight == PrefilterWeight::FresnelF0Zero || weight == PrefilterWeight::Charlie)
+    return prefilterLevelBroad(source, size, roughness, weight, info, pass);
   if (const int work = workingSize(size, theta); work < size) {
     std::array<Image, kFaceCount> coarse =
         prefilterLevelRings(source, work, roughness, weight, info, pass);
@@ -497,15 +516,36 @@ std::vector<glm::vec3> irradianceDirections(const std::array<Image, kFaceCount>&
   return convolveDirections(sourceLevel, dirs, {LobeWeight::Kind::Cosine, 0.0f});
 }
 
+std::string_view mappingName(RoughnessMapping mapping) {
+  switch (mapping) {
+    case RoughnessMapping::Linear:
+      return "linear";
+    case RoughnessMapping::Frostbite:
+      return "frostbite";
+    case RoughnessMapping::Filament:
+      return "filament";
+  }
+  return "?";
+}
+
 float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping) {
   if (levelCount <= 1) return 0.0f;
   const float t = static_cast<float>(level) / static_cast<float>(levelCount - 1);
-  return mapping == RoughnessMapping::Linear ? t : t * t;
+  switch (mapping) {
+    case RoughnessMapping::Linear:
+      return t;
+    case RoughnessMapping::Frostbite:
+      return t * t;
+    case RoughnessMapping::Filament:  // the root of lod / (L - 1) = r (2 - r) in [0, 1]
+      return std::clamp(1.0f - std::sqrt(std::max(1.0f - t, 0.0f)), 0.0f, 1.0f);
+  }
+  return t;
 }
 
 float specularLodForRoughness(float roughness, int levelCount, RoughnessMapping mapping) {
-  return shared::specularLodForRoughness(roughness, static_cast<float>(std::max(levelCount - 1, 0)),
-                                         mapping == RoughnessMapping::Frostbite);
+  const float maxLod = static_cast<float>(std::max(levelCount - 1, 0));
+  if (mapping == RoughnessMapping::Filament) return maxLod * roughness * (2.0f - roughness);
+  return shared::specularLodForRoughness(roughness, maxLod, mapping == RoughnessMapping::Frostbite);
 }
 
 int defaultSpecularLevels(int size) {
@@ -600,8 +640,8 @@ CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& o,
       progress(fmt::format("specular level {}/{} ({}x{}, roughness {:.3f})", m + 1, levels, size,
                            size, r));
     LevelMethod method{r, "", 0, 0, size};
-    if (r == 0.0f) {
-      // Mirror reflection: the source itself.
+    if (r == 0.0f && o.weight != PrefilterWeight::Charlie) {
+      // Mirror reflection: the source itself (the sheen lobe has no mirror limit).
       const int sl = levelOfSize(source, size);
       method.method = "source";
       method.sourceSize = source.levels[sl][0].width;

@@ -226,4 +226,32 @@ glm::dvec3 integrateCube(const CubeMap& cube, int level) {
   return total;
 }
 
+CubeMap permuteCubeAxes(const CubeMap& cube, const glm::mat3& m) {
+  for (int c = 0; c < 3; ++c) {
+    int nonzero = 0;
+    for (int r = 0; r < 3; ++r) {
+      const float v = m[c][r];
+      if (v != 0.0f && std::abs(v) != 1.0f) nonzero = 9;
+      if (v != 0.0f) ++nonzero;
+    }
+    if (nonzero != 1) fail("permuteCubeAxes", "the matrix is not a signed permutation");
+  }
+  CubeMap out;
+  out.levels.resize(cube.levels.size());
+  for (std::size_t level = 0; level < cube.levels.size(); ++level) {
+    const int n = cube.levels[level][0].width;
+    for (int f = 0; f < kFaceCount; ++f) {
+      Image& face = out.levels[level][f] = Image(n, n);
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const FacePoint p = directionToFace(m * texelDirection(f, x, y, n));
+          const int sx = std::clamp(static_cast<int>(p.s * static_cast<float>(n)), 0, n - 1);
+          const int sy = std::clamp(static_cast<int>(p.t * static_cast<float>(n)), 0, n - 1);
+          face.at(x, y) = cube.levels[level][p.face].at(sx, sy);
+        }
+    }
+  }
+  return out;
+}
+
 }  // namespace ibl

@@ -222,7 +222,8 @@ ConvolutionSums convolvePass(Context& context, Buffer& dirOmega, Buffer& radianc
   Buffer targetBuffer = Buffer::of(context, targets),
          result(context, targets.size() * sizeof(glm::vec4));
   // LobeWeight::forLevel and the window modes of accumulateTile (src/bake/prefilter.cpp).
-  const float alpha = alphaFromRoughness(roughness);
+  const float alpha = alphaFromRoughness(
+      weight == PrefilterWeight::Charlie ? std::max(roughness, kMinSheenRoughness) : roughness);
   const bool windowed = window.outerLo > -2.0f || window.innerLo < 1.5f;
   const struct {
     std::uint32_t sourceSize, targetCount, kind, windowMode;
@@ -231,6 +232,7 @@ ConvolutionSums convolvePass(Context& context, Buffer& dirOmega, Buffer& radianc
            static_cast<std::uint32_t>(targets.size()),
            weight == PrefilterWeight::Standard       ? 1u
            : weight == PrefilterWeight::FresnelF0One ? 2u
+           : weight == PrefilterWeight::Charlie      ? 4u
                                                      : 3u,
            !windowed ? 0u : (window.innerLo > 1.5f ? 1u : 2u),
            alpha * alpha,

@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include "ibl/core/error.hpp"
+#include "ibl/io/dds.hpp"
 #include "ibl/io/file_io.hpp"
+#include "ibl/io/ktx1.hpp"
 #include "ibl/io/ktx2.hpp"
 #include "ibl/io/pixel_formats.hpp"
 
@@ -24,6 +26,10 @@ std::string_view fileFormatName(FileFormat f) {
       return "jpg";
     case FileFormat::Ktx2:
       return "ktx2";
+    case FileFormat::Ktx1:
+      return "ktx";
+    case FileFormat::Dds:
+      return "dds";
   }
   return "?";
 }
@@ -37,6 +43,8 @@ std::optional<FileFormat> detectFileFormat(std::span<const std::uint8_t> b) {
   if (starts({0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'})) return FileFormat::Png;
   if (starts({0xff, 0xd8, 0xff})) return FileFormat::Jpg;
   if (b.size() >= 12 && std::memcmp(b.data(), kKtx2Identifier, 12) == 0) return FileFormat::Ktx2;
+  if (b.size() >= 12 && std::memcmp(b.data(), kKtx1Identifier, 12) == 0) return FileFormat::Ktx1;
+  if (starts({'D', 'D', 'S', ' '})) return FileFormat::Dds;
   return std::nullopt;
 }
 
@@ -57,7 +65,7 @@ DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_vie
   const auto format = detectFileFormat(bytes);
   if (!format) {
     if (bytes.empty()) fail(name, "empty file");
-    fail(name, "unknown file format (expected Radiance HDR, OpenEXR, PNG, JPEG or KTX2)");
+    fail(name, "unknown file format (expected Radiance HDR, OpenEXR, PNG, JPEG, KTX2, KTX or DDS)");
   }
   DecodedFile out;
   out.format = *format;
@@ -81,6 +89,21 @@ DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_vie
       out.channels =
           tex.format == PixelFormat::Rgba16f || tex.format == PixelFormat::Rgba32f ? 4 : 3;
       out.detail = std::string(vulkanFormatName(tex.format));
+      out.levels = std::move(tex.levels);
+      break;
+    }
+    case FileFormat::Ktx1: {
+      Ktx1Texture tex = decodeKtx1(bytes, name);
+      out.channels = tex.format == PixelFormat::B10G11R11 ? 3 : 4;
+      out.detail = std::string(vulkanFormatName(tex.format));
+      out.levels = std::move(tex.levels);
+      break;
+    }
+    case FileFormat::Dds: {
+      DdsTexture tex = decodeDds(bytes, name);
+      out.channels =
+          tex.format == PixelFormat::Rgba16f || tex.format == PixelFormat::Rgba32f ? 4 : 3;
+      out.detail = fmt::format("DXGI format {}", dxgiFormat(tex.format));
       out.levels = std::move(tex.levels);
       break;
     }

@@ -12,8 +12,15 @@
 #include "ibl/core/error.hpp"
 #include "ibl/core/version.hpp"
 #include "ibl/env/cubemap.hpp"
+#include "little_endian.hpp"
 
 namespace ibl {
+
+using le::alignUp;
+using le::get32;
+using le::get64;
+using le::put32;
+using le::put64;
 
 namespace {
 
@@ -58,76 +65,6 @@ std::vector<Sample> samplesOf(PixelFormat f) {
     }
   }
   return {};
-}
-
-void put32(std::vector<std::uint8_t>& out, std::size_t at, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) out[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-void put64(std::vector<std::uint8_t>& out, std::size_t at, std::uint64_t v) {
-  for (int i = 0; i < 8; ++i) out[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
-}
-std::uint32_t get32(std::span<const std::uint8_t> b, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int i = 0; i < 4; ++i) v |= static_cast<std::uint32_t>(b[at + i]) << (8 * i);
-  return v;
-}
-std::uint64_t get64(std::span<const std::uint8_t> b, std::size_t at) {
-  return get32(b, at) | (static_cast<std::uint64_t>(get32(b, at + 4)) << 32);
-}
-std::size_t alignUp(std::size_t v, std::size_t a) {
-  return (v + a - 1) / a * a;
-}
-
-void encodeTexel(PixelFormat f, glm::vec3 value, std::uint8_t* dst) {
-  const glm::vec3 c = representable(f, value);  // no infinity or NaN in any file
-  switch (f) {
-    case PixelFormat::Rgba16f: {
-      const std::uint16_t h[4] = {floatToHalf(c.x), floatToHalf(c.y), floatToHalf(c.z), 0x3C00};
-      std::memcpy(dst, h, 8);
-      return;
-    }
-    case PixelFormat::Rgba32f: {
-      const float v[4] = {c.x, c.y, c.z, 1.0f};
-      std::memcpy(dst, v, 16);
-      return;
-    }
-    case PixelFormat::B10G11R11: {
-      const std::uint32_t p = packB10G11R11(c);
-      std::memcpy(dst, &p, 4);
-      return;
-    }
-    case PixelFormat::E5B9G9R9: {
-      const std::uint32_t p = packE5B9G9R9(c);
-      std::memcpy(dst, &p, 4);
-      return;
-    }
-  }
-}
-
-glm::vec3 decodeTexel(PixelFormat f, const std::uint8_t* src) {
-  switch (f) {
-    case PixelFormat::Rgba16f: {
-      std::uint16_t h[3];
-      std::memcpy(h, src, 6);
-      return {halfToFloat(h[0]), halfToFloat(h[1]), halfToFloat(h[2])};
-    }
-    case PixelFormat::Rgba32f: {
-      float v[3];
-      std::memcpy(v, src, 12);
-      return {v[0], v[1], v[2]};
-    }
-    case PixelFormat::B10G11R11: {
-      std::uint32_t p;
-      std::memcpy(&p, src, 4);
-      return unpackB10G11R11(p);
-    }
-    case PixelFormat::E5B9G9R9: {
-      std::uint32_t p;
-      std::memcpy(&p, src, 4);
-      return unpackE5B9G9R9(p);
-    }
-  }
-  return glm::vec3(0.0f);
 }
 
 }  // namespace

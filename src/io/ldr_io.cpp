@@ -1,5 +1,6 @@
 // 8/16-bit PNG and JPEG through stb_image, decoded with the exact sRGB curve; PNG output
 // through libpng.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -43,11 +44,10 @@ Image decodeLdr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
   return img;
 }
 
-std::vector<std::uint8_t> encodePng(const Image& img, float exposure) {
-  const float scale = std::exp2(exposure);
-  std::vector<std::uint8_t> rgb(img.pixels.size() * 3);
-  for (std::size_t i = 0; i < img.pixels.size(); ++i)
-    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = linearToSrgb8(img.pixels[i][c] * scale);
+namespace {
+
+// An 8-bit RGB PNG of `rgb` (row by row, 3 bytes per pixel) of the image's size.
+std::vector<std::uint8_t> encodeRgb8Png(const Image& img, std::vector<std::uint8_t>& rgb) {
   std::vector<png_bytep> rows(static_cast<std::size_t>(img.height));
   for (int y = 0; y < img.height; ++y)
     rows[static_cast<std::size_t>(y)] = rgb.data() + static_cast<std::size_t>(y) * img.width * 3;
@@ -82,6 +82,27 @@ std::vector<std::uint8_t> encodePng(const Image& img, float exposure) {
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   return out;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encodePng(const Image& img, float exposure) {
+  const float scale = std::exp2(exposure);
+  std::vector<std::uint8_t> rgb(img.pixels.size() * 3);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) rgb[3 * i + c] = linearToSrgb8(img.pixels[i][c] * scale);
+  return encodeRgb8Png(img, rgb);
+}
+
+std::vector<std::uint8_t> encodePngData(const Image& img) {
+  std::vector<std::uint8_t> rgb(img.pixels.size() * 3);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float v = img.pixels[i][c];
+      rgb[3 * i + c] = static_cast<std::uint8_t>(
+          std::lround(255.0f * (std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f))));
+    }
+  return encodeRgb8Png(img, rgb);
 }
 
 }  // namespace ibl

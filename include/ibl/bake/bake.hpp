@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ibl/bake/prefilter.hpp"
+#include "ibl/bake/targets.hpp"
 #include "ibl/env/environment.hpp"
 #include "ibl/env/export.hpp"
 #include "ibl/io/pixel_formats.hpp"
@@ -25,6 +26,14 @@ struct BakeOptions {
   int dfgSamples = 512;
   bool shWindow = false;  // Lanczos-window the SH9 coefficients (deringing)
   float rotateDegrees = 0.0f;
+  // Also prefilter the environment with the Charlie sheen lobe (the same levels and roughness
+  // mapping as the specular chain) and integrate the sheen table (manifest roles sheen and
+  // sheen_dfg). The glTF Sample Viewer target always does.
+  bool sheen = false;
+  // What to write (writeBakeOutputs) and so what to compute: the ibl set, engine targets.
+  std::vector<EngineTarget> targets = {EngineTarget::Ibl};
+  bool wants(EngineTarget t) const;
+  bool wantsSheen() const { return sheen || wants(EngineTarget::GltfSampleViewer); }
 };
 
 struct BakeResult {
@@ -35,6 +44,9 @@ struct BakeResult {
   CubeMap irradiance;                                    // E / pi
   Sh9 sh;                                   // radiance coefficients (windowed if asked)
   Image dfg;                                // RGB = A, B, diffuse
+  std::optional<CubeMap> sheen;             // Charlie-prefiltered, with wantsSheen()
+  std::optional<Image> sheenDfg;            // R = E of the sheen lobe (integrateSheenDfgLut)
+  std::optional<CubeMap> filamentSpecular;  // cmgen's chain (levels, mapping), our axes
   std::map<std::string, double> timingsMs;  // per stage
   std::string device = "cpu";               // "cpu", or the Vulkan device's name
 };
@@ -54,9 +66,9 @@ struct BakeOutputOptions {
   bool exr = false;                           // also EXR files
   bool hdr = false;                           // also Radiance HDR files
   Layout layout = Layout::HCross;  // of the EXR / HDR copies: a cross, strip, faces or equirect
-  bool preview = true;             // preview.png (material grid) and PNG views
-  int previewCell = 96;            // pixels per sphere of preview.png (6 x 2 spheres)
-  bool force = false;  // write into a non-empty directory (replacing an earlier bake's files)
+  bool preview = true;   // preview.png (material grid) and PNG views (with the ibl target)
+  int previewCell = 96;  // pixels per sphere of preview.png (6 x 2 spheres)
+  bool force = false;    // write into a non-empty directory (replacing an earlier bake's files)
   // Called with one line for each output whose values exceed its format's range (they are
   // clamped to it: no output holds an infinity); the manifest records it too.
   std::function<void(const std::string&)> warn;
@@ -70,14 +82,16 @@ struct BakeOutputOptions {
 struct BakeSource {
   std::string path;  // "" for the bundled default
   std::string format;
-  std::string layout;
+  std::string layout;  // "equirect" for a panorama (and a sky), else a cube layout
   int width = 0, height = 0;
   InvalidPixelCounts replaced;
   float clamp = 0.0f;   // the radiance limit applied before baking (--clamp), 0: none
   RangeLoss clampLoss;  // what it removed
 };
 
-// Encodes everything, then writes it into `outDir`, all files or none: a missing directory is
+// Encodes everything, then writes it into `outDir`, all files or none. The ibl target writes
+// into `outDir` itself, another target too when it is the only one, else into
+// `outDir`/<target name>/; manifest.json lists every file with its target. a missing directory is
 // staged and renamed into place; an existing one must be empty unless output.force, and then
 // the earlier bake's files (as its manifest lists them) are replaced or removed, other files
 // kept. Returns the written paths.

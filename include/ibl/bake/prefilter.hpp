@@ -14,7 +14,11 @@ namespace ibl {
 enum class RoughnessMapping {
   Linear,     // r = m / (L - 1) (the default)
   Frostbite,  // r = (m / (L - 1))^2, i.e. level = sqrt(r) (L - 1) (Lagarde & de Rousiers 2014)
+  // Filament's: lod = (L - 1) r (2 - r), i.e. r = 1 - sqrt(1 - m / (L - 1)) (Filament's
+  // perceptualRoughnessToLod in shaders/src/light_indirect.fs; cmgen's lodToPerceptualRoughness).
+  Filament,
 };
+std::string_view mappingName(RoughnessMapping mapping);  // "linear", "frostbite", "filament"
 float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping);
 // The mip level (fractional) that holds roughness r: the inverse of roughnessForLevel.
 float specularLodForRoughness(float roughness, int levelCount, RoughnessMapping mapping);
@@ -24,7 +28,12 @@ enum class PrefilterWeight {
   Standard,       // D(h) (n.l): Karis 2013, n = v = r
   FresnelF0Zero,  // D V F (n.l) with F0 = 0: keeps the Fresnel/visibility weight C(n, l)
   FresnelF0One,   // D V F (n.l) with F0 = 1 (F = 1)
+  Charlie,        // D_charlie(h) (n.l): the sheen lobe (Estevez & Kulla 2017), as glTF-IBL-Sampler
 };
+
+// Sheen roughness below which the Charlie lobe is a ring too thin at the horizon to integrate
+// over a cube map; the sheen prefilter and its DFG table clamp to it (r = 0 has no sheen).
+inline constexpr float kMinSheenRoughness = 0.1f;
 
 // How a specular level was computed (reported in the manifest).
 struct LevelMethod {

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 #include "ibl/core/image.hpp"
@@ -85,6 +86,11 @@ glm::vec3 sampleTrilinear(const CubeMap& cube, float lod, glm::vec3 dir);
 // solid angle, so every level integrates to the same power. levelCount 0 means the full chain.
 // The size of level 0 must be a power of two.
 void buildMipChain(CubeMap& cube, int levelCount = 0);
+
+// The cube seen through a signed permutation of the axes (a rotation by quarter turns, or a
+// mirror): out(d) = cube(m d) at every texel of every level. Texel centers map onto texel
+// centers, so it moves texels and interpolates none. Throws if m is not such a matrix.
+CubeMap permuteCubeAxes(const CubeMap& cube, const glm::mat3& m);
 
 // Integral of the radiance over the sphere (per channel) of one level: sum of L * texel solid
 // angle.

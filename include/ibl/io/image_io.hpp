@@ -12,7 +12,8 @@
 
 namespace ibl {
 
-enum class FileFormat { Hdr, Exr, Png, Jpg, Ktx2 };
+// Ktx1 (Filament's cube maps) and Dds are read, never chosen by an output's extension.
+enum class FileFormat { Hdr, Exr, Png, Jpg, Ktx2, Ktx1, Dds };
 std::string_view fileFormatName(FileFormat format);
 // Detects the format from the first bytes of a file (magic numbers), not the name.
 std::optional<FileFormat> detectFileFormat(std::span<const std::uint8_t> bytes);
@@ -55,5 +56,7 @@ std::vector<std::uint8_t> encodeExr(const Image& image, ExrPixelType type = ExrP
                                     const std::vector<float>* alpha = nullptr);
 // 8-bit sRGB PNG of the image scaled by 2^exposure (for looking at, not for data).
 std::vector<std::uint8_t> encodePng(const Image& image, float exposure = 0.0f);
+// 8-bit PNG of data in [0, 1] (lookup tables): round(255 v), no transfer curve.
+std::vector<std::uint8_t> encodePngData(const Image& image);
 
 }  // namespace ibl

@@ -51,4 +51,9 @@ glm::vec3 largestValue(PixelFormat f);
 // each component clamped to largestValue (and, for the unsigned formats, to >= 0).
 glm::vec3 representable(PixelFormat f, glm::vec3 c);
 
+// One texel as the format stores it (bytesPerTexel(f) bytes, little-endian; alpha = 1 where
+// the format has one), after representable(); and back.
+void encodeTexel(PixelFormat f, glm::vec3 value, std::uint8_t* dst);
+glm::vec3 decodeTexel(PixelFormat f, const std::uint8_t* src);
+
 }  // namespace ibl

@@ -77,13 +77,34 @@ IBL_FN float ggxVisibilityFresnelLobe(float c, float a2) {
   float m2 = m * m;
   return ggxVisibilityLobe(c, a2) * (m2 * m2 * m);
 }
+//   the Charlie sheen lobe D_charlie(h) (n.l): with n = v, sin^2(theta_h) = (1 - c) / 2, so
+//   D is proportional to (1 - c)^(1 / (2 alpha)) (the factor 2^(-1 / (2 alpha)) dropped, which
+//   would underflow for small alpha). alpha = sqrt(a2).
+IBL_FN float charlieLobe(float c, float a2) {
+  return c * pow(max(1.0f - c, 0.0f), 0.5f / sqrt(a2));
+}
 // The lobe of a prefilter kind: 0 cosine (irradiance), 1 GGX, 2 GGX x visibility,
-// 3 GGX x visibility x Fresnel (LobeWeight::Kind in src/bake/prefilter.cpp).
+// 3 GGX x visibility x Fresnel, 4 Charlie (LobeWeight::Kind in src/bake/prefilter.cpp).
 IBL_FN float prefilterLobe(int kind, float c, float a2) {
   if (kind == 0) return c;
   if (kind == 1) return ggxLobe(c, a2);
   if (kind == 2) return ggxVisibilityLobe(c, a2);
+  if (kind == 4) return charlieLobe(c, a2);
   return ggxVisibilityFresnelLobe(c, a2);
+}
+
+// The sheen BRDF of KHR_materials_sheen and Filament's cloth model, f = D_charlie V.
+// The "Charlie" distribution (Estevez & Kulla 2017, "Production Friendly Microfacet Sheen
+// BRDF", eq. 2): D(h) = (2 + 1 / alpha) sin(theta_h)^(1 / alpha) / (2 pi), alpha = r^2.
+IBL_FN float charlieDistribution(float NoH, float alpha) {
+  float invAlpha = 1.0f / alpha;
+  float sin2h = max(1.0f - NoH * NoH, 0.0f);
+  return (2.0f + invAlpha) * pow(sin2h, 0.5f * invAlpha) / (2.0f * kPi);
+}
+// Neubelt & Pettineo's visibility (2013, "Crafting a Next-Gen Material Pipeline for The
+// Order: 1886", the Ashikhmin-style cloth term): V = 1 / (4 (n.l + n.v - n.l n.v)).
+IBL_FN float neubeltVisibility(float NoV, float NoL) {
+  return 1.0f / (4.0f * (NoL + NoV - NoL * NoV));
 }
 
 // A smoothstep from 0 at c = lo to 1 at c = lo + 1 / inv: the radial windows that split the

@@ -1,0 +1,49 @@
+#pragma once
+// Engine targets: a bake written the way an engine's own tool writes it, so that the engine
+// loads it unchanged (docs/targets.md gives each convention and where it comes from).
+//   ibl                 our own set (KTX2 cube maps, DFG table, SH9, manifest conventions)
+//   filament            what Filament's `cmgen --format=ktx --deploy=DIR` writes
+//   gltf-sample-viewer  what glTF-IBL-Sampler writes for the Khronos glTF Sample Viewer
+//   dds                 DDS cube maps with their mip chains (DirectX, Unity, Unreal)
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <glm/mat3x3.hpp>
+
+#include "ibl/math/sh.hpp"
+
+namespace ibl {
+
+enum class EngineTarget { Ibl, Filament, GltfSampleViewer, Dds };
+inline constexpr std::array<EngineTarget, 4> kEngineTargets = {
+    EngineTarget::Ibl, EngineTarget::Filament, EngineTarget::GltfSampleViewer, EngineTarget::Dds};
+
+std::string_view targetName(EngineTarget target);  // "ibl", "filament", ...
+std::optional<EngineTarget> parseEngineTarget(std::string_view name);
+
+// --- Filament (cmgen --deploy) ---
+
+// The axes of cmgen's cube maps: the texel a Filament app samples with direction d holds our
+// environment at m d. cmgen mirrors X (its default; --no-mirror turns it off) after reading
+// the input, and reads an equirect panorama with u = 0.5 + atan2(x, z) / (2 pi) where we use
+// atan2(z, x): for a panorama m d = (d.z, d.y, -d.x), a quarter turn about +Y; for a cube map
+// (a cross, faces) m d = (-d.x, d.y, d.z), the mirror alone.
+glm::mat3 filamentOrientation(bool panoramaSource);
+
+// The levels of cmgen's prefiltered cube map of base size n: n down to 16^2 (cmgen's
+// IBL_DEFAULT_MIN_LOD_SIZE), or down to 1^2 when n <= 16.
+int filamentLevelCount(int size);
+
+// Filament's irradiance spherical harmonics (cmgen's "irradiance, pre-scaled base", the
+// coefficients of sh.txt and of the KTX "sh" key): E(n) / pi = c0 + c1 y + c2 z + c3 x
+// + c4 y x + c5 y z + c6 (3 z^2 - 1) + c7 z x + c8 (x^2 - y^2) (Filament's
+// Irradiance_SphericalHarmonics), from our radiance coefficients in the same frame.
+Sh9 filamentIrradianceSh(const Sh9& radiance);
+// Filament's basis polynomials, in that order (1, y, z, x, y x, ...).
+float filamentShPolynomial(int k, glm::vec3 n);
+// sh.txt as cmgen writes it: "(r, g, b); // L00, irradiance, pre-scaled base", one line each.
+std::string filamentShText(const Sh9& c);
+
+}  // namespace ibl

@@ -1,0 +1,180 @@
+// KTX 1.1 (Khronos KTX File Format Specification, version 1.1, section 2: header, key/value
+// data, then for each mip level its imageSize and the faces, each padded to 4 bytes).
+#include "ibl/io/ktx1.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "ibl/core/error.hpp"
+#include "ibl/env/cubemap.hpp"
+#include "little_endian.hpp"
+
+namespace ibl {
+
+using le::alignUp;
+using le::get32;
+using le::put32;
+
+namespace {
+
+constexpr std::size_t kHeaderBytes = 64;  // identifier + 13 uint32
+constexpr std::uint32_t kEndianness = 0x04030201;
+
+// glType, glTypeSize, glFormat, glInternalFormat, glBaseInternalFormat.
+struct GlDescription {
+  std::uint32_t type, typeSize, format, internalFormat, baseInternalFormat;
+};
+
+GlDescription glDescription(PixelFormat f) {
+  switch (f) {
+    case PixelFormat::B10G11R11:  // as cmgen writes it (tools/cmgen/src/cmgen.cpp)
+      return {kGlR11fG11fB10f, 1, kGlR11fG11fB10f, kGlR11fG11fB10f, kGlR11fG11fB10f};
+    case PixelFormat::Rgba16f:
+      return {kGlHalfFloat, 2, kGlRgba, kGlRgba16f, kGlRgba};
+    case PixelFormat::Rgba32f:
+      return {kGlFloat, 4, kGlRgba, kGlRgba32f, kGlRgba};
+    case PixelFormat::E5B9G9R9:
+      break;
+  }
+  fail("ktx1", fmt::format("{} cannot be written as KTX1", formatName(f)));
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encodeKtx1(const Ktx1Texture& tex) {
+  if (tex.levels.empty() || (tex.faceCount != 1 && tex.faceCount != 6))
+    fail("ktx1", "a texture needs at least one level and 1 or 6 faces");
+  const GlDescription gl = glDescription(tex.format);
+  const int width = tex.levels[0][0].width, height = tex.levels[0][0].height;
+  const std::uint32_t texel = bytesPerTexel(tex.format);
+
+  std::vector<std::uint8_t> kvd;
+  for (const auto& [key, value] : tex.keyValues) {
+    const auto length = static_cast<std::uint32_t>(key.size() + 1 + value.size() + 1);
+    const std::size_t at = kvd.size();
+    kvd.resize(at + 4);
+    put32(kvd, at, length);
+    kvd.insert(kvd.end(), key.begin(), key.end());
+    kvd.push_back(0);
+    kvd.insert(kvd.end(), value.begin(), value.end());
+    kvd.push_back(0);
+    kvd.resize(alignUp(kvd.size(), 4), 0);
+  }
+
+  std::size_t total = kHeaderBytes + kvd.size();
+  for (std::size_t m = 0; m < tex.levels.size(); ++m) {
+    const auto& faces = tex.levels[m];
+    const int w = std::max(1, width >> m), h = std::max(1, height >> m);
+    if (faces.size() != static_cast<std::size_t>(tex.faceCount))
+      fail("ktx1",
+           fmt::format("level {} has {} faces, expected {}", m, faces.size(), tex.faceCount));
+    for (const Image& f : faces)
+      if (f.width != w || f.height != h)
+        fail("ktx1", fmt::format("level {} is {}x{}, expected {}x{}", m, f.width, f.height, w, h));
+    // Rows of 4-byte texels need no padding; RGBA16F and RGBA32F rows are multiples of 8.
+    total += 4 + static_cast<std::size_t>(w) * h * texel * tex.faceCount;
+  }
+
+  std::vector<std::uint8_t> out(total, 0);
+  std::memcpy(out.data(), kKtx1Identifier, 12);
+  const std::uint32_t header[13] = {kEndianness,
+                                    gl.type,
+                                    gl.typeSize,
+                                    gl.format,
+                                    gl.internalFormat,
+                                    gl.baseInternalFormat,
+                                    static_cast<std::uint32_t>(width),
+                                    static_cast<std::uint32_t>(height),
+                                    0,  // pixelDepth
+                                    0,  // numberOfArrayElements: not an array
+                                    static_cast<std::uint32_t>(tex.faceCount),
+                                    static_cast<std::uint32_t>(tex.levels.size()),
+                                    static_cast<std::uint32_t>(kvd.size())};
+  for (int i = 0; i < 13; ++i) put32(out, 12 + 4 * i, header[i]);
+  std::copy(kvd.begin(), kvd.end(), out.begin() + kHeaderBytes);
+  std::size_t at = kHeaderBytes + kvd.size();
+  for (std::size_t m = 0; m < tex.levels.size(); ++m) {
+    // imageSize: the bytes of one face for a cube map that is not an array, else of the level.
+    put32(out, at, static_cast<std::uint32_t>(tex.levels[m][0].pixels.size() * texel));
+    at += 4;
+    for (const Image& f : tex.levels[m])
+      for (const glm::vec3& p : f.pixels) {
+        encodeTexel(tex.format, p, out.data() + at);
+        at += texel;
+      }
+  }
+  return out;
+}
+
+Ktx1Texture decodeKtx1(std::span<const std::uint8_t> b, std::string_view name) {
+  if (b.size() < kHeaderBytes || std::memcmp(b.data(), kKtx1Identifier, 12) != 0)
+    fail(name, "not a KTX1 file (bad identifier or truncated header)");
+  if (get32(b, 12) != kEndianness) fail(name, "big-endian KTX1 files are not supported");
+  const std::uint32_t internalFormat = get32(b, 28);
+  const std::uint32_t width = get32(b, 36), height = get32(b, 40), depth = get32(b, 44);
+  const std::uint32_t elements = get32(b, 48), faces = get32(b, 52);
+  std::uint32_t levels = get32(b, 56);
+  const std::uint32_t kvdBytes = get32(b, 60);
+  Ktx1Texture tex;
+  if (internalFormat == kGlR11fG11fB10f)
+    tex.format = PixelFormat::B10G11R11;
+  else if (internalFormat == kGlRgba16f)
+    tex.format = PixelFormat::Rgba16f;
+  else if (internalFormat == kGlRgba32f)
+    tex.format = PixelFormat::Rgba32f;
+  else
+    fail(name, fmt::format("unsupported glInternalFormat 0x{:X} (supported: R11F_G11F_B10F, "
+                           "RGBA16F, RGBA32F)",
+                           internalFormat));
+  if (height == 0) fail(name, "1D textures are not supported");
+  if (depth != 0) fail(name, "3D textures are not supported");
+  if (elements != 0) fail(name, "texture arrays are not supported");
+  if (faces != 1 && faces != 6) fail(name, fmt::format("numberOfFaces {} is invalid", faces));
+  if (faces == 6 && width != height) fail(name, "cube map faces are not square");
+  checkImageSize(name, width, height);
+  if (levels == 0) levels = 1;  // "generate mipmaps": we read the one stored level
+  if (levels > static_cast<std::uint32_t>(fullMipCount(static_cast<int>(std::max(width, height)))))
+    fail(name,
+         fmt::format("numberOfMipmapLevels {} is too large for {}x{}", levels, width, height));
+  if (kvdBytes > b.size() - kHeaderBytes) fail(name, "truncated key/value data");
+  for (std::size_t at = kHeaderBytes; at + 4 <= kHeaderBytes + kvdBytes;) {
+    const std::uint32_t len = get32(b, at);
+    if (len == 0 || len > kHeaderBytes + kvdBytes - at - 4) fail(name, "corrupt key/value entry");
+    const std::string entry(reinterpret_cast<const char*>(b.data() + at + 4), len);
+    const auto nul = entry.find('\0');
+    if (nul == std::string::npos) fail(name, "key/value entry without a terminated key");
+    std::string value = entry.substr(nul + 1);
+    if (!value.empty() && value.back() == '\0') value.pop_back();
+    tex.keyValues.emplace_back(entry.substr(0, nul), value);
+    at = alignUp(at + 4 + len, 4);
+  }
+  tex.faceCount = static_cast<int>(faces);
+  const std::uint32_t texel = bytesPerTexel(tex.format);
+  std::size_t at = kHeaderBytes + kvdBytes;
+  tex.levels.resize(levels);
+  for (std::uint32_t m = 0; m < levels; ++m) {
+    const int w = std::max(1, static_cast<int>(width >> m));
+    const int h = std::max(1, static_cast<int>(height >> m));
+    const std::size_t faceBytes = static_cast<std::size_t>(w) * h * texel;
+    if (at + 4 > b.size()) fail(name, fmt::format("level {} is truncated", m));
+    const std::uint32_t imageSize = get32(b, at);
+    // One face of a cube map (not an array), or the whole level of a 2D texture: the same.
+    if (imageSize != faceBytes)
+      fail(name, fmt::format("level {} has imageSize {}, expected {}", m, imageSize, faceBytes));
+    at += 4;
+    if (faceBytes * faces > b.size() - at) fail(name, fmt::format("level {} is truncated", m));
+    for (std::uint32_t f = 0; f < faces; ++f) {
+      Image img(w, h);
+      for (auto& p : img.pixels) {
+        p = decodeTexel(tex.format, b.data() + at);
+        at += texel;
+      }
+      tex.levels[m].push_back(std::move(img));
+    }
+  }
+  return tex;
+}
+
+}  // namespace ibl
