@@ -8,8 +8,10 @@
 #include <ImfOutputFile.h>
 #include <ImfTiledOutputFile.h>
 
+#include "ibl/io/dds.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
+#include "ibl/io/ktx1.hpp"
 #include "ibl/io/ktx2.hpp"
 
 int main(int argc, char** argv) {
@@ -34,6 +36,22 @@ int main(int argc, char** argv) {
         tex.levels[m].push_back(ibl::Image(2 >> m, 2 >> m, glm::vec3(0.5f)));
     ibl::writeFileAtomic(root / "ktx2" / (std::string(ibl::formatName(f)) + ".ktx2"),
                          ibl::encodeKtx2(tex));
+  }
+  // KTX1 as Filament's cmgen writes it, and DDS cube maps and 2D textures.
+  {
+    std::vector<std::vector<ibl::Image>> cube(2);
+    for (int m = 0; m < 2; ++m)
+      for (int face = 0; face < 6; ++face)
+        cube[m].push_back(ibl::Image(2 >> m, 2 >> m, glm::vec3(0.5f)));
+    ibl::writeFileAtomic(
+        root / "ktx1" / "cmgen.ktx",
+        ibl::encodeKtx1({ibl::PixelFormat::B10G11R11, 6, cube, {{"sh", "1 2 3\n"}}}));
+    ibl::writeFileAtomic(root / "ktx1" / "rgba16f.ktx",
+                         ibl::encodeKtx1({ibl::PixelFormat::Rgba16f, 1, {{img}}, {}}));
+    ibl::writeFileAtomic(root / "dds" / "cube.dds",
+                         ibl::encodeDds({ibl::PixelFormat::Rgba16f, 6, cube}));
+    ibl::writeFileAtomic(root / "dds" / "rg11b10.dds",
+                         ibl::encodeDds({ibl::PixelFormat::B10G11R11, 1, {{img}}}));
   }
   // Small files in the codecs and layouts real HDRIs use, written by OpenEXR itself.
   std::vector<Imath::half> px(16 * 16 * 3, Imath::half(0.75f));

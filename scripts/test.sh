@@ -22,7 +22,7 @@ phase "clang-format"
 git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format --dry-run --Werror
 
 phase "fuzzing the readers"
-bash scripts/fuzz.sh "${IBL_FUZZ_SECONDS:-15}"
+bash scripts/fuzz.sh "${IBL_FUZZ_SECONDS:-12}"
 
 phase "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_SANITIZE=ON \

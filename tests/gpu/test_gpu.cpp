@@ -212,6 +212,22 @@ TEST(Gpu, ConvolutionPassMatchesTheCpu) {
   }
 }
 
+// The sheen (Charlie) chain: the shader's lobe (shared charlieLobe, kind 4) against the CPU's.
+TEST(Gpu, SheenPrefilterMatchesTheCpu) {
+  const CubeMap src = sunsetSource(32);
+  PrefilterOptions o;
+  o.size = 16;
+  o.levels = 3;
+  o.weight = PrefilterWeight::Charlie;
+  const CubeMap g = gpu::prefilterGgx(context(), src, o), c = prefilterGgx(src, o);
+  ASSERT_EQ(g.levelCount(), 3);
+  for (int m = 0; m < 3; ++m)
+    for (int f = 0; f < 6; ++f)
+      for (std::size_t i = 0; i < c.levels[m][f].pixels.size(); ++i)
+        ASSERT_LT(maxRelativeError(g.levels[m][f].pixels[i], c.levels[m][f].pixels[i]), 1e-3)
+            << m << " " << f << " " << i;
+}
+
 // The whole bake through device-local buffers and staging copies (the discrete-GPU path),
 // forced on this device: the same results as the directly mapped path, to the bit.
 TEST(Gpu, StagingBuffersGiveTheSameBake) {
