@@ -100,6 +100,8 @@ std::string filamentShText(const Sh9& c) {
 
 namespace {
 
+using KtxKeyValuesOf = decltype(Ktx1Texture::keyValues);
+
 std::vector<std::vector<Image>> levelsOf(const CubeMap& cube) {
   std::vector<std::vector<Image>> levels;
   for (const auto& level : cube.levels) levels.emplace_back(level.begin(), level.end());
@@ -135,42 +137,32 @@ void addFilament(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
   const auto orientation =
       panorama ? "cmgen's: texel(d) = ours at (d.z, d.y, -d.x) (equirect source, X mirrored)"
                : "cmgen's: texel(d) = ours at (-d.x, d.y, d.z) (cube source, X mirrored)";
-  Json e = {{"role", "specular"},
-            {"target", "filament"},
-            {"path", iblPath},
-            {"format", "ktx"},
-            {"pixel_format", "r11f_g11f_b10f"},
-            {"size", {ibl->size(), ibl->size()}},
-            {"faces", 6},
-            {"levels", ibl->levelCount()},
-            {"mapping", "filament"},
-            {"lod_from_roughness", "lod = (L - 1) r (2 - r)"},
-            {"roughness", roughnessJson(*ibl, RoughnessMapping::Filament)},
-            {"orientation", orientation},
-            {"metadata", {{"sh", "irradiance SH, pre-scaled (as sh.txt)"}}}};
-  noteRangeLoss(e, out, iblPath, rangeLoss(*ibl, largestValue(PixelFormat::B10G11R11)),
-                "R11F_G11F_B10F");
-  plan.add(iblPath, [ibl, metadata] {
-    Ktx1Texture t{PixelFormat::B10G11R11, 6, levelsOf(*ibl), {{"sh", metadata}}};
-    return encodeKtx1(t);
-  });
-  plan.outputs.push_back(e);
-  Json sky = {{"role", "skybox"},
-              {"target", "filament"},
-              {"path", skyPath},
-              {"format", "ktx"},
-              {"pixel_format", "r11f_g11f_b10f"},
-              {"size", {skybox->size(), skybox->size()}},
-              {"faces", 6},
-              {"levels", 1},
-              {"orientation", orientation}};
-  noteRangeLoss(sky, out, skyPath, rangeLoss(*skybox, largestValue(PixelFormat::B10G11R11)),
-                "R11F_G11F_B10F");
-  plan.add(skyPath, [skybox] {
-    Ktx1Texture t{PixelFormat::B10G11R11, 6, levelsOf(*skybox), {}};
-    return encodeKtx1(t);
-  });
-  plan.outputs.push_back(sky);
+  // A cube map as cmgen writes it: KTX1, R11F_G11F_B10F, the given key/values.
+  const auto addKtx1 = [&](const std::string& path, std::shared_ptr<CubeMap> cube, Json entry,
+                           KtxKeyValuesOf keyValues) {
+    entry["target"] = "filament";
+    entry["path"] = path;
+    entry["format"] = "ktx";
+    entry["pixel_format"] = "r11f_g11f_b10f";
+    entry["size"] = {cube->size(), cube->size()};
+    entry["faces"] = 6;
+    entry["levels"] = cube->levelCount();
+    entry["orientation"] = orientation;
+    noteRangeLoss(entry, out, path, rangeLoss(*cube, largestValue(PixelFormat::B10G11R11)),
+                  "R11F_G11F_B10F");
+    plan.add(path, [cube, keyValues] {
+      return encodeKtx1({PixelFormat::B10G11R11, 6, levelsOf(*cube), keyValues});
+    });
+    plan.outputs.push_back(entry);
+  };
+  addKtx1(iblPath, ibl,
+          {{"role", "specular"},
+           {"mapping", "filament"},
+           {"lod_from_roughness", "lod = (L - 1) r (2 - r)"},
+           {"roughness", roughnessJson(*ibl, RoughnessMapping::Filament)},
+           {"metadata", {{"sh", "irradiance SH, pre-scaled (as sh.txt)"}}}},
+          {{"sh", metadata}});
+  addKtx1(skyPath, skybox, {{"role", "skybox"}}, {});
   Json coefficients = Json::array();
   for (const glm::vec3& c : sh) coefficients.push_back({c.x, c.y, c.z});
   plan.addText(dir + "sh.txt", filamentShText(sh));

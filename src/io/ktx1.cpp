@@ -9,6 +9,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/cubemap.hpp"
+#include "ktx_key_values.hpp"
 #include "little_endian.hpp"
 
 namespace ibl {
@@ -50,18 +51,7 @@ std::vector<std::uint8_t> encodeKtx1(const Ktx1Texture& tex) {
   const int width = tex.levels[0][0].width, height = tex.levels[0][0].height;
   const std::uint32_t texel = bytesPerTexel(tex.format);
 
-  std::vector<std::uint8_t> kvd;
-  for (const auto& [key, value] : tex.keyValues) {
-    const auto length = static_cast<std::uint32_t>(key.size() + 1 + value.size() + 1);
-    const std::size_t at = kvd.size();
-    kvd.resize(at + 4);
-    put32(kvd, at, length);
-    kvd.insert(kvd.end(), key.begin(), key.end());
-    kvd.push_back(0);
-    kvd.insert(kvd.end(), value.begin(), value.end());
-    kvd.push_back(0);
-    kvd.resize(alignUp(kvd.size(), 4), 0);
-  }
+  const std::vector<std::uint8_t> kvd = encodeKtxKeyValues(tex.keyValues);
 
   std::size_t total = kHeaderBytes + kvd.size();
   for (std::size_t m = 0; m < tex.levels.size(); ++m) {
@@ -139,17 +129,7 @@ Ktx1Texture decodeKtx1(std::span<const std::uint8_t> b, std::string_view name) {
     fail(name,
          fmt::format("numberOfMipmapLevels {} is too large for {}x{}", levels, width, height));
   if (kvdBytes > b.size() - kHeaderBytes) fail(name, "truncated key/value data");
-  for (std::size_t at = kHeaderBytes; at + 4 <= kHeaderBytes + kvdBytes;) {
-    const std::uint32_t len = get32(b, at);
-    if (len == 0 || len > kHeaderBytes + kvdBytes - at - 4) fail(name, "corrupt key/value entry");
-    const std::string entry(reinterpret_cast<const char*>(b.data() + at + 4), len);
-    const auto nul = entry.find('\0');
-    if (nul == std::string::npos) fail(name, "key/value entry without a terminated key");
-    std::string value = entry.substr(nul + 1);
-    if (!value.empty() && value.back() == '\0') value.pop_back();
-    tex.keyValues.emplace_back(entry.substr(0, nul), value);
-    at = alignUp(at + 4 + len, 4);
-  }
+  tex.keyValues = decodeKtxKeyValues(b, kHeaderBytes, kvdBytes, name);
   tex.faceCount = static_cast<int>(faces);
   const std::uint32_t texel = bytesPerTexel(tex.format);
   std::size_t at = kHeaderBytes + kvdBytes;

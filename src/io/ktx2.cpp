@@ -12,6 +12,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/core/version.hpp"
 #include "ibl/env/cubemap.hpp"
+#include "ktx_key_values.hpp"
 #include "little_endian.hpp"
 
 namespace ibl {
@@ -101,18 +102,7 @@ std::vector<std::uint8_t> encodeKtx2(const Ktx2Texture& tex) {
   auto kv = tex.keyValues;
   kv.emplace_back("KTXwriter", fmt::format("ibl {}", kVersion));
   std::sort(kv.begin(), kv.end());
-  std::vector<std::uint8_t> kvd;
-  for (const auto& [key, value] : kv) {
-    const auto length = static_cast<std::uint32_t>(key.size() + 1 + value.size() + 1);
-    const std::size_t at = kvd.size();
-    kvd.resize(at + 4);
-    put32(kvd, at, length);
-    kvd.insert(kvd.end(), key.begin(), key.end());
-    kvd.push_back(0);
-    kvd.insert(kvd.end(), value.begin(), value.end());
-    kvd.push_back(0);
-    kvd.resize(alignUp(kvd.size(), 4), 0);
-  }
+  const std::vector<std::uint8_t> kvd = encodeKtxKeyValues(kv);
 
   const std::vector<std::uint32_t> dfd = dataFormatDescriptor(tex.format);
   const std::size_t dfdOffset = kHeaderBytes + kLevelIndexEntry * levelCount;
@@ -207,19 +197,7 @@ Ktx2Texture decodeKtx2(std::span<const std::uint8_t> b, std::string_view name) {
   Ktx2Texture tex;
   tex.format = *format;
   tex.faceCount = static_cast<int>(faces);
-  // Key/value pairs (KTXwriter included).
-  for (std::uint64_t at = kvdOffset; at + 4 <= kvdOffset + kvdLength;) {
-    const std::uint32_t len = get32(b, at);
-    if (len == 0 || at + 4 + len > kvdOffset + kvdLength) fail(name, "corrupt key/value entry");
-    const char* p = reinterpret_cast<const char*>(b.data() + at + 4);
-    const std::string entry(p, len);
-    const auto nul = entry.find('\0');
-    if (nul == std::string::npos) fail(name, "key/value entry without a terminated key");
-    std::string value = entry.substr(nul + 1);
-    if (!value.empty() && value.back() == '\0') value.pop_back();
-    tex.keyValues.emplace_back(entry.substr(0, nul), value);
-    at = alignUp(at + 4 + len, 4);
-  }
+  tex.keyValues = decodeKtxKeyValues(b, kvdOffset, kvdLength, name);  // KTXwriter included
   const std::uint32_t texel = bytesPerTexel(*format);
   tex.levels.resize(levels);
   for (std::uint32_t m = 0; m < levels; ++m) {
