@@ -31,7 +31,7 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
-  const LoadedBake baked = loadOrBake(o.scene, global);
+  const LoadedBake baked = loadOrBake(o.scene, global, hasSheen(scene));
   scene.lights.insert(scene.lights.end(), baked.lights.begin(), baked.lights.end());
   RenderOptions r = shadingOptions(o.scene);
   r.mode = o.mode == "reference" ? RenderMode::Reference : RenderMode::SplitSum;

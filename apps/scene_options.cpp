@@ -57,8 +57,10 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--diffuse", o.diffuse, "disney (Frostbite renormalized) or lambert")
       ->check(CLI::IsMember({"disney", "lambert"}))
       ->capture_default_str();
-  cmd->add_option("--only", o.only, "Isolate a term: diffuse or specular")
-      ->check(CLI::IsMember({"diffuse", "specular"}));
+  cmd->add_option("--only", o.only,
+                  "Isolate a term: diffuse, specular, or sheen (the KHR_materials_sheen layer "
+                  "alone)")
+      ->check(CLI::IsMember({"diffuse", "specular", "sheen"}));
   cmd->add_flag("--multiscatter,!--no-multiscatter", o.multiscatter,
                 "Multiple scattering between microfacets as energy compensation, in both modes "
                 "(default on: the split sum and the reference compute the same material)");
@@ -167,8 +169,15 @@ void checkLightingOptions(const SceneCliOptions& o) {
                               o.bakeDir));
 }
 
-LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global) {
+bool hasSheen(const Scene& scene) {
+  for (const Material& m : scene.materials)
+    if (m.sheenColor != glm::vec3(0.0f)) return true;
+  return false;
+}
+
+LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, bool sheen) {
   LoadedBake out;
+  out.options.sheen = sheen;
   if (!o.bakeDir.empty()) {
     out.bake = loadBake(o.bakeDir, &out.options);
     // The sun the bake's environment brought (a sky's, or one extracted from the HDRI).
@@ -245,6 +254,7 @@ RenderOptions shadingOptions(const SceneCliOptions& o) {
   r.diffuse = o.diffuse == "lambert" ? DiffuseModel::Lambert : DiffuseModel::Disney;
   r.only = o.only == "diffuse"    ? ShadingTerms::Diffuse
            : o.only == "specular" ? ShadingTerms::Specular
+           : o.only == "sheen"    ? ShadingTerms::Sheen
                                   : ShadingTerms::Both;
   r.multipleScattering = o.multiscatter;
   r.parallaxCorrection = !o.noParallax;

@@ -68,7 +68,10 @@ struct LoadedBake {
 // The --bake directory, or a bake of --env (or the bundled environment) on the CPU.
 // Fails on lighting options that contradict each other (--env with --bake).
 void checkLightingOptions(const SceneCliOptions& o);
-LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global);
+// `sheen`: the scene has KHR_materials_sheen materials, so the bake needs the sheen chain.
+LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, bool sheen = false);
+// Whether any material of the scene has a sheen layer.
+bool hasSheen(const Scene& scene);
 
 // The camera: the options, else the scene file's, else one framing the scene from +Z.
 Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height);

@@ -36,6 +36,8 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   if (o.scene.aoRays > 0) fail("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
+  if (o.scene.only == "sheen")
+    fail("--only", "the viewer does not shade the sheen layer yet; use ibl render --only sheen");
   Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);

@@ -644,6 +644,9 @@ BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
     r.source = cube("source.ktx2");
     r.dfg = readImageFile(dir / "dfg.ktx2").levels.at(0).at(0);
     for (const auto& o : manifest.at("outputs")) {
+      if (o.at("role") == "sheen" && o.at("path") == "sheen.ktx2") r.sheen = cube("sheen.ktx2");
+      if (o.at("role") == "sheen_dfg" && o.at("path") == "sheen_dfg.ktx2")
+        r.sheenDfg = readImageFile(dir / "sheen_dfg.ktx2").levels.at(0).at(0);
       if (o.at("role") == "sh")
         for (int k = 0; k < 9; ++k)
           for (int c = 0; c < 3; ++c) r.sh[k][c] = o.at("coefficients").at(k).at(c).get<float>();

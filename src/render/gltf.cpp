@@ -495,8 +495,8 @@ tinygltf::Model readGltfModel(const std::string& path) {
          fmt::format("not a readable glTF 2.0 file: {}", firstLine(err.empty() ? warn : err)));
   for (const std::string& ext : model.extensionsRequired)
     if (ext != "KHR_draco_mesh_compression" && ext != "KHR_materials_emissive_strength" &&
-        ext != "KHR_mesh_quantization" && ext != "EXT_meshopt_compression" &&
-        ext != "KHR_lights_punctual")
+        ext != "KHR_materials_sheen" && ext != "KHR_mesh_quantization" &&
+        ext != "EXT_meshopt_compression" && ext != "KHR_lights_punctual")
       fail(path, fmt::format("requires the extension {}, which ibl does not implement", ext));
   decodeMeshoptViews(model, meshopt, path);
   return model;
@@ -618,6 +618,29 @@ std::vector<Material> readMaterials(const tinygltf::Model& model,
     if (strength != m.extensions.end() && strength->second.Has("emissiveStrength"))
       mat.emissive *=
           static_cast<float>(strength->second.Get("emissiveStrength").GetNumberAsDouble());
+    // KHR_materials_sheen: sheenColorFactor (default 0: no sheen), sheenRoughnessFactor
+    // (default 0), and their textures (color in RGB, sRGB; roughness in A).
+    const auto sheen = m.extensions.find("KHR_materials_sheen");
+    if (sheen != m.extensions.end()) {
+      const tinygltf::Value& x = sheen->second;
+      if (x.Has("sheenColorFactor") && x.Get("sheenColorFactor").ArrayLen() == 3)
+        for (int c = 0; c < 3; ++c)
+          mat.sheenColor[c] = static_cast<float>(
+              x.Get("sheenColorFactor").Get(static_cast<std::size_t>(c)).GetNumberAsDouble());
+      if (x.Has("sheenRoughnessFactor"))
+        mat.sheenRoughness = static_cast<float>(x.Get("sheenRoughnessFactor").GetNumberAsDouble());
+      const auto textureOf = [&](const char* name) {
+        tinygltf::TextureInfo info;
+        if (x.Has(name)) {
+          const tinygltf::Value& t = x.Get(name);
+          if (t.Has("index")) info.index = t.Get("index").GetNumberAsInt();
+          if (t.Has("texCoord")) info.texCoord = t.Get("texCoord").GetNumberAsInt();
+        }
+        return textureRef(info);
+      };
+      mat.sheenColorTexture = textureOf("sheenColorTexture");
+      mat.sheenRoughnessTexture = textureOf("sheenRoughnessTexture");
+    }
     materials.push_back(mat);
   }
   Material fallback;

@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "ibl/bake/dfg.hpp"
+#include "ibl/bake/prefilter.hpp"
 #include "ibl/core/parallel.hpp"
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/sampling.hpp"
@@ -36,8 +37,25 @@ const std::vector<float>& directionalAlbedoTable() {
   return table;
 }
 
-float directionalAlbedo(float NoV, float roughness) {
-  const std::vector<float>& table = directionalAlbedoTable();
+// E(n.v, r) of the sheen lobe (D_charlie V_neubelt), bilinear in a table integrated once per
+// process like the one above (integrateSheenDfg: 33^2 nodes of 1024 points, the edges
+// included).
+const std::vector<float>& sheenAlbedoTable() {
+  static const std::vector<float> table = [] {
+    std::vector<float> t(kNodes * kNodes);
+    parallelFor(0, kNodes, [&](int j) {
+      for (int i = 0; i < kNodes; ++i)
+        t[static_cast<std::size_t>(j) * kNodes + i] =
+            integrateSheenDfg(std::max(static_cast<float>(i) / (kNodes - 1), 1e-3f),
+                              std::max(static_cast<float>(j) / (kNodes - 1), 1e-3f), 1024);
+    });
+    return t;
+  }();
+  return table;
+}
+
+// Bilinear in one of the tables above at (n.v, r).
+float tableLookup(const std::vector<float>& table, float NoV, float roughness) {
   const float x = std::clamp(NoV, 0.0f, 1.0f) * (kNodes - 1);
   const float y = std::clamp(roughness, 0.0f, 1.0f) * (kNodes - 1);
   const int i = std::min(static_cast<int>(x), kNodes - 2),
@@ -48,6 +66,14 @@ float directionalAlbedo(float NoV, float roughness) {
                   glm::mix(at(i, j + 1), at(i + 1, j + 1), fx), fy);
 }
 
+float directionalAlbedo(float NoV, float roughness) {
+  return tableLookup(directionalAlbedoTable(), NoV, roughness);
+}
+
+float maxComponent(glm::vec3 c) {
+  return std::max(c.x, std::max(c.y, c.z));
+}
+
 // The material's BRDF pieces at one point.
 struct Brdf {
   glm::vec3 diffuseColor, f0;
@@ -55,6 +81,11 @@ struct Brdf {
   DiffuseModel diffuseModel;
   ShadingTerms only;
   glm::vec3 multipleScattering;  // the specular lobe's scale for the bounces between microfacets
+  // KHR_materials_sheen: f = f_sheen + f_below min(1 - s E(n.v), 1 - s E(n.l)), s =
+  // max(sheenColor), f_sheen = sheenColor D_charlie V_neubelt (the specification's layering).
+  glm::vec3 sheenColor{0.0f};
+  float sheenRoughness = 0.0f, sheenAlpha = 1.0f, sheenScaleV = 1.0f;
+  bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
 
   // The material at p seen from local direction v; `only` selects lobes.
   static Brdf of(const SurfacePoint& p, glm::vec3 v, ShadingTerms only, const RenderOptions& o) {
@@ -73,7 +104,25 @@ struct Brdf {
       const float e = directionalAlbedo(std::max(v.z, 1e-4f), p.roughness);
       b.multipleScattering = shared::multipleScatteringCompensation(b.f0, glm::vec2(e, 0.0f));
     }
+    if (p.sheenColor != glm::vec3(0.0f)) {
+      // The split sum's sheen prefilter stops at kMinSheenRoughness: the same material here.
+      b.sheenColor = p.sheenColor;
+      b.sheenRoughness = std::max(p.sheenRoughness, kMinSheenRoughness);
+      b.sheenAlpha = alphaFromRoughness(b.sheenRoughness);
+      b.sheenScaleV = b.albedoScaling(v.z);
+    }
     return b;
+  }
+
+  bool specularLobe() const { return only == ShadingTerms::Both || only == ShadingTerms::Specular; }
+  bool diffuseLobe() const { return only == ShadingTerms::Both || only == ShadingTerms::Diffuse; }
+  bool sheenLobe() const {
+    return hasSheen() && (only == ShadingTerms::Both || only == ShadingTerms::Sheen);
+  }
+  // 1 - max(sheenColor) E(c, sheen roughness).
+  float albedoScaling(float c) const {
+    return shared::sheenAlbedoScaling(
+        sheenColor, tableLookup(sheenAlbedoTable(), std::max(c, 1e-4f), sheenRoughness));
   }
 
   // f(v, l) (n.l), with n = +Z of the local frame.
@@ -82,24 +131,37 @@ struct Brdf {
     if (NoL <= 0.0f) return glm::vec3(0.0f);
     const glm::vec3 h = glm::normalize(v + l);
     glm::vec3 result(0.0f);
-    if (only != ShadingTerms::Diffuse) {
+    if (specularLobe()) {
       const float VoH = std::max(glm::dot(v, h), 0.0f);
       result += ggxDistribution(h.z, alpha) * smithGgxCorrelatedVisibility(NoV, NoL, alpha) *
                 fresnelSchlick(f0, 1.0f, VoH) * multipleScattering;
     }
-    if (only != ShadingTerms::Specular) {
+    if (diffuseLobe()) {
       const float fd = diffuseModel == DiffuseModel::Disney
                            ? disneyDiffuseRenormalized(NoV, NoL, glm::dot(l, h), roughness)
                            : 1.0f;
       result += diffuseColor * (fd / kPi);
     }
+    if (hasSheen()) {
+      result *= std::min(sheenScaleV, albedoScaling(NoL));
+      if (sheenLobe())
+        result += sheenColor * (shared::charlieDistribution(h.z, sheenAlpha) *
+                                shared::neubeltVisibility(NoV, NoL));
+    }
     return result * NoL;
   }
 
-  // Probability of picking the specular lobe when sampling.
+  // Probability of sampling the sheen lobe (cosine-distributed: the Charlie lobe is broad).
+  float sheenProbability() const {
+    if (!sheenLobe()) return 0.0f;
+    if (only == ShadingTerms::Sheen) return 1.0f;
+    return std::clamp(0.5f * maxComponent(sheenColor), 0.1f, 0.5f);
+  }
+
+  // Probability of picking the specular lobe when sampling the layer below.
   float specularProbability() const {
-    if (only == ShadingTerms::Diffuse) return 0.0f;
-    if (only == ShadingTerms::Specular) return 1.0f;
+    if (!specularLobe()) return 0.0f;
+    if (!diffuseLobe()) return 1.0f;
     const float s = luminance(f0) + 0.04f, d = luminance(diffuseColor);
     if (d <= 0.0f) return 1.0f;  // a metal: no diffuse lobe to sample
     return std::clamp(s / (s + d), 0.1f, 0.9f);
@@ -107,6 +169,7 @@ struct Brdf {
 
   float pdf(glm::vec3 v, glm::vec3 l) const {
     if (l.z <= 0.0f) return 0.0f;
+    const float pSheen = sheenProbability();
     const float ps = specularProbability();
     float p = (1.0f - ps) * l.z / kPi;
     if (ps > 0.0f) {
@@ -115,10 +178,13 @@ struct Brdf {
       // Visible normals, reflected: pdf(l) = G1(v) D(h) / (4 n.v).
       p += ps * smithGgxMasking(NoV, alpha) * ggxDistribution(h.z, alpha) / (4.0f * NoV);
     }
-    return p;
+    return pSheen * l.z / kPi + (1.0f - pSheen) * p;
   }
 
   glm::vec3 sample(glm::vec3 v, glm::vec2 xi, float choose) const {
+    const float pSheen = sheenProbability();
+    if (choose < pSheen) return sampleCosineHemisphere(xi);
+    choose = (choose - pSheen) / (1.0f - pSheen);
     if (choose < specularProbability()) {
       const glm::vec3 h = sampleGgxVisibleNormal(v, xi, alpha);
       return 2.0f * glm::dot(v, h) * h - v;
@@ -129,10 +195,6 @@ struct Brdf {
 
 float powerHeuristic(float a, float b) {
   return a * a / (a * a + b * b);
-}
-
-float maxComponent(glm::vec3 c) {
-  return std::max(c.x, std::max(c.y, c.z));
 }
 
 }  // namespace

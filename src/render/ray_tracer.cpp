@@ -130,6 +130,8 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.metallic = mat->metallic;
     p.roughness = mat->roughness;
     p.emissive = mat->emissive;
+    p.sheenColor = mat->sheenColor;
+    p.sheenRoughness = mat->sheenRoughness;
   } else {
     const Mesh& m = scene.meshes[hit.geometry];
     mat = &scene.materials[m.material];
@@ -160,6 +162,11 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
       p.occlusionTexture = true;
     }
     if (lookup(mat->emissiveTexture, true, t)) emissive *= glm::vec3(t);
+    p.sheenColor = mat->sheenColor;
+    p.sheenRoughness = mat->sheenRoughness;
+    if (lookup(mat->sheenColorTexture, true, t)) p.sheenColor *= glm::vec3(t);
+    if (lookup(mat->sheenRoughnessTexture, false, t)) p.sheenRoughness *= t.w;
+    p.sheenRoughness = std::clamp(p.sheenRoughness, 0.0f, 1.0f);
     if (!m.tangents.empty() && lookup(mat->normalTexture, false, t)) {
       const glm::vec4 t4 = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
       n = shared::applyNormalMap(n, t4, t, mat->normalScale);

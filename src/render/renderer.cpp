@@ -86,8 +86,32 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   m.metallic = p.metallic;
   m.roughness = p.roughness;
   m.occlusion = p.occlusion;
-  m.emissive = p.emissive;
-  return shared::splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+  m.emissive = glm::vec3(0.0f);
+  glm::vec3 below = o.only == ShadingTerms::Sheen
+                        ? glm::vec3(0.0f)
+                        : shared::splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+  if (p.sheenColor != glm::vec3(0.0f)) {
+    if (!bake.sheen || !bake.sheenDfg)
+      fail("render",
+           "a material has a sheen (KHR_materials_sheen) but the bake has none; bake "
+           "with --sheen");
+    // The sheen prefilter stops at kMinSheenRoughness; the reference's material does too.
+    const float rs = std::max(p.sheenRoughness, kMinSheenRoughness);
+    const float e = sampleDfgLut(*bake.sheenDfg, look.NoV, rs).x;
+    below *= shared::sheenAlbedoScaling(p.sheenColor, e);
+    if (o.environmentLight && distant > 0.0f && o.only != ShadingTerms::Diffuse &&
+        o.only != ShadingTerms::Specular) {
+      // The sheen chain has the specular chain's levels and mapping. It is read at the normal,
+      // not at the reflection as the glTF Sample Viewer and Filament do: the Charlie lobe lies
+      // along the surface's horizon whatever the view, and against the reference the normal is
+      // closer (docs/targets.md: 6.6 % against 10.2 % on a smooth sky).
+      const float lod =
+          specularLodForRoughness(rs, bake.sheen->levelCount(), bakeOptions.specular.mapping);
+      const glm::vec3 prefilteredSheen = distant * sampleTrilinear(*bake.sheen, lod, p.normal);
+      below += shared::sheenRadiance(p.sheenColor, e, prefilteredSheen) * p.occlusion;
+    }
+  }
+  return below + p.emissive;
 }
 
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
@@ -181,11 +205,21 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
             if (o.aoRays > 0 && !p.occlusionTexture)
               p.occlusion = ambientOcclusion(tracer, p, o.aoRays, aoDistance, rng);
             c = shadeSplitSum(p, -ray.direction, bake, bakeOptions, o);
-            if (!scene.lights.empty()) {
+            if (!scene.lights.empty() && o.only != ShadingTerms::Sheen) {
+              // The lights reach the layer below the sheen (scaled as the environment's is);
+              // the sheen lobe itself is not added for analytic lights in real time.
               const float NoV = std::max(glm::dot(p.normal, -ray.direction), 1e-4f);
               const glm::vec3 dfg = sampleDfgLut(bake.dfg, NoV, p.roughness);
-              c +=
-                  shadeLightsRealTime(p, position, -ray.direction, scene.lights, glm::vec2(dfg), o);
+              const float scaling =
+                  p.sheenColor == glm::vec3(0.0f) || !bake.sheenDfg
+                      ? 1.0f
+                      : shared::sheenAlbedoScaling(
+                            p.sheenColor,
+                            sampleDfgLut(*bake.sheenDfg, NoV,
+                                         std::max(p.sheenRoughness, kMinSheenRoughness))
+                                .x);
+              c += scaling * shadeLightsRealTime(p, position, -ray.direction, scene.lights,
+                                                 glm::vec2(dfg), o);
             }
           } else {
             c = tracePath(pathScene, p, position, -ray.direction, rng);

@@ -396,8 +396,11 @@ inline void writeSceneAsGltf(const Scene& scene, const std::filesystem::path& pa
         {"emissiveFactor",
          {m.emissive.x / strength, m.emissive.y / strength, m.emissive.z / strength}}};
     if (strength > 1.0f)
-      material["extensions"] = {
-          {"KHR_materials_emissive_strength", {{"emissiveStrength", strength}}}};
+      material["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", strength}};
+    if (m.sheenColor != glm::vec3(0.0f))
+      material["extensions"]["KHR_materials_sheen"] = {
+          {"sheenColorFactor", {m.sheenColor.x, m.sheenColor.y, m.sheenColor.z}},
+          {"sheenRoughnessFactor", m.sheenRoughness}};
     materials.push_back(material);
   }
   nlohmann::json sceneNodes = nlohmann::json::array();

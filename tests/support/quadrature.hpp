@@ -34,4 +34,24 @@ double integrateOverPatch(const F& f, const Q& q, const M& m, const J& jacobian,
   return sum / (static_cast<double>(steps) * steps);
 }
 
+// The sheen lobe's directional albedo E(n.v, r) = integral of D_charlie V_neubelt (n.l) dl by
+// the midpoint rule over (cos theta_l, phi), with the distribution and visibility written from
+// their papers (Estevez & Kulla 2017, eq. 2; Neubelt & Pettineo 2013).
+inline double sheenAlbedoQuadrature(double NoV, double roughness, int steps = 600) {
+  const double pi = 3.14159265358979323846, alpha = roughness * roughness;
+  const glm::dvec3 v(std::sqrt(1.0 - NoV * NoV), 0.0, NoV);
+  double sum = 0.0;
+  for (int i = 0; i < steps; ++i)
+    for (int j = 0; j < 2 * steps; ++j) {
+      const double c = (i + 0.5) / steps, phi = (j + 0.5) / (2 * steps) * 2.0 * pi;
+      const double s = std::sqrt(1.0 - c * c);
+      const glm::dvec3 l(s * std::cos(phi), s * std::sin(phi), c);
+      const glm::dvec3 h = glm::normalize(v + l);
+      const double d =
+          (2.0 + 1.0 / alpha) * std::pow(std::max(0.0, 1.0 - h.z * h.z), 0.5 / alpha) / (2.0 * pi);
+      sum += d / (4.0 * (c + NoV - c * NoV)) * c;
+    }
+  return sum * 2.0 * pi / (static_cast<double>(steps) * 2 * steps);
+}
+
 }  // namespace ibl::test

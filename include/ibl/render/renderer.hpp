@@ -16,7 +16,8 @@ struct LocalProbe;  // probe.hpp
 
 enum class RenderMode { SplitSum, Reference };
 enum class DiffuseModel { Disney, Lambert };
-enum class ShadingTerms { Both, Diffuse, Specular };
+// Which lobes to shade: all, or one alone (the sheen layer alone leaves out the layer below).
+enum class ShadingTerms { Both, Diffuse, Specular, Sheen };
 enum class IrradianceSource { Cube, Sh };
 // The real-time approximation of sphere, disk, tube and rect lights: Frostbite's (illuminance
 // formulas and a representative point) or linearly transformed cosines (ltc.hpp).
@@ -93,6 +94,8 @@ struct SurfacePoint {
   bool occlusionTexture =
       false;  // the occlusion comes from the material (else --ao may compute it)
   glm::vec3 emissive{0.0f};
+  glm::vec3 sheenColor{0.0f};  // KHR_materials_sheen (0: no sheen layer)
+  float sheenRoughness = 0.0f;
 };
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
 // viewer's frame uniforms carry the same.

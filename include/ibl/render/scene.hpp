@@ -65,6 +65,11 @@ struct Material {
   float occlusionStrength = 1.0f;
   glm::vec3 emissive{0.0f};
   TextureRef emissiveTexture;  // sRGB
+  // KHR_materials_sheen: a Charlie sheen layer over the rest (sheenColor 0: none).
+  glm::vec3 sheenColor{0.0f};        // linear
+  TextureRef sheenColorTexture;      // sRGB; RGB multiplies sheenColor
+  float sheenRoughness = 0.0f;       // perceptual
+  TextureRef sheenRoughnessTexture;  // A multiplies sheenRoughness
 };
 
 // Triangles in world space.

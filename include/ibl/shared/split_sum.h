@@ -109,6 +109,17 @@ IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefi
   return color;
 }
 
+// KHR_materials_sheen over the split sum: the layer below is scaled by the sheen's albedo
+// scaling 1 - max(sheenColor) E (the specification's, with E at n.v: image-based light has no
+// single l), and the sheen adds sheenColor * prefilteredSheen * E, where E = the sheen table at
+// (n.v, sheen roughness) and prefilteredSheen = the Charlie-prefiltered map at the reflection.
+IBL_FN float sheenAlbedoScaling(vec3 sheenColor, float E) {
+  return 1.0f - max(sheenColor.x, max(sheenColor.y, sheenColor.z)) * E;
+}
+IBL_FN vec3 sheenRadiance(vec3 sheenColor, float E, vec3 prefilteredSheen) {
+  return sheenColor * prefilteredSheen * E;
+}
+
 IBL_END
 
 #endif
