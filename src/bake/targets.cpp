@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <bit>
+#include <memory>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>

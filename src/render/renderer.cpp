@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibl/bake/dfg.hpp"
+#include "ibl/bake/prefilter.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/core/parallel.hpp"
 #include "ibl/math/color.hpp"
@@ -116,7 +117,7 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
 
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
                               const std::vector<Light>& lights, glm::vec2 dfg,
-                              const RenderOptions& o) {
+                              const RenderOptions& o, float belowScale) {
   const shared::SplitSumSwitches s = splitSumSwitches(o);
   shared::SplitSumMaterial m;
   m.baseColor = p.baseColor;
@@ -127,6 +128,10 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
   const glm::vec4 ltc = s.ltcAreaLights
                             ? ltcTableLookup(p.roughness, std::max(glm::dot(p.normal, view), 1e-4f))
                             : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+  const bool sheen = p.sheenColor != glm::vec3(0.0f) &&
+                     (o.only == ShadingTerms::Both || o.only == ShadingTerms::Sheen);
+  const float sheenAlpha =
+      shared::alphaFromRoughness(std::max(p.sheenRoughness, kMinSheenRoughness));
   glm::vec3 sum(0.0f);
   for (const Light& light : lights) {
     const shared::ShadingLight sl = shadingLightOf(light);
@@ -134,7 +139,12 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
         shared::lightIncidence(sl, position, p.normal, view, p.roughness, s, ltc);
     const float profile =
         light.ies ? light.intensityToward(glm::normalize(position - light.position)) : 1.0f;
-    sum += sl.color * profile * shared::lightRadiance(m, p.normal, view, inc, dfg, s);
+    glm::vec3 radiance(0.0f);
+    if (o.only != ShadingTerms::Sheen)
+      radiance += belowScale * shared::lightRadiance(m, p.normal, view, inc, dfg, s);
+    if (sheen)
+      radiance += shared::sheenLightRadiance(p.sheenColor, sheenAlpha, p.normal, view, inc);
+    sum += sl.color * profile * radiance;
   }
   return sum;
 }
@@ -205,9 +215,8 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
             if (o.aoRays > 0 && !p.occlusionTexture)
               p.occlusion = ambientOcclusion(tracer, p, o.aoRays, aoDistance, rng);
             c = shadeSplitSum(p, -ray.direction, bake, bakeOptions, o);
-            if (!scene.lights.empty() && o.only != ShadingTerms::Sheen) {
-              // The lights reach the layer below the sheen (scaled as the environment's is);
-              // the sheen lobe itself is not added for analytic lights in real time.
+            if (!scene.lights.empty()) {
+              // The layer below the sheen is scaled as for the environment.
               const float NoV = std::max(glm::dot(p.normal, -ray.direction), 1e-4f);
               const glm::vec3 dfg = sampleDfgLut(bake.dfg, NoV, p.roughness);
               const float scaling =
@@ -218,8 +227,8 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                             sampleDfgLut(*bake.sheenDfg, NoV,
                                          std::max(p.sheenRoughness, kMinSheenRoughness))
                                 .x);
-              c += scaling * shadeLightsRealTime(p, position, -ray.direction, scene.lights,
-                                                 glm::vec2(dfg), o);
+              c += shadeLightsRealTime(p, position, -ray.direction, scene.lights, glm::vec2(dfg), o,
+                                       scaling);
             }
           } else {
             c = tracePath(pathScene, p, position, -ray.direction, rng);

@@ -2,6 +2,7 @@
 // distribution and visibility written from their papers (Estevez & Kulla 2017, eq. 2; Neubelt
 // & Pettineo 2013), not from ibl/shared/brdf.h.
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include <gtest/gtest.h>

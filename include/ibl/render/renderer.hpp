@@ -107,9 +107,10 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
                         const BakeOptions& bakeOptions, const RenderOptions& options);
 // The real-time shading of a point at `position` by the scene's lights (ibl/shared/lights.h,
 // IES profiles applied on the CPU); dfg: the DFG table's A, B at the point's n.v (the LTC table
-// is looked up here, once for all the lights).
+// is looked up here, once for all the lights). A sheen layer adds its lobe
+// (shared::sheenLightRadiance) and scales the layer below by `belowScale` (its albedo scaling).
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
                               const std::vector<Light>& lights, glm::vec2 dfg,
-                              const RenderOptions& options);
+                              const RenderOptions& options, float belowScale = 1.0f);
 
 }  // namespace ibl

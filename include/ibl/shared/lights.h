@@ -592,6 +592,20 @@ IBL_FN LightIncidence lightIncidence(ShadingLight light, vec3 p, vec3 n, vec3 v,
   return punctualIncidence(light, c, n);
 }
 
+// The sheen lobe (KHR_materials_sheen) lit by one light: sheenColor D_charlie V_neubelt times
+// the illuminance, from the light's diffuse representative direction (the Charlie lobe is
+// broad, like the diffuse one; for punctual lights and the sun this is exact).
+IBL_FN vec3 sheenLightRadiance(vec3 sheenColor, float sheenAlpha, vec3 n, vec3 v,
+                               LightIncidence inc) {
+  vec3 l = inc.diffuseDirection;
+  float NoL = dot(n, l);
+  if (inc.diffuseIlluminance <= 0.0f || NoL <= 0.0f) return vec3(0.0f);
+  float NoV = max(dot(n, v), 1e-4f);
+  vec3 h = normalize(v + l);
+  return sheenColor * (charlieDistribution(clamp(dot(n, h), 0.0f, 1.0f), sheenAlpha) *
+                       neubeltVisibility(NoV, NoL) * inc.diffuseIlluminance);
+}
+
 // The radiance the standard material (the BRDF of the IBL path) reflects toward v from a light's
 // incidence, per unit of the light's color: diffuse (Disney or Lambert) x the diffuse
 // illuminance, GGX x the specular illuminance, with the multiple-scattering compensation of the
