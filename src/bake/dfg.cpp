@@ -75,38 +75,57 @@ Image integrateDfgLut(int width, int height, int samples) {
   return lut;
 }
 
-// The sheen table: E(v) = integral of D_charlie(h) V(v, l) (n.l) dl over l, integrated over
-// half vectors drawn uniformly on the hemisphere (as glTF-IBL-Sampler's LUT_CharlieUniform and
-// Filament's cmgen cloth DFG do): dl = 4 (v.h) dh and the pdf of h is 1 / (2 pi), so each
-// point adds D V (n.l) 4 (v.h) 2 pi. Uniform half vectors keep the points where the Charlie
-// lobe lives, near the horizon, for every roughness.
-float integrateSheenDfg(float NoV, float roughness, int samples) {
-  const float alpha = alphaFromRoughness(roughness);
-  const glm::vec3 v(std::sqrt(std::max(0.0f, 1.0f - NoV * NoV)), 0.0f, NoV);
-  double sum = 0.0;
+namespace {
+
+// The half vectors of the sheen integral: Hammersley points mapped uniformly onto the
+// hemisphere, computed once per table.
+std::vector<glm::vec3> uniformHalfVectors(int samples) {
+  std::vector<glm::vec3> h;
+  h.reserve(static_cast<std::size_t>(samples));
   for (int k = 0; k < samples; ++k) {
     const glm::vec2 xi =
         hammersley(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(samples));
-    const float cosTheta = 1.0f - xi.y,
-                sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+    const float cosTheta = 1.0f - xi.y;
+    const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
     const float phi = 2.0f * std::numbers::pi_v<float> * xi.x;
-    const glm::vec3 h(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta);
+    h.emplace_back(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta);
+  }
+  return h;
+}
+
+float integrateSheenDfgWith(float NoV, float roughness, const std::vector<glm::vec3>& halfVectors) {
+  const float alpha = alphaFromRoughness(roughness);
+  const glm::vec3 v(std::sqrt(std::max(0.0f, 1.0f - NoV * NoV)), 0.0f, NoV);
+  double sum = 0.0;
+  for (const glm::vec3& h : halfVectors) {
     const float VoH = glm::dot(v, h);
     const float NoL = 2.0f * VoH * h.z - NoV;
     if (NoL <= 0.0f || VoH <= 0.0f) continue;
     sum += shared::charlieDistribution(h.z, alpha) * shared::neubeltVisibility(NoV, NoL) * NoL *
            4.0f * VoH;
   }
-  return static_cast<float>(sum * 2.0 * std::numbers::pi / samples);
+  return static_cast<float>(sum * 2.0 * std::numbers::pi / static_cast<double>(halfVectors.size()));
+}
+
+}  // namespace
+
+// The sheen table: E(v) = integral of D_charlie(h) V(v, l) (n.l) dl over l, integrated over
+// half vectors drawn uniformly on the hemisphere (as glTF-IBL-Sampler's LUT_CharlieUniform and
+// Filament's cmgen cloth DFG do): dl = 4 (v.h) dh and the pdf of h is 1 / (2 pi), so each
+// point adds D V (n.l) 4 (v.h) 2 pi. Uniform half vectors keep the points where the Charlie
+// lobe lives, near the horizon, for every roughness.
+float integrateSheenDfg(float NoV, float roughness, int samples) {
+  return integrateSheenDfgWith(NoV, roughness, uniformHalfVectors(samples));
 }
 
 Image integrateSheenDfgLut(int width, int height, int samples) {
   Image lut(width, height);
+  const std::vector<glm::vec3> halfVectors = uniformHalfVectors(samples);
   parallelFor(0, height, [&](int j) {
     const float r = (static_cast<float>(j) + 0.5f) / static_cast<float>(height);
     for (int i = 0; i < width; ++i) {
-      const float e =
-          integrateSheenDfg((static_cast<float>(i) + 0.5f) / static_cast<float>(width), r, samples);
+      const float e = integrateSheenDfgWith(
+          (static_cast<float>(i) + 0.5f) / static_cast<float>(width), r, halfVectors);
       lut.at(i, j) = glm::vec3(e, 0.0f, 0.0f);
     }
   });

@@ -12,36 +12,12 @@
 #include "ibl/render/camera.hpp"
 #include "ibl/render/renderer.hpp"
 #include "support/helpers.hpp"
+#include "support/sphere_renders.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
-
-struct Baked {
-  BakeOptions options;
-  BakeResult result;
-};
-
-Baked bakeOf(const RadianceFn& f, int size = 64) {
-  Baked b;
-  b.options.specular.size = size;
-  b.options.irradianceSize = 16;
-  b.options.dfgSize = 64;
-  b.options.dfgSamples = 1024;
-  b.result = bakeEnvironment(equirectEnvironment(equirectFromFunction(512, f)), b.options);
-  return b;
-}
-
-// An orthographic view of the unit sphere from +Z: pixel (n/2, n/2) looks at its center.
-Camera sphereCamera(int n) {
-  Camera c;
-  c.perspective = false;
-  c.orthoWidth = 2.0f;
-  c.from = glm::vec3(0, 0, 5);
-  c.width = c.height = n;
-  return c;
-}
 
 Scene sphere(glm::vec3 base, float metallic, float roughness) {
   Material m;
@@ -49,14 +25,6 @@ Scene sphere(glm::vec3 base, float metallic, float roughness) {
   m.metallic = metallic;
   m.roughness = roughness;
   return makeSphereScene(m);
-}
-
-// Pixels fully on the model in both renders (silhouette pixels mix in the background).
-std::vector<float> interiorMask(const RenderResult& a, const RenderResult& b) {
-  std::vector<float> m(a.alpha.size());
-  for (std::size_t i = 0; i < m.size(); ++i)
-    m[i] = a.alpha[i] == 1.0f && b.alpha[i] == 1.0f ? 1.0f : 0.0f;
-  return m;
 }
 
 // The split sum (1 sample at each pixel center) against the reference (1024 samples) over

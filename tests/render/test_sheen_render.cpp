@@ -3,6 +3,7 @@
 // in the split sum, the split sum stays near the reference on a smooth sky, and glTF files
 // carry the sheen into `ibl render`.
 #include <cstdio>
+#include <numbers>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -14,36 +15,19 @@
 #include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
 #include "support/quadrature.hpp"
+#include "support/sphere_renders.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
 
-struct Baked {
-  BakeOptions options;
-  BakeResult result;
-};
-
 Baked sheenBake(const RadianceFn& f, int size = 32) {
-  Baked b;
-  b.options.specular.size = size;
-  b.options.irradianceSize = 16;
-  b.options.dfgSize = 64;
-  b.options.dfgSamples = 1024;
-  b.options.sheen = true;
-  b.result = bakeEnvironment(equirectEnvironment(equirectFromFunction(256, f)), b.options);
-  return b;
+  return bakeOf(f, size, true);
 }
 
-Camera rowCamera(int n) {  // the middle row of an orthographic view of the unit sphere from +Z
-  Camera c;
-  c.perspective = false;
-  c.orthoWidth = 2.0f;
-  c.from = glm::vec3(0, 0, 5);
-  c.width = n;
-  c.height = 1;
-  return c;
+Camera rowCamera(int n) {  // the middle row
+  return sphereCamera(n, 1);
 }
 
 Scene sheenSphere(glm::vec3 base, float metallic, float roughness, glm::vec3 sheen, float rs) {
@@ -54,10 +38,6 @@ Scene sheenSphere(glm::vec3 base, float metallic, float roughness, glm::vec3 she
   m.sheenColor = sheen;
   m.sheenRoughness = rs;
   return makeSphereScene(m);
-}
-
-constexpr float kPiF() {
-  return 3.14159265f;
 }
 
 }  // namespace
@@ -113,8 +93,7 @@ TEST(SheenRender, SplitSumNearTheReferenceOnASmoothSky) {
         return glm::vec3(1.0f + 0.5f * d.z, 1.0f + 0.3f * d.x, 1.0f + 0.2f * d.y);
       },
       64);
-  Camera cam = rowCamera(17);
-  cam.height = 17;
+  const Camera cam = sphereCamera(17);
   const Scene s =
       sheenSphere(glm::vec3(0.2f, 0.3f, 0.6f), 0.0f, 0.6f, glm::vec3(0.9f, 0.7f, 0.5f), 0.5f);
   const auto compare = [&](ShadingTerms only) {
@@ -125,9 +104,7 @@ TEST(SheenRender, SplitSumNearTheReferenceOnASmoothSky) {
     o.mode = RenderMode::Reference;
     o.spp = 2048;
     const RenderResult ref = renderScene(s, cam, b.result, b.options, o);
-    std::vector<float> mask(split.alpha.size());
-    for (std::size_t i = 0; i < mask.size(); ++i)
-      mask[i] = split.alpha[i] == 1.0f && ref.alpha[i] == 1.0f ? 1.0f : 0.0f;
+    const std::vector<float> mask = interiorMask(split, ref);
     return compareImages(split.color, ref.color, &mask).overall.meanRelativeError;
   };
   // The sheen lobe alone: the prefilter's n = v assumption and the table. The whole material:
@@ -186,14 +163,14 @@ TEST(SheenRender, LightsAddTheSheenLobe) {
   b.options.dfgSamples = 256;
   b.options.sheen = true;
   b.result = bakeEnvironment(equirectEnvironment(Image(16, 8, glm::vec3(0.0f))), b.options);
-  Camera cam = rowCamera(65);  // fine pixels: the reference averages over each
-  cam.height = 65;
+  const Camera cam = sphereCamera(65);  // fine pixels: the reference averages over each
   for (LightType type : {LightType::Point, LightType::Sphere}) {
     Scene s = sheenSphere(glm::vec3(0.3f), 0.0f, 0.6f, glm::vec3(0.9f, 0.7f, 0.5f), 0.5f);
     Light light;
     light.type = type;
     light.position = glm::vec3(2.0f, 1.5f, 3.0f);
-    light.intensity = type == LightType::Point ? 50.0f : 50.0f / (kPiF() * 0.09f);
+    light.intensity =
+        type == LightType::Point ? 50.0f : 50.0f / (std::numbers::pi_v<float> * 0.09f);
     light.radius = type == LightType::Sphere ? 0.3f : 0.0f;
     s.lights.push_back(light);
     RenderOptions o;
@@ -207,11 +184,9 @@ TEST(SheenRender, LightsAddTheSheenLobe) {
     const RenderResult ref = renderScene(s, cam, b.result, b.options, o);
     // Where the sheen is bright: near the terminator it changes within a pixel, which the
     // reference averages and the split sum samples at the center.
-    std::vector<float> mask(split.alpha.size());
+    std::vector<float> mask = interiorMask(split, ref);
     for (std::size_t i = 0; i < mask.size(); ++i)
-      mask[i] = split.alpha[i] == 1.0f && ref.alpha[i] == 1.0f && ref.color.pixels[i].x > 0.01f
-                    ? 1.0f
-                    : 0.0f;
+      if (ref.color.pixels[i].x <= 0.01f) mask[i] = 0.0f;
     const double err = compareImages(split.color, ref.color, &mask).overall.meanRelativeError;
     std::printf("sheen lit by a %s light: split sum vs reference %.4f\n",
                 type == LightType::Point ? "point" : "sphere", err);
