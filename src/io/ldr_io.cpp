@@ -14,6 +14,17 @@
 
 namespace ibl {
 
+namespace {
+
+// stb's reason for refusing the pixel data, or a plain one when it gives none.
+std::string corruptPixels() {
+  const char* reason = stbi_failure_reason();
+  return reason && *reason ? fmt::format("corrupt image: {}", reason)
+                           : std::string("corrupt image: its pixel data is truncated or invalid");
+}
+
+}  // namespace
+
 Image decodeLdr(std::span<const std::uint8_t> bytes, std::string_view name, DecodedFile* info) {
   if (bytes.size() > static_cast<std::size_t>(INT32_MAX)) fail(name, "file too large");
   const auto* data = bytes.data();
@@ -27,16 +38,19 @@ Image decodeLdr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
     info->channels = comp;
     info->detail = sixteen ? "16-bit" : "8-bit";
   }
-  Image img(w, h);
+  // The image is allocated once the pixels have decoded: a header alone may claim 268 M pixels.
+  Image img;
   if (sixteen) {
     stbi_us* px = stbi_load_16_from_memory(data, len, &w, &h, &comp, 3);
-    if (!px) fail(name, fmt::format("corrupt image: {}", stbi_failure_reason()));
+    if (!px) fail(name, corruptPixels());
+    img = Image(w, h);
     for (std::size_t i = 0; i < img.pixels.size(); ++i)
       for (int c = 0; c < 3; ++c) img.pixels[i][c] = srgbToLinear(px[3 * i + c] / 65535.0f);
     stbi_image_free(px);
   } else {
     stbi_uc* px = stbi_load_from_memory(data, len, &w, &h, &comp, 3);
-    if (!px) fail(name, fmt::format("corrupt image: {}", stbi_failure_reason()));
+    if (!px) fail(name, corruptPixels());
+    img = Image(w, h);
     for (std::size_t i = 0; i < img.pixels.size(); ++i)
       for (int c = 0; c < 3; ++c) img.pixels[i][c] = srgb8ToLinear(px[3 * i + c]);
     stbi_image_free(px);
