@@ -221,9 +221,10 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                   "What to write, one or several (comma-separated): ibl (our KTX2 set), filament "
                   "(cmgen --deploy's KTX files and sh.txt), gltf-sample-viewer "
                   "(glTF-IBL-Sampler's ggx/, lambertian/, charlie/ and LUT PNGs), dds (DDS cube "
-                  "maps with mips). Several: ibl in OUTDIR, the others in OUTDIR/<target>/")
+                  "maps with mips), babylon (a Babylon.js .env). Several: ibl in OUTDIR, the "
+                  "others in OUTDIR/<target>/")
       ->delimiter(',')
-      ->check(CLI::IsMember({"ibl", "filament", "gltf-sample-viewer", "dds"}))
+      ->check(CLI::IsMember({"ibl", "filament", "gltf-sample-viewer", "dds", "babylon"}))
       ->capture_default_str();
   cmd->add_option("--irradiance-size", opts->irradianceSize, "Irradiance cube size")
       ->check(CLI::Range(1, 1024))

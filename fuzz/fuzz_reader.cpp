@@ -1,11 +1,12 @@
 // libFuzzer target for one image reader, chosen at compile time by IBL_FUZZ_FORMAT
-// (hdr, exr, ldr, ktx2, ktx1, dds, any). A reader may reject its input with ibl::Error; anything
-// else (a crash, a sanitizer report, another exception, a hang) is a bug.
+// (hdr, exr, ldr, ktx2, ktx1, dds, env, any). A reader may reject its input with ibl::Error;
+// anything else (a crash, a sanitizer report, another exception, a hang) is a bug.
 #include <cstddef>
 #include <cstdint>
 #include <span>
 
 #include "ibl/core/error.hpp"
+#include "ibl/io/babylon_env.hpp"
 #include "ibl/io/dds.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/io/ktx1.hpp"
@@ -18,6 +19,7 @@
 #define IBL_FUZZ_any 5
 #define IBL_FUZZ_ktx1 6
 #define IBL_FUZZ_dds 7
+#define IBL_FUZZ_env 8
 #define IBL_FUZZ_SELECT(f) IBL_FUZZ_##f
 #define IBL_FUZZ_ID(f) IBL_FUZZ_SELECT(f)
 
@@ -36,6 +38,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ibl::decodeKtx1(bytes, "fuzz.ktx");
 #elif IBL_FUZZ_ID(IBL_FUZZ_FORMAT) == IBL_FUZZ_dds
     ibl::decodeDds(bytes, "fuzz.dds");
+#elif IBL_FUZZ_ID(IBL_FUZZ_FORMAT) == IBL_FUZZ_env
+    ibl::decodeBabylonEnv(bytes, "fuzz.env");
 #else
     ibl::decodeImageFile(bytes, "fuzz");
 #endif

@@ -8,6 +8,7 @@
 #include <ImfOutputFile.h>
 #include <ImfTiledOutputFile.h>
 
+#include "ibl/io/babylon_env.hpp"
 #include "ibl/io/dds.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
@@ -50,6 +51,11 @@ int main(int argc, char** argv) {
                          ibl::encodeKtx1({ibl::PixelFormat::Rgba16f, 1, {{img}}, {}}));
     ibl::writeFileAtomic(root / "dds" / "cube.dds",
                          ibl::encodeDds({ibl::PixelFormat::Rgba16f, 6, cube}));
+    ibl::BabylonEnvironment env;
+    env.width = 2;
+    env.levels = cube;
+    env.levels[1][3] = ibl::Image(1, 1, glm::vec3(300.0f));  // beyond RGBD's range
+    ibl::writeFileAtomic(root / "env" / "babylon.env", ibl::encodeBabylonEnv(env));
     ibl::writeFileAtomic(root / "dds" / "rg11b10.dds",
                          ibl::encodeDds({ibl::PixelFormat::B10G11R11, 1, {{img}}}));
   }

@@ -9,9 +9,9 @@ seconds="${1:-30}"
 build=build-fuzz
 CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DIBL_FUZZ=ON -DIBL_BUILD_TESTS=OFF -DIBL_BUILD_BENCH=OFF >/dev/null
-ninja -C "$build" fuzz_hdr fuzz_exr fuzz_ldr fuzz_ktx2 fuzz_ktx1 fuzz_dds >/dev/null
+ninja -C "$build" fuzz_hdr fuzz_exr fuzz_ldr fuzz_ktx2 fuzz_ktx1 fuzz_dds fuzz_env >/dev/null
 status=0
-for reader in hdr exr ldr ktx2 ktx1 dds; do
+for reader in hdr exr ldr ktx2 ktx1 dds env; do
   work="fuzz/corpus-work/$reader"
   artifacts="fuzz/corpus-work/artifacts-$reader"
   mkdir -p "$work" "$artifacts"

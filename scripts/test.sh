@@ -2,7 +2,7 @@
 # Sets up the machine and runs every check CI runs:
 #   1. release build with warnings as errors, and the whole test suite;
 #   2. clang-format check;
-#   3. libFuzzer on every reader for a bounded time (IBL_FUZZ_SECONDS each, default 15);
+#   3. libFuzzer on every reader for a bounded time (IBL_FUZZ_SECONDS each, default 10);
 #   4. the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer;
 #   5. the test suite again under ThreadSanitizer.
 set -euo pipefail
@@ -22,7 +22,7 @@ phase "clang-format"
 git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format --dry-run --Werror
 
 phase "fuzzing the readers"
-bash scripts/fuzz.sh "${IBL_FUZZ_SECONDS:-12}"
+bash scripts/fuzz.sh "${IBL_FUZZ_SECONDS:-10}"
 
 phase "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_SANITIZE=ON \

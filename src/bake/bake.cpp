@@ -59,16 +59,16 @@ class StageTimer {
 
 // Records in a manifest entry, and warns, what a format's range clamps of an output.
 void noteRangeLoss(Json& entry, const BakeOutputOptions& out, const std::string& file,
-                   const RangeLoss& loss, std::string_view format) {
+                   const RangeLoss& loss, std::string_view format, bool engineFormat) {
   if (loss.clamped == 0) return;
   entry["clamped"] = {
       {"values", loss.clamped}, {"brightest", loss.brightest}, {"lost_power", loss.lostPower}};
   if (out.warn)
-    out.warn(
-        fmt::format("{}: {} values above the {} range clamped (brightest {:g}), {:.3g} % of "
-                    "the power of its worst level lost; bake with --format rgba32f, or "
-                    "--clamp MAX to choose the limit",
-                    file, loss.clamped, format, loss.brightest, 100.0 * loss.lostPower));
+    out.warn(fmt::format(
+        "{}: {} values above the {} range clamped (brightest {:g}), {:.3g} % of "
+        "the power of its worst level lost; {}--clamp MAX to choose the limit",
+        file, loss.clamped, format, loss.brightest, 100.0 * loss.lostPower,
+        engineFormat ? "the engine's format is fixed: " : "bake with --format rgba32f, or "));
 }
 
 bool BakeOptions::wants(EngineTarget t) const {
@@ -137,6 +137,13 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
           filament.mapping = RoughnessMapping::Filament;
           if (progress) progress("Filament's specular chain");
           r.filamentSpecular = time("filament_specular", [&] { return prefilter(filament); });
+        }
+        if (o.wants(EngineTarget::Babylon)) {
+          PrefilterOptions babylon = o.specular;
+          babylon.levels = fullMipCount(o.specular.size);
+          babylon.mapping = RoughnessMapping::Babylon;
+          if (progress) progress("Babylon.js's specular chain");
+          r.babylonSpecular = time("babylon_specular", [&] { return prefilter(babylon); });
         }
         if (progress)
           progress(fmt::format("irradiance {}x{} and SH9", o.irradianceSize, o.irradianceSize));

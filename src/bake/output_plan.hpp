@@ -36,8 +36,9 @@ struct OutputPlan {
 };
 
 // Records in a manifest entry, and warns, what a format's range clamps of an output.
+// `engineFormat`: the format is the engine's (R11F_G11F_B10F, RGBD), not --format's.
 void noteRangeLoss(Json& entry, const BakeOutputOptions& out, const std::string& file,
-                   const RangeLoss& loss, std::string_view format);
+                   const RangeLoss& loss, std::string_view format, bool engineFormat = false);
 
 // Plans the files of the engine targets of `out.targets` other than EngineTarget::Ibl
 // (targets.cpp). `outDirName`: the name of the output directory (Filament's file stem);

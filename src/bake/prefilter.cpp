@@ -524,6 +524,8 @@ std::string_view mappingName(RoughnessMapping mapping) {
       return "frostbite";
     case RoughnessMapping::Filament:
       return "filament";
+    case RoughnessMapping::Babylon:
+      return "babylon";
   }
   return "?";
 }
@@ -538,6 +540,12 @@ float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping) {
       return t * t;
     case RoughnessMapping::Filament:  // the root of lod / (L - 1) = r (2 - r) in [0, 1]
       return std::clamp(1.0f - std::sqrt(std::max(1.0f - t, 0.0f)), 0.0f, 1.0f);
+    case RoughnessMapping::Babylon: {  // alpha = 2^(m / 0.8) / 2^(L - 1)
+      if (level == 0) return 0.0f;
+      const float alpha = std::exp2(static_cast<float>(level) / kBabylonLodGenerationScale -
+                                    static_cast<float>(levelCount - 1));
+      return std::sqrt(std::min(alpha, 1.0f));
+    }
   }
   return t;
 }
@@ -545,6 +553,11 @@ float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping) {
 float specularLodForRoughness(float roughness, int levelCount, RoughnessMapping mapping) {
   const float maxLod = static_cast<float>(std::max(levelCount - 1, 0));
   if (mapping == RoughnessMapping::Filament) return maxLod * roughness * (2.0f - roughness);
+  if (mapping == RoughnessMapping::Babylon) {  // 0.8 log2(width r^2), width = 2^maxLod
+    if (roughness <= 0.0f) return 0.0f;
+    const float lod = kBabylonLodGenerationScale * (maxLod + 2.0f * std::log2(roughness));
+    return std::clamp(lod, 0.0f, maxLod);
+  }
   return shared::specularLodForRoughness(roughness, maxLod, mapping == RoughnessMapping::Frostbite);
 }
 

@@ -1,5 +1,5 @@
 // The engine targets' files (docs/targets.md): Filament (cmgen --deploy), the glTF Sample
-// Viewer (glTF-IBL-Sampler's outputs), DDS.
+// Viewer (glTF-IBL-Sampler's outputs), DDS, Babylon.js (.env).
 #include "ibl/bake/targets.hpp"
 
 #include <algorithm>
@@ -12,6 +12,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/export.hpp"
+#include "ibl/io/babylon_env.hpp"
 #include "ibl/io/dds.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/io/ktx1.hpp"
@@ -30,6 +31,8 @@ std::string_view targetName(EngineTarget t) {
       return "gltf-sample-viewer";
     case EngineTarget::Dds:
       return "dds";
+    case EngineTarget::Babylon:
+      return "babylon";
   }
   return "?";
 }
@@ -100,6 +103,37 @@ std::string filamentShText(const Sh9& c) {
   return text;
 }
 
+glm::mat3 babylonOrientation(bool panoramaSource) {
+  if (panoramaSource) return {glm::vec3(0, 0, 1), glm::vec3(0, 1, 0), glm::vec3(1, 0, 0)};
+  return glm::mat3(1.0f);
+}
+
+std::array<glm::vec3, 9> babylonSphericalPolynomial(const Sh9& c) {
+  // Babylon's SH3ylmBasisConstants (with the Condon-Shortley signs) in the order l00, l1-1, l10,
+  // l11, l2-2, l2-1, l20, l21, l22: the same order and polynomials as Filament's.
+  const double pi = std::numbers::pi;
+  const double k[9] = {
+      std::sqrt(1 / (4 * pi)),  -std::sqrt(3 / (4 * pi)),  std::sqrt(3 / (4 * pi)),
+      -std::sqrt(3 / (4 * pi)), std::sqrt(15 / (4 * pi)),  -std::sqrt(15 / (4 * pi)),
+      std::sqrt(5 / (16 * pi)), -std::sqrt(15 / (4 * pi)), std::sqrt(15 / (16 * pi))};
+  std::array<glm::dvec3, 9> h;
+  for (int i = 0; i < 9; ++i) h[i] = glm::dvec3(c[i]) / k[i];
+  // SphericalPolynomial.updateFromHarmonics, its constants as it writes them.
+  std::array<glm::dvec3, 9> p;
+  p[0] = -1.02333 * h[3];                                      // x
+  p[1] = -1.02333 * h[1];                                      // y
+  p[2] = 1.02333 * h[2];                                       // z
+  p[3] = 0.886277 * h[0] - 0.247708 * h[6] + 0.429043 * h[8];  // xx
+  p[4] = 0.886277 * h[0] - 0.247708 * h[6] - 0.429043 * h[8];  // yy
+  p[5] = 0.886277 * h[0] + 0.495417 * h[6];                    // zz
+  p[6] = -0.858086 * h[5];                                     // yz
+  p[7] = -0.858086 * h[7];                                     // zx
+  p[8] = 0.858086 * h[4];                                      // xy
+  std::array<glm::vec3, 9> out;
+  for (int i = 0; i < 9; ++i) out[i] = glm::vec3(p[i] / pi);
+  return out;
+}
+
 namespace {
 
 using KtxKeyValuesOf = decltype(Ktx1Texture::keyValues);
@@ -151,7 +185,7 @@ void addFilament(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
     entry["levels"] = cube->levelCount();
     entry["orientation"] = orientation;
     noteRangeLoss(entry, out, path, rangeLoss(*cube, largestValue(PixelFormat::B10G11R11)),
-                  "R11F_G11F_B10F");
+                  "R11F_G11F_B10F", true);
     plan.add(path, [cube, keyValues] {
       return encodeKtx1({PixelFormat::B10G11R11, 6, levelsOf(*cube), keyValues});
     });
@@ -275,6 +309,47 @@ void addDds(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
                           {"channels", {"A", "B", "diffuse"}}});
 }
 
+// Babylon.js: <name>.env (RGBD PNG faces of the full chain at Babylon's roughness per level, its
+// axes, the irradiance as its spherical polynomial).
+void addBabylon(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
+                const BakeOutputOptions& out, const std::string& dir, const std::string& name,
+                bool panorama) {
+  const glm::mat3 m = babylonOrientation(panorama);
+  auto env = std::make_shared<BabylonEnvironment>();
+  const CubeMap chain = permuteCubeAxes(*r.babylonSpecular, m);
+  env->width = chain.size();
+  env->levels = levelsOf(chain);
+  CubeMap level64;
+  level64.levels = {r.source.levels[levelOfSize(r.source, 64)]};
+  const Sh9 radiance = projectSh9(permuteCubeAxes(level64, m));
+  env->polynomial =
+      babylonSphericalPolynomial(filamentIrradianceSh(o.shWindow ? windowSh9(radiance) : radiance));
+  const std::string path = dir + name + ".env";
+  Json polynomial;
+  const char* keys[9] = {"x", "y", "z", "xx", "yy", "zz", "yz", "zx", "xy"};
+  for (int k = 0; k < 9; ++k)
+    polynomial[keys[k]] = {env->polynomial[k].x, env->polynomial[k].y, env->polynomial[k].z};
+  Json entry = {{"role", "specular"},
+                {"target", "babylon"},
+                {"path", path},
+                {"format", "env"},
+                {"pixel_format", "rgbd8 png"},
+                {"size", {chain.size(), chain.size()}},
+                {"faces", 6},
+                {"levels", chain.levelCount()},
+                {"mapping", "babylon"},
+                {"lod_from_roughness", "lod = 0.8 log2(width r^2)"},
+                {"roughness", roughnessJson(chain, RoughnessMapping::Babylon)},
+                {"orientation", panorama ? "Babylon's: texel(d) = ours at (d.z, d.y, d.x) "
+                                           "(equirect source, through HDRCubeTexture's faces)"
+                                         : "Babylon's: texel(d) = ours at d (cube source)"},
+                {"irradiance", "Babylon's SphericalPolynomial (E / pi through its harmonics)"},
+                {"polynomial", polynomial}};
+  noteRangeLoss(entry, out, path, rangeLoss(chain, glm::vec3(kRgbdMaxRange)), "RGBD", true);
+  plan.add(path, [env] { return encodeBabylonEnv(*env); });
+  plan.outputs.push_back(entry);
+}
+
 }  // namespace
 
 void addTargetOutputs(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
@@ -293,6 +368,9 @@ void addTargetOutputs(OutputPlan& plan, const BakeResult& r, const BakeOptions& 
         break;
       case EngineTarget::Dds:
         addDds(plan, r, o, out, dir);
+        break;
+      case EngineTarget::Babylon:
+        addBabylon(plan, r, o, out, dir, outDirName, panoramaSource);
         break;
       case EngineTarget::Ibl:
         break;

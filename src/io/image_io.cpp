@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "ibl/core/error.hpp"
+#include "ibl/io/babylon_env.hpp"
 #include "ibl/io/dds.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/ktx1.hpp"
@@ -30,6 +31,8 @@ std::string_view fileFormatName(FileFormat f) {
       return "ktx";
     case FileFormat::Dds:
       return "dds";
+    case FileFormat::BabylonEnv:
+      return "env";
   }
   return "?";
 }
@@ -45,6 +48,8 @@ std::optional<FileFormat> detectFileFormat(std::span<const std::uint8_t> b) {
   if (b.size() >= 12 && std::memcmp(b.data(), kKtx2Identifier, 12) == 0) return FileFormat::Ktx2;
   if (b.size() >= 12 && std::memcmp(b.data(), kKtx1Identifier, 12) == 0) return FileFormat::Ktx1;
   if (starts({'D', 'D', 'S', ' '})) return FileFormat::Dds;
+  if (b.size() >= 8 && std::memcmp(b.data(), kBabylonEnvMagic, 8) == 0)
+    return FileFormat::BabylonEnv;
   return std::nullopt;
 }
 
@@ -65,7 +70,8 @@ DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_vie
   const auto format = detectFileFormat(bytes);
   if (!format) {
     if (bytes.empty()) fail(name, "empty file");
-    fail(name, "unknown file format (expected Radiance HDR, OpenEXR, PNG, JPEG, KTX2, KTX or DDS)");
+    fail(name,
+         "unknown file format (expected Radiance HDR, OpenEXR, PNG, JPEG, KTX2, KTX, DDS or .env)");
   }
   DecodedFile out;
   out.format = *format;
@@ -105,6 +111,12 @@ DecodedFile decodeImageFile(std::span<const std::uint8_t> bytes, std::string_vie
           tex.format == PixelFormat::Rgba16f || tex.format == PixelFormat::Rgba32f ? 4 : 3;
       out.detail = fmt::format("DXGI format {}", dxgiFormat(tex.format));
       out.levels = std::move(tex.levels);
+      break;
+    }
+    case FileFormat::BabylonEnv: {
+      BabylonEnvironment env = decodeBabylonEnv(bytes, name);
+      out.detail = fmt::format("RGBD PNG, lodGenerationScale {:g}", env.lodGenerationScale);
+      out.levels = std::move(env.levels);
       break;
     }
   }

@@ -58,13 +58,15 @@ Image decodeLdr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
   return img;
 }
 
-namespace {
-
-// An 8-bit RGB PNG of `rgb` (row by row, 3 bytes per pixel) of the image's size.
-std::vector<std::uint8_t> encodeRgb8Png(const Image& img, std::vector<std::uint8_t>& rgb) {
-  std::vector<png_bytep> rows(static_cast<std::size_t>(img.height));
-  for (int y = 0; y < img.height; ++y)
-    rows[static_cast<std::size_t>(y)] = rgb.data() + static_cast<std::size_t>(y) * img.width * 3;
+std::vector<std::uint8_t> encodePng8(int width, int height, int channels,
+                                     std::span<const std::uint8_t> pixels) {
+  if (channels != 3 && channels != 4) fail("png", "8-bit PNGs are written as RGB or RGBA");
+  const std::size_t stride = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
+  if (pixels.size() != stride * static_cast<std::size_t>(height))
+    fail("png", "pixel data does not match the image size");
+  std::vector<png_bytep> rows(static_cast<std::size_t>(height));
+  for (int y = 0; y < height; ++y)
+    rows[static_cast<std::size_t>(y)] = const_cast<png_bytep>(pixels.data()) + y * stride;
   std::vector<std::uint8_t> out;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -84,9 +86,9 @@ std::vector<std::uint8_t> encodeRgb8Png(const Image& img, std::vector<std::uint8
         v->insert(v->end(), data, data + size);
       },
       nullptr);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(img.width), static_cast<png_uint_32>(img.height),
-               8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+               channels == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   // Previews: one filter (Paeth, the best on photographs) and a fast zlib level write a PNG in
   // a quarter of the time of stb's search over every filter at level 4, a few percent larger.
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_PAETH);
@@ -98,14 +100,12 @@ std::vector<std::uint8_t> encodeRgb8Png(const Image& img, std::vector<std::uint8
   return out;
 }
 
-}  // namespace
-
 std::vector<std::uint8_t> encodePng(const Image& img, float exposure) {
   const float scale = std::exp2(exposure);
   std::vector<std::uint8_t> rgb(img.pixels.size() * 3);
   for (std::size_t i = 0; i < img.pixels.size(); ++i)
     for (int c = 0; c < 3; ++c) rgb[3 * i + c] = linearToSrgb8(img.pixels[i][c] * scale);
-  return encodeRgb8Png(img, rgb);
+  return encodePng8(img.width, img.height, 3, rgb);
 }
 
 std::vector<std::uint8_t> encodePngData(const Image& img) {
@@ -116,7 +116,7 @@ std::vector<std::uint8_t> encodePngData(const Image& img) {
       rgb[3 * i + c] = static_cast<std::uint8_t>(
           std::lround(255.0f * (std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f))));
     }
-  return encodeRgb8Png(img, rgb);
+  return encodePng8(img.width, img.height, 3, rgb);
 }
 
 }  // namespace ibl

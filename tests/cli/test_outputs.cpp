@@ -165,16 +165,21 @@ TEST(Outputs, BakeForEngineTargets) {
     EXPECT_TRUE(fs::exists(dir / "park" / f)) << f;
   EXPECT_FALSE(fs::exists(dir / "park" / "specular.ktx2"));
   // Several (repeated or comma-separated): each in its own folder, ibl at the top.
-  run = runIbl("bake " + input + " --size 32 --target ibl,dds --target gltf-sample-viewer -o " +
+  run = runIbl("bake " + input +
+               " --size 32 --target ibl,dds,babylon --target gltf-sample-viewer -o " +
                quote(dir / "all") + kSmallBake + " --no-preview");
   ASSERT_EQ(run.status, 0) << run.output;
   for (const char* f : {"specular.ktx2", "sheen.ktx2", "dds/specular.dds", "dds/dfg.dds",
-                        "gltf-sample-viewer/ggx/specular.ktx2", "gltf-sample-viewer/lut_ggx.png"})
+                        "gltf-sample-viewer/ggx/specular.ktx2", "gltf-sample-viewer/lut_ggx.png",
+                        "babylon/all.env"})
     EXPECT_TRUE(fs::exists(dir / "all" / f)) << f;
   // The readers know the targets' containers.
   run = runIbl("info " + quote(dir / "all" / "dds" / "specular.dds"));
   EXPECT_EQ(run.status, 0) << run.output;
   EXPECT_NE(run.output.find("32x32 per face, 3 levels"), std::string::npos) << run.output;
+  run = runIbl("info " + quote(dir / "all" / "babylon" / "all.env"));
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("32x32 per face, 6 levels"), std::string::npos) << run.output;
   // A contradiction: nothing written.
   run = runIbl("bake " + input + " --size 32 --target gltf-sample-viewer --mapping frostbite -o " +
                quote(dir / "bad") + kSmallBake);

@@ -47,6 +47,7 @@ struct BakeResult {
   std::optional<CubeMap> sheen;             // Charlie-prefiltered, with wantsSheen()
   std::optional<Image> sheenDfg;            // R = E of the sheen lobe (integrateSheenDfgLut)
   std::optional<CubeMap> filamentSpecular;  // cmgen's chain (levels, mapping), our axes
+  std::optional<CubeMap> babylonSpecular;   // Babylon's chain (to 1^2, its mapping), our axes
   std::map<std::string, double> timingsMs;  // per stage
   std::string device = "cpu";               // "cpu", or the Vulkan device's name
 };

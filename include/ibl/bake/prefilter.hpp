@@ -10,6 +10,9 @@
 
 namespace ibl {
 
+// Babylon.js's lodGenerationScale (HDRFiltering, and the default of .env files).
+inline constexpr float kBabylonLodGenerationScale = 0.8f;
+
 // Roughness of mip level m of L prefiltered levels.
 enum class RoughnessMapping {
   Linear,     // r = m / (L - 1) (the default)
@@ -17,8 +20,13 @@ enum class RoughnessMapping {
   // Filament's: lod = (L - 1) r (2 - r), i.e. r = 1 - sqrt(1 - m / (L - 1)) (Filament's
   // perceptualRoughnessToLod in shaders/src/light_indirect.fs; cmgen's lodToPerceptualRoughness).
   Filament,
+  // Babylon.js's, for a full chain (width 2^(L - 1) down to 1): lod = 0.8 log2(width alpha) with
+  // alpha = r^2 (its getLodFromAlphaG and lodGenerationScale 0.8), i.e. level m >= 1 holds
+  // alpha = 2^(m / 0.8) / width (its HDRFiltering), capped at r = 1; level 0 holds r = 0.
+  Babylon,
 };
-std::string_view mappingName(RoughnessMapping mapping);  // "linear", "frostbite", "filament"
+// "linear", "frostbite", "filament", "babylon"
+std::string_view mappingName(RoughnessMapping mapping);
 float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping);
 // The mip level (fractional) that holds roughness r: the inverse of roughnessForLevel.
 float specularLodForRoughness(float roughness, int levelCount, RoughnessMapping mapping);

@@ -5,6 +5,7 @@
 //   filament            what Filament's `cmgen --format=ktx --deploy=DIR` writes
 //   gltf-sample-viewer  what glTF-IBL-Sampler writes for the Khronos glTF Sample Viewer
 //   dds                 DDS cube maps with their mip chains (DirectX, Unity, Unreal)
+//   babylon             a Babylon.js .env (its IBL tool's output, CreateEnvTextureAsync)
 #include <array>
 #include <optional>
 #include <string>
@@ -16,9 +17,10 @@
 
 namespace ibl {
 
-enum class EngineTarget { Ibl, Filament, GltfSampleViewer, Dds };
-inline constexpr std::array<EngineTarget, 4> kEngineTargets = {
-    EngineTarget::Ibl, EngineTarget::Filament, EngineTarget::GltfSampleViewer, EngineTarget::Dds};
+enum class EngineTarget { Ibl, Filament, GltfSampleViewer, Dds, Babylon };
+inline constexpr std::array<EngineTarget, 5> kEngineTargets = {
+    EngineTarget::Ibl, EngineTarget::Filament, EngineTarget::GltfSampleViewer, EngineTarget::Dds,
+    EngineTarget::Babylon};
 
 std::string_view targetName(EngineTarget target);  // "ibl", "filament", ...
 std::optional<EngineTarget> parseEngineTarget(std::string_view name);
@@ -45,5 +47,22 @@ Sh9 filamentIrradianceSh(const Sh9& radiance);
 float filamentShPolynomial(int k, glm::vec3 n);
 // sh.txt as cmgen writes it: "(r, g, b); // L00, irradiance, pre-scaled base", one line each.
 std::string filamentShText(const Sh9& c);
+
+// --- Babylon.js (.env) ---
+
+// The axes of a Babylon.js environment: the texel Babylon samples with direction d holds our
+// environment at m d. Babylon's HDRCubeTexture reads a panorama with u = 0.5 + atan2(z, x) /
+// (2 pi) as we do, but through its face table (PanoramaToCubeMapTools) whose +X face ("right")
+// looks down +Z: m d = (d.z, d.y, d.x), the swap of X and Z (Babylon's world is left-handed). A
+// cube map is used as it is: m = identity.
+glm::mat3 babylonOrientation(bool panoramaSource);
+
+// Babylon's SphericalPolynomial (x, y, z, xx, yy, zz, yz, zx, xy; the .env manifest's
+// "irradiance") of irradiance coefficients in Filament's pre-scaled form (filamentIrradianceSh,
+// E(n) / pi = sum c_k p_k(n), in Babylon's axes), as Babylon's own tool derives it:
+// SphericalPolynomial.FromHarmonics of the harmonics c_k / K_k, K_k its signed basis constants.
+// Babylon's PBR shader turns it back (SphericalHarmonics.FromPolynomial, preScaleForRendering)
+// into the c_k and evaluates E(n) / pi.
+std::array<glm::vec3, 9> babylonSphericalPolynomial(const Sh9& prescaled);
 
 }  // namespace ibl

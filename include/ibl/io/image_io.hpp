@@ -12,8 +12,9 @@
 
 namespace ibl {
 
-// Ktx1 (Filament's cube maps) and Dds are read, never chosen by an output's extension.
-enum class FileFormat { Hdr, Exr, Png, Jpg, Ktx2, Ktx1, Dds };
+// Ktx1 (Filament's cube maps), Dds and BabylonEnv (Babylon.js's .env) are read, never chosen
+// by an output's extension.
+enum class FileFormat { Hdr, Exr, Png, Jpg, Ktx2, Ktx1, Dds, BabylonEnv };
 std::string_view fileFormatName(FileFormat format);
 // Detects the format from the first bytes of a file (magic numbers), not the name.
 std::optional<FileFormat> detectFileFormat(std::span<const std::uint8_t> bytes);
@@ -58,5 +59,8 @@ std::vector<std::uint8_t> encodeExr(const Image& image, ExrPixelType type = ExrP
 std::vector<std::uint8_t> encodePng(const Image& image, float exposure = 0.0f);
 // 8-bit PNG of data in [0, 1] (lookup tables): round(255 v), no transfer curve.
 std::vector<std::uint8_t> encodePngData(const Image& image);
+// 8-bit PNG of bytes as they are: RGB or RGBA (`channels` 3 or 4), row 0 (the top) first.
+std::vector<std::uint8_t> encodePng8(int width, int height, int channels,
+                                     std::span<const std::uint8_t> pixels);
 
 }  // namespace ibl
