@@ -36,13 +36,11 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   if (o.scene.aoRays > 0) fail("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
-  if (o.scene.only == "sheen")
-    fail("--only", "the viewer does not shade the sheen layer yet; use ibl render --only sheen");
   Scene scene = loadScene(o.scene);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
   const std::vector<Light> ownLights = scene.lights;  // the scene's and --lights'
-  const LoadedBake baked = loadOrBake(o.scene, global);
+  const LoadedBake baked = loadOrBake(o.scene, global, hasSheen(scene));
   scene.lights.insert(scene.lights.end(), baked.lights.begin(), baked.lights.end());
   // A sky: its sun is always one light (0 lux below the horizon), so that the time of day can
   // replace it.

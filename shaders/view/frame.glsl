@@ -10,7 +10,7 @@ layout(std140, set = 0, binding = 0) uniform Frame {
   vec4 background;      // rgb; w: 1 the environment, 0 this color
   vec4 lods;            // specular levels - 1, 1 for the Frostbite roughness mapping, skybox lod,
                         // 1 lit by the environment (0: --env none)
-  ivec4 terms;          // only (0 both, 1 diffuse, 2 specular), multiple scattering, dominant
+  ivec4 terms;          // only (0 all, 1 diffuse, 2 specular, 3 sheen), multiple scattering, dominant
                         // directions, specular occlusion
   ivec4 models;         // diffuse (0 Disney, 1 Lambert), irradiance (0 cube, 1 SH9), samples
                         // per pixel at the standard locations (0: unknown locations), lights
@@ -55,3 +55,7 @@ layout(std430, set = 0, binding = 8) readonly buffer Probes {
 };
 layout(set = 0, binding = 9) uniform samplerCubeArray probeSpecularMaps;
 layout(set = 0, binding = 10) uniform samplerCubeArray probeIrradianceMaps;
+// The sheen (Charlie) prefiltered cube, with the specular cube's levels and mapping, and its
+// table (R: the lobe's albedo E at (n.v, sheen roughness)); 1 x 1 black when the bake has none.
+layout(set = 0, binding = 11) uniform samplerCube sheenMap;
+layout(set = 0, binding = 12) uniform sampler2D sheenDfgLut;

@@ -1,7 +1,7 @@
 #version 450
 // Split-sum shading of the viewer's meshes: the material's textures and normal map as in
-// surfaceAt (src/render/renderer.cpp), through ibl/shared/material.h, then shadeSplitSum
-// (view/shading.glsl).
+// surfaceAt (src/render/ray_tracer.cpp), through ibl/shared/material.h, then shadeSplitSum
+// (view/shading.glsl), with the sheen layer of KHR_materials_sheen.
 #extension GL_GOOGLE_include_directive : require
 #include "ibl/shared/color.h"
 #include "ibl/shared/material.h"
@@ -19,13 +19,17 @@ layout(set = 1, binding = 1) uniform sampler2D metallicRoughnessTexture;
 layout(set = 1, binding = 2) uniform sampler2D normalTexture;
 layout(set = 1, binding = 3) uniform sampler2D occlusionTexture;
 layout(set = 1, binding = 4) uniform sampler2D emissiveTexture;  // an sRGB format: linear here
+layout(set = 1, binding = 5) uniform sampler2D sheenColorTexture;  // an sRGB format: linear here
+layout(set = 1, binding = 6) uniform sampler2D sheenRoughnessTexture;  // A
 layout(push_constant) uniform Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
   vec4 scales;       // normal scale, occlusion strength
   vec4 sphere;       // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
   vec4 alpha;        // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
-  uint textureMask;   // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive
+  vec4 sheen;        // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
+  uint textureMask;   // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive,
+                      // 32 sheen color, 64 sheen roughness
   uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
 } material;
 
@@ -141,6 +145,9 @@ void main() {
   if ((mask & 8u) != 0u)
     occlusion = occlusionFromTexel(material.scales.y, texture(occlusionTexture, texCoordOf(8u)));
   if ((mask & 16u) != 0u) emissive *= texture(emissiveTexture, texCoordOf(16u)).rgb;
+  vec4 sheen = material.sheen;
+  if ((mask & 32u) != 0u) sheen.rgb *= texture(sheenColorTexture, texCoordOf(32u)).rgb;
+  if ((mask & 64u) != 0u) sheen.w *= texture(sheenRoughnessTexture, texCoordOf(64u)).a;
   if ((mask & 4u) != 0u)
     n = applyNormalMap(n, worldTangent, texture(normalTexture, texCoordOf(4u)), material.scales.x);
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
@@ -152,7 +159,7 @@ void main() {
   m.roughness = clamp(roughness, 0.0, 1.0);
   m.occlusion = occlusion;
   m.emissive = emissive;
-  vec3 color = shadeSplitSum(position, n, -ray, m);
+  vec3 color = shadeSplitSum(position, n, -ray, m, sheen);
   // An area light between the camera and the surface is what the pixel sees.
   Ray center = primaryRay(gl_FragCoord.xy);
   vec3 emitted;

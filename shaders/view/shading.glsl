@@ -129,24 +129,37 @@ float localProbes(vec3 position, vec3 r, vec3 d, float roughness, int terms,
 }
 
 // The environment's split sum plus the scene's lights (shadeSplitSum and shadeLightsRealTime in
-// src/render/renderer.cpp) at a point at `position`.
-vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m) {
+// src/render/renderer.cpp) at a point at `position`, under a sheen layer (sheen: color and
+// roughness of KHR_materials_sheen; color 0: none) that scales the rest by its albedo scaling.
+vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m, vec4 sheen) {
   SplitSumSwitches s = frameSwitches();
+  bool sheenOnly = s.terms == 3;
+  if (sheenOnly) s.terms = 0;
+  bool hasSheen = max(sheen.r, max(sheen.g, sheen.b)) > 0.0;
+  bool shadeSheen = hasSheen && (frame.terms.x == 0 || sheenOnly);
+  vec3 emissive = m.emissive;
+  m.emissive = vec3(0.0);
   SplitSumLookup look = splitSumLookup(n, view, m.roughness, s);
   vec3 dfg = textureLod(dfgLut, vec2(look.NoV, m.roughness), 0.0).rgb;
+  // The sheen's table at the clamped roughness, and the scaling of the layer below.
+  float sheenRoughness = max(sheen.w, kMinSheenRoughness);
+  float sheenE = hasSheen ? textureLod(sheenDfgLut, vec2(look.NoV, sheenRoughness), 0.0).r : 0.0;
+  float belowScale = sheenOnly ? 0.0 : (hasSheen ? sheenAlbedoScaling(sheen.rgb, sheenE) : 1.0);
   vec3 prefiltered = vec3(0.0), irradiance = vec3(0.0);
   vec3 lit = vec3(0.0);
   if (frame.models.w > 0) {
     SplitSumMaterial direct = m;
     direct.occlusion = 1.0;
-    direct.emissive = vec3(0.0);
     vec4 ltc = vec4(1.0, 0.0, 0.0, 1.0);
     if (s.ltcAreaLights) ltc = ltcTableEntry(m.roughness, look.NoV);
+    float sheenAlpha = alphaFromRoughness(sheenRoughness);
     for (int i = 0; i < frame.models.w; ++i) {
       ShadingLight l = lightAt(i);
       LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s, ltc);
       float profile = iesProfileFactor(l, lightData[5 * i + 4].w, normalize(position - l.position));
-      lit += l.color * profile * lightRadiance(direct, n, view, inc, dfg.xy, s);
+      vec3 radiance = belowScale * lightRadiance(direct, n, view, inc, dfg.xy, s);
+      if (shadeSheen) radiance += sheenLightRadiance(sheen.rgb, sheenAlpha, n, view, inc);
+      lit += l.color * profile * radiance;
     }
   }
   // Local probes first, the distant environment for the rest.
@@ -154,15 +167,22 @@ vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m) {
   if (frame.probes.x > 0.0)
     distant = 1.0 - localProbes(position, look.specularDirection, look.diffuseDirection,
                                 m.roughness, s.terms, prefiltered, irradiance);
-  if (frame.lods.w < 0.5 || distant <= 0.0)
-    return lit + splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
-  if (s.terms != 1) {
+  bool environment = frame.lods.w >= 0.5 && distant > 0.0;
+  if (environment && s.terms != 1) {
     float lod = specularLodForRoughness(m.roughness, frame.lods.x, frame.lods.y > 0.5);
     prefiltered += distant * textureLod(specularMap, look.specularDirection, lod).rgb;
   }
-  if (s.terms != 2)
+  if (environment && s.terms != 2)
     irradiance += distant * (frame.models.y == 0
                                  ? textureLod(irradianceMap, look.diffuseDirection, 0.0).rgb
                                  : irradianceSh9OverPi(look.diffuseDirection));
-  return lit + splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+  vec3 color = belowScale * splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+  // The sheen chain has the specular chain's levels and mapping; it is read at the normal
+  // (src/render/renderer.cpp says why).
+  if (environment && shadeSheen) {
+    float lod = specularLodForRoughness(sheenRoughness, frame.lods.x, frame.lods.y > 0.5);
+    vec3 prefilteredSheen = distant * textureLod(sheenMap, n, lod).rgb;
+    color += sheenRadiance(sheen.rgb, sheenE, prefilteredSheen) * m.occlusion;
+  }
+  return lit + color + emissive;
 }

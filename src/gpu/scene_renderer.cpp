@@ -315,6 +315,19 @@ std::vector<glm::vec4> lightRecords(const std::vector<Light>& lights,
 }  // namespace
 
 void SceneRenderer::Impl::uploadBake(const BakeResult& bake, const BakeOptions& bakeOptions) {
+  if (sceneHasSheen && (!bake.sheen || !bake.sheenDfg))
+    fail("viewer",
+         "a material has a sheen (KHR_materials_sheen) but the bake has none; bake with --sheen");
+  if (bake.sheen && bake.sheenDfg) {
+    sheen = uploadCubes(context, {&*bake.sheen}, false);
+    sheenDfg = uploadImage2d(context, *bake.sheenDfg);
+  } else {
+    CubeMap black;
+    black.levels.emplace_back();
+    for (Image& face : black.levels[0]) face = Image(1, 1);
+    sheen = uploadCubes(context, {&black}, false);
+    sheenDfg = uploadImage2d(context, Image(1, 1));
+  }
   specular = uploadCubes(context, {&bake.specular}, false);
   irradiance = uploadCubes(context, {&bake.irradiance}, false);
   source = uploadCubes(context, {&bake.source}, false);
@@ -337,16 +350,25 @@ void SceneRenderer::Impl::setEnvironment(const BakeResult& bake, const BakeOptio
   std::vector<float> iesTexels;
   const std::vector<glm::vec4> data = lightRecords(lights, iesProfiles, iesTexels);
   std::memcpy(lightsBuffer->mapped(), data.data(), data.size() * sizeof(glm::vec4));
-  const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  const std::array<VkDescriptorImageInfo, 4> images{
-      VkDescriptorImageInfo{cubeSampler, specular->view(), readable},
-      VkDescriptorImageInfo{cubeSampler, irradiance->view(), readable},
-      VkDescriptorImageInfo{lutSampler, dfg->view(), readable},
-      VkDescriptorImageInfo{cubeSampler, source->view(), readable}};
-  std::array<VkWriteDescriptorSet, 4> writes{};
-  for (std::uint32_t b = 0; b < 4; ++b) writes[b] = imageWrite(frameSet, b + 1, &images[b]);
+  const std::vector<VkWriteDescriptorSet> writes = bakeWrites();
   vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
                          nullptr);
+}
+
+std::vector<VkWriteDescriptorSet> SceneRenderer::Impl::bakeWrites() {
+  const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  bakeImages = {VkDescriptorImageInfo{cubeSampler, specular->view(), readable},
+                VkDescriptorImageInfo{cubeSampler, irradiance->view(), readable},
+                VkDescriptorImageInfo{lutSampler, dfg->view(), readable},
+                VkDescriptorImageInfo{cubeSampler, source->view(), readable},
+                VkDescriptorImageInfo{cubeSampler, sheen->view(), readable},
+                VkDescriptorImageInfo{lutSampler, sheenDfg->view(), readable}};
+  std::vector<VkWriteDescriptorSet> writes;
+  for (std::uint32_t b = 0; b < 4; ++b)
+    writes.push_back(imageWrite(frameSet, b + 1, &bakeImages[b]));
+  writes.push_back(imageWrite(frameSet, 11, &bakeImages[4]));
+  writes.push_back(imageWrite(frameSet, 12, &bakeImages[5]));
+  return writes;
 }
 
 SceneRenderer::Impl::Impl(Context& c, const Scene& scene, const BakeResult& bake,
@@ -400,7 +422,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
     textureSamplers.emplace_back(ts, createTextureSampler(device, ts));
     return textureSamplers.back().second;
   };
-  std::vector<std::array<VkDescriptorImageInfo, 5>> materialImages;
+  std::vector<std::array<VkDescriptorImageInfo, kMaterialTextures>> materialImages;
   const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   for (const Material& mat : sceneMaterials) {
     MaterialConstants mc{};
@@ -409,13 +431,16 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
     mc.scales = glm::vec4(mat.normalScale, mat.occlusionStrength, 0.0f, 0.0f);
     mc.alpha =
         glm::vec4(mat.baseColorAlpha, static_cast<float>(mat.alphaMode), mat.alphaCutoff, 0.0f);
-    const std::array<TextureRef, 5> slots{mat.baseColorTexture, mat.metallicRoughnessTexture,
-                                          mat.normalTexture, mat.occlusionTexture,
-                                          mat.emissiveTexture};
-    std::array<VkDescriptorImageInfo, 5> images{};
-    for (std::size_t b = 0; b < 5; ++b) {
+    mc.sheen = glm::vec4(mat.sheenColor, mat.sheenRoughness);
+    if (mat.sheenColor != glm::vec3(0.0f)) sceneHasSheen = true;
+    const std::array<TextureRef, kMaterialTextures> slots{
+        mat.baseColorTexture,     mat.metallicRoughnessTexture, mat.normalTexture,
+        mat.occlusionTexture,     mat.emissiveTexture,          mat.sheenColorTexture,
+        mat.sheenRoughnessTexture};
+    std::array<VkDescriptorImageInfo, kMaterialTextures> images{};
+    for (std::size_t b = 0; b < kMaterialTextures; ++b) {
       const int i = slots[b].index;
-      const bool srgb = b == 0 || b == 4;
+      const bool srgb = b == 0 || b == 4 || b == 5;  // base color, emission, sheen color
       const bool valid = i >= 0 && static_cast<std::size_t>(i) < scene.textures.size() &&
                          !scene.textures[i].empty();
       images[b] = {samplerFor(TextureSampler{}), white->view(), readable};
@@ -470,12 +495,12 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameBindings.push_back(
       {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-  for (std::uint32_t b = 9; b <= 10; ++b)
+  for (std::uint32_t b = 9; b <= 12; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
   std::vector<VkDescriptorSetLayoutBinding> materialBindings;
-  for (std::uint32_t b = 0; b < 5; ++b)
+  for (std::uint32_t b = 0; b < kMaterialTextures; ++b)
     materialBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   materialLayout = createSetLayout(device, materialBindings);
@@ -493,7 +518,8 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   const std::array<VkDescriptorPoolSize, 3> sizes{
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
-      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8 + 5 * materialCount}};
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                           10 + kMaterialTextures * materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1 + materialCount;
   poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
@@ -514,11 +540,6 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   frameUniforms = std::make_unique<Buffer>(context, sizeof(FrameUniforms), BufferMemory::Host);
   const VkDescriptorBufferInfo uniformInfo{static_cast<VkBuffer>(frameUniforms->handle()), 0,
                                            sizeof(FrameUniforms)};
-  const std::array<VkDescriptorImageInfo, 4> frameImages{
-      VkDescriptorImageInfo{cubeSampler, specular->view(), readable},
-      VkDescriptorImageInfo{cubeSampler, irradiance->view(), readable},
-      VkDescriptorImageInfo{lutSampler, dfg->view(), readable},
-      VkDescriptorImageInfo{cubeSampler, source->view(), readable}};
   const VkDescriptorImageInfo ltcImage{lutSampler, ltc->view(), readable};
   const VkDescriptorImageInfo iesImage{lutSampler, ies->view(), readable};
   std::vector<VkWriteDescriptorSet> writes;
@@ -531,8 +552,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
     w.pBufferInfo = &uniformInfo;
     writes.push_back(w);
   }
-  for (std::uint32_t b = 0; b < 4; ++b)
-    writes.push_back(imageWrite(frameSet, b + 1, &frameImages[b]));
+  for (const VkWriteDescriptorSet& w : bakeWrites()) writes.push_back(w);
   writes.push_back(imageWrite(frameSet, 6, &ltcImage));
   writes.push_back(imageWrite(frameSet, 7, &iesImage));
   const VkDescriptorImageInfo probeImages[2] = {{cubeSampler, probeSpecular->view(), readable},
@@ -552,7 +572,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
     writes.push_back(w);
   }
   for (std::size_t m = 0; m < materials.size(); ++m) {
-    for (std::size_t b = 0; b < 5; ++b) {
+    for (std::size_t b = 0; b < kMaterialTextures; ++b) {
       writes.push_back(
           imageWrite(materialSets[m], static_cast<std::uint32_t>(b), &materialImages[m][b]));
     }
@@ -776,7 +796,8 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   u.lods = glm::vec4(specularMaxLod, frostbiteMapping ? 1.0f : 0.0f,
                      std::clamp(skyboxLod, 0.0f, skyboxMaxLod), o.environmentLight ? 1.0f : 0.0f);
   const shared::SplitSumSwitches s = splitSumSwitches(o);  // as the CPU's shadeSplitSum
-  u.terms = glm::ivec4(s.terms, s.multipleScattering, s.dominantDirections, s.specularOcclusion);
+  u.terms = glm::ivec4(o.only == ShadingTerms::Sheen ? 3 : s.terms, s.multipleScattering,
+                       s.dominantDirections, s.specularOcclusion);
   u.models = glm::ivec4(s.disneyDiffuse ? 0 : 1, o.irradiance == IrradianceSource::Cube ? 0 : 1,
                         standardSampleLocations ? t.samples : 0, lightCount);
   u.probes =

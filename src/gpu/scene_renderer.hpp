@@ -14,9 +14,14 @@
 namespace ibl::gpu {
 
 // The push constants of shaders/view/scene.frag: a material, and the sphere a mesh bounds.
+// Texture slots of a material (set 1 of shaders/view/scene.frag): base color, metallic-roughness,
+// normal, occlusion, emissive, sheen color, sheen roughness.
+inline constexpr std::uint32_t kMaterialTextures = 7;
+
 struct MaterialConstants {
   glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
   glm::vec4 alpha;            // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff
+  glm::vec4 sheen;            // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
 };
@@ -39,6 +44,9 @@ struct SceneRenderer::Impl {
   std::unique_ptr<DeviceImage> white;
   // The bake.
   std::unique_ptr<DeviceImage> specular, irradiance, source, dfg, ltc, ies;
+  // The sheen chain and its table (1 x 1 black when the bake has none).
+  std::unique_ptr<DeviceImage> sheen, sheenDfg;
+  bool sceneHasSheen = false;  // a material has a sheen: every bake must bring one
   float specularMaxLod = 0.0f, skyboxMaxLod = 0.0f;
   bool frostbiteMapping = false;
   Sh9 shIrradianceOverPi{};
@@ -95,6 +103,9 @@ struct SceneRenderer::Impl {
               const std::vector<LocalProbe>& probes);
   // The bake's cube maps, DFG table and SH9 on the device (the descriptors are written apart).
   void uploadBake(const BakeResult& bake, const BakeOptions& bakeOptions);
+  // The frame set's writes of the bake's images (bindings 1-4, 11, 12), pointing into bakeImages.
+  std::vector<VkWriteDescriptorSet> bakeWrites();
+  std::array<VkDescriptorImageInfo, 6> bakeImages{};
   // The probes' cube map arrays and placements (or stand-ins when there are none).
   void uploadProbes(const std::vector<LocalProbe>& probes, const BakeResult& bake);
   // Frees every Vulkan object made so far (null handles are skipped by Vulkan itself).

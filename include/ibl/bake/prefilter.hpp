@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ibl/env/cubemap.hpp"
+#include "ibl/shared/brdf.h"
 
 namespace ibl {
 
@@ -39,9 +40,8 @@ enum class PrefilterWeight {
   Charlie,        // D_charlie(h) (n.l): the sheen lobe (Estevez & Kulla 2017), as glTF-IBL-Sampler
 };
 
-// Sheen roughness below which the Charlie lobe is a ring too thin at the horizon to integrate
-// over a cube map; the sheen prefilter and its DFG table clamp to it (r = 0 has no sheen).
-inline constexpr float kMinSheenRoughness = 0.1f;
+// The sheen chain's smallest roughness (ibl/shared/brdf.h).
+using shared::kMinSheenRoughness;
 
 // How a specular level was computed (reported in the manifest).
 struct LevelMethod {

@@ -93,6 +93,11 @@ IBL_FN float prefilterLobe(int kind, float c, float a2) {
   return ggxVisibilityFresnelLobe(c, a2);
 }
 
+// Sheen roughness below which the Charlie lobe is a ring too thin at the horizon to integrate
+// over a cube map; the sheen prefilter, its table and every renderer clamp to it (r = 0 has no
+// sheen).
+const float kMinSheenRoughness = 0.1f;
+
 // The sheen BRDF of KHR_materials_sheen and Filament's cloth model, f = D_charlie V.
 // The "Charlie" distribution (Estevez & Kulla 2017, "Production Friendly Microfacet Sheen
 // BRDF", eq. 2): D(h) = (2 + 1 / alpha) sin(theta_h)^(1 / alpha) / (2 pi), alpha = r^2.
