@@ -19,6 +19,7 @@
 #include "ibl/env/sky.hpp"
 #include "ibl/gpu/compute.hpp"
 #include "preflight.hpp"
+#include "progress.hpp"
 
 namespace ibl::cli {
 
@@ -150,10 +151,9 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
   }
 
   const BakeOptions options = bakeOptionsOf(o);
-  const ProgressFn progress = [&](const std::string& stage) {
-    if (showProgress) fmt::print(stderr, "[{:6.2f} s] {}\n", elapsed(), stage);
-  };
-  if (device) progress(fmt::format("GPU stages on {}", device->device().name));
+  ProgressLine line(showProgress);
+  const ProgressFn progress = line.callback();
+  if (device) progress(fmt::format("GPU stages on {}", device->device().name), 0.0);
   const BakeResult result = bakeEnvironment(loaded.environment, options, progress, device);
 
   BakeOutputOptions output = outputOptionsOf(o);
@@ -170,7 +170,7 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
                    loaded.replaced,
                    o.clamp,
                    clampLoss};
-  progress("writing outputs");
+  output.progress = progress;
   const auto files = writeBakeOutputs(result, options, output, facts, outDir);
   return fmt::format("baked {} into {}: {} files in {:.2f} s (bake {:.0f} ms)", name, outDir,
                      files.size(), elapsed(), result.timingsMs.at("total"));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -86,14 +87,21 @@ struct PlannedProbe {
   int linear = 0;
 };
 
-// Captures, bakes and writes one probe (all its files or none).
-double captureAndBake(const ProbeCliOptions& o, const Scene& scene, const LoadedBake& env,
-                      const PlannedProbe& p, const fs::path& dir, bool showProgress) {
+// Captures, bakes and writes one probe (all its files or none). Returns the capture's time, or
+// the reason the capture is unusable (nothing written then).
+struct CaptureOutcome {
+  double milliseconds = 0.0;
+  std::string unusable;
+};
+CaptureOutcome captureAndBake(const ProbeCliOptions& o, const Scene& scene, const LoadedBake& env,
+                              const PlannedProbe& p, const fs::path& dir, bool showProgress) {
   const ProbeCapture capture =
       captureProbe(scene, p.placement.position, env.bake, env.options, o.capture, [&](float f) {
         if (showProgress) fmt::print(stderr, "\r  capturing {:3.0f} %", 100.0f * f);
       });
   if (showProgress) fmt::print(stderr, "\r");
+  const std::string unusable = unusableCaptureReason(CaptureSite{}, &capture);
+  if (!unusable.empty()) return {capture.milliseconds, unusable};
   Environment captured;
   captured.layout = Layout::Cube;
   captured.cube = capture.radiance;
@@ -112,7 +120,7 @@ double captureAndBake(const ProbeCliOptions& o, const Scene& scene, const Loaded
   source.layout = "cube";
   source.width = source.height = o.capture.size;
   writeBakeOutputs(bake, options, output, source, dir);
-  return capture.milliseconds;
+  return {capture.milliseconds, {}};
 }
 
 // The grid's probes: cell centers of --grid over --bounds, each influencing its cell grown by
@@ -169,14 +177,20 @@ std::string shardListName(int k, int n) {
   return fmt::format("probes.shard-{}-of-{}.json", k, n);
 }
 
-Json gridListJson(const ProbeCliOptions& o, const std::vector<PlannedProbe>& probes) {
+// The grid's list; `skipped` holds, by linear index, why a probe was left out (renders then
+// never read it: loadProbes skips it).
+Json gridListJson(const ProbeCliOptions& o, const std::vector<PlannedProbe>& probes,
+                  const std::map<int, std::string>& skipped) {
   Json list = Json::array();
-  for (const PlannedProbe& p : probes)
-    list.push_back(
-        {{"path", p.directory},
-         {"index", {p.index.x, p.index.y, p.index.z}},
-         {"linear", p.linear},
-         {"position", {p.placement.position.x, p.placement.position.y, p.placement.position.z}}});
+  for (const PlannedProbe& p : probes) {
+    Json entry = {
+        {"path", p.directory},
+        {"index", {p.index.x, p.index.y, p.index.z}},
+        {"linear", p.linear},
+        {"position", {p.placement.position.x, p.placement.position.y, p.placement.position.z}}};
+    if (const auto it = skipped.find(p.linear); it != skipped.end()) entry["skipped"] = it->second;
+    list.push_back(entry);
+  }
   return {{"grid", parseNumbers(o.grid, 3, "--grid")},
           {"bounds", parseNumbers(o.bounds, 6, "--bounds")},
           {"probes", list}};
@@ -207,7 +221,8 @@ void mergeShards(const std::string& dir, const GlobalOptions& global) {
       }
       for (const auto& p : j.at("probes")) {
         if (!seen.insert(p.at("linear").get<int>()).second) continue;
-        if (!fs::is_regular_file(fs::path(dir) / p.at("path").get<std::string>() / "manifest.json"))
+        if (!p.contains("skipped") &&
+            !fs::is_regular_file(fs::path(dir) / p.at("path").get<std::string>() / "manifest.json"))
           fail(part.string(), fmt::format("lists {} but it is missing", p.at("path").dump()));
         merged["probes"].push_back(p);
       }
@@ -247,7 +262,7 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
               "give either --at X,Y,Z (one probe) or --grid with "
               "--bounds (a grid of probes)");
   if (!o.shard.empty() && o.grid.empty()) failUsage("--shard", "splits a grid: it needs --grid");
-  checkLightingOptions(o.scene);
+  checkSceneOptions(o.scene);
   const glm::vec3 rotation = parseVec3(o.rotation, "--rotation");
   refuseInputsInside(o.output, sceneInputFiles(o.scene));
   Scene scene = loadScene(o.scene);
@@ -305,12 +320,35 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   scene.lights.insert(scene.lights.end(), env.lights.begin(), env.lights.end());
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
   const auto start = std::chrono::steady_clock::now();
+  // A probe inside geometry sees the inside of a mesh, or nothing: one probe is an error (before
+  // the capture, or before anything is written); a grid leaves it out and records why.
+  std::map<int, std::string> skipped;
+  const auto leaveOut = [&](const PlannedProbe& p, const std::string& reason) {
+    const glm::vec3 x = p.placement.position;
+    if (o.grid.empty())
+      fail(fmt::format("--at {},{},{}", x.x, x.y, x.z),
+           fmt::format("the probe is {}; place it in open space", reason));
+    skipped[p.linear] = reason;
+    if (!global.quiet)
+      fmt::print(stderr, "ibl: warning: probe {} at ({:.3g}, {:.3g}, {:.3g}) left out: {}\n",
+                 p.directory, x.x, x.y, x.z, reason);
+  };
   for (std::size_t i = 0; i < mine.size(); ++i) {
     const PlannedProbe& p = mine[i];
+    const std::string inside =
+        unusableCaptureReason(inspectCaptureSite(scene, p.placement.position), nullptr);
+    if (!inside.empty()) {
+      leaveOut(p, inside);
+      continue;
+    }
     const fs::path dir =
         p.directory.empty() ? fs::path(o.output) : fs::path(o.output) / p.directory;
     const auto t0 = std::chrono::steady_clock::now();
-    const double captureMs = captureAndBake(o, scene, env, p, dir, showProgress);
+    const CaptureOutcome outcome = captureAndBake(o, scene, env, p, dir, showProgress);
+    if (!outcome.unusable.empty()) {
+      leaveOut(p, outcome.unusable);
+      continue;
+    }
     const double totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!global.quiet)
@@ -318,18 +356,20 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
                  "[{}/{}] probe at ({:.3g}, {:.3g}, {:.3g}) into {}: capture {:.2f} s, "
                  "bake {:.2f} s\n",
                  i + 1, mine.size(), p.placement.position.x, p.placement.position.y,
-                 p.placement.position.z, dir.string(), captureMs / 1000.0,
-                 (totalMs - captureMs) / 1000.0);
+                 p.placement.position.z, dir.string(), outcome.milliseconds / 1000.0,
+                 (totalMs - outcome.milliseconds) / 1000.0);
   }
   if (!o.grid.empty()) {  // the list last: it names only probes that are complete
-    const std::string text = gridListJson(o, mine).dump(2) + "\n";
+    const std::string text = gridListJson(o, mine, skipped).dump(2) + "\n";
     writeFileAtomic(fs::path(o.output) / listName,
                     std::vector<std::uint8_t>(text.begin(), text.end()));
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!global.quiet)
-      fmt::print(stderr, "{} probes in {:.1f} s ({:.1f} probes per minute); list: {}\n",
-                 mine.size(), seconds, 60.0 * static_cast<double>(mine.size()) / seconds,
+      fmt::print(stderr, "{} probes in {:.1f} s ({:.1f} probes per minute){}; list: {}\n",
+                 mine.size() - skipped.size(), seconds,
+                 60.0 * static_cast<double>(mine.size()) / seconds,
+                 skipped.empty() ? "" : fmt::format(", {} left out", skipped.size()),
                  (fs::path(o.output) / listName).string());
   }
 }
@@ -371,7 +411,7 @@ void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
                   "smallest half size)")
       ->check(nonNegativeNumber());
   cmd->add_option("--size", opts->capture.size, "Cube face size of the capture and bake")
-      ->check(CLI::IsMember({8, 16, 32, 64, 128, 256, 512, 1024}))
+      ->check(powerOfTwo(8, 1024))
       ->capture_default_str();
   cmd->add_option("--spp", opts->capture.spp, "Path samples per texel")
       ->check(numberIn(1, 1 << 20))

@@ -27,7 +27,7 @@ struct RenderCliOptions {
 
 void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   checkRenderedImagePath(o.output);
-  checkLightingOptions(o.scene);
+  checkSceneOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   refuseOverwritingInputs({o.output}, sceneInputFiles(o.scene));
   requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),

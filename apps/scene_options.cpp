@@ -12,6 +12,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/default_environment.hpp"
+#include "ibl/env/sky.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/io/json_file.hpp"
@@ -157,12 +158,24 @@ Scene loadScene(const SceneCliOptions& o) {
   return scene;
 }
 
-void checkLightingOptions(const SceneCliOptions& o) {
+void checkSceneOptions(const SceneCliOptions& o) {
   if (!o.bakeDir.empty() && !o.env.empty())
-    failUsage("--env",
-              fmt::format("contradicts --bake {}: the bake holds the environment; pass one "
-                          "of them",
-                          o.bakeDir));
+    failUsage("--env", fmt::format("contradicts --bake {}: the bake holds the environment; pass "
+                                   "one of them",
+                                   o.bakeDir));
+  if (!o.env.empty() && isSkySpec(o.env)) parseSkySpec(o.env);
+  parseSize(o.size);
+  if (o.scene == "sphere" || o.scene == "grid") parseVec3(o.baseColor, "--base-color");
+  if (!o.lookFrom.empty()) parsePoint(o.lookFrom, "--look-from");
+  if (!o.lookAt.empty()) parsePoint(o.lookAt, "--look-at");
+  if (!o.lookFrom.empty() && !o.lookAt.empty() &&
+      parsePoint(o.lookFrom, "--look-from") == parsePoint(o.lookAt, "--look-at"))
+    failUsage("--look-from", fmt::format("equals --look-at ({}): no view direction", o.lookAt));
+  if (parseVec3(o.up, "--up") == glm::vec3(0.0f)) failUsage("--up", "must not be the zero vector");
+  if (o.orthoWidth && !(*o.orthoWidth > 0.0f))
+    failUsage("--ortho-width", fmt::format("must be positive, not {}", *o.orthoWidth));
+  if (o.background != "env") parseVec3(o.background, "--background");
+  if (!o.ev100.empty()) parseNumbers(o.ev100, 1, "--ev100");
 }
 
 bool hasSheen(const Scene& scene) {
@@ -294,16 +307,7 @@ std::uint64_t renderMemoryBytes(int width, int height) {
 }
 
 float chooseEv100(const SceneCliOptions& o, const Image& linear) {
-  if (!o.ev100.empty()) {
-    float ev100 = 0.0f;
-    try {
-      ev100 = std::stof(o.ev100);
-    } catch (const std::exception&) {
-      failUsage("--ev100", fmt::format("expected a number, got '{}'", o.ev100));
-    }
-    if (!std::isfinite(ev100)) failUsage("--ev100", fmt::format("'{}' is not finite", o.ev100));
-    return ev100;
-  }
+  if (!o.ev100.empty()) return parseNumbers(o.ev100, 1, "--ev100")[0];
   if (o.aperture > 0.0f && o.shutter > 0.0f && o.iso > 0.0f)
     return ev100FromSettings(o.aperture, o.shutter, o.iso);
   return ev100FromAverageLuminance(averageLogLuminance(linear));

@@ -66,9 +66,12 @@ struct LoadedBake {
   BakeOptions options;
   std::vector<Light> lights;  // the environment's sun (a sky's, or extracted), to add to the scene
 };
+// Every scene option that can be checked before anything is read (usage errors): --env with
+// --bake, a sky description, the size, the camera's points and up, the built-in scenes' color,
+// the background, --ev100.
+void checkSceneOptions(const SceneCliOptions& o);
+
 // The --bake directory, or a bake of --env (or the bundled environment) on the CPU.
-// Fails on lighting options that contradict each other (--env with --bake).
-void checkLightingOptions(const SceneCliOptions& o);
 // `sheen`: the scene has KHR_materials_sheen materials, so the bake needs the sheen chain.
 LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, bool sheen = false);
 // Whether any material of the scene has a sheen layer.

@@ -2,6 +2,7 @@
 // lights file.
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "ibl/gpu/compute.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/render/light.hpp"
+#include "preflight.hpp"
 
 namespace ibl::cli {
 
@@ -89,6 +91,14 @@ void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
     if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
   };
   checkExportOptions(e);
+  if (!o.sunJson.empty())
+    for (const auto& path : possibleExportPaths(e))
+      if (std::filesystem::weakly_canonical(std::filesystem::absolute(path)) ==
+          std::filesystem::weakly_canonical(std::filesystem::absolute(o.sunJson)))
+        failUsage("--sun-json", fmt::format("is the image's own file {}", path.string()));
+  // Measured: the panorama, its encoding and the sky's tables, about 30 bytes per pixel.
+  requireMemory(static_cast<std::uint64_t>(60e6 + 40.0 * width * height),
+                fmt::format("--size {}", o.size), "compute a smaller sky");
 
   const std::unique_ptr<gpu::Context> device = openDevice(o.device);
   Environment env;

@@ -34,7 +34,7 @@ std::string unusedScreenshotName() {
 
 void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   if (!o.screenshot.empty()) checkRenderedImagePath(o.screenshot);
-  checkLightingOptions(o.scene);
+  checkSceneOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   if (o.scene.aoRays > 0) failUsage("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
   const std::vector<std::filesystem::path> inputs = sceneInputFiles(o.scene);

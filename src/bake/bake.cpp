@@ -1,6 +1,7 @@
 #include "ibl/bake/bake.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cerrno>
 #include <chrono>
@@ -22,6 +23,7 @@
 #include "ibl/core/version.hpp"
 #include "ibl/env/export.hpp"
 #include "ibl/env/resample.hpp"
+#include "ibl/env/sky.hpp"
 #include "ibl/gpu/compute.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
@@ -155,7 +157,7 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
   StageTimer time(r.timingsMs);
   const auto start = std::chrono::steady_clock::now();
   const int size = o.specular.size;
-  if (progress) progress(fmt::format("source cube {}x{} with mips", size, size));
+  if (progress) progress(fmt::format("source cube {}x{} with mips", size, size), 0.0);
   r.source = time("source", [&] {
     CubeMap cube = env.isCube() && env.cube.size() == size && o.rotateDegrees == 0.0f ? CubeMap()
                    : device ? gpu::resampleToCube(*device, env, size, o.rotateDegrees)
@@ -176,49 +178,52 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
                      ? gpu::prefilterGgx(*device, r.source, o.specular, &r.specularLevels, progress)
                      : prefilterGgx(r.source, o.specular, &r.specularLevels, progress);
         });
+        // A further chain, its levels reported under its own name.
+        const auto prefilter = [&](const PrefilterOptions& chain, const std::string& name) {
+          ProgressFn chainProgress;
+          if (progress)
+            chainProgress = [&](const std::string& stage, double f) {
+              progress(name + ": " + stage, f);
+            };
+          return device ? gpu::prefilterGgx(*device, r.source, chain, nullptr, chainProgress)
+                        : prefilterGgx(r.source, chain, nullptr, chainProgress);
+        };
         if (o.fresnelWeighted) {
           PrefilterOptions variant = o.specular;
           variant.weight = PrefilterWeight::FresnelF0Zero;
-          const auto prefilter = [&] {
-            return device ? gpu::prefilterGgx(*device, r.source, variant)
-                          : prefilterGgx(r.source, variant);
-          };
-          r.specularF0Zero = time("specular_f0_0", prefilter);
+          r.specularF0Zero =
+              time("specular_f0_0", [&] { return prefilter(variant, "Fresnel-weighted F0 = 0"); });
           variant.weight = PrefilterWeight::FresnelF0One;
-          r.specularF0One = time("specular_f0_1", prefilter);
+          r.specularF0One =
+              time("specular_f0_1", [&] { return prefilter(variant, "Fresnel-weighted F0 = 1"); });
         }
-        const auto prefilter = [&](const PrefilterOptions& chain) {
-          return device ? gpu::prefilterGgx(*device, r.source, chain)
-                        : prefilterGgx(r.source, chain);
-        };
         if (o.wantsSheen()) {
           // The specular chain's levels and mapping, so that one lod serves both lobes.
           PrefilterOptions sheen = o.specular;
           sheen.weight = PrefilterWeight::Charlie;
           sheen.method = PrefilterMethod::Direct;
-          if (progress) progress("sheen (Charlie) prefilter");
-          r.sheen = time("sheen", [&] { return prefilter(sheen); });
+          r.sheen = time("sheen", [&] { return prefilter(sheen, "sheen (Charlie)"); });
         }
         if (o.wants(EngineTarget::Filament)) {
           PrefilterOptions filament = o.specular;
           filament.levels = filamentLevelCount(o.specular.size);
           filament.mapping = RoughnessMapping::Filament;
-          if (progress) progress("Filament's specular chain");
-          r.filamentSpecular = time("filament_specular", [&] { return prefilter(filament); });
+          r.filamentSpecular =
+              time("filament_specular", [&] { return prefilter(filament, "Filament's chain"); });
         }
         if (o.wants(EngineTarget::Babylon)) {
           PrefilterOptions babylon = o.specular;
           babylon.levels = fullMipCount(o.specular.size);
           babylon.mapping = RoughnessMapping::Babylon;
-          if (progress) progress("Babylon.js's specular chain");
-          r.babylonSpecular = time("babylon_specular", [&] { return prefilter(babylon); });
+          r.babylonSpecular =
+              time("babylon_specular", [&] { return prefilter(babylon, "Babylon.js's chain"); });
         }
-        if (progress)
-          progress(fmt::format("irradiance {}x{} and SH9", o.irradianceSize, o.irradianceSize));
         r.irradiance = time("irradiance", [&] {
           const int level = levelOfSize(r.source, o.irradianceSize);
+          if (device && progress)
+            progress(fmt::format("irradiance {}x{}", o.irradianceSize, o.irradianceSize), 0.0);
           return device ? gpu::convolveIrradiance(*device, r.source, o.irradianceSize, level)
-                        : convolveIrradiance(r.source, o.irradianceSize, level);
+                        : convolveIrradiance(r.source, o.irradianceSize, level, progress);
         });
         r.sh = time("sh", [&] {
           // The 64^2 level integrates like level 0 (box-filtered mips keep every texel's
@@ -230,6 +235,10 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
         });
       },
       [&] {
+        if (progress)
+          progress(fmt::format("DFG table {}x{} ({} samples per texel)", o.dfgSize, o.dfgSize,
+                               o.dfgSamples),
+                   0.0);
         r.dfg = time("dfg", [&] {
           return device ? gpu::integrateDfgLut(*device, o.dfgSize, o.dfgSize, o.dfgSamples)
                         : integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples);
@@ -507,9 +516,12 @@ Json manifestJson(const BakeResult& r, const BakeOptions& o, const BakeSource& s
   Json manifest;
   manifest["generator"] = fmt::format("ibl {}", kVersion);
   manifest["device"] = r.device;
-  // An absolute path: the manifest is read from anywhere, not from where the bake ran.
+  // An absolute path: the manifest is read from anywhere, not from where the bake ran. A sky's
+  // description is no path: it is recorded as it was given.
   const std::string path = src.path.empty() ? std::string("(bundled default: sunset.exr)")
-                                            : fs::absolute(src.path).lexically_normal().string();
+                           : isSkySpec(src.path)
+                               ? src.path
+                               : fs::absolute(src.path).lexically_normal().string();
   manifest["source"] = {{"path", path},
                         {"format", src.format},
                         {"layout", src.layout},
@@ -594,9 +606,15 @@ namespace {
 // `force` be given: then the new files replace the old ones together, the files the earlier
 // bake's manifest lists that this bake does not write are removed, and other files are left.
 std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path& outDir,
-                               bool force) {
-  parallelFor(std::size_t{0}, pending.size(),
-              [&](std::size_t i) { pending[i].bytes = pending[i].encode(); });
+                               bool force, const ProgressFn& progress) {
+  const std::string stage = fmt::format("writing {} files", pending.size());
+  if (progress) progress(stage, 0.0);
+  std::atomic<std::size_t> encoded{0};
+  parallelFor(std::size_t{0}, pending.size(), [&](std::size_t i) {
+    pending[i].bytes = pending[i].encode();
+    const std::size_t done = encoded.fetch_add(1) + 1;
+    if (progress) progress(stage, static_cast<double>(done) / static_cast<double>(pending.size()));
+  });
   std::vector<EncodedFile> files;
   for (auto& f : pending) files.push_back({outDir / f.path, std::move(f.bytes)});
   std::error_code ec;
@@ -609,8 +627,6 @@ std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path
                                       files.size(), total, *free));
   if (!fs::exists(outDir, ec)) {
     const StagingDirectory staging(stagingDirectoryFor(outDir, ::getpid()));
-    fs::create_directories(staging.path().parent_path(), ec);
-    fs::remove_all(staging.path(), ec);
     try {
       for (const auto& f : files)
         writeFileAtomic(staging.path() / f.path.lexically_relative(outDir), f.bytes);
@@ -702,12 +718,26 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   Json manifest = manifestJson(r, o, src, plan.outputs);
   if (!out.manifestRecords.empty()) manifest.update(Json::parse(out.manifestRecords));
   plan.addText("manifest.json", manifest.dump(2) + "\n");
-  return writeAll(plan.files, outDir, out.force);
+  return writeAll(plan.files, outDir, out.force, out.progress);
 }
 
 BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
   const fs::path manifestPath = dir / "manifest.json";
   const Json manifest = readJsonFile(manifestPath);
+  // The engine targets' files are the engines' to read: rendering reads the ibl set.
+  if (manifest.contains("targets") && manifest["targets"].is_array()) {
+    std::vector<std::string> targets;
+    for (const auto& t : manifest["targets"])
+      if (t.is_string()) targets.push_back(t.get<std::string>());
+    if (std::find(targets.begin(), targets.end(), "ibl") == targets.end()) {
+      std::string list;
+      for (const auto& t : targets) list += (list.empty() ? "" : ",") + t;
+      fail(dir.string(),
+           fmt::format("holds the {} target's files only; rendering reads the ibl set: bake "
+                       "again with --target ibl,{}",
+                       list, list));
+    }
+  }
   BakeResult r;
   const auto cube = [&](const std::string& file) {
     const DecodedFile d = readImageFile(dir / file);

@@ -1,6 +1,7 @@
 #include "ibl/bake/prefilter.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <numbers>
@@ -225,9 +226,11 @@ void accumulateCap(const TexelArrays& t, glm::vec3 n, float cosCap, DestTile& ti
 }
 
 // convolvePass over texel arrays: output texels are processed in square tiles of up to 16
-// sharing one cap that covers them all.
+// sharing one cap that covers them all. `fraction`, if given, hears of each percent of the tiles
+// done (from the worker threads).
 ConvolutionSums convolveTexels(const TexelArrays& texels, int size, LobeWeight lobe,
-                               RadialWindow win, float cosCap) {
+                               RadialWindow win, float cosCap,
+                               const std::function<void(double)>& fraction = {}) {
   const bool windowed = win.outerLo > -2.0f || win.innerLo < 1.5f;
   const int side = std::min(size, 4);  // tile side in texels
   const int tilesPerRow = (size + side - 1) / side;
@@ -236,7 +239,9 @@ ConvolutionSums convolveTexels(const TexelArrays& texels, int size, LobeWeight l
     out.sum[f] = Image(size, size);
     out.weight[f] = Image(size, size);
   }
-  parallelFor(0, kFaceCount * tilesPerRow * tilesPerRow, [&](int index) {
+  const int tiles = kFaceCount * tilesPerRow * tilesPerRow;
+  std::atomic<int> tilesDone{0}, percentReported{0};
+  parallelFor(0, tiles, [&](int index) {
     const int face = index / (tilesPerRow * tilesPerRow);
     const int ty = index / tilesPerRow % tilesPerRow, tx = index % tilesPerRow;
     const int x0 = tx * side, y0 = ty * side;
@@ -277,6 +282,13 @@ ConvolutionSums convolveTexels(const TexelArrays& texels, int size, LobeWeight l
         out.sum[face].at(x, y) = glm::vec3(tile.r[lanes], tile.g[lanes], tile.b[lanes]);
         out.weight[face].at(x, y) = glm::vec3(tile.w[lanes], 0.0f, 0.0f);
       }
+    if (fraction) {
+      const int percent = static_cast<int>(100LL * (tilesDone.fetch_add(1) + 1) / tiles);
+      int reported = percentReported.load();
+      while (percent > reported && !percentReported.compare_exchange_weak(reported, percent)) {
+      }
+      if (percent > reported) fraction(percent / 100.0);
+    }
   });
   return out;
 }
@@ -294,8 +306,10 @@ std::array<Image, kFaceCount> normalize(const ConvolutionSums& s) {
 }
 
 std::array<Image, kFaceCount> convolveLevel(const std::array<Image, kFaceCount>& sourceLevel,
-                                            int size, LobeWeight lobe) {
-  return normalize(convolveTexels(TexelArrays(sourceLevel), size, lobe, RadialWindow{}, 0.0f));
+                                            int size, LobeWeight lobe,
+                                            const std::function<void(double)>& fraction = {}) {
+  return normalize(
+      convolveTexels(TexelArrays(sourceLevel), size, lobe, RadialWindow{}, 0.0f, fraction));
 }
 
 std::vector<glm::vec3> convolveDirections(const std::array<Image, kFaceCount>& sourceLevel,
@@ -651,7 +665,8 @@ CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& o,
     const float r = roughnessForLevel(m, levels, o.mapping);
     if (progress)
       progress(fmt::format("specular level {}/{} ({}x{}, roughness {:.3f})", m + 1, levels, size,
-                           size, r));
+                           size, r),
+               0.0);
     LevelMethod method{r, "", 0, 0, size};
     if (r == 0.0f && o.weight != PrefilterWeight::Charlie) {
       // Mirror reflection: the source itself (the sheen lobe has no mirror limit).
@@ -681,10 +696,15 @@ CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& o,
   return buildSpecularChain(source, o, level, methods, progress);
 }
 
-CubeMap convolveIrradiance(const CubeMap& source, int size, int sourceLevel) {
+CubeMap convolveIrradiance(const CubeMap& source, int size, int sourceLevel,
+                           const ProgressFn& progress) {
+  const std::string stage = fmt::format("irradiance {}x{}", size, size);
+  if (progress) progress(stage, 0.0);
+  std::function<void(double)> fraction;
+  if (progress) fraction = [&](double f) { progress(stage, f); };
   CubeMap out;
   out.levels.push_back(
-      convolveLevel(source.levels[sourceLevel], size, {LobeWeight::Kind::Cosine, 0.0f}));
+      convolveLevel(source.levels[sourceLevel], size, {LobeWeight::Kind::Cosine, 0.0f}, fraction));
   return out;
 }
 

@@ -147,7 +147,7 @@ glm::vec3 sunDirection(float elevationDegrees, float azimuthDegrees) {
 void checkSkyParameters(const SkyParameters& p, std::string_view what) {
   const auto check = [&](float v, float lo, float hi, const char* name) {
     if (!(v >= lo && v <= hi))
-      fail(what, fmt::format("{} must be in [{}, {}], not {}", name, lo, hi, v));
+      failUsage(what, fmt::format("{} must be from {} to {}, not {}", name, lo, hi, v));
   };
   check(p.sunElevation, -90.0f, 90.0f, "the sun's elevation");
   check(p.sunAzimuth, -360.0f, 360.0f, "the sun's azimuth");

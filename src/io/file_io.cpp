@@ -54,15 +54,21 @@ Registry& registry() {
   return *r;
 }
 
-// A new name beside `path` that no other write of this process uses: PATH.<pid>.<n>.<tag>,
-// registered until release().
+// A new name beside `path` that no other write of this process uses: PATH.<pid>.<n>.<tag>.
 fs::path besides(const fs::path& path, const char* tag) {
   static std::atomic<unsigned> counter{0};
   fs::path p = path;
   p += fmt::format(".{}.{}.{}", static_cast<long>(::getpid()), counter++, tag);
-  const std::lock_guard lock(registry().mutex);
-  registry().files.insert(p);
   return p;
+}
+
+// Creates the temporary file `p` and registers it, in one step under the registry's lock: an
+// interrupt (which takes the lock for good) either removes it or finds it never created.
+std::FILE* createTemporary(const fs::path& p) {
+  const std::lock_guard lock(registry().mutex);
+  std::FILE* f = std::fopen(p.c_str(), "wb");
+  if (f) registry().files.insert(p);
+  return f;
 }
 
 void release(const fs::path& p) {
@@ -87,7 +93,7 @@ void writeNewFile(const fs::path& path, const fs::path& tmp, std::span<const std
     if (ec) fail(name, fmt::format("cannot create directory: {}", ec.message()));
   }
   if (fs::is_directory(path, ec)) fail(name, "is a directory");
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  std::FILE* f = createTemporary(tmp);
   if (!f) fail(name, fmt::format("cannot write: {}", std::strerror(errno)));
   const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
   const bool closed = std::fclose(f) == 0;
@@ -165,7 +171,11 @@ std::optional<std::uint64_t> freeDiskBytes(const fs::path& where) {
 }
 
 StagingDirectory::StagingDirectory(fs::path dir) : dir_(std::move(dir)) {
-  const std::lock_guard lock(registry().mutex);
+  const std::lock_guard lock(registry().mutex);  // created and registered in one step
+  std::error_code ec;
+  fs::remove_all(dir_, ec);
+  fs::create_directories(dir_, ec);
+  if (ec) fail(dir_.string(), fmt::format("cannot create a staging directory: {}", ec.message()));
   registry().directories.insert(dir_);
 }
 

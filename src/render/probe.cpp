@@ -13,6 +13,7 @@
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/json_file.hpp"
 #include "ibl/shared/split_sum.h"
+#include "ray_tracer.hpp"
 
 namespace ibl {
 
@@ -139,6 +140,40 @@ ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResu
   return c;
 }
 
+CaptureSite inspectCaptureSite(const Scene& scene, glm::vec3 position, int rays) {
+  const RayTracer tracer(scene);
+  CaptureSite site;
+  int back = 0;
+  for (int i = 0; i < rays; ++i) {
+    // A Fibonacci spiral: even over the sphere without randomness.
+    const float z = 1.0f - (2.0f * static_cast<float>(i) + 1.0f) / static_cast<float>(rays);
+    const float phi = static_cast<float>(i) * kPi * (3.0f - std::sqrt(5.0f));
+    const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const glm::vec3 d(s * std::cos(phi), s * std::sin(phi), z);
+    const RayTracer::Hit hit = tracer.intersect(Ray{position, d});
+    if (!hit.found) continue;
+    site.nearestHit = std::min(site.nearestHit, hit.t);
+    if (glm::dot(hit.ng, d) > 0.0f) ++back;
+  }
+  site.backFaceShare = static_cast<float>(back) / static_cast<float>(rays);
+  return site;
+}
+
+std::string unusableCaptureReason(const CaptureSite& site, const ProbeCapture* capture) {
+  if (site.backFaceShare > 0.5f)
+    return fmt::format(
+        "inside geometry: {:.0f} % of its rays leave through the back of a face "
+        "(the nearest {:.3g} m away)",
+        100.0f * site.backFaceShare, site.nearestHit);
+  if (capture) {
+    float brightest = 0.0f;
+    for (const auto& face : capture->radiance.levels[0])
+      for (const glm::vec3& p : face.pixels) brightest = std::max({brightest, p.x, p.y, p.z});
+    if (!(brightest > 0.0f)) return "no light reaches it: every texel of its capture is black";
+  }
+  return {};
+}
+
 std::string probeRecordJson(const ProbePlacement& p, const CaptureOptions& capture,
                             double captureMilliseconds) {
   Json j;
@@ -210,7 +245,8 @@ std::vector<LocalProbe> loadProbes(const std::vector<std::string>& paths) {
       const Json grid = readJsonFile(dir / "probes.json");
       try {
         for (const auto& entry : grid.at("probes"))
-          probes.push_back(loadProbe(dir / entry.at("path").get<std::string>()));
+          if (!entry.contains("skipped"))  // a probe left out of the capture (ibl probe)
+            probes.push_back(loadProbe(dir / entry.at("path").get<std::string>()));
       } catch (const Error&) {
         throw;
       } catch (const std::exception& e) {

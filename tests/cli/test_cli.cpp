@@ -4,6 +4,7 @@
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -441,11 +442,11 @@ TEST(Cli, ProbeCapturesBakesAndRendersAndRejectsBadInput) {
   const TempDir dir;
   const auto out = dir.path() / "probe";
   // One probe between the grid's spheres, a box proxy; then a render that reads it.
-  // --env none: the test is about the plumbing; baking the bundled sky each time is slow under
-  // ASan.
-  CliRun r =
-      runIbl("probe grid --env none --at 0,0,0.2 --proxy box:-7,-2,-1,7,2,1 --size 16 --spp 4 -o " +
-             quote(out));
+  // --env none and the lights file: the test is about the plumbing; baking the bundled sky each
+  // time is slow under ASan. (Without light a capture is black: refused.)
+  const std::string lit = " --env none --lights " + quote(dataDir() / "lights" / "studio.json");
+  CliRun r = runIbl("probe grid" + lit +
+                    " --at 0,0,0.2 --proxy box:-7,-2,-1,7,2,1 --size 16 --spp 4 -o " + quote(out));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(out / "specular.ktx2"));
   EXPECT_TRUE(std::filesystem::exists(out / "visibility.ktx2"));
@@ -455,9 +456,9 @@ TEST(Cli, ProbeCapturesBakesAndRendersAndRejectsBadInput) {
   // A grid in two shards, merged.
   const auto grid = dir.path() / "grid";
   for (const char* shard : {"0/2", "1/2"}) {
-    r = runIbl(
-        "probe grid --env none --grid 2,1,1 --bounds -3,-1,-0.5,3,1,0.5 --size 8 --spp 2 --shard " +
-        std::string(shard) + " -o " + quote(grid));
+    r = runIbl("probe grid" + lit +
+               " --grid 2,1,1 --bounds -3,-1,-0.5,3,1,0.5 --size 8 --spp 2 --shard " +
+               std::string(shard) + " -o " + quote(grid));
     ASSERT_EQ(r.status, 0) << r.output;
   }
   r = runIbl("probe --merge " + quote(grid));
@@ -477,4 +478,85 @@ TEST(Cli, ProbeCapturesBakesAndRendersAndRejectsBadInput) {
   r = runIbl("render grid --probes " + quote(dir.path()) + " -o " + quote(dir.path() / "y.png"));
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("is not a probe directory"), std::string::npos) << r.output;
+}
+
+// A probe inside geometry sees only the inside of a mesh: one probe is an error, a grid leaves
+// such probes out, records why in probes.json, and renders never read them. The grid scene's
+// spheres (radius 1) sit at x = +-1.25, y = 1.25: of three probes along x in [-1.25, 1.25] at
+// y = 1.25, the outer two are inside a sphere, the middle one between them.
+TEST(Cli, ProbesInsideGeometryAreRefusedOrLeftOut) {
+  TempDir dir;
+  CliRun r =
+      runIbl("probe grid --env none --at -1.25,1.25,0 --size 8 --spp 1 -o " + quote(dir / "one"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("ibl: error: --at -1.25,1.25,0: the probe is inside geometry: 100 % "
+                          "of its rays leave through the back of a face"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "one"));
+  r = runIbl("probe grid --env none --lights " + quote(dataDir() / "lights" / "studio.json") +
+             " --grid 3,1,1 --bounds -1.25,0.25,-0.5,1.25,2.25,0.5 --size 8 --spp 2 -o " +
+             quote(dir / "grid"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("ibl: warning: probe probe_0_0_0 at (-0.833, 1.25, 0) left out: inside "
+                          "geometry"),
+            std::string::npos)
+      << r.output;
+  const auto list = nlohmann::json::parse(readFileBytes(dir / "grid" / "probes.json"));
+  ASSERT_EQ(list["probes"].size(), 3u);
+  for (int i : {0, 2}) {
+    EXPECT_NE(list["probes"][i].value("skipped", "").find("inside geometry"), std::string::npos)
+        << list.dump();
+    EXPECT_FALSE(std::filesystem::exists(dir / "grid" / fmt::format("probe_{}_0_0", i)));
+  }
+  EXPECT_FALSE(list["probes"][1].contains("skipped"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "grid" / "probe_1_0_0" / "manifest.json"));
+  r = runIbl("render grid --env none --probes " + quote(dir / "grid") + " --size 16x8 -q -o " +
+             quote(dir / "g.png"));
+  EXPECT_EQ(r.status, 0) << r.output;
+}
+
+// A 2D image that is no environment layout (a table, a rendered frame) converts as an image.
+TEST(Cli, ConvertWritesFlatImagesAsImages) {
+  TempDir dir;
+  ASSERT_EQ(
+      runIbl("bake -o " + quote(dir / "b") + " --size 16 --dfg-size 32 --dfg-samples 64 -q").status,
+      0);
+  CliRun r = runIbl("convert " + quote(dir / "b" / "dfg.ktx2") + " -o " + quote(dir / "dfg.exr") +
+                    " --exr-type float");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("a 32x32 image, not an environment"), std::string::npos) << r.output;
+  const Image table = readImageFile(dir / "b" / "dfg.ktx2").levels[0][0];
+  const Image exr = readImageFile(dir / "dfg.exr").levels[0][0];
+  ASSERT_EQ(exr.width, 32);
+  ASSERT_EQ(exr.height, 32);
+  for (std::size_t i = 0; i < table.pixels.size(); ++i)
+    ASSERT_EQ(exr.pixels[i], table.pixels[i]) << i;  // float EXR keeps the half values exactly
+  ASSERT_EQ(
+      runIbl("render sphere --env none --size 24x24 --spp 1 -q -o " + quote(dir / "r.exr")).status,
+      0);
+  r = runIbl("convert " + quote(dir / "r.exr") + " -o " + quote(dir / "r.png"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readImageFile(dir / "r.png").levels[0][0].width, 24);
+  // Environment options on an image are an error; a layout named reads it as an environment.
+  r = runIbl("convert " + quote(dir / "r.exr") + " -o " + quote(dir / "x.png") + " --size 8");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("apply to environments; the input is a flat image"), std::string::npos);
+  r = runIbl("convert " + quote(dir / "r.exr") + " -o " + quote(dir / "x.hdr") +
+             " --input-layout mirrorball -q");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(readImageFile(dir / "x.hdr").levels[0][0].width, 48);  // a 2:1 panorama of 24^2
+}
+
+// Rendering reads the ibl set: a bake of engine targets only says which target to add.
+TEST(Cli, RenderNamesTheTargetABakeLacks) {
+  TempDir dir;
+  ASSERT_EQ(runIbl("bake -o " + quote(dir / "f") + " --size 16 --target filament -q").status, 0);
+  const CliRun r =
+      runIbl("render sphere --size 8x8 --bake " + quote(dir / "f") + " -o " + quote(dir / "r.png"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("holds the filament target's files only; rendering reads the ibl set: "
+                          "bake again with --target ibl,filament"),
+            std::string::npos)
+      << r.output;
 }

@@ -1,8 +1,12 @@
 // Commands that write several files write all of them or none, a bake into an existing
 // directory replaces exactly its own files, and readers of a bake check it against its manifest.
+#include <csignal>
 #include <fstream>
 #include <map>
 #include <random>
+#include <thread>
+
+#include <fmt/format.h>
 
 #include <gtest/gtest.h>
 
@@ -211,4 +215,179 @@ TEST(Outputs, BakeForEngineTargets) {
       << run.output;
   EXPECT_NE(readImageFile(dir / "both" / "specular.ktx2").detail.find("R32G32B32A32_SFLOAT"),
             std::string::npos);
+}
+
+namespace {
+
+// The files under `dir` (recursively) whose names hold `piece`.
+std::vector<fs::path> entriesNamed(const fs::path& dir, const std::string& piece) {
+  std::vector<fs::path> found;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.path().filename().string().find(piece) != std::string::npos) found.push_back(e.path());
+  return found;
+}
+
+// A process id that no process has now (kill(pid, 0) fails with ESRCH).
+long deadPid() {
+  for (long pid = 4000000;; --pid)
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) return pid;
+}
+
+}  // namespace
+
+// An output that is an input, by any path (the same name, "..", a symbolic link, a hard link, a
+// face or level file of the output's pattern), is refused before anything is read or written:
+// status 2, the input's bytes unchanged.
+TEST(Outputs, OutputsThatAreInputsAreRefused) {
+  TempDir dir;
+  fs::copy_file(hdriPath("park"), dir / "park.exr");
+  fs::create_directories(dir / "sub");
+  fs::create_symlink(dir / "park.exr", dir / "link.exr");
+  fs::create_hard_link(dir / "park.exr", dir / "hard.exr");
+  ASSERT_EQ(runIbl("convert " + quote(dir / "park.exr") + " -o " + quote(dir / "f_{face}.exr") +
+                   " --layout faces --size 8 -q")
+                .status,
+            0);
+  const auto original = readFileBytes(dir / "park.exr");
+  const auto face = readFileBytes(dir / "f_px.exr");
+  const std::string park = quote(dir / "park.exr");
+  const std::pair<std::string, std::string> refused[] = {
+      {"convert " + park + " -o " + park, "is the input"},
+      {"convert " + park + " -o " + quote(dir / "sub" / ".." / "park.exr"), "is the input"},
+      {"convert " + quote(dir / "link.exr") + " -o " + park, "is the input"},
+      {"convert " + park + " -o " + quote(dir / "link.exr"), "is the input"},
+      {"convert " + quote(dir / "hard.exr") + " -o " + park + " --exr-type float", "is the input"},
+      {"convert " + quote(dir / "f_{face}.exr") + " -o " + quote(dir / "f_px.exr") +
+           " --layout faces",
+       "is the input"},
+      {"convert " + quote(dir / "f_{face}.exr") + " -o " + quote(dir / "f.exr") +
+           " --layout faces --size 8",
+       "is the input"},  // f_px.exr, ... are the faces of f.exr
+      {"convert " + park + " -o " + quote(dir / "x.ktx2") + " --extract-sun --sun-json " + park,
+       "is the input"},
+      {"render sphere --size 8x8 --env " + park + " -o " + park, "is the input"},
+      {"compare " + park + " " + park + " --error-png " + quote(dir / "hard.exr"), "is the input"},
+      {"bake " + park + " -o " + quote(dir.path()) + " --force", "holds the input"},
+      {"probe grid --at 0,0,0 --env " + park + " -o " + quote(dir.path()) + " --force",
+       "holds the input"},
+  };
+  for (const auto& [args, message] : refused) {
+    const CliRun r = runIbl(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("ibl: error: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(readFileBytes(dir / "park.exr"), original) << args;
+    EXPECT_EQ(readFileBytes(dir / "f_px.exr"), face) << args;
+  }
+  EXPECT_TRUE(entriesNamed(dir.path(), "specular").empty());
+}
+
+// What can be known wrong is found before the input is even read: the input here is not an
+// image at all, so any error but the one expected would name it.
+TEST(Outputs, ChecksRunBeforeTheInputIsRead) {
+  TempDir dir;
+  std::ofstream(dir / "broken.exr") << "not an image";
+  fs::create_directories(dir / "full");
+  std::ofstream(dir / "full" / "notes.txt") << "mine";
+  const std::string broken = quote(dir / "broken.exr");
+  const std::pair<std::string, std::string> cases[] = {
+      {"bake " + broken + " -o " + quote(dir / "full"), "full: exists and is not empty"},
+      {"bake " + broken + " -o " + quote(dir / "full" / "notes.txt" / "x"), "not a directory"},
+      {"bake " + broken + " --target babylon --levels 3 -o " + quote(dir / "b"),
+       "--levels: no target takes it"},
+      {"convert " + broken + " -o " + quote(dir / "x.exr") + " --exposure 1",
+       "--exposure applies to PNG"},
+      {"render " + broken + " --size 8x8 --ev100 x -o " + quote(dir / "r.png"),
+       "--ev100: 'x' is not a number"},
+  };
+  for (const auto& [args, message] : cases) {
+    const CliRun r = runIbl(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("broken.exr"), std::string::npos) << args << "\n" << r.output;
+  }
+  // The memory a bake needs is estimated first (IBL_MEMORY_LIMIT stands for a small machine).
+  const CliRun r = runCommand("IBL_MEMORY_LIMIT=100000000 " + std::string(IBL_CLI) + " bake " +
+                              broken + " --size 1024 -o " + quote(dir / "m"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("--size 1024: needs about "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("more than the 100 MB IBL_MEMORY_LIMIT allows"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(dir / "m"));
+}
+
+// A bake removes the temporaries of its own naming pattern that no live process owns (an
+// earlier run killed while writing), restores a file a cut-short rename phase kept aside, and
+// leaves a live process's temporaries alone.
+TEST(Outputs, StaleTemporariesOfDeadProcessesAreRemoved) {
+  TempDir dir;
+  const fs::path out = dir / "out";
+  ASSERT_EQ(runIbl("bake -o " + quote(out) + kSmallBake + " --size 16").status, 0);
+  const long dead = deadPid();
+  const long live = static_cast<long>(::getpid());  // this test: alive
+  const auto name = [](const std::string& file, long pid, const char* tag) {
+    return fmt::format("{}.{}.0.{}", file, pid, tag);
+  };
+  const auto sh = readFileBytes(out / "sh.json");
+  std::ofstream(out / name("specular.ktx2", dead, "tmp")) << "half-written";
+  std::ofstream(out / name("specular.ktx2", live, "tmp")) << "being written";
+  fs::rename(out / "sh.json", out / name("sh.json", dead, "old"));  // its rename phase was cut
+  std::ofstream(out / name("source.ktx2", dead, "old")) << "replaced";
+  fs::create_directories(dir / fmt::format(".out.ibl-staging-{}", dead) / "sub");
+  fs::create_directories(dir / fmt::format(".out.ibl-staging-{}", live));
+  const CliRun r = runIbl("bake -o " + quote(out) + kSmallBake + " --size 16 --force");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(fs::exists(out / name("specular.ktx2", dead, "tmp")));
+  EXPECT_FALSE(fs::exists(out / name("source.ktx2", dead, "old")));  // its file is there
+  EXPECT_FALSE(fs::exists(out / name("sh.json", dead, "old")));
+  EXPECT_EQ(readFileBytes(out / "sh.json"), sh);  // restored, then rewritten alike
+  EXPECT_FALSE(fs::exists(dir / fmt::format(".out.ibl-staging-{}", dead)));
+  EXPECT_TRUE(fs::exists(out / name("specular.ktx2", live, "tmp")));
+  EXPECT_TRUE(fs::exists(dir / fmt::format(".out.ibl-staging-{}", live)));
+}
+
+// Ctrl-C while a bake writes: the process exits with 128 + SIGINT and leaves none of its
+// temporaries, and the output directory is either absent or whole. The interrupt is sent as
+// soon as the first temporary appears (the encoding before takes most of the time).
+TEST(Outputs, InterruptsRemoveTheProcesssTemporaries) {
+  TempDir dir;
+  for (const bool existing : {false, true}) {
+    const fs::path out = dir / (existing ? "existing" : "new");
+    if (existing) {
+      ASSERT_EQ(runIbl("bake -o " + quote(out) + kSmallBake + " --size 16").status, 0);
+    }
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      const std::string o = out.string();
+      ::execl(IBL_CLI, IBL_CLI, "bake", "-o", o.c_str(), "--size", "256", "--exr", "--hdr",
+              "--force", "--quiet", static_cast<char*>(nullptr));
+      std::_Exit(127);
+    }
+    bool interrupted = false;
+    int status = 0;
+    while (::waitpid(child, &status, WNOHANG) == 0) {
+      if (!interrupted && (!entriesNamed(dir.path(), ".tmp").empty() ||
+                           !entriesNamed(dir.path(), "ibl-staging").empty())) {
+        ::kill(child, SIGINT);
+        interrupted = true;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    if (!interrupted) GTEST_SKIP() << "the bake ended before its write phase was seen";
+    ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+    EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT);
+    EXPECT_TRUE(entriesNamed(dir.path(), ".tmp").empty());
+    EXPECT_TRUE(entriesNamed(dir.path(), ".old").empty());
+    EXPECT_TRUE(entriesNamed(dir.path(), "ibl-staging").empty());
+    if (!existing) {
+      EXPECT_FALSE(fs::exists(out));
+    } else {  // the earlier bake, or the new one: whole either way
+      const auto size = readImageFile(out / "specular.ktx2").levels[0][0].width;
+      EXPECT_TRUE(size == 16 || size == 256) << size;
+      if (size == 256) {
+        EXPECT_TRUE(fs::exists(out / "specular_m0.exr"));
+      }
+    }
+  }
 }

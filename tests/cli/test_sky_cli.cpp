@@ -68,6 +68,7 @@ TEST(SkyCli, BakeAndRenderASkyWithItsSun) {
   ASSERT_EQ(m.at("lights").size(), 1u);
   EXPECT_EQ(m["lights"][0]["type"], "sun");
   EXPECT_NEAR(m["sky"]["sun_elevation"].get<double>(), 35.0, 1e-6);
+  EXPECT_EQ(m["source"]["path"], sky);  // the description as given, not a path
   // The same sky as a plain image (no sun) lights a sphere far less than the bake, whose
   // manifest brings the sun: the sun is in the render.
   // (The image baked as small as the sky's bake, to compare like with like.)

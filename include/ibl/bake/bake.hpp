@@ -78,6 +78,8 @@ struct BakeOutputOptions {
   // Called with one line for each output whose values exceed its format's range (they are
   // clamped to it: no output holds an infinity); the manifest records it too.
   std::function<void(const std::string&)> warn;
+  // Hears of the files encoded, as stage "writing N files" (the encoding is the long part).
+  ProgressFn progress;
   // More cube maps to write as KTX2 (role = file stem), e.g. a probe's visibility.
   std::vector<std::pair<std::string, const CubeMap*>> extraCubes;
   // A JSON object whose members join the manifest's top level (a probe's "probe" record).

@@ -72,7 +72,9 @@ int defaultSpecularLevels(int size);
 // The number of specular levels `options` asks for (options.levels, or the default).
 int specularLevelCount(const PrefilterOptions& options);
 
-using ProgressFn = std::function<void(const std::string& stage)>;
+// Progress of long work: `stage` has done `fraction` of its work (0 when it starts). Called
+// from any thread; stages may run at the same time (the DFG table beside the convolutions).
+using ProgressFn = std::function<void(const std::string& stage, double fraction)>;
 
 // Prefiltered specular cube map: level m holds the environment averaged with the GGX lobe of
 // roughness roughnessForLevel(m) around n = v = r. Level 0 (r = 0) is the source itself.
@@ -159,8 +161,10 @@ std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int s
                                                     PrefilterWeight weight);
 
 // Irradiance cube map storing E(n) / pi (a white Lambertian surface's radiance), by direct
-// convolution with the clamped cosine over source level `sourceLevel`.
-CubeMap convolveIrradiance(const CubeMap& source, int size, int sourceLevel);
+// convolution with the clamped cosine over source level `sourceLevel`. `progress` gets the
+// fraction of the texels done, as stage "irradiance NxN".
+CubeMap convolveIrradiance(const CubeMap& source, int size, int sourceLevel,
+                           const ProgressFn& progress = {});
 
 // Index of the first level of `cube` no larger than `size` (the last level if none).
 int levelOfSize(const CubeMap& cube, int size);

@@ -40,8 +40,8 @@ std::optional<std::uint64_t> freeDiskBytes(const std::filesystem::path& where);
 // exists, so that an interrupted process can remove its own, and a later process can tell
 // which ones no live process owns.
 
-// Registers a directory this process stages (removed whole by removeTemporariesOfThisProcess)
-// for as long as the object lives.
+// A directory this process stages, created empty (and its parents) and registered, so that
+// removeTemporariesOfThisProcess removes it whole, for as long as the object lives.
 class StagingDirectory {
  public:
   explicit StagingDirectory(std::filesystem::path dir);

@@ -2,6 +2,7 @@
 // Local light probes: cube maps captured inside the scene by the path tracer and baked like an
 // environment, then looked up with parallax correction and blended by influence volumes
 // (Lagarde & de Rousiers 2014, section 4.9; the formulas are ibl/shared/probes.h).
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -58,6 +59,21 @@ struct ProbeCapture {
 ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResult& bake,
                           const BakeOptions& bakeOptions, const CaptureOptions& options,
                           const std::function<void(float)>& progress = {});
+
+// How a capture point sits in the scene, from rays cast evenly over the sphere of directions:
+// the share whose first hit is the back of a face (the inside of a closed mesh) and the
+// distance to the nearest hit. A probe inside geometry sees only the inside of a mesh: black,
+// or its own back faces; renders would read that as the room's light.
+struct CaptureSite {
+  float backFaceShare = 0.0f;  // in [0, 1]
+  float nearestHit = INFINITY;
+};
+CaptureSite inspectCaptureSite(const Scene& scene, glm::vec3 position, int rays = 512);
+
+// Why a capture must not be used: most of its rays leave through back faces (inside
+// geometry), or no light reached it (every texel black); empty when it is sound. `position`
+// names the probe in the message.
+std::string unusableCaptureReason(const CaptureSite& site, const ProbeCapture* capture);
 
 // The manifest's "probe" record (a JSON object as text) and back; `name` names the file in
 // errors.

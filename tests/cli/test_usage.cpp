@@ -1,0 +1,329 @@
+// Every option of every command, given a value it cannot take: status 2 ("ibl: error: " and the
+// option's name on the first line) for a wrong command line, 1 for a file that is missing or not
+// what it says (a failure of the work), and nothing written either way. The table must name
+// every option that `--help` lists: a new option cannot escape it.
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/helpers.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+// One wrong use of an option: the arguments after the command's base arguments, the status and
+// a piece of the message.
+struct Misuse {
+  std::string option;  // as --help names it
+  std::string args;
+  int status;
+  std::string message;
+};
+
+// The long options `ibl COMMAND --help` lists (each "--name" that starts an option's line, and
+// a "!--no-name" negation).
+std::set<std::string> optionsInHelp(const std::string& command) {
+  const CliRun help = runIbl(command + " --help");
+  std::set<std::string> options;
+  const std::regex line(R"(^\s+(?:-\w,)?(--[\w-]+)(?:,!(--[\w-]+))?)");
+  std::size_t begin = 0;
+  while (begin < help.output.size()) {
+    const std::size_t end = std::min(help.output.find('\n', begin), help.output.size());
+    const std::string text = help.output.substr(begin, end - begin);
+    std::smatch m;
+    if (std::regex_search(text, m, line)) {
+      options.insert(m[1].str());
+      if (m[2].matched) options.insert(m[2].str());
+    }
+    begin = end + 1;
+  }
+  options.erase("--help");
+  return options;
+}
+
+// Runs each misuse in a fresh folder; checks the status, the one-line error and that the
+// folder holds nothing but what `prepare` put there.
+void expectMisuses(const std::string& command, const std::string& base,
+                   const std::vector<Misuse>& misuses) {
+  std::set<std::string> covered;
+  for (const Misuse& m : misuses) {
+    covered.insert(m.option);
+    TempDir dir;
+    std::filesystem::copy_file(hdriPath("park"), dir / "park.exr");
+    const std::string cd = "cd " + quote(dir.path()) + " && ";
+    const CliRun r = runCommand(cd + IBL_CLI + " " + command + " " + base + " " + m.args);
+    EXPECT_EQ(r.status, m.status) << command << " " << m.args << "\n" << r.output;
+    EXPECT_EQ(r.output.rfind("ibl: error: ", 0), 0u) << command << " " << m.args << "\n"
+                                                     << r.output;
+    EXPECT_NE(r.output.find(m.message), std::string::npos)
+        << command << " " << m.args << ": expected '" << m.message << "' in\n"
+        << r.output;
+    std::vector<std::string> left;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir.path()))
+      if (e.path().filename() != "park.exr") left.push_back(e.path().filename().string());
+    EXPECT_TRUE(left.empty()) << command << " " << m.args << " wrote " << left.front();
+  }
+  for (const std::string& option : optionsInHelp(command))
+    EXPECT_TRUE(covered.count(option)) << command << " " << option << " has no misuse in the table";
+}
+
+// The options `ibl render` and `ibl view` share (apps/scene_options.cpp).
+std::vector<Misuse> sceneMisuses() {
+  return {
+      {"--env", "--env nosuch.exr", 1, "nosuch.exr: no such file"},
+      {"--env", "--env sky:elevation=100", 2, "elevation"},
+      {"--lights", "--lights nosuch.json", 1, "nosuch.json: no such file"},
+      {"--spot-lumens", "--spot-lumens lots", 2, "--spot-lumens"},
+      {"--bake", "--bake nosuch", 1, "nosuch: no such directory"},
+      {"--bake", "--bake . --env park.exr", 2, "--env: contradicts --bake"},
+      {"--camera", "--camera fisheye", 2, "--camera"},
+      {"--fov", "--fov 500", 2, "--fov: must be from 1 to 179, not 500"},
+      {"--ortho-width", "--ortho-width -1", 2, "--ortho-width: must be positive, not -1"},
+      {"--look-from", "--look-from 1,2", 2, "--look-from: expected 3 comma-separated numbers"},
+      {"--look-from", "--look-from 0,0,0 --look-at 0,0,0", 2, "--look-from: equals --look-at"},
+      {"--look-at", "--look-at a,b,c", 2, "--look-at: 'a' is not a number"},
+      {"--up", "--up 0,0,0", 2, "--up: must not be the zero vector"},
+      {"--size", "--size 0x0", 2, "--size: expected WxH"},
+      {"--base-color", "--base-color nan,1,1", 2, "--base-color: 'nan,1,1' is not finite"},
+      {"--metallic", "--metallic 2", 2, "--metallic: must be from 0 to 1, not 2"},
+      {"--roughness", "--roughness -1", 2, "--roughness: must be from 0 to 1, not -1"},
+      {"--diffuse", "--diffuse oren-nayar", 2, "--diffuse"},
+      {"--only", "--only glossy", 2, "--only"},
+      {"--multiscatter", "--multiscatter=maybe", 2, "--multiscatter"},
+      {"--no-multiscatter", "--no-multiscatter=maybe", 2, "--multiscatter"},
+      {"--probes", "--probes nosuch", 1, "nosuch: no such directory"},
+      {"--no-parallax", "--no-parallax=maybe", 2, "--no-parallax"},
+      {"--no-distance-roughness", "--no-distance-roughness=maybe", 2, "--no-distance-roughness"},
+      {"--ao", "--ao -1", 2, "--ao: must be from 0 to 4096, not -1"},
+      {"--no-dominant", "--no-dominant=maybe", 2, "--no-dominant"},
+      {"--irradiance", "--irradiance sh9", 2, "--irradiance"},
+      {"--area-lights", "--area-lights exact", 2, "--area-lights"},
+      {"--background", "--background 1,2", 2, "--background: expected 3"},
+      {"--ev100", "--ev100 nan", 2, "--ev100: 'nan' is not finite"},
+      {"--aperture", "--aperture 0", 2, "--aperture: must be positive, not 0"},
+      {"--shutter", "--shutter -1", 2, "--shutter: must be positive, not -1"},
+      {"--iso", "--iso 0", 2, "--iso: must be positive, not 0"},
+      {"--exposure-compensation", "--exposure-compensation inf", 2, "is not a finite number"},
+      {"--tonemap", "--tonemap reinhard", 2, "--tonemap"},
+  };
+}
+
+std::vector<Misuse> operator+(std::vector<Misuse> a, const std::vector<Misuse>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+}  // namespace
+
+TEST(Usage, GlobalOptions) {
+  const CliRun threads = runIbl("--threads 0 info park.exr");
+  EXPECT_EQ(threads.status, 2);
+  EXPECT_NE(threads.output.find("ibl: error: --threads: must be from 1 to 4096, not 0"),
+            std::string::npos)
+      << threads.output;
+  const CliRun quiet = runIbl("--quiet=maybe info park.exr");
+  EXPECT_EQ(quiet.status, 2) << quiet.output;
+  const CliRun unknown = runIbl("bakee");
+  EXPECT_EQ(unknown.status, 2) << unknown.output;
+}
+
+TEST(Usage, Bake) {
+  expectMisuses(
+      "bake", "--size 16",
+      {
+          {"--list", "--list nosuch.txt -o out", 1, "nosuch.txt: cannot read the list"},
+          {"--output", "", 2, "--output: an output directory is required"},
+          {"--output", "-o park.exr/x", 1, "park.exr"},
+          {"--device", "--device tpu -o out", 2, "--device"},
+          {"--list-devices", "--list-devices=maybe", 2, "--list-devices"},
+          {"--input-layout", "park.exr --input-layout diagonal -o out", 2, "--input-layout"},
+          {"--layer", "park.exr --layer NoSuchLayer -o out", 1, "NoSuchLayer"},
+          {"--size", "--size 300 -o out", 2,
+           "--size: must be a power of two from 1 to 4096, not 300"},
+          {"--levels", "--levels 0 -o out", 2, "--levels: must be from 1 to 13, not 0"},
+          {"--levels", "--levels 9 -o out", 2, "--levels: 9 levels need a cube of at least 256^2"},
+          {"--mapping", "--mapping cubic -o out", 2, "--mapping"},
+          {"--mapping", "--mapping frostbite --target gltf-sample-viewer -o out", 2,
+           "--mapping linear"},
+          {"--method", "--method magic -o out", 2, "--method"},
+          {"--samples", "--samples 0 -o out", 2, "--samples: must be from 1 to 65536, not 0"},
+          {"--fresnel-weighted", "--fresnel-weighted=maybe -o out", 2, "--fresnel-weighted"},
+          {"--fresnel-weighted", "--fresnel-weighted --target babylon -o out", 2,
+           "--fresnel-weighted: no target takes it"},
+          {"--sheen", "--sheen=maybe -o out", 2, "--sheen"},
+          {"--target", "--target unreal -o out", 2, "--target"},
+          {"--irradiance-size", "--irradiance-size 1000 -o out", 2,
+           "--irradiance-size: must be a power of two from 1 to 1024, not 1000"},
+          {"--dfg-size", "--dfg-size 1 -o out", 2, "--dfg-size: must be from 2 to 4096, not 1"},
+          {"--dfg-samples", "--dfg-samples 0 -o out", 2, "--dfg-samples: must be from 1 to"},
+          {"--sh-window", "--sh-window=maybe -o out", 2, "--sh-window"},
+          {"--rotate", "--rotate nan -o out", 2, "'nan' is not a finite number"},
+          {"--clamp", "--clamp -5 -o out", 2, "--clamp: must be positive, not -5"},
+          {"--format", "--format rgb565 -o out", 2, "--format"},
+          {"--format", "--format rgba32f --target filament -o out", 2,
+           "--format: no target takes it: --target filament writes its fixed R11F_G11F_B10F"},
+          {"--exr", "--exr=maybe -o out", 2, "--exr"},
+          {"--hdr", "--hdr --target dds -o out", 2, "--hdr: no target takes it"},
+          {"--layout", "--layout diagonal -o out", 2, "--layout"},
+          {"--force", "--force=maybe -o out", 2, "--force"},
+          {"--no-preview", "--no-preview=maybe -o out", 2, "--no-preview"},
+          {"--extract-sun", "sky:elevation=30 --extract-sun -o out", 2,
+           "--extract-sun: contradicts sky:elevation=30"},
+          {"--preview-size", "--preview-size 4 -o out", 2,
+           "--preview-size: must be from 8 to 1024, not 4"},
+          {"inputs", "nosuch.exr -o out", 1, "nosuch.exr: no such file"},
+      });
+}
+
+TEST(Usage, Convert) {
+  expectMisuses("convert", "park.exr",
+                {
+                    {"--list", "--list nosuch.txt -o '{name}.hdr'", 1, "nosuch.txt"},
+                    {"--output", "-o out.txt", 2, "out.txt: unknown output format"},
+                    {"--output", "-o park.exr", 2, "park.exr: is the input park.exr"},
+                    {"--layout", "-o out.hdr --layout diagonal", 2, "--layout"},
+                    {"--layout", "-o out.hdr --layout cube", 2, "--layout cube needs a .ktx2"},
+                    {"--input-layout", "-o out.hdr --input-layout diagonal", 2, "--input-layout"},
+                    {"--layer", "-o out.hdr --layer NoSuchLayer", 1, "NoSuchLayer"},
+                    {"--size", "-o out.hdr --size 0", 2, "--size: must be from 1 to 16384, not 0"},
+                    {"--size", "-o out.hdr --size 33 --layout equirect", 2, "must be even"},
+                    {"--format", "-o out.ktx2 --format rgb565", 2, "--format"},
+                    {"--format", "-o out.hdr --format rgba32f", 2, "--format applies to KTX2"},
+                    {"--exr-type", "-o out.exr --exr-type double", 2, "--exr-type"},
+                    {"--exposure", "-o out.png --exposure inf", 2, "is not a finite number"},
+                    {"--exposure", "-o out.exr --exposure 1", 2, "--exposure applies to PNG"},
+                    {"--rotate", "-o out.hdr --rotate nan", 2, "is not a finite number"},
+                    {"--mips", "-o out.hdr --mips --layout equirect", 2,
+                     "--mips applies to cube map outputs only"},
+                    {"--mips", "-o out.ktx2 --mips --size 100", 2,
+                     "--mips needs a power-of-two size, not 100"},
+                    {"--extract-sun", "-o out.hdr --extract-sun", 2, "--extract-sun: needs"},
+                    {"--sun-json", "-o out.hdr --sun-json sun.json", 2, "--sun-json: applies"},
+                });
+}
+
+// The scene options' misuses with the arguments a command needs appended.
+static std::vector<Misuse> sceneMisusesWith(const std::string& args) {
+  std::vector<Misuse> misuses = sceneMisuses();
+  for (Misuse& m : misuses) m.args += " " + args;
+  return misuses;
+}
+
+TEST(Usage, Render) {
+  expectMisuses("render", "sphere --spp 1",
+                sceneMisusesWith("-o out.png") +
+                    std::vector<Misuse>{
+                        {"--output", "-o out.jpg", 2, "out.jpg: output must be .exr or .png"},
+                        {"--output", "-o park.exr --env park.exr", 2, "is the input park.exr"},
+                        {"--mode", "-o out.png --mode fast", 2, "--mode"},
+                        {"--spp", "-o out.png --spp 0", 2, "--spp: must be from 1 to"},
+                        {"--noise", "-o out.png --noise 2", 2, "--noise: must be from 0 to 1"},
+                        {"--bounces", "-o out.png --bounces -1", 2, "--bounces: must be from 0"},
+                        {"--shadows", "-o out.png --shadows=maybe", 2, "--shadows"},
+                        {"--exr-exposed", "-o out.exr --exr-exposed=maybe", 2, "--exr-exposed"},
+                        {"--seed", "-o out.png --seed -1", 2, "--seed"},
+                    });
+}
+
+TEST(Usage, View) {
+  // Every misuse is found before the Vulkan device is opened: no GPU needed.
+  expectMisuses("view", "sphere",
+                sceneMisusesWith("--screenshot out.png") +
+                    std::vector<Misuse>{
+                        {"--screenshot", "--screenshot out.jpg", 2, "output must be .exr"},
+                        {"--spp", "--screenshot out.png --spp 3", 2, "--spp"},
+                        {"--skybox-mip", "--screenshot out.png --skybox-mip -1", 2,
+                         "--skybox-mip: must be from 0 to 16, not -1"},
+                        {"--frames", "--frames -1", 2, "--frames: must be from 0"},
+                        {"--ao", "--screenshot out.png --ao 4", 2,
+                         "ray-cast ambient occlusion is `ibl render`'s alone"},
+                    });
+}
+
+TEST(Usage, Probe) {
+  expectMisuses(
+      "probe", "--size 8 --spp 1",
+      {
+          {"--env", "grid --at 0,0,0 -o out --env nosuch.exr", 1, "nosuch.exr: no such file"},
+          {"--lights", "grid --at 0,0,0 -o out --lights nosuch.json", 1,
+           "nosuch.json: no such file"},
+          {"--bake", "grid --at 0,0,0 -o out --bake nosuch", 1, "nosuch: no such directory"},
+          {"--output", "grid --at 0,0,0", 2, "--output: an output directory is required"},
+          {"--at", "grid --at 1,2 -o out", 2, "--at: expected 3 comma-separated numbers"},
+          {"--at", "grid -o out", 2, "give either --at X,Y,Z"},
+          {"--grid", "grid --grid 0,1,1 --bounds -1,-1,-1,1,1,1 -o out", 2,
+           "--grid: '0,1,1': each count must be a whole number from 1 to 64"},
+          {"--bounds", "grid --grid 1,1,1 --bounds 1,1,1,0,0,0 -o out", 2,
+           "--bounds: '1,1,1,0,0,0'"},
+          {"--shard", "grid --grid 1,1,1 --bounds -1,-1,-1,1,1,1 --shard 3/2 -o out", 2, "--shard"},
+          {"--merge", "--merge nosuch", 1, "nosuch: holds no probes.shard-K-of-N.json"},
+          {"--merge", "--merge . grid --at 0,0,0", 2, "--merge: merges the lists"},
+          {"--proxy", "grid --at 0,0,0 -o out --proxy cone:1", 2, "--proxy: 'cone:1': expected"},
+          {"--influence", "grid --at 0,0,0 -o out --influence box:1", 2, "--influence"},
+          {"--rotation", "grid --at 0,0,0 -o out --rotation a,b,c", 2, "--rotation: 'a'"},
+          {"--fade", "grid --at 0,0,0 -o out --fade -1", 2, "--fade: must be 0 or more, not -1"},
+          {"--size", "grid --at 0,0,0 -o out --size 12", 2,
+           "--size: must be a power of two from 8 to 1024, not 12"},
+          {"--spp", "grid --at 0,0,0 -o out --spp 0", 2, "--spp: must be from 1 to"},
+          {"--bounces", "grid --at 0,0,0 -o out --bounces -1", 2, "--bounces: must be from 0"},
+          {"--capture-specular", "grid --at 0,0,0 -o out --capture-specular=maybe", 2,
+           "--capture-specular"},
+          {"--seed", "grid --at 0,0,0 -o out --seed x", 2, "--seed"},
+          {"--force", "grid --at 0,0,0 -o out --force=maybe", 2, "--force"},
+      });
+}
+
+TEST(Usage, Sky) {
+  expectMisuses(
+      "sky", "--size 16x8",
+      {
+          {"--output", "-o out.txt", 2, "out.txt: unknown output format"},
+          {"--sun-elevation", "-o out.exr --sun-elevation 100", 2,
+           "--sun-elevation: must be from -90 to 90, not 100"},
+          {"--sun-azimuth", "-o out.exr --sun-azimuth 400", 2, "--sun-azimuth"},
+          {"--date",
+           "-o out.exr --date 2020-13-01 --time 12:00 --latitude 0 "
+           "--longitude 0",
+           2, "--date"},
+          {"--time",
+           "-o out.exr --date 2020-06-01 --time 25:00 --latitude 0 "
+           "--longitude 0",
+           2, "--time"},
+          {"--utc-offset", "-o out.exr --utc-offset 20", 2, "--utc-offset"},
+          {"--latitude", "-o out.exr --latitude 100", 2, "--latitude"},
+          {"--longitude", "-o out.exr --longitude 200", 2, "--longitude"},
+          {"--altitude", "-o out.exr --altitude -1", 2, "--altitude"},
+          {"--turbidity", "-o out.exr --turbidity 0", 2, "--turbidity"},
+          {"--ozone", "-o out.exr --ozone -1", 2, "--ozone"},
+          {"--ground-albedo", "-o out.exr --ground-albedo 2", 2, "--ground-albedo"},
+          {"--size", "-o out.exr --size 3x3", 2, "--size"},
+          {"--sun-json", "-o out.exr --sun-json out.exr", 2, "--sun-json: is the image"},
+          {"--sun-disk", "-o out.exr --sun-disk=maybe", 2, "--sun-disk"},
+          {"--device", "-o out.exr --device tpu", 2, "--device"},
+          {"--single-scattering", "-o out.exr --single-scattering=maybe", 2, "--single-scattering"},
+      });
+}
+
+TEST(Usage, CompareAndInfo) {
+  expectMisuses("compare", "park.exr park.exr",
+                {
+                    {"--mask", "--mask nosuch.png", 1, "nosuch.png: no such file"},
+                    {"--error-png", "--error-png park.exr", 2, "park.exr: is the input"},
+                    {"--error-scale", "--error-scale 0", 2, "--error-scale: must be positive"},
+                    {"--max-rel-error", "--max-rel-error -1", 2, "--max-rel-error: must be 0"},
+                    {"--json", "--json=maybe", 2, "--json"},
+                });
+  expectMisuses("info", "",
+                {
+                    {"--input-layout", "park.exr --input-layout diagonal", 2, "--input-layout"},
+                    {"--layer", "park.exr --layer NoSuchLayer", 1, "NoSuchLayer"},
+                    {"--json", "park.exr --json=maybe", 2, "--json"},
+                    {"file", "nosuch.exr", 1, "nosuch.exr: no such file"},
+                });
+}
