@@ -240,6 +240,13 @@ TEST_P(DocsPage, ShBlocksRunAsWritten) {
     ++ran;
   }
   std::cout << page.filename().string() << ": " << ran << " blocks ran\n";
+  // Counted apart from the parser: every ```sh or ```console fence, less the exclusions.
+  int fences = 0, notRun = 0;
+  for (const std::string& l : readLines(page)) {
+    fences += trim(l) == "```sh" || trim(l) == "```console";
+    notRun += startsWith(trim(l), "<!-- not run:");
+  }
+  EXPECT_EQ(ran, fences - notRun) << page.filename() << ": a block was not run";
 }
 
 INSTANTIATE_TEST_SUITE_P(Pages, DocsPage, testing::ValuesIn(pages()),
