@@ -258,14 +258,14 @@ INSTANTIATE_TEST_SUITE_P(Pages, DocsPage, testing::ValuesIn(pages()),
                          });
 
 // Blocks are left out only visibly and with a reason, and few; commands are never hidden in
-// blocks that do not run; examples run in order on one page never write the same output twice
-// (a bake into an existing, non-empty folder fails) unless they say --force (or --shard, whose
-// parts share their grid's folder).
+// blocks that do not run; the examples of every page, run in order in one folder, never write
+// the same output twice (a bake into an existing, non-empty folder fails) unless they say
+// --force (or --shard, whose parts share their grid's folder).
 TEST(DocsExamples, ExclusionsAreFewWithReasonsAndOutputsDoNotCollide) {
   const std::set<std::string> known{"sh", "console", "json", "text", "synopsis", ""};
   int excluded = 0, run = 0;
+  std::map<std::string, std::string> written;  // -o target -> where, over every page
   for (const fs::path& page : pages()) {
-    std::map<std::string, std::string> written;  // -o target -> where
     for (const Block& b : parse(page).blocks) {
       EXPECT_TRUE(known.count(b.info)) << where(b) << ": info string '" << b.info
                                        << "' (use sh, console, json, text, synopsis or none)";
