@@ -27,7 +27,7 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "physical sky, sky:elevation=30,azimuth=120 (see ibl sky; its sun is added "
                   "as a light); 'none': the lights alone, on black");
   cmd->add_option("--lights", o.lightsFile,
-                  "Lights file (JSON, see the README) added to the scene's lights");
+                  "Lights file (JSON, see docs/lights.md) added to the scene's lights");
   cmd->add_option("--spot-lumens", o.spotLumens,
                   "A spot's lumens to candela: physical (spread over its cone) or frostbite "
                   "(I = phi / pi)")
