@@ -537,11 +537,11 @@ TEST(Viewer, CliWritesAScreenshot) {
   EXPECT_LT(sum / static_cast<double>(3 * a.pixels.size()), 0.1);
 
   r = runIbl("view grid --screenshot " + quote(dir / "grid.jpg"));
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("output must be .exr or .png"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "grid.jpg"));
   r = runIbl("view grid --size 0x10 --screenshot " + quote(png));
-  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("--size"), std::string::npos) << r.output;
 }
 
