@@ -626,7 +626,7 @@ std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path
     fail(outDir.string(), fmt::format("the bake's {} files take {} bytes; the disk has {} free",
                                       files.size(), total, *free));
   if (!fs::exists(outDir, ec)) {
-    const StagingDirectory staging(stagingDirectoryFor(outDir, ::getpid()));
+    StagingDirectory staging(stagingDirectoryFor(outDir, ::getpid()));
     try {
       for (const auto& f : files)
         writeFileAtomic(staging.path() / f.path.lexically_relative(outDir), f.bytes);
@@ -642,11 +642,7 @@ std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path
       fs::remove_all(staging.path(), ec);
       throw;
     }
-    fs::rename(staging.path(), outDir, ec);
-    if (ec) {
-      fs::remove_all(staging.path(), ec);
-      fail(outDir.string(), fmt::format("cannot create the output directory: {}", ec.message()));
-    }
+    staging.moveTo(outDir);
   } else {
     checkBakeOutputDirectory(outDir, force);
     const std::set<fs::path> earlier = filesOfEarlierBake(outDir);

@@ -43,82 +43,61 @@ std::optional<EngineTarget> parseEngineTarget(std::string_view name) {
   return std::nullopt;
 }
 
+namespace {
+
+// What a target writes in place of a choice it does not take (every other pair takes it).
+struct FixedSetting {
+  EngineTarget target;
+  BakeSetting setting;
+  std::string_view writes;
+};
+using T = EngineTarget;
+using S = BakeSetting;
+constexpr std::string_view kCmgenChain = "cmgen's chain (down to 16^2, lod = sqrt(r) (levels - 1))";
+constexpr std::string_view kBabylonChain =
+    "Babylon's chain (every level down to 1^2, lod = 0.8 log2(width r^2))";
+constexpr std::string_view kDdsFiles =
+    "DDS files of the specular, irradiance and skybox cubes and the DFG table only";
+constexpr FixedSetting kFixedSettings[] = {
+    {T::Filament, S::Format, "its fixed R11F_G11F_B10F KTX1 files (cmgen's)"},
+    {T::Filament, S::Levels, kCmgenChain},
+    {T::Filament, S::Mapping, kCmgenChain},
+    {T::Filament, S::IrradianceSize, "irradiance as SH9 only (sh.txt and the KTX's sh key)"},
+    {T::Filament, S::DfgTable, "no DFG table (Filament has its own)"},
+    {T::Filament, S::FileCopies, "cmgen's files only"},
+    {T::Filament, S::Previews, "cmgen's files only"},
+    {T::Filament, S::FresnelWeighted, "cmgen's files only"},
+    {T::Filament, S::Sheen, "cmgen's files only"},
+    {T::GltfSampleViewer, S::FileCopies, "glTF-IBL-Sampler's files only"},
+    {T::GltfSampleViewer, S::Previews, "glTF-IBL-Sampler's files only"},
+    {T::GltfSampleViewer, S::FresnelWeighted, "glTF-IBL-Sampler's files only"},
+    {T::GltfSampleViewer, S::ShWindow, "glTF-IBL-Sampler's files only"},
+    {T::Dds, S::FileCopies, kDdsFiles},
+    {T::Dds, S::Previews, kDdsFiles},
+    {T::Dds, S::FresnelWeighted, kDdsFiles},
+    {T::Dds, S::Sheen, kDdsFiles},
+    {T::Dds, S::ShWindow, kDdsFiles},
+    {T::Babylon, S::Format, "its fixed RGBD PNG faces (Babylon's .env)"},
+    {T::Babylon, S::Levels, kBabylonChain},
+    {T::Babylon, S::Mapping, kBabylonChain},
+    {T::Babylon, S::IrradianceSize, "irradiance as Babylon's spherical polynomial only"},
+    {T::Babylon, S::DfgTable, "no DFG table (Babylon has its own)"},
+    {T::Babylon, S::FileCopies, "one .env file only"},
+    {T::Babylon, S::Previews, "one .env file only"},
+    {T::Babylon, S::FresnelWeighted, "one .env file only"},
+    {T::Babylon, S::Sheen, "one .env file only"},
+};
+
+}  // namespace
+
 std::optional<std::string_view> fixedByTarget(EngineTarget target, BakeSetting setting,
                                               PixelFormat format) {
-  using S = BakeSetting;
-  switch (target) {
-    case EngineTarget::Ibl:
-      return std::nullopt;
-    case EngineTarget::Filament:
-      switch (setting) {
-        case S::Format:
-          return "its fixed R11F_G11F_B10F KTX1 files (cmgen's)";
-        case S::Levels:
-        case S::Mapping:
-          return "cmgen's chain (down to 16^2, lod = sqrt(r) (levels - 1))";
-        case S::IrradianceSize:
-          return "irradiance as SH9 only (sh.txt and the KTX's sh key)";
-        case S::DfgTable:
-          return "no DFG table (Filament has its own)";
-        case S::FileCopies:
-        case S::Previews:
-        case S::FresnelWeighted:
-        case S::Sheen:
-          return "cmgen's files only";
-        case S::ShWindow:
-          return std::nullopt;
-      }
-      break;
-    case EngineTarget::GltfSampleViewer:
-      switch (setting) {
-        case S::Format:
-          if (format == PixelFormat::Rgba16f || format == PixelFormat::Rgba32f) return std::nullopt;
-          return "float cube maps only (rgba16f or rgba32f: the viewer's loader)";
-        case S::FileCopies:
-        case S::Previews:
-        case S::FresnelWeighted:
-        case S::ShWindow:
-          return "glTF-IBL-Sampler's files only";
-        case S::Sheen:  // always written
-        case S::Levels:
-        case S::Mapping:
-        case S::IrradianceSize:
-        case S::DfgTable:
-          return std::nullopt;
-      }
-      break;
-    case EngineTarget::Dds:
-      switch (setting) {
-        case S::FileCopies:
-        case S::Previews:
-        case S::FresnelWeighted:
-        case S::Sheen:
-        case S::ShWindow:
-          return "DDS files of the specular, irradiance and skybox cubes and the DFG table only";
-        default:
-          return std::nullopt;
-      }
-    case EngineTarget::Babylon:
-      switch (setting) {
-        case S::Format:
-          return "its fixed RGBD PNG faces (Babylon's .env)";
-        case S::Levels:
-        case S::Mapping:
-          return "Babylon's chain (every level down to 1^2, lod = 0.8 log2(width r^2))";
-        case S::IrradianceSize:
-          return "irradiance as Babylon's spherical polynomial only";
-        case S::DfgTable:
-          return "no DFG table (Babylon has its own)";
-        case S::FileCopies:
-        case S::Previews:
-        case S::FresnelWeighted:
-        case S::Sheen:
-          return "one .env file only";
-        case S::ShWindow:
-          return std::nullopt;
-      }
-      break;
-  }
+  // The glTF Sample Viewer's loader reads float cube maps only.
+  if (target == T::GltfSampleViewer && setting == S::Format && format != PixelFormat::Rgba16f &&
+      format != PixelFormat::Rgba32f)
+    return "float cube maps only (rgba16f or rgba32f: the viewer's loader)";
+  for (const FixedSetting& f : kFixedSettings)
+    if (f.target == target && f.setting == setting) return f.writes;
   return std::nullopt;
 }
 

@@ -63,6 +63,24 @@ std::vector<std::uint8_t> encodeFlat(const Image& img, FileFormat format, const 
   }
 }
 
+// The texel format whose range an output clamps to: a KTX2's, a half EXR's; none for the
+// others (float EXR, HDR, PNG keep any value or tone-map it).
+std::optional<PixelFormat> rangedFormat(FileFormat format, const ExportOptions& o) {
+  if (format == FileFormat::Ktx2) return o.ktx2Format;
+  if (format == FileFormat::Exr && o.exrType == ExrPixelType::Half) return PixelFormat::Rgba16f;
+  return std::nullopt;
+}
+
+// One image as an output's whole content: a 2D KTX2, or a flat image file.
+std::vector<std::uint8_t> encodeSingleImage(const Image& image, FileFormat format,
+                                            const ExportOptions& o) {
+  if (format != FileFormat::Ktx2) return encodeFlat(image, format, o);
+  Ktx2Texture tex;
+  tex.format = o.ktx2Format;
+  tex.levels = {{image}};
+  return encodeKtx2(tex);
+}
+
 // The layout to write: the one asked for, or the default for the format and the source.
 Layout outputLayout(const Environment& env, FileFormat format, const ExportOptions& o) {
   if (o.layout) return *o.layout;
@@ -77,19 +95,10 @@ std::vector<EncodedFile> encodeEquirect(const Environment& env, FileFormat forma
   if (width % 2 != 0) fail(o.output.string(), "equirect width (--size) must be even");
   const bool same = !env.isCube() && width == env.equirect.width && o.rotateDegrees == 0.0f;
   const Image img = same ? env.equirect : resampleToEquirect(env, width, o.rotateDegrees);
-  if (format == FileFormat::Ktx2 ||
-      (format == FileFormat::Exr && o.exrType == ExrPixelType::Half)) {
-    const PixelFormat stored = format == FileFormat::Ktx2 ? o.ktx2Format : PixelFormat::Rgba16f;
-    warnAboutRange(o, o.output, rangeLoss(img, largestValue(stored)), formatName(stored),
-                   largestValue(stored).x);
-  }
-  if (format == FileFormat::Ktx2) {
-    Ktx2Texture tex;
-    tex.format = o.ktx2Format;
-    tex.levels = {{img}};
-    return {{o.output, encodeKtx2(tex)}};
-  }
-  return {{o.output, encodeFlat(img, format, o)}};
+  if (const auto stored = rangedFormat(format, o))
+    warnAboutRange(o, o.output, rangeLoss(img, largestValue(*stored)), formatName(*stored),
+                   largestValue(*stored).x);
+  return {{o.output, encodeSingleImage(img, format, o)}};
 }
 
 std::vector<EncodedFile> encodeCube(const Environment& env, FileFormat format, Layout layout,
@@ -104,12 +113,9 @@ std::vector<EncodedFile> encodeCube(const Environment& env, FileFormat format, L
     cube = resampleToCube(env, size, o.rotateDegrees);
   }
   if (o.mips) buildMipChain(cube);
-  if (format == FileFormat::Ktx2 ||
-      (format == FileFormat::Exr && o.exrType == ExrPixelType::Half)) {
-    const PixelFormat stored = format == FileFormat::Ktx2 ? o.ktx2Format : PixelFormat::Rgba16f;
-    warnAboutRange(o, o.output, rangeLoss(cube, largestValue(stored)), formatName(stored),
-                   largestValue(stored).x);
-  }
+  if (const auto stored = rangedFormat(format, o))
+    warnAboutRange(o, o.output, rangeLoss(cube, largestValue(*stored)), formatName(*stored),
+                   largestValue(*stored).x);
   if (format == FileFormat::Ktx2) return {{o.output, encodeKtx2(cubeTexture(cube, o.ktx2Format))}};
   std::vector<EncodedFile> files;
   for (int m = 0; m < cube.levelCount(); ++m) {
@@ -212,10 +218,8 @@ std::vector<EncodedFile> encodeFlatImage(const Image& image, const ExportOptions
     fail(out,
          "--layout, --size, --rotate and --mips apply to environments; the input is a flat "
          "image (name its layout with --input-layout to read it as an environment)");
-  if (format == FileFormat::Ktx2 ||
-      (format == FileFormat::Exr && o.exrType == ExrPixelType::Half)) {
-    const PixelFormat stored = format == FileFormat::Ktx2 ? o.ktx2Format : PixelFormat::Rgba16f;
-    const glm::vec3 largest = largestValue(stored);
+  if (const auto stored = rangedFormat(format, o)) {
+    const glm::vec3 largest = largestValue(*stored);
     std::size_t clamped = 0;
     float brightest = 0.0f;
     for (const glm::vec3& p : image.pixels)
@@ -228,15 +232,9 @@ std::vector<EncodedFile> encodeFlatImage(const Image& image, const ExportOptions
       o.warn(
           fmt::format("{}: {} values above the {} range clamped (brightest {:g}); write "
                       "rgba32f or float EXR to keep them",
-                      out, clamped, formatName(stored), brightest));
+                      out, clamped, formatName(*stored), brightest));
   }
-  if (format == FileFormat::Ktx2) {
-    Ktx2Texture tex;
-    tex.format = o.ktx2Format;
-    tex.levels = {{image}};
-    return {{o.output, encodeKtx2(tex)}};
-  }
-  return {{o.output, encodeFlat(image, format, o)}};
+  return {{o.output, encodeSingleImage(image, format, o)}};
 }
 
 FileFormat checkExportOptions(const ExportOptions& o) {

@@ -8,9 +8,10 @@
 #include <fstream>
 #include <mutex>
 #include <optional>
-#include <regex>
 #include <set>
+#include <string_view>
 #include <system_error>
+#include <vector>
 
 #include <fmt/format.h>
 #include <sys/statvfs.h>
@@ -43,11 +44,14 @@ std::vector<std::uint8_t> readFileBytes(const fs::path& path) {
 
 namespace {
 
-// The temporaries of this process that exist now: files, and staging directories. `mutex` is
-// held through a rename phase, so that no file is ever kept aside outside it.
+// The temporaries of this process that exist now: files, and staging directories; and the
+// folders its writes created (an interrupt removes those left empty). `mutex` is held through a
+// rename phase, so that no file is ever kept aside outside it, and while a temporary and its
+// folders are created, so that an interrupt never races a creation.
 struct Registry {
   std::mutex mutex;
   std::set<fs::path> files, directories;
+  std::vector<fs::path> createdFolders;  // in the order created: parents first
 };
 Registry& registry() {
   static Registry* r = new Registry;  // never destroyed: an interrupt may come at exit
@@ -64,10 +68,31 @@ fs::path besides(const fs::path& path, const char* tag) {
 
 // Creates the temporary file `p` and registers it, in one step under the registry's lock: an
 // interrupt (which takes the lock for good) either removes it or finds it never created.
+// Creates `dir` and its missing parents, recording each folder created; the registry's lock
+// must be held. Sets errno and returns false on failure.
+bool createFolders(Registry& reg, const fs::path& dir) {
+  std::vector<fs::path> missing;  // outermost first
+  std::error_code ec;
+  for (fs::path d = dir; !d.empty() && !fs::exists(d, ec); d = d.parent_path()) {
+    missing.insert(missing.begin(), d);
+    if (d == d.root_path()) break;
+  }
+  for (const fs::path& d : missing) {
+    if (!fs::create_directory(d, ec) && ec) {
+      errno = ec.value();
+      return false;
+    }
+    reg.createdFolders.push_back(d);
+  }
+  return true;
+}
+
 std::FILE* createTemporary(const fs::path& p) {
-  const std::lock_guard lock(registry().mutex);
+  Registry& reg = registry();
+  const std::lock_guard lock(reg.mutex);
+  if (!createFolders(reg, p.parent_path())) return nullptr;
   std::FILE* f = std::fopen(p.c_str(), "wb");
-  if (f) registry().files.insert(p);
+  if (f) reg.files.insert(p);
   return f;
 }
 
@@ -88,10 +113,6 @@ void discard(const fs::path& p) {
 void writeNewFile(const fs::path& path, const fs::path& tmp, std::span<const std::uint8_t> bytes) {
   const std::string name = path.string();
   std::error_code ec;
-  if (path.has_parent_path()) {
-    fs::create_directories(path.parent_path(), ec);
-    if (ec) fail(name, fmt::format("cannot create directory: {}", ec.message()));
-  }
   if (fs::is_directory(path, ec)) fail(name, "is a directory");
   std::FILE* f = createTemporary(tmp);
   if (!f) fail(name, fmt::format("cannot write: {}", std::strerror(errno)));
@@ -171,12 +192,27 @@ std::optional<std::uint64_t> freeDiskBytes(const fs::path& where) {
 }
 
 StagingDirectory::StagingDirectory(fs::path dir) : dir_(std::move(dir)) {
-  const std::lock_guard lock(registry().mutex);  // created and registered in one step
+  Registry& reg = registry();
+  const std::lock_guard lock(reg.mutex);  // created and registered in one step
   std::error_code ec;
   fs::remove_all(dir_, ec);
-  fs::create_directories(dir_, ec);
-  if (ec) fail(dir_.string(), fmt::format("cannot create a staging directory: {}", ec.message()));
-  registry().directories.insert(dir_);
+  if (!createFolders(reg, dir_))
+    fail(dir_.string(), fmt::format("cannot create a staging directory: {}", std::strerror(errno)));
+  reg.directories.insert(dir_);
+}
+
+void StagingDirectory::moveTo(const fs::path& destination) {
+  Registry& reg = registry();
+  const std::lock_guard lock(reg.mutex);  // an interrupt finds it staged, or in place
+  std::error_code ec;
+  fs::rename(dir_, destination, ec);
+  if (ec) {
+    const std::string reason = ec.message();
+    fs::remove_all(dir_, ec);
+    reg.directories.erase(dir_);
+    fail(destination.string(), "cannot create the output directory: " + reason);
+  }
+  reg.directories.erase(dir_);
 }
 
 StagingDirectory::~StagingDirectory() {
@@ -193,12 +229,17 @@ fs::path stagingDirectoryFor(const fs::path& outDir, long pid) {
 
 void removeTemporariesOfThisProcess() {
   Registry& reg = registry();
-  const std::lock_guard lock(reg.mutex);  // after a rename phase in progress
+  // After a rename phase in progress; and kept locked, so that no thread creates a temporary
+  // between this and the process's exit.
+  reg.mutex.lock();
   std::error_code ignored;
   for (const auto& f : reg.files) fs::remove(f, ignored);
   for (const auto& d : reg.directories) fs::remove_all(d, ignored);
+  for (auto d = reg.createdFolders.rbegin(); d != reg.createdFolders.rend(); ++d)
+    fs::remove(*d, ignored);  // only if empty: a folder holding finished files stays
   reg.files.clear();
   reg.directories.clear();
+  reg.createdFolders.clear();
 }
 
 namespace {
@@ -212,11 +253,24 @@ bool processAlive(long pid) {
 // The pid in a temporary's name "<file>.<pid>.<n>.tmp" or ".old", with the destination; none
 // for other names.
 std::optional<std::pair<long, fs::path>> temporaryOwner(const fs::path& p) {
-  static const std::regex pattern(R"((.+)\.([0-9]+)\.[0-9]+\.(tmp|old))");
-  std::smatch m;
+  const auto allDigits = [](std::string_view s) {
+    return !s.empty() && s.find_first_not_of("0123456789") == std::string_view::npos;
+  };
   const std::string name = p.filename().string();
-  if (!std::regex_match(name, m, pattern)) return std::nullopt;
-  return std::make_pair(std::stol(m[2].str()), p.parent_path() / m[1].str());
+  std::string_view rest(name);
+  if (!rest.ends_with(".tmp") && !rest.ends_with(".old")) return std::nullopt;
+  rest.remove_suffix(4);
+  const size_t counterDot = rest.rfind('.');
+  if (counterDot == std::string_view::npos || !allDigits(rest.substr(counterDot + 1)))
+    return std::nullopt;
+  rest = rest.substr(0, counterDot);
+  const size_t pidDot = rest.rfind('.');
+  if (pidDot == std::string_view::npos || pidDot == 0 || !allDigits(rest.substr(pidDot + 1)))
+    return std::nullopt;
+  const std::string_view pid = rest.substr(pidDot + 1);
+  if (pid.size() > 9) return std::nullopt;
+  return std::make_pair(std::stol(std::string(pid)),
+                        p.parent_path() / std::string(rest.substr(0, pidDot)));
 }
 
 }  // namespace

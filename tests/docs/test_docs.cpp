@@ -23,6 +23,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/run_command.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -126,22 +128,6 @@ bool runs(const Block& b) {
   return !b.excluded && (b.info == "sh" || b.info == "console");
 }
 
-struct ShellRun {
-  int status = -1;
-  std::string output;
-};
-
-ShellRun runInShell(const std::string& command) {
-  ShellRun r;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  while (fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
 std::string where(const Block& b) {
   return b.page.lexically_relative(kSource).string() + ":" + std::to_string(b.line);
 }
@@ -229,8 +215,9 @@ TEST_P(DocsPage, ShBlocksRunAsWritten) {
     fs::create_symlink(IBL_CLI, dir / ".bin" / "ibl");
     std::ofstream(dir / ".block.sh") << "set -e -o pipefail\n" << commands;
     const auto start = std::chrono::steady_clock::now();
-    const ShellRun r = runInShell("cd '" + dir.string() + "' && PATH='" + (dir / ".bin").string() +
-                                  "':\"$PATH\" timeout 300 bash .block.sh");
+    const ibl::test::CliRun r =
+        ibl::test::runCommand("cd '" + dir.string() + "' && PATH='" + (dir / ".bin").string() +
+                              "':\"$PATH\" timeout 300 bash .block.sh");
     EXPECT_EQ(r.status, 0) << where(b) << ": this block failed:\n"
                            << commands << "--- its output:\n"
                            << r.output;

@@ -21,6 +21,7 @@
 #include "ibl/env/environment.hpp"
 #include "ibl/env/equirect.hpp"
 #include "ibl/render/camera.hpp"
+#include "support/run_command.hpp"
 
 namespace ibl::test {
 
@@ -117,25 +118,6 @@ inline double maxRelativeError(glm::vec3 a, glm::vec3 ref) {
   for (int c = 0; c < 3; ++c)
     e = std::max(e, std::abs(double(a[c]) - ref[c]) / std::max(1e-30, std::abs(double(ref[c]))));
   return e;
-}
-
-// What a command did: exit status and combined output.
-struct CliRun {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-// Runs a shell command; status (-1 if it did not exit) and combined output.
-inline CliRun runCommand(const std::string& command) {
-  const std::string cmd = command + " 2>&1";
-  CliRun r{-1, ""};
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  while (fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
 }
 
 // Runs the `ibl` executable with `args`.

@@ -49,6 +49,9 @@ class StagingDirectory {
   StagingDirectory(const StagingDirectory&) = delete;
   StagingDirectory& operator=(const StagingDirectory&) = delete;
   const std::filesystem::path& path() const { return dir_; }
+  // Renames the finished directory to `destination` (which must not exist), in one step with
+  // its leaving the registry: an interrupt finds it either staged (and removes it) or in place.
+  void moveTo(const std::filesystem::path& destination);
 
  private:
   std::filesystem::path dir_;
@@ -60,7 +63,7 @@ std::filesystem::path stagingDirectoryFor(const std::filesystem::path& outDir, l
 // Removes every registered temporary of this process and restores the files kept aside; waits
 // for a rename phase in progress to end first, so that no destination is left missing. For an
 // interrupt handler (not a signal handler: it locks and allocates), just before the process
-// exits.
+// exits. It keeps the registry locked, so that no temporary is created after it.
 void removeTemporariesOfThisProcess();
 
 // Removes the temporaries in `dir` (and the staging directories of `dir` beside it) whose
