@@ -28,7 +28,7 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   checkRenderedImagePath(o.output);
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
-  Scene scene = loadScene(o.scene);
+  Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
   const LoadedBake baked = loadOrBake(o.scene, global, hasSheen(scene));

@@ -36,7 +36,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   if (o.scene.aoRays > 0) fail("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
-  Scene scene = loadScene(o.scene);
+  Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
   const std::vector<Light> ownLights = scene.lights;  // the scene's and --lights'
