@@ -21,7 +21,10 @@
 #include <optional>
 #include <set>
 
+#include <draco/compression/config/compression_shared.h>
 #include <draco/compression/decode.h>
+#include <draco/core/varint_decoding.h>
+#include <draco/metadata/metadata_decoder.h>
 #include <fmt/format.h>
 #include <meshoptimizer.h>
 #include <stb_image.h>
@@ -420,6 +423,65 @@ std::vector<ImageSource> takeImages(nlohmann::json& gltf, const std::string& pat
   return images;
 }
 
+// The number of values in a JSON tree, up to `limit`.
+std::size_t valueCount(const nlohmann::json& v, std::size_t limit) {
+  std::size_t n = 1;
+  if (v.is_structured())
+    for (const auto& child : v) {
+      n += valueCount(child, limit - std::min(n, limit));
+      if (n >= limit) return n;
+    }
+  return n;
+}
+
+// tinygltf converts every "extras" and every extension to its generic values, some 160 bytes per
+// JSON value (a file of 10 MB of extras took 1 GB): keep only the extensions ibl reads, where it
+// reads them, each within a size a real one never reaches; of the others, their names (for the
+// warnings and `ibl info`). `kind` is the key of the array or object holding `v`, `where` names
+// it for messages ("mesh 0 primitive 1").
+void stripUnread(nlohmann::json& v, const std::string& kind, const std::string& where,
+                 const std::string& path) {
+  if (v.is_array()) {
+    const std::string item = kind == "meshes"       ? "mesh"
+                             : kind == "materials"  ? "material"
+                             : kind == "nodes"      ? "node"
+                             : kind == "primitives" ? "primitive"
+                                                    : kind;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      stripUnread(v[i], kind, fmt::format("{}{} {}", where.empty() ? "" : where + " ", item, i),
+                  path);
+    return;
+  }
+  if (!v.is_object()) return;
+  v.erase("extras");
+  for (auto it = v.begin(); it != v.end(); ++it) {
+    if (it.key() != "extensions") {
+      stripUnread(it.value(), it.key(), where, path);
+      continue;
+    }
+    if (!it.value().is_object()) continue;  // tinygltf's to refuse
+    for (auto ext = it.value().begin(); ext != it.value().end(); ++ext) {
+      const std::string& name = ext.key();
+      const bool read = (kind.empty() && name == "KHR_lights_punctual") ||
+                        (kind == "nodes" && name == "KHR_lights_punctual") ||
+                        (kind == "materials" && (name == "KHR_materials_sheen" ||
+                                                 name == "KHR_materials_emissive_strength")) ||
+                        (kind == "primitives" && name == "KHR_draco_mesh_compression");
+      if (!read) {
+        ext.value() = nlohmann::json::object();
+        continue;
+      }
+      // The lights of a file: 16 values at most each (type, color, intensity, range, spot, name).
+      const nlohmann::json* lights = kind.empty() ? member(ext.value(), "lights") : nullptr;
+      const std::size_t limit =
+          lights && lights->is_array() ? 64 * (lights->size() + 1) : std::size_t{256};
+      if (valueCount(ext.value(), limit + 1) > limit)
+        fail(path, fmt::format("{}{} holds more values than the extension has",
+                               where.empty() ? "" : where + ": ", name));
+    }
+  }
+}
+
 PreparedJson prepareJson(std::string_view text, const std::string& path, const fs::path& baseDir,
                          std::optional<std::size_t> binSize) {
   if (jsonDepth(text) > kMaxJsonDepth)
@@ -439,6 +501,7 @@ PreparedJson prepareJson(std::string_view text, const std::string& path, const f
     checkBuffers(j, path, baseDir, binSize);
     checkIndexAccessors(j, path);
     out.images = takeImages(j, path);
+    stripUnread(j, "", "", path);
     out.text = j.dump();
   } catch (const nlohmann::json::exception& e) {
     fail(path, fmt::format("not a readable glTF 2.0 file: {}", firstLine(e.what())));
@@ -832,6 +895,44 @@ ImageProbe probeImage(std::span<const std::uint8_t> b) {
 
 // ---------------------------------------------------------------------------------------------
 // 5. Geometry
+
+// The number of triangles a Draco mesh stream's header declares. The decoder allocates for them
+// before it reads them, however short the stream (the edgebreaker's corner table: 24 bytes a
+// triangle), so they are counted against the limit first. Read as the decoder reads it (Draco's
+// own buffer, varints and metadata decoder); 0 for a header the decoder refuses without
+// allocating (not a mesh, an unknown version or method).
+u64 dracoDeclaredFaces(std::span<const std::uint8_t> bytes) {
+  draco::DecoderBuffer b;
+  b.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  char magic[5];
+  std::uint8_t major = 0, minor = 0, type = 0, method = 0;
+  std::uint16_t flags = 0;
+  if (!b.Decode(magic, 5) || std::memcmp(magic, "DRACO", 5) != 0 || !b.Decode(&major) ||
+      !b.Decode(&minor) || !b.Decode(&type) || !b.Decode(&method) || !b.Decode(&flags) ||
+      type != draco::TRIANGULAR_MESH)
+    return 0;
+  const auto version = static_cast<std::uint16_t>((major << 8) | minor);
+  b.set_bitstream_version(version);
+  if (flags & METADATA_FLAG_MASK) {
+    draco::GeometryMetadata metadata;
+    if (!draco::MetadataDecoder().DecodeGeometryMetadata(&b, &metadata)) return 0;
+  }
+  // Before bitstream 2.0 the counts are 32-bit words, varints since (the sequential method's since
+  // 2.2).
+  const auto count = [&](bool varint, std::uint32_t& v) {
+    return varint ? draco::DecodeVarint(&v, &b) : b.Decode(&v);
+  };
+  std::uint32_t faces = 0, skipped = 0;
+  if (method == draco::MESH_EDGEBREAKER_ENCODING) {
+    std::uint8_t traversal = 0;
+    if (!b.Decode(&traversal)) return 0;
+    if (version < 0x0202 && !count(version >= 0x0200, skipped)) return 0;  // new vertices
+    if (!count(version >= 0x0200, skipped) || !count(version >= 0x0200, faces)) return 0;
+  } else if (method == draco::MESH_SEQUENTIAL_ENCODING) {
+    if (!count(version >= 0x0202, faces)) return 0;
+  }
+  return faces;
+}
 
 glm::mat4 nodeTransform(const tinygltf::Node& node) {
   if (node.matrix.size() == 16) {
@@ -1747,6 +1848,10 @@ class GltfDocument {
   // Bytes per vertex and per index as a Scene stores them: position, normal, tangent, two UV
   // sets; one 32-bit index.
   static constexpr u64 kVertexBytes = 12 + 12 + 16 + 8 + 8, kIndexBytes = 4;
+  // Draco's peak while decoding, per triangle its stream declares: the edgebreaker's corner table
+  // (24 bytes, measured), its other tables, the attributes' values (up to 3 points a triangle) and
+  // the copy into the Scene.
+  static constexpr u64 kDracoBytesPerFace = 128;
 
   std::string primitiveLabel(int m, std::size_t p) const {
     return fmt::format("mesh {} primitive {}", m, p);
@@ -1763,6 +1868,7 @@ class GltfDocument {
   void prepareGeometry(const std::vector<std::size_t>& uses) {
     primitives_.assign(model_.meshes.size(), {});
     u64 total = 0;
+    std::vector<std::pair<std::size_t, std::size_t>> draco;
     for (std::size_t m = 0; m < model_.meshes.size(); ++m) {
       if (uses[m] == 0) continue;
       const auto& prims = model_.meshes[m].primitives;
@@ -1783,15 +1889,31 @@ class GltfDocument {
         PrimitiveData& data = primitives_[m][p].emplace();
         data.instancesLeft = uses[m];
         if (prim.extensions.count("KHR_draco_mesh_compression")) {
-          data.mesh = readDracoPrimitive(static_cast<int>(m), p);
-          data.read = true;
-          data.bytes =
-              kIndexBytes * data.mesh.indices.size() + kVertexBytes * data.mesh.positions.size();
-        } else {
-          data.bytes = estimatePrimitive(static_cast<int>(m), p);
+          draco.emplace_back(m, p);
+          continue;
         }
+        data.bytes = estimatePrimitive(static_cast<int>(m), p);
         total = saturatingAdd(total, saturatingMul(data.bytes, uses[m]));
       }
+    }
+    // Draco primitives: each decoding's peak counted first, from the triangles its stream
+    // declares; then its data, as decoded.
+    for (const auto& [m, p] : draco) {
+      const u64 faces = dracoDeclaredFaces(dracoBytes(static_cast<int>(m), p));
+      const u64 decoding = saturatingMul(faces, kDracoBytesPerFace);
+      if (saturatingAdd(total, decoding) > options_.maxGeometryBytes)
+        error(
+            fmt::format("{}: KHR_draco_mesh_compression: its stream declares {} triangles, whose "
+                        "decoding takes up to {}: past the limit of {} with the rest of the "
+                        "scene",
+                        primitiveLabel(static_cast<int>(m), p), faces, formatBytes(decoding),
+                        formatBytes(options_.maxGeometryBytes)));
+      PrimitiveData& data = *primitives_[m][p];
+      data.mesh = readDracoPrimitive(static_cast<int>(m), p);
+      data.read = true;
+      data.bytes =
+          kIndexBytes * data.mesh.indices.size() + kVertexBytes * data.mesh.positions.size();
+      total = saturatingAdd(total, saturatingMul(data.bytes, uses[m]));
     }
     if (total > options_.maxGeometryBytes)
       error(
@@ -1926,18 +2048,24 @@ class GltfDocument {
     return kept;
   }
 
+  // The bytes of a KHR_draco_mesh_compression primitive's stream.
+  std::span<const std::uint8_t> dracoBytes(int m, std::size_t p) const {
+    const tinygltf::Primitive& prim = model_.meshes[static_cast<std::size_t>(m)].primitives[p];
+    const tinygltf::Value& ext = prim.extensions.at("KHR_draco_mesh_compression");
+    const int view = *extensionIndex(ext, "bufferView", path_, primitiveLabel(m, p));
+    const tinygltf::BufferView& bv = model_.bufferViews[static_cast<std::size_t>(view)];
+    return {model_.buffers[static_cast<std::size_t>(bv.buffer)].data.data() + bv.byteOffset,
+            bv.byteLength};
+  }
+
   // A KHR_draco_mesh_compression primitive: attributes and triangles from the Draco stream.
   Mesh readDracoPrimitive(int m, std::size_t p) const {
     const tinygltf::Primitive& prim = model_.meshes[static_cast<std::size_t>(m)].primitives[p];
     const std::string where = primitiveLabel(m, p) + ": KHR_draco_mesh_compression";
     const tinygltf::Value& ext = prim.extensions.at("KHR_draco_mesh_compression");
-    const int view = *extensionIndex(ext, "bufferView", path_, where);
-    const tinygltf::BufferView& bv = model_.bufferViews[static_cast<std::size_t>(view)];
+    const std::span<const std::uint8_t> bytes = dracoBytes(m, p);
     draco::DecoderBuffer buffer;
-    buffer.Init(
-        reinterpret_cast<const char*>(
-            model_.buffers[static_cast<std::size_t>(bv.buffer)].data.data() + bv.byteOffset),
-        bv.byteLength);
+    buffer.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
     if (!decoded.ok())

@@ -1,5 +1,6 @@
 // The glTF loader through the command: bounded memory on hostile files, warnings and --strict,
 // and `ibl info` on a scene.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -72,10 +73,33 @@ TEST(GltfCli, HostileCountsAreRefusedWithinLittleMemory) {
                                     "bytes)\n",
                                     path, count));
   }
+  // A Draco stream whose header declares 805 million triangles in 900 bytes: the decoder would
+  // allocate 19 GB for them before reading them.
+  auto [j, bin] = splitGlb(readFileBytes(std::filesystem::path(IBL_TEST_DIR) / ".." / "fuzz" /
+                                         "seeds" / "gltf" / "draco_edgebreaker.glb"));
+  // Edgebreaker, bitstream 2.2: encoded vertices 8, faces 12, attribute data 2, symbols 11,
+  // split symbols 1 (varints); faces and symbols become 0x30000000.
+  const std::vector<std::uint8_t> counts = {8, 12, 2, 11, 1},
+                                  hostile = {8,    0x80, 0x80, 0x80, 0x80, 3, 2,
+                                             0x80, 0x80, 0x80, 0x80, 3,    1};
+  const auto at = std::search(bin.begin(), bin.end(), counts.begin(), counts.end());
+  ASSERT_NE(at, bin.end());
+  bin.erase(at, at + 5);
+  bin.insert(at, hostile.begin(), hostile.end());
+  j["buffers"][0]["byteLength"] = bin.size();
+  j["bufferViews"][0]["byteLength"] = bin.size();
+  const std::string draco = (dir / "draco.glb").string();
+  writeFileAtomic(draco, glbOf(j, bin));
+  CliRun r = runIblWithLittleMemory("info " + quote(draco));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(r.output, "ibl: error: " + draco +
+                          ": mesh 0 primitive 0: KHR_draco_mesh_compression: its stream declares "
+                          "805306368 triangles, whose decoding takes up to 96.0 GiB: past the "
+                          "limit of 8.0 GiB with the rest of the scene\n");
   // The same limit lets a valid file of that size load (the render stops later, at the ray
   // tracer's own reservation, which is not the loader's).
   const std::string valid = writeHostileCount(dir, 3);
-  const CliRun r = runIblWithLittleMemory("info " + quote(valid));
+  r = runIblWithLittleMemory("info " + quote(valid));
   EXPECT_EQ(r.status, 0) << r.output;
 }
 

@@ -77,27 +77,6 @@ std::string write(const TempDir& dir, const std::string& name, const json& j) {
   return path;
 }
 
-// A GLB container of the JSON and the BIN chunk.
-std::vector<std::uint8_t> glbOf(const json& j, std::vector<std::uint8_t> bin) {
-  std::string text = j.dump();
-  while (text.size() % 4) text += ' ';
-  while (bin.size() % 4) bin.push_back(0);
-  std::vector<std::uint8_t> glb;
-  const auto le32 = [&](std::size_t v) {
-    for (int i = 0; i < 4; ++i) glb.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-  };
-  le32(0x46546C67u);
-  le32(2);
-  le32(28 + text.size() + bin.size());
-  le32(text.size());
-  le32(0x4E4F534Au);
-  glb.insert(glb.end(), text.begin(), text.end());
-  le32(bin.size());
-  le32(0x004E4942u);
-  glb.insert(glb.end(), bin.begin(), bin.end());
-  return glb;
-}
-
 // The file as a GLB: its one buffer moved into the BIN chunk.
 std::vector<std::uint8_t> asGlb(json j) {
   const std::string uri = j["buffers"][0]["uri"];
@@ -114,23 +93,6 @@ std::vector<std::uint8_t> asGlb(json j) {
   }
   j["buffers"][0].erase("uri");
   return glbOf(j, bin);
-}
-
-// The JSON and the BIN chunk of a GLB file.
-std::pair<json, std::vector<std::uint8_t>> splitGlb(const std::vector<std::uint8_t>& b) {
-  const auto le32 = [&](std::size_t at) {
-    return static_cast<std::size_t>(b[at] | (b[at + 1] << 8) | (b[at + 2] << 16) |
-                                    (static_cast<std::uint32_t>(b[at + 3]) << 24));
-  };
-  const std::size_t jsonLength = le32(12), binAt = 20 + jsonLength;
-  return {
-      json::parse(b.begin() + 20, b.begin() + static_cast<std::ptrdiff_t>(binAt)),
-      std::vector<std::uint8_t>(b.begin() + static_cast<std::ptrdiff_t>(binAt + 8),
-                                b.begin() + static_cast<std::ptrdiff_t>(binAt + 8 + le32(binAt)))};
-}
-
-void setLe32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
 }
 
 }  // namespace
@@ -291,6 +253,12 @@ TEST(GltfHostile, EveryIndexCountOffsetAndStrideIsChecked) {
          j["extras"] = deep;
        },
        "not a readable glTF 2.0 file: JSON nested deeper than 128 levels"},
+      {"an extension larger than it can be",
+       [](json& j) {
+         j["materials"][0]["extensions"]["KHR_materials_sheen"] = {
+             {"sheenColorFactor", std::vector<int>(300, 0)}};
+       },
+       "material 0: KHR_materials_sheen holds more values than the extension has"},
       {"external buffer missing", [](json& j) { j["buffers"][0]["uri"] = "nope.bin"; },
        "buffer 0: 'nope.bin' is missing"},
       {"data URI shorter than byteLength",
