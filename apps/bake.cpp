@@ -3,10 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include "batch.hpp"
@@ -14,7 +16,9 @@
 #include "ibl/bake/bake.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/env/default_environment.hpp"
+#include "ibl/env/sky.hpp"
 #include "ibl/gpu/compute.hpp"
+#include "preflight.hpp"
 
 namespace ibl::cli {
 
@@ -50,7 +54,78 @@ struct BakeCliOptions {
   bool extractSun = false;
   std::string device = "cpu";
   bool listDevices = false;
+  std::set<std::string> given;  // the options on the command line (CLI11's count)
 };
+
+// The library's options from the command line's (nothing read yet).
+BakeOptions bakeOptionsOf(const BakeCliOptions& o) {
+  BakeOptions options;
+  options.specular.size = o.size;
+  options.specular.levels = o.levels.value_or(0);
+  options.specular.mapping =
+      o.mapping == "frostbite" ? RoughnessMapping::Frostbite : RoughnessMapping::Linear;
+  options.specular.method =
+      o.method == "sampled" ? PrefilterMethod::Sampled : PrefilterMethod::Direct;
+  options.specular.samples = o.samples;
+  options.fresnelWeighted = o.fresnelWeighted;
+  options.sheen = o.sheen;
+  options.targets.clear();
+  for (const std::string& t : o.targets) {
+    const EngineTarget target = *parseEngineTarget(t);
+    if (!options.wants(target)) options.targets.push_back(target);
+  }
+  options.irradianceSize = o.irradianceSize;
+  options.dfgSize = o.dfgSize;
+  options.dfgSamples = o.dfgSamples;
+  options.shWindow = o.shWindow;
+  options.rotateDegrees = o.rotate;
+  return options;
+}
+
+BakeOutputOptions outputOptionsOf(const BakeCliOptions& o) {
+  BakeOutputOptions output;
+  output.format = *parsePixelFormat(o.format);
+  output.exr = o.exr;
+  output.hdr = o.hdr;
+  output.layout = *parseLayout(o.layout);
+  output.preview = !o.noPreview;
+  output.previewCell = o.previewSize;
+  output.force = o.force;
+  return output;
+}
+
+// Each option the user gave that some requested target writes in its own fixed way: refused
+// when no requested target takes it, else a note naming the targets that do not.
+void checkTargetsTakeTheOptions(const BakeCliOptions& o, const BakeOptions& options,
+                                const BakeOutputOptions& output, const GlobalOptions& global) {
+  using S = BakeSetting;
+  const std::pair<const char*, S> settings[] = {
+      {"--format", S::Format},       {"--levels", S::Levels},
+      {"--mapping", S::Mapping},     {"--irradiance-size", S::IrradianceSize},
+      {"--dfg-size", S::DfgTable},   {"--dfg-samples", S::DfgTable},
+      {"--exr", S::FileCopies},      {"--hdr", S::FileCopies},
+      {"--layout", S::FileCopies},   {"--preview-size", S::Previews},
+      {"--no-preview", S::Previews}, {"--fresnel-weighted", S::FresnelWeighted},
+      {"--sheen", S::Sheen},         {"--sh-window", S::ShWindow}};
+  for (const auto& [option, setting] : settings) {
+    if (!o.given.count(option)) continue;
+    std::vector<std::string> taking, fixed;
+    for (EngineTarget t : options.targets) {
+      const auto instead = fixedByTarget(t, setting, output.format);
+      if (instead)
+        fixed.push_back(fmt::format("--target {} writes {}", targetName(t), *instead));
+      else
+        taking.emplace_back(targetName(t));
+    }
+    if (fixed.empty()) continue;
+    std::string reasons;
+    for (const auto& f : fixed) reasons += (reasons.empty() ? "" : "; ") + f;
+    if (taking.empty()) failUsage(option, fmt::format("no target takes it: {}", reasons));
+    if (!global.quiet)
+      fmt::print(stderr, "ibl: note: {} applies to the {} target(s) only: {}\n", option,
+                 fmt::join(taking, ", "), reasons);
+  }
+}
 
 // Bakes one input ("" for the bundled default) into `outDir`; returns the summary line.
 std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std::string& outDir,
@@ -74,41 +149,14 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
       fmt::print(stderr, "ibl: note: {}: --clamp: {}\n", name, describe(clampLoss, o.clamp));
   }
 
-  BakeOptions options;
-  options.specular.size = o.size;
-  options.specular.levels = o.levels.value_or(0);
-  options.specular.mapping =
-      o.mapping == "frostbite" ? RoughnessMapping::Frostbite : RoughnessMapping::Linear;
-  options.specular.method =
-      o.method == "sampled" ? PrefilterMethod::Sampled : PrefilterMethod::Direct;
-  options.specular.samples = o.samples;
-  options.fresnelWeighted = o.fresnelWeighted;
-  options.sheen = o.sheen;
-  options.targets.clear();
-  for (const std::string& t : o.targets) {
-    const EngineTarget target = *parseEngineTarget(t);
-    if (!options.wants(target)) options.targets.push_back(target);
-  }
-  options.irradianceSize = o.irradianceSize;
-  options.dfgSize = o.dfgSize;
-  options.dfgSamples = o.dfgSamples;
-  options.shWindow = o.shWindow;
-  options.rotateDegrees = o.rotate;
-
+  const BakeOptions options = bakeOptionsOf(o);
   const ProgressFn progress = [&](const std::string& stage) {
     if (showProgress) fmt::print(stderr, "[{:6.2f} s] {}\n", elapsed(), stage);
   };
   if (device) progress(fmt::format("GPU stages on {}", device->device().name));
   const BakeResult result = bakeEnvironment(loaded.environment, options, progress, device);
 
-  BakeOutputOptions output;
-  output.format = *parsePixelFormat(o.format);
-  output.exr = o.exr;
-  output.hdr = o.hdr;
-  output.layout = *parseLayout(o.layout);
-  output.preview = !o.noPreview;
-  output.previewCell = o.previewSize;
-  output.force = o.force;
+  BakeOutputOptions output = outputOptionsOf(o);
   output.manifestRecords = source.manifestRecords;
   output.warn = [&](const std::string& message) {
     if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
@@ -128,6 +176,41 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
                      files.size(), elapsed(), result.timingsMs.at("total"));
 }
 
+// Everything that can be known wrong before the work: the options, the inputs (there and
+// readable), each output directory (writable, empty or --force, holding no input), and the
+// memory and disk space the bakes need.
+void checkBeforeBaking(const BakeCliOptions& o, const std::vector<std::string>& inputs,
+                       const std::vector<std::string>& outDirs, const GlobalOptions& global) {
+  const BakeOptions options = bakeOptionsOf(o);
+  const BakeOutputOptions output = outputOptionsOf(o);
+  checkBakeOptions(options);
+  checkTargetsTakeTheOptions(o, options, output, global);
+  if (o.extractSun)
+    for (const std::string& input : inputs)
+      if (isSkySpec(input))
+        failUsage("--extract-sun",
+                  fmt::format("contradicts {}: a sky's sun is a light already", input));
+  std::vector<std::filesystem::path> inputFiles;
+  for (const std::string& input : inputs) {
+    requireReadable(input);
+    for (auto& f : filesOfInput(input)) inputFiles.push_back(std::move(f));
+  }
+  if (!o.list.empty()) inputFiles.emplace_back(o.list);
+  std::uint64_t diskBytes = 0;
+  for (const std::string& dir : outDirs) {
+    refuseInputsInside(dir, inputFiles);
+    checkBakeOutputDirectory(dir, o.force);
+    diskBytes += estimateBakeOutputBytes(options, output);
+  }
+  // Several inputs bake at once (the task scheduler shares the cores): at most two at their
+  // peak together is what the measured batches show; one at a time on a GPU.
+  const std::uint64_t memory =
+      estimateBakeMemoryBytes(options, output) * std::min<std::size_t>(outDirs.size(), 2);
+  requireMemory(memory, fmt::format("--size {}", o.size),
+                "bake with a smaller --size, or fewer targets");
+  requireDiskSpace(outDirs.front(), diskBytes, "the bake");
+}
+
 void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
   if (o.listDevices) {
     const auto devices = gpu::listDevices();
@@ -137,28 +220,32 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
                  (d.apiVersion >> 12) & 0x3ff);
     return;
   }
-  if (o.output.empty()) fail("--output", "an output directory is required");
-  if (!std::has_single_bit(static_cast<unsigned>(o.size)))
-    fail("--size", fmt::format("must be a power of two, not {}", o.size));
+  if (o.output.empty()) failUsage("--output", "an output directory is required");
   const int mipCount = std::bit_width(static_cast<unsigned>(o.size));
   if (o.levels && *o.levels > mipCount)
-    fail("--levels", fmt::format("{} levels need a cube of at least {}^2; --size {} has {} (down "
-                                 "to 1x1)",
-                                 *o.levels, 1 << (*o.levels - 1), o.size, mipCount));
-  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
+    failUsage("--levels", fmt::format("{} levels need a cube of at least {}^2; --size {} has {} "
+                                      "(down to 1x1)",
+                                      *o.levels, 1 << (*o.levels - 1), o.size, mipCount));
   const bool batch =
       o.inputs.size() > 1 || !o.list.empty() ||
       (o.inputs.size() == 1 && o.inputs[0].find_first_of("*?[") != std::string::npos &&
        !std::filesystem::exists(o.inputs[0]));
+  const std::vector<std::string> inputs =
+      batch ? expandInputs(o.inputs, o.list)
+            : std::vector<std::string>{o.inputs.empty() ? std::string() : o.inputs[0]};
+  std::vector<std::string> outDirs;
+  for (const std::string& input : inputs)
+    outDirs.push_back(batch ? (std::filesystem::path(o.output) / batchName(input)).string()
+                            : o.output);
+  checkBeforeBaking(o, inputs, outDirs, global);
+  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
   if (!batch) {
-    const std::string input = o.inputs.empty() ? std::string() : o.inputs[0];
-    const std::string line =
-        bakeOne(o, input, o.output, !global.quiet && ::isatty(STDERR_FILENO), device.get(), global);
+    const std::string line = bakeOne(
+        o, inputs[0], o.output, !global.quiet && ::isatty(STDERR_FILENO), device.get(), global);
     if (!global.quiet) fmt::print(stderr, "{}\n", line);
     return;
   }
   // A batch: each input into OUTDIR/<name>/, several at once (one at a time on a GPU).
-  const std::vector<std::string> inputs = expandInputs(o.inputs, o.list);
   runBatch(
       inputs,
       [&](const std::string& input) {
@@ -198,10 +285,10 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                   "EXR layer to read (ViewLayer.Combined); default: the plain R, G, B channels or "
                   "the only color layer");
   cmd->add_option("--size", opts->size, "Specular (and source) cube size, a power of two")
-      ->check(CLI::Range(1, 4096))
+      ->check(powerOfTwo(1, 4096))
       ->capture_default_str();
   cmd->add_option("--levels", opts->levels, "Specular mip levels (default: down to 8x8)")
-      ->check(CLI::Range(1, 13));
+      ->check(numberIn(1, 13));
   cmd->add_option("--mapping", opts->mapping,
                   "Roughness of level m: linear r = m/(L-1), frostbite r = (m/(L-1))^2")
       ->check(CLI::IsMember({"linear", "frostbite"}))
@@ -211,7 +298,7 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::IsMember({"direct", "sampled"}))
       ->capture_default_str();
   cmd->add_option("--samples", opts->samples, "GGX samples per texel with --method sampled")
-      ->check(CLI::Range(1, 65536))
+      ->check(numberIn(1, 65536))
       ->capture_default_str();
   cmd->add_flag("--fresnel-weighted", opts->fresnelWeighted,
                 "Also bake the C(n,l)-weighted specular pair (specular_f0_0, specular_f0_1)");
@@ -227,13 +314,13 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::IsMember({"ibl", "filament", "gltf-sample-viewer", "dds", "babylon"}))
       ->capture_default_str();
   cmd->add_option("--irradiance-size", opts->irradianceSize, "Irradiance cube size")
-      ->check(CLI::Range(1, 1024))
+      ->check(powerOfTwo(1, 1024))
       ->capture_default_str();
   cmd->add_option("--dfg-size", opts->dfgSize, "DFG table size")
-      ->check(CLI::Range(2, 4096))
+      ->check(numberIn(2, 4096))
       ->capture_default_str();
   cmd->add_option("--dfg-samples", opts->dfgSamples, "Integration points per DFG texel")
-      ->check(CLI::Range(1, 1 << 20))
+      ->check(numberIn(1, 1 << 20))
       ->capture_default_str();
   cmd->add_flag("--sh-window", opts->shWindow,
                 "Window the SH9 coefficients (Lanczos) against ringing");
@@ -243,7 +330,7 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--clamp", opts->clamp,
                   "Clamp the source's radiance to MAX before baking (the power removed is "
                   "reported and recorded in the manifest)")
-      ->check(CLI::PositiveNumber & finiteNumber());
+      ->check(positiveNumber());
   cmd->add_option("--format", opts->format, "KTX2 texel format of the cube maps")
       ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}))
       ->capture_default_str();
@@ -263,9 +350,13 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                 "the sky around it, and list it in the manifest as a sun light (lux)");
   cmd->add_option("--preview-size", opts->previewSize,
                   "Pixels per sphere of preview.png (6 x 2 spheres: 6N x 2N)")
-      ->check(CLI::Range(8, 1024))
+      ->check(numberIn(8, 1024))
       ->capture_default_str();
-  cmd->callback([opts, &global] { runBake(*opts, global); });
+  cmd->callback([opts, cmd, &global] {
+    for (const CLI::Option* option : cmd->get_options())
+      if (option->count() > 0) opts->given.insert(option->get_name());
+    runBake(*opts, global);
+  });
 }
 
 }  // namespace ibl::cli

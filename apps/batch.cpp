@@ -75,8 +75,8 @@ std::vector<std::string> expandInputs(const std::vector<std::string>& args,
   for (const std::string& input : inputs) {
     const auto [it, inserted] = names.emplace(batchName(input), input);
     if (!inserted)
-      fail(input, fmt::format("has the same name '{}' as {}: the outputs would collide", it->first,
-                              it->second));
+      failUsage(input, fmt::format("has the same name '{}' as {}: the outputs would collide",
+                                   it->first, it->second));
   }
   return inputs;
 }

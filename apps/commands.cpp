@@ -1,7 +1,10 @@
 #include "commands.hpp"
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <optional>
 
 #include <fmt/core.h>
 #include <glm/trigonometric.hpp>
@@ -32,19 +35,88 @@ void warnAboutReplacedPixels(std::string_view name, const InvalidPixelCounts& re
              name, replaced.nan, replaced.infinite, replaced.negative);
 }
 
-const CLI::Validator& finiteNumber() {
-  static const CLI::Validator validator(
-      [](const std::string& text) -> std::string {
-        double value = 0.0;
-        try {
-          value = std::stod(text);
-        } catch (const std::exception&) {
-          return {};  // not a number at all: the option's own conversion reports it
-        }
-        return std::isfinite(value) ? std::string() : "'" + text + "' is not a finite number";
+namespace {
+
+// The option's text as a number, or nothing when it is not one (the option's own conversion
+// then reports it).
+std::optional<double> numberOf(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used != text.size()) return std::nullopt;
+    return value;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// A validator from a rule that returns the problem ("" when the value is right).
+CLI::Validator numberRule(std::string description, std::function<std::string(double)> rule) {
+  return CLI::Validator(
+      [rule = std::move(rule)](std::string& text) -> std::string {
+        const std::optional<double> value = numberOf(text);
+        if (!value) return {};
+        if (!std::isfinite(*value)) return "'" + text + "' is not a finite number";
+        const std::string problem = rule(*value);
+        return problem.empty() ? problem : problem + ", not " + text;
       },
-      "FINITE");
+      std::move(description));
+}
+
+}  // namespace
+
+std::vector<float> parseNumbers(const std::string& text, std::size_t count, const char* option) {
+  std::vector<float> v;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, end - begin);
+    const std::optional<double> x = numberOf(item);
+    if (!x) failUsage(option, fmt::format("'{}' is not a number", item));
+    if (!std::isfinite(*x) || std::abs(*x) > 3.4e38)
+      failUsage(option, fmt::format("'{}' is not finite", text));
+    v.push_back(static_cast<float>(*x));
+    begin = end + 1;
+  }
+  if (v.size() != count)
+    failUsage(option, fmt::format("expected {} comma-separated numbers, got '{}'", count, text));
+  return v;
+}
+
+std::string formatNumber(double value) {
+  if (value == std::floor(value) && std::abs(value) < 1e15)
+    return fmt::format("{}", static_cast<long long>(value));
+  return fmt::format("{:.6g}", value);
+}
+
+const CLI::Validator& finiteNumber() {
+  static const CLI::Validator validator = numberRule("FINITE", [](double) { return ""; });
   return validator;
+}
+
+CLI::Validator numberIn(double lo, double hi) {
+  const std::string range = formatNumber(lo) + " to " + formatNumber(hi);
+  return numberRule(range, [lo, hi, range](double v) {
+    return v >= lo && v <= hi ? std::string() : "must be from " + range;
+  });
+}
+
+CLI::Validator positiveNumber() {
+  return numberRule("POSITIVE", [](double v) { return v > 0.0 ? "" : "must be positive"; });
+}
+
+CLI::Validator nonNegativeNumber() {
+  return numberRule("NON-NEGATIVE", [](double v) { return v >= 0.0 ? "" : "must be 0 or more"; });
+}
+
+CLI::Validator powerOfTwo(int lo, int hi) {
+  const std::string range =
+      fmt::format("a power of two from {} to {}", formatNumber(lo), formatNumber(hi));
+  return numberRule(range, [lo, hi, range](double v) {
+    const bool ok =
+        v >= lo && v <= hi && v == std::floor(v) && std::has_single_bit(static_cast<unsigned>(v));
+    return ok ? std::string() : "must be " + range;
+  });
 }
 
 void requireLight(const Environment& env, std::string_view name) {
@@ -74,7 +146,8 @@ SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOpti
   SourceEnvironment s;
   if (isSkySpec(input)) {
     if (removeSun)
-      fail("--extract-sun", fmt::format("contradicts {}: a sky's sun is a light already", input));
+      failUsage("--extract-sun",
+                fmt::format("contradicts {}: a sky's sun is a light already", input));
     const SkySpec spec = parseSkySpec(input);
     s.name = input;
     s.loaded.format = "sky";

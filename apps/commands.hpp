@@ -30,8 +30,23 @@ void warnAboutReplacedPixels(std::string_view name, const InvalidPixelCounts& re
 // NaN, infinite or negative): baking it would give black maps.
 void requireLight(const Environment& env, std::string_view name);
 
-// Rejects NaN and infinite values of a numeric option (CLI11 parses "nan" and "inf").
+// Checks of numeric option values as CLI11 parses them; a failure reads "--opt: must be ..., not
+// X" and, like every usage error, exits with status 2. Ranges print as people write them.
+// Rejects NaN and infinite values (CLI11 parses "nan" and "inf").
 const CLI::Validator& finiteNumber();
+// A finite number from `lo` to `hi` inclusive.
+CLI::Validator numberIn(double lo, double hi);
+// A finite number above 0, or at least 0.
+CLI::Validator positiveNumber();
+CLI::Validator nonNegativeNumber();
+// A power of two from `lo` to `hi` (texture sizes that mips halve down to 1).
+CLI::Validator powerOfTwo(int lo, int hi);
+// `count` comma-separated finite numbers ("1,2.5,-3"); a usage error naming `option` otherwise
+// ("'nan' is not finite", "'x' is not a number", "expected 3 comma-separated numbers").
+std::vector<float> parseNumbers(const std::string& text, std::size_t count, const char* option);
+
+// A number for messages: 4096, 0.25, 1e+20 (no 309-digit doubles, no trailing zeros).
+std::string formatNumber(double value);
 
 // The Vulkan context for --device gpu (required: throws when there is none), none for cpu, and
 // for auto a real GPU if there is one (the software device is slower than the CPU paths, so

@@ -1,5 +1,6 @@
 // `ibl compare`: how far an image is from a reference.
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include <fmt/core.h>
@@ -11,6 +12,7 @@
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/math/color.hpp"
+#include "preflight.hpp"
 
 namespace ibl::cli {
 
@@ -49,6 +51,13 @@ nlohmann::ordered_json errorsJson(const ChannelErrors& e) {
 }
 
 int runCompare(const CompareOptions& o) {
+  std::vector<std::filesystem::path> inputs;
+  for (const std::string& input : {o.a, o.b, o.mask})
+    if (!input.empty()) {
+      requireReadable(input);
+      inputs.emplace_back(input);
+    }
+  if (!o.errorPng.empty()) refuseOverwritingInputs({o.errorPng}, inputs);
   const FlatImage fa = readFlat(o.a), fb = readFlat(o.b);
   if (displayReferred(fa.format) != displayReferred(fb.format)) {
     const bool aDisplay = displayReferred(fa.format);
@@ -110,11 +119,11 @@ void addCompareCommand(CLI::App& app, const GlobalOptions&) {
   cmd->add_option("--mask", opts->mask, "Compare only where this image's red channel is > 0.5");
   cmd->add_option("--error-png", opts->errorPng, "Write a false-color map of the relative error");
   cmd->add_option("--error-scale", opts->errorScale, "Relative error shown as red in --error-png")
-      ->check(CLI::PositiveNumber & finiteNumber())
+      ->check(positiveNumber())
       ->capture_default_str();
   cmd->add_option("--max-rel-error", opts->maxRelError,
                   "Exit with status 3 if the mean relative error is above")
-      ->check(CLI::NonNegativeNumber & finiteNumber());
+      ->check(nonNegativeNumber());
   cmd->add_flag("--json", opts->json, "Print JSON");
   cmd->callback([opts] {
     const int status = runCompare(*opts);

@@ -1,5 +1,7 @@
 // `ibl convert`: any supported environment in, any layout and format out.
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "ibl/env/sky.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
+#include "preflight.hpp"
 
 namespace ibl::cli {
 
@@ -54,16 +57,40 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
   // Contradictions are reported before the input is read.
   const FileFormat format = checkExportOptions(e);
   if (format != FileFormat::Ktx2 && o.format != "rgba16f")
-    fail(output, "--format applies to KTX2 outputs only");
+    failUsage(output, "--format applies to KTX2 outputs only");
   if (format != FileFormat::Exr && o.exrType != "half")
-    fail(output, "--exr-type applies to EXR outputs only");
+    failUsage(output, "--exr-type applies to EXR outputs only");
   if (format != FileFormat::Png && o.exposure != 0.0f)
-    fail(output, "--exposure applies to PNG outputs only (the others store linear radiance)");
+    failUsage(output, "--exposure applies to PNG outputs only (the others store linear radiance)");
+  std::vector<std::filesystem::path> outputs = possibleExportPaths(e);
+  if (!o.sunJson.empty()) outputs.emplace_back(o.sunJson);
+  refuseOverwritingInputs(outputs, filesOfInput(input));
+  requireReadable(input);
   std::optional<Layout> inLayout;
   if (!o.inputLayout.empty()) inLayout = parseLayout(o.inputLayout);
 
-  const SourceEnvironment source =
-      loadSourceEnvironment(input, {inLayout, o.layer}, o.extractSun, global);
+  // A plain image that is no environment layout (a rendered frame, a lookup table) is
+  // converted as a 2D image when no layout is asked.
+  const bool mayBeFlat = o.layout.empty() && !inLayout && !o.extractSun && !isSkySpec(input) &&
+                         input.find("{face}") == std::string::npos;
+  SourceEnvironment source;
+  if (mayBeFlat) {
+    DecodedFile decoded = readImageFile(input, {o.layer});
+    const Image& first = decoded.levels[0][0];
+    if (decoded.levels[0].size() == 1 && !layoutFromShape(first.width, first.height)) {
+      Image image = std::move(decoded.levels[0][0]);
+      warnAboutReplacedPixels(input, sanitizePixels(image), global);
+      const std::vector<EncodedFile> files = encodeFlatImage(image, e);
+      writeFilesTogether(files);
+      return fmt::format("wrote {} ({} bytes; a {}x{} image, not an environment)",
+                         files[0].path.string(), files[0].bytes.size(), image.width, image.height);
+    }
+    source.name = input;
+    source.loaded = loadEnvironment(std::move(decoded), input, {inLayout, o.layer});
+    warnAboutReplacedPixels(input, source.loaded.replaced, global);
+  } else {
+    source = loadSourceEnvironment(input, {inLayout, o.layer}, o.extractSun, global);
+  }
   std::vector<EncodedFile> files = encodeEnvironment(source.loaded.environment, e);
   if (!o.sunJson.empty()) {
     std::string text = "{\"lights\": [";
@@ -83,10 +110,15 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
 
 void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
   if (o.inputs.empty() && o.list.empty()) throw CLI::RequiredError("an input (or --list FILE)");
+  if (o.extractSun)
+    for (const std::string& input : o.inputs)
+      if (isSkySpec(input))
+        failUsage("--extract-sun",
+                  fmt::format("contradicts {}: a sky's sun is a light already", input));
   if (o.extractSun && o.sunJson.empty())
-    fail("--extract-sun", "needs --sun-json FILE: where the sun taken out of the image goes");
+    failUsage("--extract-sun", "needs --sun-json FILE: where the sun taken out of the image goes");
   if (!o.sunJson.empty() && !o.extractSun && !isSkySpec(o.inputs.empty() ? "" : o.inputs[0]))
-    fail("--sun-json", "applies with --extract-sun or a sky: input (the sun it brings)");
+    failUsage("--sun-json", "applies with --extract-sun or a sky: input (the sun it brings)");
   const bool batch =
       o.inputs.size() > 1 || !o.list.empty() || o.output.find("{name}") != std::string::npos;
   if (!batch) {
@@ -95,9 +127,10 @@ void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
     return;
   }
   if (o.output.find("{name}") == std::string::npos)
-    fail(o.output, "several inputs need {name} in the output (out/{name}.ktx2)");
-  if (!o.sunJson.empty()) fail("--sun-json", "takes one input, not a batch");
+    failUsage(o.output, "several inputs need {name} in the output (out/{name}.ktx2)");
+  if (!o.sunJson.empty()) failUsage("--sun-json", "takes one input, not a batch");
   const std::vector<std::string> inputs = expandInputs(o.inputs, o.list);
+  for (const std::string& input : inputs) requireReadable(input);
   runBatch(
       inputs,
       [&](const std::string& input) {
@@ -141,7 +174,7 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
                   "the only color layer");
   cmd->add_option("--size", opts->size,
                   "Cube face size, or equirect width (default: the source's resolution)")
-      ->check(CLI::Range(1, 16384));
+      ->check(numberIn(1, 16384));
   cmd->add_option("--format", opts->format, "KTX2 texel format")
       ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}))
       ->capture_default_str();

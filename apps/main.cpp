@@ -1,7 +1,13 @@
 // `ibl`: command-line front end of the ibl library.
+#include <pthread.h>
+
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <optional>
+#include <thread>
 
 #include <fmt/core.h>
 #include <tbb/global_control.h>
@@ -9,8 +15,33 @@
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/core/version.hpp"
+#include "ibl/io/file_io.hpp"
+
+namespace {
+
+// Interrupts (Ctrl-C, SIGTERM, SIGHUP) end the process through one thread that first removes
+// its temporary files (ibl::removeTemporariesOfThisProcess, which waits for a rename phase in
+// progress): the signals are blocked in every thread (the task scheduler's start later and
+// inherit the mask) and waited for in that one.
+void removeTemporariesOnInterrupt() {
+  sigset_t signals;
+  sigemptyset(&signals);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&signals, s);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  std::thread([signals] {
+    int signal = 0;
+    if (sigwait(&signals, &signal) != 0) return;
+    ibl::removeTemporariesOfThisProcess();
+    fmt::print(stderr, "\nibl: interrupted ({}); no output was left half-written\n",
+               strsignal(signal));
+    std::_Exit(128 + signal);
+  }).detach();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
+  removeTemporariesOnInterrupt();
   CLI::App app{"ibl: image-based lighting toolkit (bake, convert and inspect HDR environments)"};
   app.set_version_flag("--version", std::string("ibl ") + ibl::kVersion);
   app.require_subcommand(1);
@@ -18,7 +49,7 @@ int main(int argc, char** argv) {
   ibl::cli::GlobalOptions global;
   int threads = 0;
   app.add_option("--threads", threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 4096));
+      ->check(ibl::cli::numberIn(1, 4096));
   app.add_flag("-q,--quiet", global.quiet, "Print nothing but errors");
   std::unique_ptr<tbb::global_control> threadLimit;
   app.parse_complete_callback([&] {
@@ -44,6 +75,9 @@ int main(int argc, char** argv) {
     fmt::print(stderr,
                "ibl: error: {}\nRun 'ibl --help' or 'ibl COMMAND --help' for the options.\n",
                e.what());
+    return 2;
+  } catch (const ibl::UsageError& e) {  // a request found wrong before any work
+    fmt::print(stderr, "ibl: error: {}\n", e.what());
     return 2;
   } catch (const ibl::Error& e) {
     fmt::print(stderr, "ibl: error: {}\n", e.what());

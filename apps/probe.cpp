@@ -21,6 +21,7 @@
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/json_file.hpp"
 #include "ibl/render/probe.hpp"
+#include "preflight.hpp"
 #include "scene_options.hpp"
 
 namespace ibl::cli {
@@ -44,26 +45,6 @@ struct ProbeCliOptions {
   bool force = false;
 };
 
-// N comma-separated finite numbers.
-std::vector<float> parseNumbers(const std::string& text, std::size_t count, const char* option) {
-  std::vector<float> v;
-  std::istringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      std::size_t used = 0;
-      const float x = std::stof(item, &used);
-      if (used != item.size() || !std::isfinite(x)) throw std::invalid_argument(item);
-      v.push_back(x);
-    } catch (const std::exception&) {
-      fail(option, fmt::format("'{}' is not a number", item));
-    }
-  }
-  if (v.size() != count)
-    fail(option, fmt::format("expected {} comma-separated numbers, got '{}'", count, text));
-  return v;
-}
-
 // --proxy / --influence: a sphere or a box; `center` places `sphere:R`.
 ProbeVolume parseVolume(const std::string& text, glm::vec3 center, glm::vec3 rotation,
                         const char* option) {
@@ -74,19 +55,22 @@ ProbeVolume parseVolume(const std::string& text, glm::vec3 center, glm::vec3 rot
     const std::size_t commas = static_cast<std::size_t>(std::count(args.begin(), args.end(), ','));
     const std::vector<float> v = parseNumbers(args, commas == 3 ? 4 : 1, option);
     const float radius = v.back();
-    if (!(radius > 0.0f)) fail(option, fmt::format("'{}': an empty sphere (radius <= 0)", text));
+    if (!(radius > 0.0f))
+      failUsage(option, fmt::format("'{}': an empty sphere (radius <= 0)", text));
     return sphereVolume(commas == 3 ? glm::vec3(v[0], v[1], v[2]) : center, radius);
   }
   if (shape == "box") {
     const std::vector<float> v = parseNumbers(args, 6, option);
     const glm::vec3 lo(v[0], v[1], v[2]), hi(v[3], v[4], v[5]);
     if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
-      fail(option, fmt::format("'{}': an empty box (min must be below max on every axis)", text));
+      failUsage(option,
+                fmt::format("'{}': an empty box (min must be below max on every axis)", text));
     return boxVolume(lo, hi, rotation);
   }
-  fail(option, fmt::format("'{}': expected sphere:R, sphere:X,Y,Z,R or box:MINX,MINY,MINZ,MAXX,"
-                           "MAXY,MAXZ",
-                           text));
+  failUsage(option,
+            fmt::format("'{}': expected sphere:R, sphere:X,Y,Z,R or box:MINX,MINY,MINZ,MAXX,"
+                        "MAXY,MAXZ",
+                        text));
 }
 
 float smallestHalfSize(const ProbeVolume& v) {
@@ -139,14 +123,15 @@ std::vector<PlannedProbe> planGrid(const ProbeCliOptions& o, const ProbeVolume* 
   glm::ivec3 counts;
   for (int i = 0; i < 3; ++i) {
     if (g[i] < 1.0f || g[i] > 64.0f || g[i] != std::floor(g[i]))
-      fail("--grid", fmt::format("'{}': each count must be a whole number from 1 to 64", o.grid));
+      failUsage("--grid",
+                fmt::format("'{}': each count must be a whole number from 1 to 64", o.grid));
     counts[i] = static_cast<int>(g[i]);
   }
-  if (o.bounds.empty()) fail("--grid", "needs --bounds MINX,MINY,MINZ,MAXX,MAXY,MAXZ");
+  if (o.bounds.empty()) failUsage("--grid", "needs --bounds MINX,MINY,MINZ,MAXX,MAXY,MAXZ");
   const std::vector<float> b = parseNumbers(o.bounds, 6, "--bounds");
   const glm::vec3 lo(b[0], b[1], b[2]), hi(b[3], b[4], b[5]);
   if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
-    fail("--bounds", fmt::format("'{}': an empty box", o.bounds));
+    failUsage("--bounds", fmt::format("'{}': an empty box", o.bounds));
   const glm::vec3 cell = (hi - lo) / glm::vec3(counts);
   const float fade = o.fade >= 0.0f ? o.fade : 0.25f * std::min(cell.x, std::min(cell.y, cell.z));
   std::vector<PlannedProbe> probes;
@@ -176,7 +161,7 @@ std::pair<int, int> parseShard(const std::string& text) {
   char slash = 0, extra = 0;
   if (std::sscanf(text.c_str(), "%d%c%d%c", &k, &slash, &n, &extra) != 3 || slash != '/' || n < 1 ||
       k < 0 || k >= n)
-    fail("--shard", fmt::format("'{}': expected K/N with 0 <= K < N", text));
+    failUsage("--shard", fmt::format("'{}': expected K/N with 0 <= K < N", text));
   return {k, n};
 }
 
@@ -249,19 +234,22 @@ void mergeShards(const std::string& dir, const GlobalOptions& global) {
 void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   if (!o.merge.empty()) {
     if (!o.scene.scene.empty() || !o.at.empty() || !o.grid.empty())
-      fail("--merge", "merges the lists of a grid's shards; it takes no scene, --at or --grid");
+      failUsage("--merge",
+                "merges the lists of a grid's shards; it takes no scene, --at or --grid");
     mergeShards(o.merge, global);
     return;
   }
-  if (o.scene.scene.empty()) fail("scene", "a scene is required (a glTF file, 'sphere', 'grid')");
-  if (o.output.empty()) fail("--output", "an output directory is required");
+  if (o.scene.scene.empty())
+    failUsage("scene", "a scene is required (a glTF file, 'sphere', 'grid')");
+  if (o.output.empty()) failUsage("--output", "an output directory is required");
   if (o.at.empty() == o.grid.empty())
-    fail(o.at.empty() ? "--at" : "--grid",
-         "give either --at X,Y,Z (one probe) or --grid with "
-         "--bounds (a grid of probes)");
-  if (!o.shard.empty() && o.grid.empty()) fail("--shard", "splits a grid: it needs --grid");
+    failUsage(o.at.empty() ? "--at" : "--grid",
+              "give either --at X,Y,Z (one probe) or --grid with "
+              "--bounds (a grid of probes)");
+  if (!o.shard.empty() && o.grid.empty()) failUsage("--shard", "splits a grid: it needs --grid");
   checkLightingOptions(o.scene);
   const glm::vec3 rotation = parseVec3(o.rotation, "--rotation");
+  refuseInputsInside(o.output, sceneInputFiles(o.scene));
   Scene scene = loadScene(o.scene, global);
   const auto [sceneLo, sceneHi] = scene.bounds();
   // The default proxy: the scene's bounds (a room's walls).
@@ -286,18 +274,19 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
     probes.push_back(p);
   } else {
     if (!o.influence.empty())
-      fail("--influence", "a grid's probes each influence their own cell; use --fade");
+      failUsage("--influence", "a grid's probes each influence their own cell; use --fade");
     probes = planGrid(o, proxy ? &*proxy : nullptr, rotation);
   }
   // A probe outside the scene sees nothing of it: a mistake, most likely.
   for (const PlannedProbe& p : probes) {
     const glm::vec3 x = p.placement.position;
     if (glm::any(glm::lessThan(x, sceneLo)) || glm::any(glm::greaterThan(x, sceneHi)))
-      fail(o.at.empty() ? "--bounds" : "--at",
-           fmt::format("the probe at ({}, {}, {}) lies outside the scene's bounds ({}, {}, {}) .. "
-                       "({}, {}, {})",
-                       x.x, x.y, x.z, sceneLo.x, sceneLo.y, sceneLo.z, sceneHi.x, sceneHi.y,
-                       sceneHi.z));
+      failUsage(
+          o.at.empty() ? "--bounds" : "--at",
+          fmt::format("the probe at ({}, {}, {}) lies outside the scene's bounds ({}, {}, {}) .. "
+                      "({}, {}, {})",
+                      x.x, x.y, x.z, sceneLo.x, sceneLo.y, sceneLo.z, sceneHi.x, sceneHi.y,
+                      sceneHi.z));
   }
   std::vector<PlannedProbe> mine;
   std::string listName = "probes.json";
@@ -309,6 +298,9 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   } else {
     mine = probes;
   }
+  for (const PlannedProbe& p : mine)
+    checkBakeOutputDirectory(
+        p.directory.empty() ? fs::path(o.output) : fs::path(o.output) / p.directory, o.force);
   const LoadedBake env = loadOrBake(o.scene, global);
   scene.lights.insert(scene.lights.end(), env.lights.begin(), env.lights.end());
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
@@ -381,15 +373,15 @@ void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--fade", opts->fade,
                   "Width of the influence's fade at its border (default: a quarter of its "
                   "smallest half size)")
-      ->check(CLI::NonNegativeNumber & finiteNumber());
+      ->check(nonNegativeNumber());
   cmd->add_option("--size", opts->capture.size, "Cube face size of the capture and bake")
       ->check(CLI::IsMember({8, 16, 32, 64, 128, 256, 512, 1024}))
       ->capture_default_str();
   cmd->add_option("--spp", opts->capture.spp, "Path samples per texel")
-      ->check(CLI::Range(1, 1 << 20))
+      ->check(numberIn(1, 1 << 20))
       ->capture_default_str();
   cmd->add_option("--bounces", opts->capture.bounces, "Indirect bounces of the path tracer")
-      ->check(CLI::Range(0, 1000))
+      ->check(numberIn(0, 1000))
       ->capture_default_str();
   cmd->add_flag("--capture-specular", opts->capture.specular,
                 "Keep the view-dependent specular of the captured surfaces (default: diffuse "

@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "ibl/render/probe.hpp"
+#include "preflight.hpp"
 #include "scene_options.hpp"
 
 namespace ibl::cli {
@@ -28,6 +29,9 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   checkRenderedImagePath(o.output);
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
+  refuseOverwritingInputs({o.output}, sceneInputFiles(o.scene));
+  requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
+                "render a smaller image");
   Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
@@ -73,13 +77,13 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_option("--spp", opts->scene.spp,
                   "Samples per pixel (default 4 split-sum, 256 reference)")
-      ->check(CLI::Range(1, 1 << 20));
+      ->check(numberIn(1, 1 << 20));
   cmd->add_option("--noise", opts->noise, "Reference: stop a pixel at this relative standard error")
-      ->check(CLI::Range(0.0f, 1.0f) & finiteNumber());
+      ->check(numberIn(0.0f, 1.0f));
   cmd->add_option("--bounces", opts->bounces,
                   "Reference: bounces of indirect light between surfaces (path tracing, with "
                   "shadows); 0: direct light only")
-      ->check(CLI::Range(0, 1000))
+      ->check(numberIn(0, 1000))
       ->capture_default_str();
   cmd->add_flag("--shadows", opts->shadows,
                 "Reference with --bounces 0: ray-traced visibility of the environment and lights");

@@ -1,6 +1,7 @@
 #include "scene_options.hpp"
 
 #include "commands.hpp"
+#include "preflight.hpp"
 
 #include <sstream>
 
@@ -40,7 +41,7 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
       ->check(CLI::IsMember({"perspective", "ortho"}))
       ->capture_default_str();
   cmd->add_option("--fov", o.fov, "Vertical field of view in degrees")
-      ->check(CLI::Range(1.0f, 179.0f) & finiteNumber())
+      ->check(numberIn(1.0f, 179.0f))
       ->capture_default_str();
   cmd->add_option("--ortho-width", o.orthoWidth,
                   "Width of the orthographic view (default: fits the scene)")
@@ -53,10 +54,10 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--base-color", o.baseColor, "Built-in scenes: linear base color R,G,B")
       ->capture_default_str();
   cmd->add_option("--metallic", o.metallic, "Built-in sphere: metallic")
-      ->check(CLI::Range(0.0f, 1.0f) & finiteNumber())
+      ->check(numberIn(0.0f, 1.0f))
       ->capture_default_str();
   cmd->add_option("--roughness", o.roughness, "Built-in sphere: perceptual roughness")
-      ->check(CLI::Range(0.0f, 1.0f) & finiteNumber())
+      ->check(numberIn(0.0f, 1.0f))
       ->capture_default_str();
   cmd->add_option("--diffuse", o.diffuse, "disney (Frostbite renormalized) or lambert")
       ->check(CLI::IsMember({"disney", "lambert"}))
@@ -78,7 +79,7 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--ao", o.aoRays,
                   "Split sum: ambient occlusion from N rays per pixel where the model has no "
                   "occlusion texture (0: none)")
-      ->check(CLI::Range(0, 4096));
+      ->check(numberIn(0, 4096));
   cmd->add_flag("--no-dominant", o.noDominant,
                 "Split sum: sample along n and r, not the dominant directions");
   cmd->add_option("--irradiance", o.irradiance,
@@ -95,10 +96,9 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--ev100", o.ev100,
                   "Exposure value at ISO 100 (default: automatic, average log luminance)");
   cmd->add_option("--aperture", o.aperture, "f-number (with --shutter and --iso)")
-      ->check(CLI::PositiveNumber & finiteNumber());
-  cmd->add_option("--shutter", o.shutter, "Shutter time in seconds")
-      ->check(CLI::PositiveNumber & finiteNumber());
-  cmd->add_option("--iso", o.iso, "Sensitivity")->check(CLI::PositiveNumber & finiteNumber());
+      ->check(positiveNumber());
+  cmd->add_option("--shutter", o.shutter, "Shutter time in seconds")->check(positiveNumber());
+  cmd->add_option("--iso", o.iso, "Sensitivity")->check(positiveNumber());
   cmd->add_option("--exposure-compensation", o.compensation, "Stops added to the exposure")
       ->check(finiteNumber())
       ->capture_default_str();
@@ -108,21 +108,16 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
 }
 
 glm::vec3 parseVec3(const std::string& text, const char* option) {
-  glm::vec3 v;
-  char c1, c2;
-  std::istringstream in(text);
-  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof())
-    fail(option, fmt::format("expected X,Y,Z, got '{}'", text));
-  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-    fail(option, fmt::format("'{}' is not finite", text));
-  return v;
+  const std::vector<float> v = parseNumbers(text, 3, option);
+  return {v[0], v[1], v[2]};
 }
 
 // A camera position or target: finite and within the range rays can be traced from.
 glm::vec3 parsePoint(const std::string& text, const char* option) {
   const glm::vec3 p = parseVec3(text, option);
   if (glm::max(glm::abs(p.x), glm::max(glm::abs(p.y), glm::abs(p.z))) > 1e8f)
-    fail(option, fmt::format("'{}' is too far from the origin (at most 1e8 per coordinate)", text));
+    failUsage(option,
+              fmt::format("'{}' is too far from the origin (at most 1e8 per coordinate)", text));
   return p;
 }
 
@@ -132,7 +127,7 @@ std::pair<int, int> parseSize(const std::string& text) {
   std::istringstream in(text);
   if (!(in >> width >> x >> height) || x != 'x' || width < 1 || height < 1 || width > 16384 ||
       height > 16384)
-    fail("--size", fmt::format("expected WxH (1 to 16384), got '{}'", text));
+    failUsage("--size", fmt::format("expected WxH (1 to 16384), got '{}'", text));
   return {width, height};
 }
 
@@ -175,9 +170,10 @@ Scene loadScene(const SceneCliOptions& o, const GlobalOptions& global) {
 
 void checkLightingOptions(const SceneCliOptions& o) {
   if (!o.bakeDir.empty() && !o.env.empty())
-    fail("--env", fmt::format("contradicts --bake {}: the bake holds the environment; pass one "
-                              "of them",
-                              o.bakeDir));
+    failUsage("--env",
+              fmt::format("contradicts --bake {}: the bake holds the environment; pass one "
+                          "of them",
+                          o.bakeDir));
 }
 
 bool hasSheen(const Scene& scene) {
@@ -217,6 +213,26 @@ LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, boo
   return out;
 }
 
+std::vector<std::filesystem::path> sceneInputFiles(const SceneCliOptions& o) {
+  std::vector<std::filesystem::path> files;
+  const auto add = [&](const std::string& input) {
+    requireReadable(input);
+    for (auto& f : filesOfInput(input)) files.push_back(std::move(f));
+  };
+  if (o.scene != "sphere" && o.scene != "grid" && !o.scene.empty()) add(o.scene);
+  if (!o.env.empty() && !environmentIsNone(o)) add(o.env);
+  if (!o.lightsFile.empty()) add(o.lightsFile);
+  std::vector<std::string> dirs = o.probes;
+  if (!o.bakeDir.empty()) dirs.push_back(o.bakeDir);
+  for (const std::string& dir : dirs) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) fail(dir, "no such directory");
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir, ec))
+      if (entry.is_regular_file(ec)) files.push_back(entry.path());
+  }
+  return files;
+}
+
 Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height) {
   Camera camera;
   camera.width = width;
@@ -244,16 +260,16 @@ Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int 
     camera.from = o.lookFrom.empty() ? camera.at + glm::vec3(0.0f, 0.0f, distance)
                                      : parsePoint(o.lookFrom, "--look-from");
     if (camera.from == camera.at)
-      fail("--look-from", fmt::format("equals --look-at ({}, {}, {}): no view direction",
-                                      camera.at.x, camera.at.y, camera.at.z));
+      failUsage("--look-from", fmt::format("equals --look-at ({}, {}, {}): no view direction",
+                                           camera.at.x, camera.at.y, camera.at.z));
     camera.up = parseVec3(o.up, "--up");
-    if (camera.up == glm::vec3(0.0f)) fail("--up", "must not be the zero vector");
+    if (camera.up == glm::vec3(0.0f)) failUsage("--up", "must not be the zero vector");
     camera.orthoWidth =
         2.2f * radius * std::max(1.0f, static_cast<float>(width) / static_cast<float>(height));
   }
   if (o.orthoWidth) {
     if (!(*o.orthoWidth > 0.0f) || !std::isfinite(*o.orthoWidth))
-      fail("--ortho-width", fmt::format("must be positive, not {}", *o.orthoWidth));
+      failUsage("--ortho-width", fmt::format("must be positive, not {}", *o.orthoWidth));
     camera.orthoWidth = *o.orthoWidth;
   }
   checkCamera(camera);
@@ -283,15 +299,20 @@ RenderOptions shadingOptions(const SceneCliOptions& o) {
   return r;
 }
 
+std::uint64_t renderMemoryBytes(int width, int height) {
+  // Measured: 52 bytes per pixel at 2048^2, 50 at 4096^2, and 40 MB besides.
+  return static_cast<std::uint64_t>(60e6 + 56.0 * width * height);
+}
+
 float chooseEv100(const SceneCliOptions& o, const Image& linear) {
   if (!o.ev100.empty()) {
     float ev100 = 0.0f;
     try {
       ev100 = std::stof(o.ev100);
     } catch (const std::exception&) {
-      fail("--ev100", fmt::format("expected a number, got '{}'", o.ev100));
+      failUsage("--ev100", fmt::format("expected a number, got '{}'", o.ev100));
     }
-    if (!std::isfinite(ev100)) fail("--ev100", fmt::format("'{}' is not finite", o.ev100));
+    if (!std::isfinite(ev100)) failUsage("--ev100", fmt::format("'{}' is not finite", o.ev100));
     return ev100;
   }
   if (o.aperture > 0.0f && o.shutter > 0.0f && o.iso > 0.0f)
@@ -308,7 +329,7 @@ ToneMap toneCurve(const SceneCliOptions& o) {
 void checkRenderedImagePath(const std::string& path) {
   const auto format = fileFormatFromExtension(path);
   if (format != FileFormat::Exr && format != FileFormat::Png)
-    fail(path, "output must be .exr or .png");
+    failUsage(path, "output must be .exr or .png");
 }
 
 void writeRenderedImage(const std::string& path, const RenderResult& result, float ev100,

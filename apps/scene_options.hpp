@@ -1,6 +1,7 @@
 #pragma once
 // The options `ibl render` and `ibl view` share: the scene, the environment or bake, the camera,
 // the built-in scenes' material, the split sum's switches and the exposure.
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <utility>
@@ -75,11 +76,20 @@ LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, boo
 // Whether any material of the scene has a sheen layer.
 bool hasSheen(const Scene& scene);
 
+// The files a scene command reads (the glTF file, the environment, the lights file, every file
+// of the --bake and --probes directories), after checking that each named one exists and can
+// be read; for refusing an output that would overwrite one of them.
+std::vector<std::filesystem::path> sceneInputFiles(const SceneCliOptions& o);
+
 // The camera: the options, else the scene file's, else one framing the scene from +Z.
 Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height);
 
 // The shading switches (mode, spp and the reference's options left at their defaults).
 RenderOptions shadingOptions(const SceneCliOptions& o);
+
+// The peak memory of rendering a width x height image, estimated from measured renders
+// (docs/render.md, "Memory"): the bake of the environment and the buffers per pixel.
+std::uint64_t renderMemoryBytes(int width, int height);
 
 // EV100 from --ev100, else --aperture/--shutter/--iso, else the image's average luminance.
 float chooseEv100(const SceneCliOptions& o, const Image& linear);

@@ -46,18 +46,18 @@ SkyParameters skyParameters(const SkyCliOptions& o) {
   const bool angles = o.elevation || o.azimuth;
   const bool clock = !o.date.empty() || !o.time.empty();
   if (angles && clock)
-    fail("--date",
-         "contradicts --sun-elevation/--sun-azimuth: give the sun's angles or a date "
-         "and time");
+    failUsage("--date",
+              "contradicts --sun-elevation/--sun-azimuth: give the sun's angles or a date "
+              "and time");
   if (!clock && (o.utcOffset || o.latitude || o.longitude))
-    fail("--latitude",
-         "--latitude, --longitude and --utc-offset place --date and --time: give "
-         "those too");
+    failUsage("--latitude",
+              "--latitude, --longitude and --utc-offset place --date and --time: give "
+              "those too");
   if (o.elevation) p.sunElevation = *o.elevation;
   if (o.azimuth) p.sunAzimuth = *o.azimuth;
   if (clock) {
     if (o.date.empty() || o.time.empty() || !o.latitude || !o.longitude)
-      fail("--date", "a date and time need --date, --time, --latitude and --longitude");
+      failUsage("--date", "a date and time need --date, --time, --latitude and --longitude");
     DateTime when;
     parseDate(o.date, when, "--date");
     parseClockTime(o.time, when, "--time");
@@ -76,11 +76,11 @@ void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
   int width = 0, height = 0;
   if (std::sscanf(o.size.c_str(), "%dx%d", &width, &height) != 2 || width < 8 || height < 4 ||
       width > 16384 || height > 8192 || fmt::format("{}x{}", width, height) != o.size)
-    fail("--size", fmt::format("\"{}\" is not WxH from 8x4 to 16384x8192", o.size));
+    failUsage("--size", fmt::format("\"{}\" is not WxH from 8x4 to 16384x8192", o.size));
   if (o.sunDisk && !o.sunJson.empty())
-    fail("--sun-json",
-         "contradicts --sun-disk: the sun is painted into the image or written as a "
-         "light, not both");
+    failUsage("--sun-json",
+              "contradicts --sun-disk: the sun is painted into the image or written as a "
+              "light, not both");
   ExportOptions e;
   e.output = o.output;
   e.exrType = ExrPixelType::Float;  // cd/m^2 of the sun's disk exceed half floats
@@ -130,33 +130,33 @@ void addSkyCommand(CLI::App& app, const GlobalOptions& global) {
       ->required();
   cmd->add_option("--sun-elevation", opts->elevation,
                   "The sun's elevation above the horizon, degrees (default 30)")
-      ->check(CLI::Range(-90.0f, 90.0f));
+      ->check(numberIn(-90.0f, 90.0f));
   cmd->add_option("--sun-azimuth", opts->azimuth,
                   "The sun's compass azimuth, degrees from north (-Z) toward east (+X) (default "
                   "180: south)")
-      ->check(CLI::Range(-360.0f, 360.0f));
+      ->check(numberIn(-360.0f, 360.0f));
   cmd->add_option("--date", opts->date, "Date YYYY-MM-DD (with --time, --latitude, --longitude)");
   cmd->add_option("--time", opts->time, "Local clock time HH:MM[:SS]");
   cmd->add_option("--utc-offset", opts->utcOffset,
                   "Hours east of UTC of the local time (default 0)")
-      ->check(CLI::Range(-14.0, 14.0));
+      ->check(numberIn(-14.0, 14.0));
   cmd->add_option("--latitude", opts->latitude, "Degrees, north positive")
-      ->check(CLI::Range(-90.0, 90.0));
+      ->check(numberIn(-90.0, 90.0));
   cmd->add_option("--longitude", opts->longitude, "Degrees, east positive")
-      ->check(CLI::Range(-180.0, 180.0));
+      ->check(numberIn(-180.0, 180.0));
   cmd->add_option("--altitude", opts->altitude, "The observer's altitude above the ground, meters")
-      ->check(CLI::Range(0.0f, 80000.0f))
+      ->check(numberIn(0.0f, 80000.0f))
       ->capture_default_str();
   cmd->add_option("--turbidity", opts->turbidity,
                   "1 + aerosol optical depth / molecular optical depth at 550 nm (1: pure air, "
                   "2: clear, 4+: hazy)")
-      ->check(CLI::Range(1.0f, 20.0f))
+      ->check(numberIn(1.0f, 20.0f))
       ->capture_default_str();
   cmd->add_option("--ozone", opts->ozone, "Ozone column, Dobson units")
-      ->check(CLI::Range(0.0f, 1000.0f))
+      ->check(numberIn(0.0f, 1000.0f))
       ->capture_default_str();
   cmd->add_option("--ground-albedo", opts->groundAlbedo, "Albedo of the (Lambertian) ground")
-      ->check(CLI::Range(0.0f, 1.0f))
+      ->check(numberIn(0.0f, 1.0f))
       ->capture_default_str();
   cmd->add_option("--size", opts->size, "Panorama size WxH")->capture_default_str();
   cmd->add_option("--sun-json", opts->sunJson,

@@ -10,6 +10,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/env/sky.hpp"
 #include "ibl/gpu/viewer.hpp"
+#include "preflight.hpp"
 #include "scene_options.hpp"
 
 namespace ibl::cli {
@@ -35,7 +36,11 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   if (!o.screenshot.empty()) checkRenderedImagePath(o.screenshot);
   checkLightingOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
-  if (o.scene.aoRays > 0) fail("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
+  if (o.scene.aoRays > 0) failUsage("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
+  const std::vector<std::filesystem::path> inputs = sceneInputFiles(o.scene);
+  if (!o.screenshot.empty()) refuseOverwritingInputs({o.screenshot}, inputs);
+  requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
+                "view a smaller image");
   Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
@@ -135,10 +140,10 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--spp", opts->scene.spp, "Multisamples per pixel: 1, 2, 4 or 8 (default 4)")
       ->check(CLI::IsMember({1, 2, 4, 8}));
   cmd->add_option("--skybox-mip", opts->skyboxMip, "Mip level of the skybox (0: sharpest)")
-      ->check(CLI::Range(0.0f, 16.0f) & finiteNumber())
+      ->check(numberIn(0.0f, 16.0f))
       ->capture_default_str();
   cmd->add_option("--frames", opts->frames, "Window: close after this many frames (0: never)")
-      ->check(CLI::Range(0, 1 << 30));
+      ->check(numberIn(0, 1 << 30));
   cmd->footer(
       "Window controls:\n"
       "  left drag      orbit around the target      wheel   zoom\n"

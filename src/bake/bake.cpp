@@ -1,8 +1,11 @@
 #include "ibl/bake/bake.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <mutex>
 #include <set>
@@ -75,13 +78,78 @@ bool BakeOptions::wants(EngineTarget t) const {
   return std::find(targets.begin(), targets.end(), t) != targets.end();
 }
 
+void checkBakeOptions(const BakeOptions& o) {
+  if (o.wants(EngineTarget::GltfSampleViewer) && o.specular.mapping != RoughnessMapping::Linear)
+    failUsage("--target gltf-sample-viewer",
+              fmt::format("the glTF Sample Viewer reads roughness r at lod r (mipCount - 1); bake "
+                          "it with --mapping linear, not {}",
+                          mappingName(o.specular.mapping)));
+}
+
+namespace {
+
+// Texels of a cube map chain of `levels` levels from size n down (all levels when 0 or more
+// than there are).
+double chainTexels(int n, int levels) {
+  double texels = 0.0;
+  for (int m = 0; (levels <= 0 || m < levels) && (n >> m) >= 1; ++m)
+    texels += 6.0 * static_cast<double>(n >> m) * static_cast<double>(n >> m);
+  return texels;
+}
+
+int specularLevels(const BakeOptions& o) {
+  const int n = o.specular.size;
+  if (o.specular.levels > 0) return o.specular.levels;
+  return std::max(1, static_cast<int>(std::bit_width(static_cast<unsigned>(n))) - 3);  // to 8^2
+}
+
+}  // namespace
+
+std::uint64_t estimateBakeMemoryBytes(const BakeOptions& o, const BakeOutputOptions& out) {
+  // Measured peak resident memory, per texel of one level-0 cube (6 n^2), on 256^2 to 2048^2
+  // bakes: 82 bytes for the ibl set (source and specular chains, their encodings, the resampling
+  // and convolution buffers); each further prefiltered chain (sheen, the Fresnel-weighted pair,
+  // Filament's, Babylon's) 27; each further target's encodings about 25; EXR and HDR copies 57;
+  // 32-bit floats 10. Rounded up.
+  const int chains = (o.wantsSheen() ? 1 : 0) + (o.fresnelWeighted ? 2 : 0) +
+                     (o.wants(EngineTarget::Filament) ? 1 : 0) +
+                     (o.wants(EngineTarget::Babylon) ? 1 : 0);
+  const int targets = static_cast<int>(o.targets.size()) - (o.wants(EngineTarget::Ibl) ? 1 : 0);
+  double perTexel = 90.0 + 30.0 * chains + 25.0 * targets;
+  if (out.exr || out.hdr) perTexel += 60.0;
+  if (out.format == PixelFormat::Rgba32f) perTexel += 12.0;
+  const double n = o.specular.size;
+  const double irradiance = 6.0 * o.irradianceSize * o.irradianceSize * 48.0;
+  const double tables = 2.0 * o.dfgSize * o.dfgSize * 24.0;
+  return static_cast<std::uint64_t>(64e6 + perTexel * 6.0 * n * n + irradiance + tables);
+}
+
+std::uint64_t estimateBakeOutputBytes(const BakeOptions& o, const BakeOutputOptions& out) {
+  const int n = o.specular.size;
+  const double texel = bytesPerTexel(out.format);
+  const double specular = chainTexels(n, specularLevels(o)), source = chainTexels(n, 0);
+  const double irradiance = 6.0 * o.irradianceSize * o.irradianceSize;
+  const double table = static_cast<double>(o.dfgSize) * o.dfgSize * 8.0;
+  double bytes = 1e6;  // manifest, SH, previews
+  if (o.wants(EngineTarget::Ibl)) {
+    bytes += texel * (specular * (1 + (o.fresnelWeighted ? 2 : 0) + (o.sheen ? 1 : 0)) + source +
+                      irradiance) +
+             2.0 * table;
+    if (out.exr) bytes += 8.0 * (specular + irradiance + 6.0 * n * n);
+    if (out.hdr) bytes += 4.0 * (specular + irradiance + 6.0 * n * n);
+  }
+  if (o.wants(EngineTarget::Filament))
+    bytes += 4.0 * (chainTexels(n, filamentLevelCount(n)) + source);
+  if (o.wants(EngineTarget::Babylon)) bytes += 4.0 * source;
+  if (o.wants(EngineTarget::Dds)) bytes += texel * (specular + irradiance + source) + table;
+  if (o.wants(EngineTarget::GltfSampleViewer))
+    bytes += std::max(texel, 8.0) * (2.0 * specular + irradiance) + 3.0 * table;
+  return static_cast<std::uint64_t>(bytes);
+}
+
 BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const ProgressFn& progress,
                            gpu::Context* device) {
-  if (o.wants(EngineTarget::GltfSampleViewer) && o.specular.mapping != RoughnessMapping::Linear)
-    fail("--target gltf-sample-viewer",
-         fmt::format("the glTF Sample Viewer reads roughness r at lod r (mipCount - 1); bake it "
-                     "with --mapping linear, not {}",
-                     mappingName(o.specular.mapping)));
+  checkBakeOptions(o);
   BakeResult r;
   if (device) r.device = device->device().name;
   StageTimer time(r.timingsMs);
@@ -490,6 +558,37 @@ std::set<fs::path> filesOfEarlierBake(const fs::path& dir) {
   return listed;
 }
 
+}  // namespace
+
+void checkBakeOutputDirectory(const fs::path& outDir, bool force) {
+  const std::string name = outDir.string();
+  std::error_code ec;
+  const fs::file_status status = fs::status(outDir, ec);
+  if (fs::exists(status)) {
+    if (!fs::is_directory(status)) fail(name, "exists and is not a directory");
+    const bool empty = fs::directory_iterator(outDir, ec) == fs::directory_iterator();
+    if (ec) fail(name, fmt::format("cannot be read: {}", ec.message()));
+    if (!empty && !force)
+      fail(name,
+           "exists and is not empty; pass --force to replace the bake in it (files the earlier "
+           "bake's manifest lists are replaced or removed, others are kept)");
+    if (::access(outDir.c_str(), W_OK | X_OK) != 0)
+      fail(name, fmt::format("cannot be written: {}", std::strerror(errno)));
+    return;
+  }
+  // A new directory: created beside its nearest existing ancestor, which must be a writable
+  // directory.
+  fs::path parent = fs::absolute(outDir, ec).lexically_normal().parent_path();
+  while (!parent.empty() && !fs::exists(parent, ec) && parent != parent.root_path())
+    parent = parent.parent_path();
+  if (!fs::is_directory(parent, ec))
+    fail(name, fmt::format("cannot be created: {} is not a directory", parent.string()));
+  if (::access(parent.c_str(), W_OK | X_OK) != 0)
+    fail(name, fmt::format("cannot be created in {}: {}", parent.string(), std::strerror(errno)));
+}
+
+namespace {
+
 // Encodes every file (in parallel), then writes them all or none. A new directory is staged
 // beside its destination and renamed into place. An existing directory must be empty, or
 // `force` be given: then the new files replace the old ones together, the files the earlier
@@ -501,39 +600,39 @@ std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path
   std::vector<EncodedFile> files;
   for (auto& f : pending) files.push_back({outDir / f.path, std::move(f.bytes)});
   std::error_code ec;
+  removeStaleTemporaries(outDir);
+  // The whole bake must fit on the disk before its first byte is written.
+  std::uint64_t total = 0;
+  for (const auto& f : files) total += f.bytes.size();
+  if (const auto free = freeDiskBytes(outDir); free && total > *free)
+    fail(outDir.string(), fmt::format("the bake's {} files take {} bytes; the disk has {} free",
+                                      files.size(), total, *free));
   if (!fs::exists(outDir, ec)) {
-    const fs::path parent = outDir.has_parent_path() ? outDir.parent_path() : fs::path(".");
-    fs::create_directories(parent, ec);
-    const fs::path staging =
-        parent / fmt::format(".{}.ibl-staging-{}", outDir.filename().string(), ::getpid());
-    fs::remove_all(staging, ec);
+    const StagingDirectory staging(stagingDirectoryFor(outDir, ::getpid()));
+    fs::create_directories(staging.path().parent_path(), ec);
+    fs::remove_all(staging.path(), ec);
     try {
       for (const auto& f : files)
-        writeFileAtomic(staging / f.path.lexically_relative(outDir), f.bytes);
+        writeFileAtomic(staging.path() / f.path.lexically_relative(outDir), f.bytes);
     } catch (const Error& e) {
-      fs::remove_all(staging, ec);
+      fs::remove_all(staging.path(), ec);
       // Name the user's directory, not the staging one.
       std::string message = e.what();
-      const std::string from = staging.string(), to = outDir.string();
+      const std::string from = staging.path().string(), to = outDir.string();
       for (auto at = message.find(from); at != std::string::npos; at = message.find(from, at))
         message.replace(at, from.size(), to);
       throw Error(message);
     } catch (...) {
-      fs::remove_all(staging, ec);
+      fs::remove_all(staging.path(), ec);
       throw;
     }
-    fs::rename(staging, outDir, ec);
+    fs::rename(staging.path(), outDir, ec);
     if (ec) {
-      fs::remove_all(staging, ec);
+      fs::remove_all(staging.path(), ec);
       fail(outDir.string(), fmt::format("cannot create the output directory: {}", ec.message()));
     }
   } else {
-    if (!fs::is_directory(outDir)) fail(outDir.string(), "exists and is not a directory");
-    const bool empty = fs::directory_iterator(outDir, ec) == fs::directory_iterator();
-    if (!empty && !force)
-      fail(outDir.string(),
-           "exists and is not empty; pass --force to replace the bake in it (files the earlier "
-           "bake's manifest lists are replaced or removed, others are kept)");
+    checkBakeOutputDirectory(outDir, force);
     const std::set<fs::path> earlier = filesOfEarlierBake(outDir);
     writeFilesTogether(files);
     std::set<fs::path> written;

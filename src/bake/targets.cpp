@@ -43,6 +43,85 @@ std::optional<EngineTarget> parseEngineTarget(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<std::string_view> fixedByTarget(EngineTarget target, BakeSetting setting,
+                                              PixelFormat format) {
+  using S = BakeSetting;
+  switch (target) {
+    case EngineTarget::Ibl:
+      return std::nullopt;
+    case EngineTarget::Filament:
+      switch (setting) {
+        case S::Format:
+          return "its fixed R11F_G11F_B10F KTX1 files (cmgen's)";
+        case S::Levels:
+        case S::Mapping:
+          return "cmgen's chain (down to 16^2, lod = sqrt(r) (levels - 1))";
+        case S::IrradianceSize:
+          return "irradiance as SH9 only (sh.txt and the KTX's sh key)";
+        case S::DfgTable:
+          return "no DFG table (Filament has its own)";
+        case S::FileCopies:
+        case S::Previews:
+        case S::FresnelWeighted:
+        case S::Sheen:
+          return "cmgen's files only";
+        case S::ShWindow:
+          return std::nullopt;
+      }
+      break;
+    case EngineTarget::GltfSampleViewer:
+      switch (setting) {
+        case S::Format:
+          if (format == PixelFormat::Rgba16f || format == PixelFormat::Rgba32f) return std::nullopt;
+          return "float cube maps only (rgba16f or rgba32f: the viewer's loader)";
+        case S::FileCopies:
+        case S::Previews:
+        case S::FresnelWeighted:
+        case S::ShWindow:
+          return "glTF-IBL-Sampler's files only";
+        case S::Sheen:  // always written
+        case S::Levels:
+        case S::Mapping:
+        case S::IrradianceSize:
+        case S::DfgTable:
+          return std::nullopt;
+      }
+      break;
+    case EngineTarget::Dds:
+      switch (setting) {
+        case S::FileCopies:
+        case S::Previews:
+        case S::FresnelWeighted:
+        case S::Sheen:
+        case S::ShWindow:
+          return "DDS files of the specular, irradiance and skybox cubes and the DFG table only";
+        default:
+          return std::nullopt;
+      }
+    case EngineTarget::Babylon:
+      switch (setting) {
+        case S::Format:
+          return "its fixed RGBD PNG faces (Babylon's .env)";
+        case S::Levels:
+        case S::Mapping:
+          return "Babylon's chain (every level down to 1^2, lod = 0.8 log2(width r^2))";
+        case S::IrradianceSize:
+          return "irradiance as Babylon's spherical polynomial only";
+        case S::DfgTable:
+          return "no DFG table (Babylon has its own)";
+        case S::FileCopies:
+        case S::Previews:
+        case S::FresnelWeighted:
+        case S::Sheen:
+          return "one .env file only";
+        case S::ShWindow:
+          return std::nullopt;
+      }
+      break;
+  }
+  return std::nullopt;
+}
+
 glm::mat3 filamentOrientation(bool panoramaSource) {
   // Columns are the images of +X, +Y, +Z.
   if (panoramaSource) return {glm::vec3(0, 0, -1), glm::vec3(0, 1, 0), glm::vec3(1, 0, 0)};

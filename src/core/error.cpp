@@ -8,6 +8,10 @@ void fail(std::string_view what, std::string_view problem) {
   throw Error(fmt::format("{}: {}", what, problem));
 }
 
+void failUsage(std::string_view option, std::string_view problem) {
+  throw UsageError(fmt::format("{}: {}", option, problem));
+}
+
 void checkImageSize(std::string_view what, std::uint64_t width, std::uint64_t height) {
   if (width == 0 || height == 0) fail(what, fmt::format("empty image ({}x{})", width, height));
   if (width > kMaxImageDimension || height > kMaxImageDimension || width * height > kMaxImagePixels)

@@ -232,23 +232,24 @@ LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& op
       out.format = fileFormatName(d.format);
       env.cube.levels[0][f] = std::move(img);
     }
-  } else {
-    DecodedFile d = readImageFile(path, {options.layer});
-    out.format = fileFormatName(d.format);
-    env = environmentFromFile(std::move(d), options, path);
+    out.replaced = sanitizeEnvironment(env);
+    return out;
   }
-  out.replaced = sanitizeEnvironment(env);
+  return loadEnvironment(readImageFile(path, {options.layer}), path, options);
+}
+
+LoadedEnvironment loadEnvironment(DecodedFile&& d, std::string_view name,
+                                  const LoadOptions& options) {
+  LoadedEnvironment out;
+  out.format = fileFormatName(d.format);
+  out.environment = environmentFromFile(std::move(d), options, name);
+  out.replaced = sanitizeEnvironment(out.environment);
   return out;
 }
 
 LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes,
                                             std::string_view name, const LoadOptions& options) {
-  LoadedEnvironment out;
-  DecodedFile d = decodeImageFile(bytes, name, {options.layer});
-  out.format = fileFormatName(d.format);
-  out.environment = environmentFromFile(std::move(d), options, name);
-  out.replaced = sanitizeEnvironment(out.environment);
-  return out;
+  return loadEnvironment(decodeImageFile(bytes, name, {options.layer}), name, options);
 }
 
 InvalidPixelCounts sanitizeEnvironment(Environment& env) {

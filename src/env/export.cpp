@@ -193,18 +193,74 @@ int defaultCubeSize(const Environment& env) {
                   static_cast<int>(std::bit_floor(static_cast<unsigned>(env.equirect.width / 4))));
 }
 
+std::vector<fs::path> possibleExportPaths(const ExportOptions& o) {
+  std::vector<fs::path> paths;
+  constexpr int kMaxLevels = 17;  // a 65536^2 face down to 1^2
+  for (int m = 0; m < (o.mips ? kMaxLevels : 1); ++m) {
+    const fs::path path = levelPath(o.output, m, o.mips);
+    paths.push_back(path);
+    if (o.layout == Layout::Faces)
+      for (int f = 0; f < kFaceCount; ++f) paths.push_back(facePath(path, f));
+  }
+  return paths;
+}
+
+std::vector<EncodedFile> encodeFlatImage(const Image& image, const ExportOptions& o) {
+  const FileFormat format = checkExportOptions(o);
+  const std::string out = o.output.string();
+  if (o.layout || o.size > 0 || o.rotateDegrees != 0.0f || o.mips)
+    fail(out,
+         "--layout, --size, --rotate and --mips apply to environments; the input is a flat "
+         "image (name its layout with --input-layout to read it as an environment)");
+  if (format == FileFormat::Ktx2 ||
+      (format == FileFormat::Exr && o.exrType == ExrPixelType::Half)) {
+    const PixelFormat stored = format == FileFormat::Ktx2 ? o.ktx2Format : PixelFormat::Rgba16f;
+    const glm::vec3 largest = largestValue(stored);
+    std::size_t clamped = 0;
+    float brightest = 0.0f;
+    for (const glm::vec3& p : image.pixels)
+      for (int c = 0; c < 3; ++c)
+        if (p[c] > largest[c]) {
+          ++clamped;
+          brightest = std::max(brightest, p[c]);
+        }
+    if (clamped > 0 && o.warn)
+      o.warn(
+          fmt::format("{}: {} values above the {} range clamped (brightest {:g}); write "
+                      "rgba32f or float EXR to keep them",
+                      out, clamped, formatName(stored), brightest));
+  }
+  if (format == FileFormat::Ktx2) {
+    Ktx2Texture tex;
+    tex.format = o.ktx2Format;
+    tex.levels = {{image}};
+    return {{o.output, encodeKtx2(tex)}};
+  }
+  return {{o.output, encodeFlat(image, format, o)}};
+}
+
 FileFormat checkExportOptions(const ExportOptions& o) {
   const std::string out = o.output.string();
   const auto format = fileFormatFromExtension(o.output);
   if (!format || *format == FileFormat::Jpg)
-    fail(out, "unknown output format (use .ktx2, .exr, .hdr or .png)");
+    failUsage(out, "unknown output format (use .ktx2, .exr, .hdr or .png)");
   if (o.layout && *format == FileFormat::Ktx2 && *o.layout != Layout::Cube &&
       *o.layout != Layout::Equirect)
-    fail(out, "KTX2 holds cube maps (--layout cube) or 2D equirect images");
+    failUsage(out, "KTX2 holds cube maps (--layout cube) or 2D equirect images");
   if (o.layout && *format != FileFormat::Ktx2 && *o.layout == Layout::Cube)
-    fail(out, "--layout cube needs a .ktx2 output; use hcross, vcross, hstrip, vstrip or faces");
+    failUsage(out,
+              "--layout cube needs a .ktx2 output; use hcross, vcross, hstrip, vstrip or faces");
   if (o.layout && (*o.layout == Layout::MirrorBall || *o.layout == Layout::Angular))
-    fail(out, fmt::format("--layout {} is an input layout only", layoutName(*o.layout)));
+    failUsage(out, fmt::format("--layout {} is an input layout only", layoutName(*o.layout)));
+  // What the options alone decide (the source's shape decides the rest, when it is read).
+  const bool cubeLayout = o.layout && *o.layout != Layout::Equirect;
+  if (o.mips && o.layout == Layout::Equirect)
+    failUsage(out, "--mips applies to cube map outputs only");
+  if (o.size > 0 && o.layout == Layout::Equirect && o.size % 2 != 0)
+    failUsage(out, fmt::format("equirect width (--size) must be even, not {}", o.size));
+  if (o.mips && o.size > 0 && (cubeLayout || *format == FileFormat::Ktx2) &&
+      !std::has_single_bit(static_cast<unsigned>(o.size)))
+    failUsage(out, fmt::format("--mips needs a power-of-two size, not {}", o.size));
   return *format;
 }
 

@@ -21,7 +21,7 @@ double parseNumber(std::string_view text, std::string_view what) {
   double v = 0.0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
-    fail(what, fmt::format("\"{}\" is not a number", text));
+    failUsage(what, fmt::format("\"{}\" is not a number", text));
   return v;
 }
 
@@ -35,12 +35,12 @@ std::vector<int> parseFields(std::string_view text, char separator, std::size_t 
     int v = 0;
     const auto [p, ec] = std::from_chars(text.data() + start, text.data() + end, v);
     if (ec != std::errc() || p != text.data() + end || end == start)
-      fail(what, fmt::format("\"{}\" is not {}", text, form));
+      failUsage(what, fmt::format("\"{}\" is not {}", text, form));
     fields.push_back(v);
     start = end + 1;
   }
   if (fields.size() != count && !(lastOptional && fields.size() + 1 == count))
-    fail(what, fmt::format("\"{}\" is not {}", text, form));
+    failUsage(what, fmt::format("\"{}\" is not {}", text, form));
   return fields;
 }
 
@@ -50,7 +50,7 @@ void parseDate(std::string_view text, DateTime& when, std::string_view option) {
   const auto f = parseFields(text, '-', 3, false, option, "a date YYYY-MM-DD");
   constexpr int days[] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
   if (f[0] < 1900 || f[0] > 2100 || f[1] < 1 || f[1] > 12 || f[2] < 1 || f[2] > days[f[1] - 1])
-    fail(option, fmt::format("\"{}\" is not a date from 1900 to 2100", text));
+    failUsage(option, fmt::format("\"{}\" is not a date from 1900 to 2100", text));
   when.year = f[0];
   when.month = f[1];
   when.day = f[2];
@@ -60,7 +60,7 @@ void parseClockTime(std::string_view text, DateTime& when, std::string_view opti
   const auto f = parseFields(text, ':', 3, true, option, "a time HH:MM[:SS]");
   const int seconds = f.size() == 3 ? f[2] : 0;
   if (f[0] < 0 || f[0] > 23 || f[1] < 0 || f[1] > 59 || seconds < 0 || seconds > 59)
-    fail(option, fmt::format("\"{}\" is not a time of day", text));
+    failUsage(option, fmt::format("\"{}\" is not a time of day", text));
   when.hours = f[0] + f[1] / 60.0 + seconds / 3600.0;
 }
 
@@ -70,7 +70,7 @@ bool isSkySpec(std::string_view text) {
 
 SkySpec parseSkySpec(std::string_view text) {
   const std::string what(text);
-  if (!isSkySpec(text)) fail(what, "not a sky description (sky:key=value,...)");
+  if (!isSkySpec(text)) failUsage(what, "not a sky description (sky:key=value,...)");
   SkySpec spec;
   std::map<std::string, std::string, std::less<>> values;
   std::string_view rest = text.size() > 4 ? text.substr(4) : std::string_view();
@@ -79,17 +79,18 @@ SkySpec parseSkySpec(std::string_view text) {
     const std::string_view item = rest.substr(0, comma);
     const std::size_t eq = item.find('=');
     if (eq == std::string_view::npos || eq == 0)
-      fail(what, fmt::format("\"{}\" is not key=value", item));
+      failUsage(what, fmt::format("\"{}\" is not key=value", item));
     const std::string key(item.substr(0, eq));
     static const std::set<std::string, std::less<>> known = {
         "elevation", "azimuth",  "date",      "time",  "utc",    "latitude",
         "longitude", "altitude", "turbidity", "ozone", "albedo", "size"};
     if (!known.contains(key))
-      fail(what, fmt::format("unknown key \"{}\" (elevation, azimuth, date, time, utc, latitude, "
-                             "longitude, altitude, turbidity, ozone, albedo, size)",
-                             key));
+      failUsage(what,
+                fmt::format("unknown key \"{}\" (elevation, azimuth, date, time, utc, latitude, "
+                            "longitude, altitude, turbidity, ozone, albedo, size)",
+                            key));
     if (!values.emplace(key, std::string(item.substr(eq + 1))).second)
-      fail(what, fmt::format("\"{}\" given twice", key));
+      failUsage(what, fmt::format("\"{}\" given twice", key));
     rest = comma < rest.size() ? rest.substr(comma + 1) : std::string_view();
   }
   const auto number = [&](const char* key) { return parseNumber(values.at(key), what); };
@@ -97,28 +98,28 @@ SkySpec parseSkySpec(std::string_view text) {
   const bool angles = values.contains("elevation") || values.contains("azimuth");
   const bool clock = values.contains("date") || values.contains("time");
   if (angles && clock)
-    fail(what, "give the sun's elevation and azimuth, or a date and time, not both");
+    failUsage(what, "give the sun's elevation and azimuth, or a date and time, not both");
   if (angles) {
     if (values.contains("elevation")) p.sunElevation = static_cast<float>(number("elevation"));
     if (values.contains("azimuth")) p.sunAzimuth = static_cast<float>(number("azimuth"));
   }
   if (!clock &&
       (values.contains("latitude") || values.contains("longitude") || values.contains("utc")))
-    fail(what, "latitude, longitude and utc place a date and time: give date= and time=");
+    failUsage(what, "latitude, longitude and utc place a date and time: give date= and time=");
   if (values.contains("altitude")) p.altitude = static_cast<float>(number("altitude"));
   if (clock) {
     for (const char* key : {"date", "time", "latitude", "longitude"})
       if (!values.contains(key))
-        fail(what, fmt::format("a date and time need date, time, latitude and longitude; "
-                               "\"{}\" is missing",
-                               key));
+        failUsage(what, fmt::format("a date and time need date, time, latitude and longitude; "
+                                    "\"{}\" is missing",
+                                    key));
     DateTime when;
     parseDate(values.at("date"), when, what);
     parseClockTime(values.at("time"), when, what);
     if (values.contains("utc")) when.utcOffset = number("utc");
     const double latitude = number("latitude"), longitude = number("longitude");
     if (std::abs(latitude) > 90.0 || std::abs(longitude) > 180.0 || std::abs(when.utcOffset) > 14.0)
-      fail(what, "latitude must be in [-90, 90], longitude in [-180, 180], utc in [-14, 14]");
+      failUsage(what, "latitude must be in [-90, 90], longitude in [-180, 180], utc in [-14, 14]");
     const SolarPosition sun = solarPosition(when, latitude, longitude, p.altitude);
     p.sunElevation = static_cast<float>(sun.elevation);
     p.sunAzimuth = static_cast<float>(sun.azimuth);
@@ -129,7 +130,7 @@ SkySpec parseSkySpec(std::string_view text) {
   if (values.contains("size")) {
     const auto f = parseFields(values.at("size"), 'x', 2, false, what, "a size WxH");
     if (f[0] < 8 || f[0] > 16384 || f[1] < 4 || f[1] > 8192)
-      fail(what, fmt::format("size {}x{} out of range (8x4 to 16384x8192)", f[0], f[1]));
+      failUsage(what, fmt::format("size {}x{} out of range (8x4 to 16384x8192)", f[0], f[1]));
     spec.width = f[0];
     spec.height = f[1];
   }

@@ -16,9 +16,51 @@
 
 namespace ibl::gpu {
 
+std::string describe(VkResult r) {
+  const auto words = [&]() -> std::pair<const char*, const char*> {
+    switch (r) {
+      case VK_ERROR_OUT_OF_HOST_MEMORY:
+        return {"out of host memory", "VK_ERROR_OUT_OF_HOST_MEMORY"};
+      case VK_ERROR_OUT_OF_DEVICE_MEMORY:
+        return {"out of device memory", "VK_ERROR_OUT_OF_DEVICE_MEMORY"};
+      case VK_ERROR_INITIALIZATION_FAILED:
+        return {"the driver could not initialize", "VK_ERROR_INITIALIZATION_FAILED"};
+      case VK_ERROR_DEVICE_LOST:
+        return {"the device was lost (a driver crash or a time-out)", "VK_ERROR_DEVICE_LOST"};
+      case VK_ERROR_MEMORY_MAP_FAILED:
+        return {"the memory cannot be mapped", "VK_ERROR_MEMORY_MAP_FAILED"};
+      case VK_ERROR_LAYER_NOT_PRESENT:
+        return {"a requested layer is not installed", "VK_ERROR_LAYER_NOT_PRESENT"};
+      case VK_ERROR_EXTENSION_NOT_PRESENT:
+        return {"a required extension is missing", "VK_ERROR_EXTENSION_NOT_PRESENT"};
+      case VK_ERROR_FEATURE_NOT_PRESENT:
+        return {"a required feature is missing", "VK_ERROR_FEATURE_NOT_PRESENT"};
+      case VK_ERROR_INCOMPATIBLE_DRIVER:
+        return {"no compatible Vulkan driver", "VK_ERROR_INCOMPATIBLE_DRIVER"};
+      case VK_ERROR_TOO_MANY_OBJECTS:
+        return {"too many objects of one type", "VK_ERROR_TOO_MANY_OBJECTS"};
+      case VK_ERROR_FORMAT_NOT_SUPPORTED:
+        return {"the format is not supported", "VK_ERROR_FORMAT_NOT_SUPPORTED"};
+      case VK_ERROR_FRAGMENTED_POOL:
+        return {"a pool is fragmented", "VK_ERROR_FRAGMENTED_POOL"};
+      case VK_ERROR_OUT_OF_POOL_MEMORY:
+        return {"a descriptor pool is exhausted", "VK_ERROR_OUT_OF_POOL_MEMORY"};
+      case VK_ERROR_SURFACE_LOST_KHR:
+        return {"the window's surface was lost", "VK_ERROR_SURFACE_LOST_KHR"};
+      case VK_ERROR_OUT_OF_DATE_KHR:
+        return {"the window's swapchain is out of date", "VK_ERROR_OUT_OF_DATE_KHR"};
+      case VK_TIMEOUT:
+        return {"timed out", "VK_TIMEOUT"};
+      default:
+        return {nullptr, nullptr};
+    }
+  }();
+  if (!words.first) return fmt::format("Vulkan error {}", static_cast<int>(r));
+  return fmt::format("{} ({})", words.first, words.second);
+}
+
 void check(VkResult r, const char* what) {
-  if (r != VK_SUCCESS)
-    fail("vulkan", fmt::format("{} failed (VkResult {})", what, static_cast<int>(r)));
+  if (r != VK_SUCCESS) fail("vulkan", fmt::format("{}: {}", what, describe(r)));
 }
 
 namespace {
@@ -392,8 +434,8 @@ Buffer::Buffer(Context& context, std::size_t bytes, BufferMemory memory)
   if (r != VK_SUCCESS) {
     vkDestroyBuffer(c.device, buffer, nullptr);
     vkFreeMemory(c.device, deviceMemory, nullptr);
-    fail("vulkan", fmt::format("cannot allocate, bind or map {} bytes (VkResult {})", bytes,
-                               static_cast<int>(r)));
+    fail("vulkan", fmt::format("cannot allocate, bind or map a buffer of {} MB on {}: {}",
+                               bytes >> 20, c.info.name, describe(r)));
   }
   buffer_ = buffer;
   memory_ = deviceMemory;
@@ -538,21 +580,33 @@ DeviceImage::DeviceImage(Context& context, const Description& d)
   info.usage = d.usage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  const std::uint32_t largest =
+      d.cube ? c_->limits.maxImageDimensionCube : c_->limits.maxImageDimension2D;
+  if (d.width > largest || d.height > largest)
+    fail("vulkan", fmt::format("a {}x{} {}image exceeds what {} allows ({} pixels a side); use a "
+                               "smaller --size",
+                               d.width, d.height, d.cube ? "cube " : "", c_->info.name, largest));
   check(vkCreateImage(c_->device, &info, nullptr, &image_), "vkCreateImage");
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(c_->device, image_, &req);
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = c_->memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  if (vkAllocateMemory(c_->device, &alloc, nullptr, &memory_) != VK_SUCCESS) {
-    vkDestroyImage(c_->device, image_, nullptr);
-    fail("vulkan", fmt::format("cannot allocate a {}x{} image", d.width, d.height));
+  VkResult r = vkAllocateMemory(c_->device, &alloc, nullptr, &memory_);
+  if (r == VK_SUCCESS) {
+    r = vkBindImageMemory(c_->device, image_, memory_, 0);
+    if (r != VK_SUCCESS) vkFreeMemory(c_->device, memory_, nullptr);
   }
-  const VkResult bound = vkBindImageMemory(c_->device, image_, memory_, 0);
-  if (bound != VK_SUCCESS) {
+  if (r != VK_SUCCESS) {
     vkDestroyImage(c_->device, image_, nullptr);
-    vkFreeMemory(c_->device, memory_, nullptr);
-    check(bound, "vkBindImageMemory");
+    VkPhysicalDeviceMemoryProperties memory;
+    vkGetPhysicalDeviceMemoryProperties(c_->physical, &memory);
+    const VkDeviceSize heap =
+        memory.memoryHeaps[memory.memoryTypes[alloc.memoryTypeIndex].heapIndex].size;
+    fail("vulkan",
+         fmt::format("cannot allocate a {}x{} image of {} MB on {} (a heap of {} MB): {}; use a "
+                     "smaller --size",
+                     d.width, d.height, req.size >> 20, c_->info.name, heap >> 20, describe(r)));
   }
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   viewInfo.image = image_;
@@ -561,7 +615,7 @@ DeviceImage::DeviceImage(Context& context, const Description& d)
                                     : VK_IMAGE_VIEW_TYPE_CUBE;
   viewInfo.format = d.format;
   viewInfo.subresourceRange = {d.aspect, 0, d.levels, 0, d.layers};
-  const VkResult r = vkCreateImageView(c_->device, &viewInfo, nullptr, &view_);
+  r = vkCreateImageView(c_->device, &viewInfo, nullptr, &view_);
   if (r != VK_SUCCESS) {
     vkDestroyImage(c_->device, image_, nullptr);
     vkFreeMemory(c_->device, memory_, nullptr);

@@ -15,7 +15,10 @@
 
 namespace ibl::gpu {
 
-// Throws Error("vulkan: <what> failed (VkResult n)") unless r is VK_SUCCESS.
+// What a VkResult means, in words: "out of device memory (VK_ERROR_OUT_OF_DEVICE_MEMORY)".
+std::string describe(VkResult r);
+
+// Throws Error("vulkan: <what>: <describe(r)>") unless r is VK_SUCCESS.
 void check(VkResult r, const char* what);
 
 struct Context::Impl {

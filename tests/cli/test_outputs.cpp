@@ -158,8 +158,8 @@ TEST(Outputs, BakeForEngineTargets) {
   TempDir dir;
   const std::string input = quote(hdriPath("sunset"));
   // One target: its files straight into OUTDIR, named as cmgen --deploy OUTDIR names them.
-  auto run = runIbl("bake " + input + " --size 32 --target filament -o " + quote(dir / "park") +
-                    kSmallBake);
+  auto run =
+      runIbl("bake " + input + " --size 32 --target filament --quiet -o " + quote(dir / "park"));
   ASSERT_EQ(run.status, 0) << run.output;
   for (const char* f : {"park_ibl.ktx", "park_skybox.ktx", "sh.txt", "manifest.json"})
     EXPECT_TRUE(fs::exists(dir / "park" / f)) << f;
@@ -183,7 +183,32 @@ TEST(Outputs, BakeForEngineTargets) {
   // A contradiction: nothing written.
   run = runIbl("bake " + input + " --size 32 --target gltf-sample-viewer --mapping frostbite -o " +
                quote(dir / "bad") + kSmallBake);
-  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("--mapping linear"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(dir / "bad"));
+  // A choice no requested target takes is refused, naming what the target writes instead; one
+  // that some take is a note naming the others.
+  const std::pair<std::string, std::string> refused[] = {
+      {"--target filament --format rgba32f", "--target filament writes its fixed R11F_G11F_B10F"},
+      {"--target babylon --levels 3", "--target babylon writes Babylon's chain"},
+      {"--target babylon,filament --mapping frostbite", "--target filament writes cmgen's chain"},
+      {"--target gltf-sample-viewer --format e5b9g9r9", "float cube maps only"},
+      {"--target dds --exr", "--target dds writes DDS files"},
+      {"--target filament --irradiance-size 16", "irradiance as SH9 only"}};
+  for (const auto& [options, message] : refused) {
+    run = runIbl("bake " + input + " --size 32 " + options + " -o " + quote(dir / "bad"));
+    EXPECT_EQ(run.status, 2) << options << ": " << run.output;
+    EXPECT_NE(run.output.find("ibl: error: "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << options << ": " << run.output;
+    EXPECT_FALSE(fs::exists(dir / "bad"));
+  }
+  run = runIbl("bake " + input + " --size 32 --target ibl,filament --format rgba32f -o " +
+               quote(dir / "both") + " --dfg-size 16 --dfg-samples 64 --no-preview");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("ibl: note: --format applies to the ibl target(s) only: --target "
+                            "filament writes its fixed R11F_G11F_B10F"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(readImageFile(dir / "both" / "specular.ktx2").detail.find("R32G32B32A32_SFLOAT"),
+            std::string::npos);
 }

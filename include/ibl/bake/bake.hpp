@@ -56,6 +56,11 @@ namespace gpu {
 class Context;
 }
 
+// Fails with a UsageError when options contradict each other (the glTF Sample Viewer reads a
+// linear roughness mapping). bakeEnvironment checks them too; a front end calls it before
+// reading any input.
+void checkBakeOptions(const BakeOptions& options);
+
 // Runs every stage on all cores. The result does not depend on the number of threads. With a
 // GPU context, every stage runs as compute shaders (the ring prefilter combines its passes on
 // the host).
@@ -101,6 +106,19 @@ std::vector<std::filesystem::path> writeBakeOutputs(const BakeResult& result,
                                                     const BakeOutputOptions& output,
                                                     const BakeSource& source,
                                                     const std::filesystem::path& outDir);
+
+// Fails, naming the directory, unless writeBakeOutputs can write `outDir`: a directory that
+// does not exist yet (its nearest existing parent must be writable), or an existing writable
+// directory that is empty or, with `force`, holds anything (an earlier bake's files are
+// replaced). writeBakeOutputs checks it again; a front end calls it before any work.
+void checkBakeOutputDirectory(const std::filesystem::path& outDir, bool force);
+
+// The peak memory of bakeEnvironment followed by writeBakeOutputs (on the CPU), and the bytes
+// the outputs take on disk, estimated from the options alone (the input's own size aside), from
+// a model fitted to measured bakes (docs/bake.md, "Memory and disk"): an upper bound within
+// about 20 %.
+std::uint64_t estimateBakeMemoryBytes(const BakeOptions& options, const BakeOutputOptions& output);
+std::uint64_t estimateBakeOutputBytes(const BakeOptions& options, const BakeOutputOptions& output);
 
 // Reads a bake written by writeBakeOutputs back (specular, irradiance, source, DFG, SH9 and the
 // roughness mapping from its manifest), for rendering without baking again.

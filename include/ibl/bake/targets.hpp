@@ -13,6 +13,7 @@
 
 #include <glm/mat3x3.hpp>
 
+#include "ibl/io/pixel_formats.hpp"
 #include "ibl/math/sh.hpp"
 
 namespace ibl {
@@ -24,6 +25,29 @@ inline constexpr std::array<EngineTarget, 5> kEngineTargets = {
 
 std::string_view targetName(EngineTarget target);  // "ibl", "filament", ...
 std::optional<EngineTarget> parseEngineTarget(std::string_view name);
+
+// The bake's choices that an engine target may fix for itself, because its engine reads one
+// format or one chain: the cube maps' texel format (--format), the specular levels (--levels)
+// and their roughness mapping (--mapping), the irradiance cube's size, the DFG table's size
+// and samples, the EXR/HDR copies and their layout, the previews, the Fresnel-weighted pair,
+// the sheen, the SH window.
+enum class BakeSetting {
+  Format,
+  Levels,
+  Mapping,
+  IrradianceSize,
+  DfgTable,
+  FileCopies,
+  Previews,
+  FresnelWeighted,
+  Sheen,
+  ShWindow
+};
+// What `target` writes whatever the choice of `setting` ("its fixed R11F_G11F_B10F (cmgen's)"),
+// or nothing when the target writes what was chosen. `format`: the chosen texel format (the glTF
+// Sample Viewer takes the float ones only).
+std::optional<std::string_view> fixedByTarget(EngineTarget target, BakeSetting setting,
+                                              PixelFormat format);
 
 // --- Filament (cmgen --deploy) ---
 

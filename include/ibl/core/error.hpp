@@ -14,8 +14,19 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A request the tool cannot act on, found before any work: a bad option value, options that
+// contradict each other, an output that would overwrite an input. The command exits with
+// status 2 (1 for every other Error: a failure of the work itself).
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
 // Throws Error("<what>: <problem>").
 [[noreturn]] void fail(std::string_view what, std::string_view problem);
+
+// Throws UsageError("<option>: <problem>").
+[[noreturn]] void failUsage(std::string_view option, std::string_view problem);
 
 // Limits applied to every input before memory is allocated for it (see README, "Limits").
 inline constexpr int kMaxImageDimension = 65536;              // width or height of one image

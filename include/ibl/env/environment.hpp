@@ -85,6 +85,10 @@ Environment environmentFromFile(DecodedFile&& file, const LoadOptions& options,
 // Replaces NaN, infinite and negative components of every image of an environment by 0.
 InvalidPixelCounts sanitizeEnvironment(Environment& env);
 
+// An environment from a decoded file (environmentFromFile, then sanitized).
+LoadedEnvironment loadEnvironment(DecodedFile&& file, std::string_view name,
+                                  const LoadOptions& options = {});
+
 // Decodes an environment from memory (any format, one file), replacing NaN, infinite and
 // negative pixel components by 0.
 LoadedEnvironment loadEnvironmentFromMemory(std::span<const std::uint8_t> bytes,

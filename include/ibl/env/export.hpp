@@ -64,4 +64,14 @@ FileFormat checkExportOptions(const ExportOptions& options);
 // before the extension) and per face ({face} expanded, or `_px`.. appended).
 std::vector<EncodedFile> encodeEnvironment(const Environment& env, const ExportOptions& options);
 
+// Every path encodeEnvironment may write for these options, whatever the source (each level's
+// and each face's file): for refusing, before anything is read, an output that is an input.
+std::vector<std::filesystem::path> possibleExportPaths(const ExportOptions& options);
+
+// A flat image that is not an environment (a rendered frame, a lookup table) in the format of
+// options.output: PNG (options.pngExposure), EXR (options.exrType), Radiance HDR, or a 2D KTX2
+// (options.ktx2Format). Values beyond the format's range are clamped and reported through
+// options.warn. Layout, size, rotation and mips do not apply: Error naming the output.
+std::vector<EncodedFile> encodeFlatImage(const Image& image, const ExportOptions& options);
+
 }  // namespace ibl
