@@ -423,6 +423,17 @@ std::vector<ImageSource> takeImages(nlohmann::json& gltf, const std::string& pat
   return images;
 }
 
+// Whether ibl reads the extension `name` on an object of `kind` (the key of the array or object
+// holding it; "" for the file's root). EXT_meshopt_compression is read by hideMeshoptFallbacks.
+bool readsExtension(const std::string& kind, const std::string& name) {
+  return (kind.empty() && name == "KHR_lights_punctual") ||
+         (kind == "nodes" && name == "KHR_lights_punctual") ||
+         (kind == "materials" &&
+          (name == "KHR_materials_sheen" || name == "KHR_materials_emissive_strength")) ||
+         (kind == "primitives" && name == "KHR_draco_mesh_compression") ||
+         ((kind == "bufferViews" || kind == "buffers") && name == "EXT_meshopt_compression");
+}
+
 // The number of values in a JSON tree, up to `limit`.
 std::size_t valueCount(const nlohmann::json& v, std::size_t limit) {
   std::size_t n = 1;
@@ -462,12 +473,7 @@ void stripUnread(nlohmann::json& v, const std::string& kind, const std::string& 
     if (!it.value().is_object()) continue;  // tinygltf's to refuse
     for (auto ext = it.value().begin(); ext != it.value().end(); ++ext) {
       const std::string& name = ext.key();
-      const bool read = (kind.empty() && name == "KHR_lights_punctual") ||
-                        (kind == "nodes" && name == "KHR_lights_punctual") ||
-                        (kind == "materials" && (name == "KHR_materials_sheen" ||
-                                                 name == "KHR_materials_emissive_strength")) ||
-                        (kind == "primitives" && name == "KHR_draco_mesh_compression");
-      if (!read) {
+      if (!readsExtension(kind, name)) {
         ext.value() = nlohmann::json::object();
         continue;
       }
@@ -489,7 +495,23 @@ PreparedJson prepareJson(std::string_view text, const std::string& path, const f
                            kMaxJsonDepth));
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(text.begin(), text.end());
+    // Dropped as they are parsed (their values never stored): "extras", anything an exporter
+    // adds, and the contents of the extensions ibl does not read where they are. keys[d]: the
+    // key of the member at depth d on the way to the current one.
+    std::vector<std::string> keys;
+    j = nlohmann::json::parse(
+        text.begin(), text.end(),
+        [&keys](int depth, nlohmann::json::parse_event_t event, const nlohmann::json& parsed) {
+          if (event != nlohmann::json::parse_event_t::key) return true;
+          const auto d = static_cast<std::size_t>(depth);
+          if (keys.size() <= d) keys.resize(d + 1);
+          keys[d] = parsed.get<std::string>();
+          if (keys[d] == "extras") return false;
+          if (d < 3 || keys[d - 2] != "extensions") return true;  // not inside an extension
+          // keys[d - 1] is the extension; "extensions" is a member of the root (d == 3) or of an
+          // element of the array at keys[d - 4] (a material, node or primitive).
+          return readsExtension(d == 3 ? "" : d >= 5 ? keys[d - 4] : "-", keys[d - 1]);
+        });
   } catch (const nlohmann::json::exception& e) {
     fail(path, fmt::format("not a readable glTF 2.0 file: invalid JSON ({})", firstLine(e.what())));
   }
