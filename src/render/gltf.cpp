@@ -645,14 +645,35 @@ tinygltf::Model readModel(std::span<const std::uint8_t> bytes, const std::string
   return model;
 }
 
+// Byte ranges of buffers, each to be decoded once: a range may be added again as it is (the
+// caller reuses what it made of it), not overlap another in part.
+class DisjointRanges {
+ public:
+  // Whether [start, end) of `buffer` equals or misses every range added so far; adds it.
+  bool add(int buffer, u64 start, u64 end) {
+    if (start == end) return true;
+    std::map<u64, u64>& ranges = ranges_[buffer];
+    const auto next = ranges.lower_bound(start);
+    if (next != ranges.end() && next->first == start && next->second == end) return true;
+    if (next != ranges.end() && next->first < end) return false;
+    if (next != ranges.begin() && std::prev(next)->second > start) return false;
+    ranges.emplace(start, end);
+    return true;
+  }
+
+ private:
+  std::map<int, std::map<u64, u64>> ranges_;
+};
+
 // Decodes the views hideMeshoptFallbacks listed (EXT_meshopt_compression: the vertex and index
 // codecs of meshoptimizer, then the view's filter) into buffers of their own. The codecs cannot
 // expand data more than 64 times (the vertex codec's densest block: 2 header bits per 16 bytes),
-// and compressed views may not overlap: the decoded bytes are at most 64 times the file's.
+// and compressed views may not overlap (views of the same bytes and parameters share one
+// decoding): the decoded bytes are at most 64 times the file's.
 void decodeMeshoptViews(tinygltf::Model& model, const std::vector<MeshoptView>& views,
                         const std::string& path) {
-  u64 compressedTotal = 0, bufferTotal = 0;
-  for (const tinygltf::Buffer& b : model.buffers) bufferTotal += b.data.size();
+  DisjointRanges compressed;
+  std::map<std::string, int> decodedBuffers;  // by bytes and parameters: the decoded buffer
   for (const MeshoptView& v : views) {
     const auto bad = [&](const std::string& what) {
       fail(path, fmt::format("buffer view {}: EXT_meshopt_compression {}", v.index, what));
@@ -663,8 +684,18 @@ void decodeMeshoptViews(tinygltf::Model& model, const std::vector<MeshoptView>& 
     const std::size_t bufferSize = model.buffers[static_cast<std::size_t>(bv.buffer)].data.size();
     if (bv.byteOffset > bufferSize || bv.byteLength > bufferSize - bv.byteOffset)
       bad("data past the end of its buffer");
-    compressedTotal += bv.byteLength;
-    if (compressedTotal > bufferTotal) bad("data overlaps another compressed view's");
+    if (!compressed.add(bv.buffer, bv.byteOffset, bv.byteOffset + bv.byteLength))
+      bad("data overlaps another compressed view's");
+    const std::string key =
+        fmt::format("{} {} {} {} {} {} {} {}", bv.buffer, bv.byteOffset, bv.byteLength, v.count,
+                    v.stride, v.byteLength, v.mode, v.filter);
+    if (const auto same = decodedBuffers.find(key); same != decodedBuffers.end()) {
+      tinygltf::BufferView& out = model.bufferViews[static_cast<std::size_t>(v.index)];
+      out.buffer = same->second;
+      out.byteOffset = 0;
+      out.byteLength = v.byteLength;
+      continue;
+    }
     const bool attributes = v.mode == "ATTRIBUTES";
     if (!attributes && v.mode != "TRIANGLES" && v.mode != "INDICES") bad("mode " + v.mode);
     if (attributes ? v.stride == 0 || v.stride % 4 || v.stride > 256
@@ -705,6 +736,7 @@ void decodeMeshoptViews(tinygltf::Model& model, const std::vector<MeshoptView>& 
     out.buffer = static_cast<int>(model.buffers.size());
     out.byteOffset = 0;
     out.byteLength = v.byteLength;
+    decodedBuffers[key] = out.buffer;
     model.buffers.push_back(std::move(decoded));
   }
 }
@@ -1702,8 +1734,8 @@ class GltfDocument {
   std::vector<Texture> readTextures(bool decode) {
     std::map<int, std::shared_ptr<const std::vector<std::uint8_t>>> decoded;
     std::map<std::string, std::shared_ptr<const std::vector<std::uint8_t>>> byKey;
-    u64 texelBytes = 0, viewBytes = 0, bufferBytes = 0;
-    for (const tinygltf::Buffer& b : model_.buffers) bufferBytes += b.data.size();
+    u64 texelBytes = 0;
+    DisjointRanges views;  // of the images decoded from buffer views
     std::set<int> warned;
     std::vector<Texture> textures;
     for (std::size_t t = 0; t < model_.textures.size(); ++t) {
@@ -1729,9 +1761,9 @@ class GltfDocument {
             if (!shared) {
               ImageState scratch;
               const std::span<const std::uint8_t> bytes = imageBytes(k, scratch);
-              if (images_[static_cast<std::size_t>(k)].bufferView >= 0) {
-                viewBytes += bytes.size();
-                if (viewBytes > bufferBytes)
+              if (const int v = images_[static_cast<std::size_t>(k)].bufferView; v >= 0) {
+                const tinygltf::BufferView& bv = model_.bufferViews[static_cast<std::size_t>(v)];
+                if (!views.add(bv.buffer, bv.byteOffset, bv.byteOffset + bv.byteLength))
                   error(fmt::format("{}: the images' buffer views overlap", imageLabel(k)));
               }
               texelBytes += 4 * static_cast<u64>(st.probe.width) * st.probe.height;

@@ -373,6 +373,15 @@ TEST(GltfHostile, CompressedViewsAreBoundedBeforeDecoding) {
                    "corrupt",
                    original["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["byteLength"]
                        .get<int>())},
+      {"compressed views that overlap",
+       [](json& j) {
+         json view = j["bufferViews"][0];
+         auto& ext = view["extensions"]["EXT_meshopt_compression"];
+         ext["byteOffset"] = ext["byteOffset"].get<int>() + 4;
+         ext["byteLength"] = ext["byteLength"].get<int>() - 4;
+         j["bufferViews"].push_back(view);
+       },
+       "buffer view 3: EXT_meshopt_compression data overlaps another compressed view's"},
       {"declared length past count x stride",
        [](json& j) { j["bufferViews"][0]["byteLength"] = 4096; },
        "buffer view 0: EXT_meshopt_compression count 3 of 12 bytes for a view of 4096 bytes"},
@@ -383,6 +392,18 @@ TEST(GltfHostile, CompressedViewsAreBoundedBeforeDecoding) {
     const std::string path = write(dir, "case.gltf", j);
     EXPECT_EQ(errorOf([&] { loadGltf(path); }), path + ": " + c.message) << c.name;
   }
+  // Two views of the same compressed bytes (as an optimizer that merges duplicates writes them):
+  // decoded once, read by both.
+  json twice = original;
+  twice["bufferViews"].push_back(original["bufferViews"][0]);
+  twice["accessors"].push_back(original["accessors"][0]);
+  twice["accessors"].back()["bufferView"] = 3;
+  twice["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 3;
+  const std::string shared = write(dir, "shared.gltf", twice);
+  const Scene s = loadGltf(shared);
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].positions, m.positions);
+
   // Draco: the bunny's stream referenced from a buffer view that does not exist.
   auto [inner, bin] = splitGlb(readFileBytes(dataDir() / "models" / "bunny.glb"));
   const std::size_t views = inner["bufferViews"].size();
@@ -486,6 +507,46 @@ TEST(GltfHostile, MissingAndUnreadableTexturesAreWarnings) {
     ASSERT_EQ(warnings.size(), 1u) << c.warning;
     EXPECT_EQ(warnings[0], p + ": " + c.warning + "; rendering without it");
   }
+}
+
+// The decoded texels count against their limit (each image once, however many textures use it),
+// and the buffer views of images may not overlap (else a few bytes could be decoded many times).
+TEST(GltfHostile, TexturesAreCountedAgainstTheirLimit) {
+  TempDir dir;
+  writeTexturedQuad(dir / "quad.gltf");  // a 4x4 and a 1x1 image: 68 bytes of RGBA
+  const std::string path = (dir / "quad.gltf").string();
+  GltfLoadOptions options;
+  options.maxTextureBytes = 68;
+  const Scene s = loadGltf(path, options);
+  EXPECT_GE(s.materials[0].baseColorTexture.index, 0);
+  EXPECT_GE(s.materials[0].normalTexture.index, 0);
+  options.maxTextureBytes = 67;
+  EXPECT_EQ(errorOf([&] { loadGltf(path, options); }),
+            path + ": its textures decode to more than 67 bytes (the limit)");
+
+  // A GLB whose two images are the same PNG, one of them with 4 more bytes after its end: views
+  // that overlap.
+  const std::vector<std::uint8_t> png = encodePng(Image(2, 2, glm::vec3(1.0f)));
+  auto [j, bin] = splitGlb(asGlb(baseGltf()));
+  const std::size_t at = bin.size();
+  bin.insert(bin.end(), png.begin(), png.end());
+  bin.insert(bin.end(), 4, 0);
+  j["buffers"][0]["byteLength"] = bin.size();
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", png.size()}});
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", png.size() + 4}});
+  j["images"] = {{{"bufferView", 5}, {"mimeType", "image/png"}},
+                 {{"bufferView", 6}, {"mimeType", "image/png"}}};
+  j["textures"] = {{{"source", 0}}, {{"source", 1}}};
+  j["materials"][0]["emissiveTexture"] = {{"index", 1}};
+  const std::string glb = (dir / "overlap.glb").string();
+  writeFileAtomic(glb, glbOf(j, bin));
+  EXPECT_EQ(errorOf([&] { loadGltf(glb); }),
+            glb + ": texture image 1 (buffer view 6): the images' buffer views overlap");
+  // The same view twice: one image, decoded once.
+  j["images"][1]["bufferView"] = 5;
+  writeFileAtomic(glb, glbOf(j, bin));
+  const Scene twice = loadGltf(glb);
+  EXPECT_EQ(twice.textures[0].rgba, twice.textures[1].rgba);
 }
 
 // An extension the file uses and ibl does not implement: one warning; strict: an error.
