@@ -1408,13 +1408,18 @@ class GltfDocument {
     }
   }
 
+  // Buffer view `v`, which `where` refers to, checked to exist.
+  const tinygltf::BufferView& bufferView(const std::string& where, int v) const {
+    if (!inRange(v, model_.bufferViews.size()))
+      error(where + ": " + outOfRange("buffer view", v, model_.bufferViews.size()));
+    return model_.bufferViews[static_cast<std::size_t>(v)];
+  }
+
   // Checks that `count` elements of `size` bytes, `stride` apart, from `offset` fit in view `v`;
   // returns their address.
   const std::uint8_t* viewRange(const std::string& where, int v, u64 offset, u64 count, u64 size,
                                 u64 stride) const {
-    if (!inRange(v, model_.bufferViews.size()))
-      error(where + ": " + outOfRange("buffer view", v, model_.bufferViews.size()));
-    const tinygltf::BufferView& bv = model_.bufferViews[static_cast<std::size_t>(v)];
+    const tinygltf::BufferView& bv = bufferView(where, v);
     if (count > 0 && (offset > bv.byteLength || bv.byteLength - offset < size ||
                       (count - 1) > (bv.byteLength - offset - size) / stride))
       error(
@@ -1444,9 +1449,7 @@ class GltfDocument {
     const std::size_t rows = n == 4 && l.matrix ? 2 : n == 9 ? 3 : n == 16 ? 4 : 0;
     l.elementSize = rows ? rows * ((rows * cs + 3) / 4 * 4) : static_cast<std::size_t>(n) * cs;
     if (a.bufferView != -1) {
-      if (!inRange(a.bufferView, model_.bufferViews.size()))
-        error(where + ": " + outOfRange("buffer view", a.bufferView, model_.bufferViews.size()));
-      const tinygltf::BufferView& bv = model_.bufferViews[static_cast<std::size_t>(a.bufferView)];
+      const tinygltf::BufferView& bv = bufferView(where, a.bufferView);
       l.stride = bv.byteStride ? bv.byteStride : l.elementSize;
       if (l.stride < l.elementSize)
         error(
