@@ -1,5 +1,9 @@
-// `ibl info`: what is in an image file, and what it means as an environment.
+// `ibl info`: what is in an image file, and what it means as an environment; or what is in a
+// glTF scene.
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include <fmt/core.h>
@@ -12,6 +16,7 @@
 #include "ibl/env/environment.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/render/gltf.hpp"
 
 namespace ibl::cli {
 
@@ -62,7 +67,217 @@ ImageStats statistics(const std::vector<const Image*>& images) {
   return stats;
 }
 
+// Whether the file is a glTF scene (.gltf, .glb), by its extension.
+bool isGltf(const std::string& file) {
+  std::string ext = std::filesystem::path(file).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".gltf" || ext == ".glb";
+}
+
+std::string quoted(const std::string& name) {
+  return name.empty() ? std::string() : " '" + name + "'";
+}
+
+nlohmann::ordered_json vec(glm::vec3 v) {
+  return {v.x, v.y, v.z};
+}
+
+// `ibl info` of a glTF file: what describeGltf reports, as text or JSON.
+void runGltfInfo(const InfoOptions& o) {
+  if (!o.inputLayout.empty()) fail("--input-layout", "applies to images, not to glTF scenes");
+  if (!o.layer.empty()) fail("--layer", "applies to EXR images, not to glTF scenes");
+  const GltfSummary s = describeGltf(o.file);
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["file"] = o.file;
+    j["format"] = s.binary ? "glb" : "gltf";
+    j["generator"] = s.generator;
+    j["extensions_used"] = s.extensionsUsed;
+    j["extensions_required"] = s.extensionsRequired;
+    j["scene"] = s.scene >= 0 ? nlohmann::ordered_json(s.scene) : nlohmann::ordered_json(nullptr);
+    j["scenes"] = s.scenes;
+    j["mesh_instances"] = s.meshInstances;
+    j["triangles"] = s.triangles;
+    j["vertices"] = s.vertices;
+    j["bounds"] = s.hasBounds
+                      ? nlohmann::ordered_json{{"min", vec(s.boundsMin)}, {"max", vec(s.boundsMax)}}
+                      : nlohmann::ordered_json(nullptr);
+    const auto index = [](int i) {
+      return i >= 0 ? nlohmann::ordered_json(i) : nlohmann::ordered_json(nullptr);
+    };
+    for (const auto& m : s.meshes)
+      j["meshes"].push_back({{"name", m.name},
+                             {"primitives", m.primitives},
+                             {"triangle_primitives", m.trianglePrimitives},
+                             {"triangles", m.triangles},
+                             {"vertices", m.vertices},
+                             {"instances", m.instances},
+                             {"compression", m.compression}});
+    for (const auto& m : s.materials)
+      j["materials"].push_back(
+          {{"name", m.name},
+           {"base_color", {m.baseColor.x, m.baseColor.y, m.baseColor.z, m.baseColor.w}},
+           {"metallic", m.metallic},
+           {"roughness", m.roughness},
+           {"emissive", vec(m.emissive)},
+           {"alpha_mode", m.alphaMode},
+           {"double_sided", m.doubleSided},
+           {"textures", m.textures},
+           {"extensions", m.extensions},
+           {"unsupported_extensions", m.unsupported}});
+    for (const auto& t : s.textures)
+      j["textures"].push_back({{"image", index(t.image)},
+                               {"source", t.source},
+                               {"mime_type", t.mimeType},
+                               {"width", t.width},
+                               {"height", t.height},
+                               {"missing", t.problem == "missing"},
+                               {"problem", t.problem},
+                               {"used", t.used}});
+    for (const auto& l : s.lights)
+      j["lights"].push_back({{"name", l.name},
+                             {"type", l.type},
+                             {"intensity", l.intensity},
+                             {"unit", l.type == "directional" ? "lx" : "cd"},
+                             {"color", vec(l.color)},
+                             {"range", l.range},
+                             {"inner_cone_angle", l.innerConeAngle},
+                             {"outer_cone_angle", l.outerConeAngle},
+                             {"instances", l.instances}});
+    for (const auto& c : s.cameras)
+      j["cameras"].push_back({{"name", c.name},
+                              {"type", c.type},
+                              {"yfov", c.yfov},
+                              {"aspect_ratio", c.aspectRatio},
+                              {"xmag", c.xmag},
+                              {"ymag", c.ymag},
+                              {"znear", c.znear},
+                              {"zfar", c.zfar},
+                              {"instances", c.instances}});
+    for (const auto& n : s.nodes)
+      j["nodes"].push_back({{"name", n.name},
+                            {"mesh", index(n.mesh)},
+                            {"camera", index(n.camera)},
+                            {"light", index(n.light)},
+                            {"parent", index(n.parent)},
+                            {"in_scene", n.inScene}});
+    for (const char* key : {"meshes", "materials", "textures", "lights", "cameras", "nodes"})
+      if (!j.contains(key)) j[key] = nlohmann::ordered_json::array();
+    j["warnings"] = s.warnings;
+    fmt::print("{}\n", j.dump(2));
+    return;
+  }
+  const auto list = [](const std::vector<std::string>& v) {
+    std::string out;
+    for (const auto& x : v) out += (out.empty() ? "" : ", ") + x;
+    return out.empty() ? std::string("none") : out;
+  };
+  const auto plural = [](std::size_t n, std::string word) {
+    if (n != 1) word = word == "vertex" ? "vertices" : word + "s";
+    return fmt::format("{} {}", n, word);
+  };
+  fmt::print("file        {}\n", o.file);
+  fmt::print("format      glTF 2.0, {}{}\n", s.binary ? "binary (.glb)" : "JSON (.gltf)",
+             s.generator.empty() ? "" : ", generator '" + s.generator + "'");
+  fmt::print("extensions  used: {}; required: {}\n", list(s.extensionsUsed),
+             list(s.extensionsRequired));
+  std::size_t inScene = 0;
+  for (const auto& n : s.nodes) inScene += n.inScene;
+  if (s.scene >= 0)
+    fmt::print("scene       {} of {} ({} in it)\n", s.scene, s.scenes, plural(inScene, "node"));
+  else
+    fmt::print("scene       none in the file: its root nodes ({} in all)\n",
+               plural(inScene, "node"));
+  fmt::print("geometry    {}: {}, {}\n", plural(s.meshInstances, "mesh instance"),
+             plural(s.triangles, "triangle"), plural(s.vertices, "vertex"));
+  if (s.hasBounds)
+    fmt::print("bounds      min {:.6g} {:.6g} {:.6g}, max {:.6g} {:.6g} {:.6g} (world space)\n",
+               s.boundsMin.x, s.boundsMin.y, s.boundsMin.z, s.boundsMax.x, s.boundsMax.y,
+               s.boundsMax.z);
+  else
+    fmt::print("bounds      none (no triangles in the scene)\n");
+  fmt::print("meshes      {}\n", s.meshes.size());
+  for (std::size_t i = 0; i < s.meshes.size(); ++i) {
+    const auto& m = s.meshes[i];
+    fmt::print("  {}{}: {} ({}), {}, {} each; {}{}\n", i, quoted(m.name),
+               plural(m.primitives, "primitive"), plural(m.trianglePrimitives, "triangle list"),
+               plural(m.triangles, "triangle"), plural(m.vertices, "vertex"),
+               plural(m.instances, "instance"),
+               m.compression.empty() ? "" : "; " + list(m.compression));
+  }
+  fmt::print("materials   {}\n", s.materials.size());
+  for (std::size_t i = 0; i < s.materials.size(); ++i) {
+    const auto& m = s.materials[i];
+    std::string extensions;
+    for (const auto& e : m.extensions) {
+      const bool unsupported =
+          std::find(m.unsupported.begin(), m.unsupported.end(), e) != m.unsupported.end();
+      extensions += (extensions.empty() ? "" : ", ") + e + (unsupported ? " (not rendered)" : "");
+    }
+    std::string textures;
+    for (int t : m.textures) textures += (textures.empty() ? "" : " ") + std::to_string(t);
+    fmt::print(
+        "  {}{}: base color {:.4g} {:.4g} {:.4g} {:.4g}, metallic {:.4g}, roughness "
+        "{:.4g}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
+        i, quoted(m.name), m.baseColor.x, m.baseColor.y, m.baseColor.z, m.baseColor.w, m.metallic,
+        m.roughness, m.emissive.x, m.emissive.y, m.emissive.z, m.alphaMode,
+        m.doubleSided ? ", double-sided" : "", textures.empty() ? "" : ", textures " + textures,
+        extensions.empty() ? "" : "; extensions: " + extensions);
+  }
+  fmt::print("textures    {}\n", s.textures.size());
+  for (std::size_t i = 0; i < s.textures.size(); ++i) {
+    const auto& t = s.textures[i];
+    const std::string image =
+        t.image >= 0 ? fmt::format("image {} ({})", t.image, t.source) : std::string("no image");
+    const std::string state = t.problem == "missing" ? "MISSING"
+                              : !t.problem.empty()   ? "UNREADABLE: " + t.problem
+                                                     : fmt::format("{}x{}", t.width, t.height);
+    fmt::print("  {}: {} {}{}\n", i, image, state, t.used ? "" : " (no material reads it)");
+  }
+  fmt::print("lights      {}\n", s.lights.size());
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    const auto& l = s.lights[i];
+    fmt::print("  {}{}: {}, {:.6g} {}, color {:.4g} {:.4g} {:.4g}{}; {}\n", i, quoted(l.name),
+               l.type, l.intensity, l.type == "directional" ? "lx" : "cd", l.color.x, l.color.y,
+               l.color.z, l.range > 0.0 ? fmt::format(", range {:.6g}", l.range) : "",
+               plural(l.instances, "instance"));
+  }
+  fmt::print("cameras     {}\n", s.cameras.size());
+  for (std::size_t i = 0; i < s.cameras.size(); ++i) {
+    const auto& c = s.cameras[i];
+    if (c.type == "orthographic")
+      fmt::print("  {}{}: orthographic, xmag {:.6g}, ymag {:.6g}; {}\n", i, quoted(c.name), c.xmag,
+                 c.ymag, plural(c.instances, "instance"));
+    else
+      fmt::print("  {}{}: perspective, vertical field of view {:.4g} degrees; {}\n", i,
+                 quoted(c.name), c.yfov * 180.0 / 3.14159265358979323846,
+                 plural(c.instances, "instance"));
+  }
+  fmt::print("nodes       {}\n", s.nodes.size());
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    const auto& n = s.nodes[i];
+    std::string what;
+    const auto add = [&](const std::string& x) { what += (what.empty() ? "" : ", ") + x; };
+    if (n.mesh >= 0)
+      add(fmt::format("mesh {}{}", n.mesh,
+                      quoted(s.meshes[static_cast<std::size_t>(n.mesh)].name)));
+    if (n.camera >= 0) add(fmt::format("camera {}", n.camera));
+    if (n.light >= 0) add(fmt::format("light {}", n.light));
+    if (n.parent >= 0) add(fmt::format("child of {}", n.parent));
+    if (!n.inScene) add("not in the scene");
+    fmt::print("  {}{}{}{}\n", i, quoted(n.name), what.empty() ? "" : ": ", what);
+  }
+  if (!s.warnings.empty()) {
+    fmt::print("warnings    {}\n", s.warnings.size());
+    for (const auto& w : s.warnings) fmt::print("  {}\n", w);
+  }
+}
+
 void runInfo(const InfoOptions& o) {
+  if (isGltf(o.file)) {
+    runGltfInfo(o);
+    return;
+  }
   DecodedFile d = readInput(o);
   const Image& base = d.levels[0][0];
   const int faces = static_cast<int>(d.levels[0].size());
@@ -158,11 +373,13 @@ void runInfo(const InfoOptions& o) {
 void addInfoCommand(CLI::App& app, const GlobalOptions&) {
   auto opts = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand("info",
-                                     "Describe an image file: format, layout, size, "
-                                     "value range, invalid pixels, radiant integral");
+                                     "Describe an image file (format, layout, size, "
+                                     "value range, invalid pixels, radiant integral) or a glTF "
+                                     "scene (meshes, materials, textures, lights, cameras, "
+                                     "bounds, names)");
   cmd->add_option("file", opts->file,
-                  "Image file (.hdr, .exr, .png, .jpg, .ktx2); a path with {face} names six face "
-                  "files")
+                  "Image file (.hdr, .exr, .png, .jpg, .ktx2; a path with {face} names six face "
+                  "files) or glTF scene (.gltf, .glb)")
       ->required();
   cmd->add_option("--input-layout", opts->inputLayout, "Layout (default: from the shape)")
       ->check(CLI::IsMember({"equirect", "cross", "hcross", "vcross", "hstrip", "vstrip", "faces",

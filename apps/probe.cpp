@@ -265,7 +265,7 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   checkSceneOptions(o.scene);
   const glm::vec3 rotation = parseVec3(o.rotation, "--rotation");
   refuseInputsInside(o.output, sceneInputFiles(o.scene));
-  Scene scene = loadScene(o.scene);
+  Scene scene = loadScene(o.scene, global);
   const auto [sceneLo, sceneHi] = scene.bounds();
   // The default proxy: the scene's bounds (a room's walls).
   std::optional<ProbeVolume> proxy;
@@ -381,6 +381,10 @@ void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
   CLI::App* cmd = app.add_subcommand(
       "probe", "Capture local light probes inside a scene (path traced) and bake them");
   cmd->add_option("scene", opts->scene.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'");
+  cmd->add_flag("--strict", opts->scene.strict,
+                "Refuse a scene that ibl would render incompletely: a missing or unreadable "
+                "texture, an extension ibl does not implement, triangle strips (otherwise "
+                "warnings)");
   cmd->add_option("--env", opts->scene.env,
                   "Distant environment lighting the scene (default: the bundled sunset.exr); "
                   "'none': the scene's lights and emission alone");

@@ -32,7 +32,7 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   refuseOverwritingInputs({o.output}, sceneInputFiles(o.scene));
   requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
                 "render a smaller image");
-  Scene scene = loadScene(o.scene);
+  Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
   const LoadedBake baked = loadOrBake(o.scene, global, hasSheen(scene));

@@ -22,6 +22,10 @@ namespace ibl::cli {
 
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("scene", o.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'")->required();
+  cmd->add_flag("--strict", o.strict,
+                "Refuse a scene that ibl would render incompletely: a missing or unreadable "
+                "texture, an extension ibl does not implement, triangle strips (otherwise "
+                "warnings)");
   cmd->add_option("--env", o.env,
                   "Environment to bake and light with (default: the bundled sunset.exr); a "
                   "physical sky, sky:elevation=30,azimuth=120 (see ibl sky; its sun is added "
@@ -130,8 +134,15 @@ std::pair<int, int> parseSize(const std::string& text) {
 
 namespace {
 
-Scene loadSceneAlone(const SceneCliOptions& o) {
-  if (o.scene != "sphere" && o.scene != "grid") return loadGltf(o.scene);
+Scene loadSceneAlone(const SceneCliOptions& o, const GlobalOptions& global) {
+  if (o.scene != "sphere" && o.scene != "grid") {
+    GltfLoadOptions options;
+    options.strict = o.strict;
+    options.warn = [quiet = global.quiet](const std::string& message) {
+      if (!quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
+    };
+    return loadGltf(o.scene, options);
+  }
   const glm::vec3 base = parseVec3(o.baseColor, "--base-color");
   if (o.scene == "grid") return makeSphereGrid(base);
   Material m;
@@ -147,13 +158,13 @@ bool environmentIsNone(const SceneCliOptions& o) {
   return o.env == "none";
 }
 
-Scene loadScene(const SceneCliOptions& o) {
+Scene loadScene(const SceneCliOptions& o, const GlobalOptions& global) {
   // The lights file first: a mistake in it is found before a large model loads.
   std::vector<Light> lights;
   if (!o.lightsFile.empty())
     lights = readLightsFile(
         o.lightsFile, o.spotLumens == "frostbite" ? SpotLumens::Frostbite : SpotLumens::Physical);
-  Scene scene = loadSceneAlone(o);
+  Scene scene = loadSceneAlone(o, global);
   scene.lights.insert(scene.lights.end(), lights.begin(), lights.end());
   return scene;
 }
@@ -166,6 +177,8 @@ void checkSceneOptions(const SceneCliOptions& o) {
   if (!o.env.empty() && isSkySpec(o.env)) parseSkySpec(o.env);
   parseSize(o.size);
   if (o.scene == "sphere" || o.scene == "grid") parseVec3(o.baseColor, "--base-color");
+  if (o.strict && (o.scene == "sphere" || o.scene == "grid"))
+    failUsage("--strict", fmt::format("applies to a glTF scene, not the built-in '{}'", o.scene));
   if (!o.lookFrom.empty()) parsePoint(o.lookFrom, "--look-from");
   if (!o.lookAt.empty()) parsePoint(o.lookAt, "--look-at");
   if (!o.lookFrom.empty() && !o.lookAt.empty() &&

@@ -19,7 +19,8 @@ namespace ibl::cli {
 
 struct SceneCliOptions {
   std::string scene;
-  std::string env;  // empty: bundled default; "none": lights only
+  bool strict = false;  // what a glTF file lacks (a texture, an extension) is an error
+  std::string env;      // empty: bundled default; "none": lights only
   std::string lightsFile;
   std::string spotLumens = "physical";
   std::string bakeDir;
@@ -56,8 +57,9 @@ glm::vec3 parseVec3(const std::string& text, const char* option);
 // --size as (width, height), 1 to 16384 each.
 std::pair<int, int> parseSize(const std::string& text);
 
-// The scene, with the lights of --lights added to its own.
-Scene loadScene(const SceneCliOptions& o);
+// The scene, with the lights of --lights added to its own; the glTF loader's warnings printed
+// (unless --quiet), or with --strict errors.
+Scene loadScene(const SceneCliOptions& o, const GlobalOptions& global);
 // --env none: no environment light.
 bool environmentIsNone(const SceneCliOptions& o);
 

@@ -41,7 +41,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   if (!o.screenshot.empty()) refuseOverwritingInputs({o.screenshot}, inputs);
   requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
                 "view a smaller image");
-  Scene scene = loadScene(o.scene);
+  Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
   const std::vector<Light> ownLights = scene.lights;  // the scene's and --lights'

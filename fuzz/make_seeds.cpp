@@ -1,6 +1,10 @@
 // Writes small valid files of every format into fuzz/seeds/<reader>/ to start the fuzzers.
 #include <filesystem>
+#include <fstream>
 #include <vector>
+
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -14,6 +18,225 @@
 #include "ibl/io/image_io.hpp"
 #include "ibl/io/ktx1.hpp"
 #include "ibl/io/ktx2.hpp"
+#include "support/gltf_writer.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A GLB container: the JSON chunk, then the BIN chunk (each padded to 4 bytes).
+void writeGlb(const fs::path& path, const json& gltf, std::vector<std::uint8_t> bin) {
+  std::string text = gltf.dump();
+  while (text.size() % 4) text += ' ';
+  while (bin.size() % 4) bin.push_back(0);
+  std::vector<std::uint8_t> file;
+  const auto le32 = [&](std::size_t v) {
+    for (int i = 0; i < 4; ++i) file.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  };
+  le32(0x46546C67u);  // "glTF"
+  le32(2);
+  le32(12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size()));
+  le32(text.size());
+  le32(0x4E4F534Au);  // "JSON"
+  file.insert(file.end(), text.begin(), text.end());
+  if (!bin.empty()) {
+    le32(bin.size());
+    le32(0x004E4942u);  // "BIN"
+    file.insert(file.end(), bin.begin(), bin.end());
+  }
+  ibl::writeFileAtomic(path, file);
+}
+
+// A cube of 8 vertices and 12 triangles, for the compressed seeds.
+ibl::Mesh cube() {
+  ibl::Mesh m;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 p(i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f);
+    m.positions.push_back(p);
+    m.normals.push_back(glm::normalize(p));
+  }
+  m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+               2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+  return m;
+}
+
+// The cube as a KHR_draco_mesh_compression primitive (positions, normals, UVs) in a GLB, encoded
+// with the Draco library's edgebreaker or sequential method.
+void writeDracoCube(const fs::path& path, int method) {
+  const ibl::Mesh m = cube();
+  const int faces = static_cast<int>(m.indices.size() / 3);
+  draco::TriangleSoupMeshBuilder builder;
+  builder.Start(faces);
+  const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  const int nrm = builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
+  const int uv = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
+  for (int f = 0; f < faces; ++f) {
+    glm::vec3 p[3], n[3];
+    glm::vec2 t[3];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = m.indices[static_cast<std::size_t>(3 * f + k)];
+      p[k] = m.positions[v];
+      n[k] = m.normals[v];
+      t[k] = glm::vec2(p[k].x, p[k].y) * 0.5f + 0.5f;
+    }
+    builder.SetAttributeValuesForFace(pos, draco::FaceIndex(f), &p[0], &p[1], &p[2]);
+    builder.SetAttributeValuesForFace(nrm, draco::FaceIndex(f), &n[0], &n[1], &n[2]);
+    builder.SetAttributeValuesForFace(uv, draco::FaceIndex(f), &t[0], &t[1], &t[2]);
+  }
+  const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+  draco::Encoder encoder;
+  encoder.SetEncodingMethod(method);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 14);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, 10);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
+  draco::EncoderBuffer buffer;
+  if (!encoder.EncodeMeshToBuffer(*mesh, &buffer).ok()) throw std::runtime_error("Draco encoder");
+  const std::vector<std::uint8_t> bin(buffer.data(), buffer.data() + buffer.size());
+  const json ids = {{"POSITION", mesh->attribute(pos)->unique_id()},
+                    {"NORMAL", mesh->attribute(nrm)->unique_id()},
+                    {"TEXCOORD_0", mesh->attribute(uv)->unique_id()}};
+  const std::size_t points = mesh->num_points();
+  const json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"KHR_draco_mesh_compression"}},
+      {"extensionsRequired", {"KHR_draco_mesh_compression"}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}, {"scale", {2, 2, 2}}}}},
+      {"meshes",
+       {{{"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
+            {"indices", 3},
+            {"extensions",
+             {{"KHR_draco_mesh_compression", {{"bufferView", 0}, {"attributes", ids}}}}}}}}}}},
+      {"accessors",
+       {{{"componentType", 5126},
+         {"count", points},
+         {"type", "VEC3"},
+         {"min", {-1, -1, -1}},
+         {"max", {1, 1, 1}}},
+        {{"componentType", 5126}, {"count", points}, {"type", "VEC3"}},
+        {{"componentType", 5126}, {"count", points}, {"type", "VEC2"}},
+        {{"componentType", 5125}, {"count", 3 * faces}, {"type", "SCALAR"}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", bin.size()}}}},
+      {"buffers", {{{"byteLength", bin.size()}}}}};
+  writeGlb(path, gltf, bin);
+}
+
+// One triangle with most of what the loader reads: a node tree (TRS and matrix), a camera,
+// KHR_lights_punctual lights, a sparse accessor over quantized positions (KHR_mesh_quantization),
+// two UV sets, a material with KHR_materials_sheen and KHR_materials_emissive_strength and a
+// texture (a data URI in .gltf, a buffer view in .glb) through a sampler.
+void writeFeatures(const fs::path& gltfPath, const fs::path& glbPath) {
+  std::vector<std::uint8_t> buffer;
+  // Positions and UVs interleaved with padding (strides 8 and 4), UV 1, indices, the sparse
+  // index and value (vertex 2 moved).
+  ibl::test::append(buffer, std::vector<std::int16_t>{0, 0, 0, 0, 32767, 0, 0, 0, 0, 32767, 0, 0});
+  ibl::test::append(buffer, std::vector<std::uint8_t>{0, 0, 0, 0, 255, 0, 0, 0, 0, 255, 0, 0});
+  ibl::test::append(buffer, std::vector<float>{0, 0, 1, 0, 0, 1});
+  ibl::test::append(buffer, std::vector<std::uint16_t>{0, 1, 2, 0});
+  ibl::test::append(buffer, std::vector<std::uint8_t>{2, 0, 0, 0});
+  ibl::test::append(buffer, std::vector<std::int16_t>{0, 16000, 0, 0});
+  const std::vector<std::uint8_t> png =
+      ibl::encodePng(ibl::Image(2, 2, glm::vec3(0.25f, 0.5f, 1.0f)));
+  const std::size_t imageOffset = buffer.size();
+  json gltf = {
+      {"asset", {{"version", "2.0"}, {"generator", "ibl fuzz seeds"}}},
+      {"extensionsUsed",
+       {"KHR_lights_punctual", "KHR_materials_sheen", "KHR_materials_emissive_strength",
+        "KHR_mesh_quantization"}},
+      {"extensionsRequired", {"KHR_mesh_quantization"}},
+      {"extensions",
+       {{"KHR_lights_punctual",
+         {{"lights",
+           {{{"type", "point"}, {"intensity", 20}, {"color", {1, 0.9, 0.8}}, {"range", 10}},
+            {{"type", "spot"},
+             {"intensity", 50},
+             {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+            {{"type", "directional"}, {"intensity", 3}}}}}}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0, 3, 4, 5}}}}},
+      {"nodes",
+       {{{"name", "root"},
+         {"children", {1, 2}},
+         {"translation", {0, 0, -1}},
+         {"rotation", {0, 0.38268343, 0, 0.92387953}},
+         {"scale", {2, 2, 2}}},
+        {{"name", "triangle"}, {"mesh", 0}},
+        {{"name", "lamp"},
+         {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1}},
+         {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+        {{"name", "camera"}, {"camera", 0}, {"translation", {0, 0, 4}}},
+        {{"name", "spot"},
+         {"translation", {0, 3, 0}},
+         {"rotation", {-0.70710678, 0, 0, 0.70710678}},
+         {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}},
+        {{"name", "sun"}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}}}},
+      {"cameras", {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}}}},
+      {"meshes",
+       {{{"name", "tri"},
+         {"primitives",
+          {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}, {"TEXCOORD_1", 2}}},
+            {"indices", 3},
+            {"material", 0}}}}}}},
+      {"materials",
+       {{{"name", "velvet"},
+         {"pbrMetallicRoughness",
+          {{"baseColorFactor", {1, 0.5, 0.5, 1}},
+           {"baseColorTexture", {{"index", 0}}},
+           {"metallicFactor", 0},
+           {"roughnessFactor", 0.7}}},
+         {"emissiveFactor", {1, 0.5, 0}},
+         {"alphaMode", "MASK"},
+         {"extensions",
+          {{"KHR_materials_sheen",
+            {{"sheenColorFactor", {0.5, 0.5, 1}},
+             {"sheenRoughnessFactor", 0.4},
+             {"sheenColorTexture", {{"index", 0}, {"texCoord", 1}}}}},
+           {"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}}}},
+      {"samplers", {{{"wrapS", 33071}, {"magFilter", 9728}}}},
+      {"textures", {{{"source", 0}, {"sampler", 0}}}},
+      {"images", {{{"uri", "data:image/png;base64," + ibl::test::base64(png)}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 24}, {"byteStride", 8}},
+        {{"buffer", 0}, {"byteOffset", 24}, {"byteLength", 12}, {"byteStride", 4}},
+        {{"buffer", 0}, {"byteOffset", 36}, {"byteLength", 24}},
+        {{"buffer", 0}, {"byteOffset", 60}, {"byteLength", 6}},
+        {{"buffer", 0}, {"byteOffset", 68}, {"byteLength", 1}},
+        {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 6}}}},
+      {"accessors",
+       {{{"bufferView", 0},
+         {"componentType", 5122},
+         {"normalized", true},
+         {"count", 3},
+         {"type", "VEC3"},
+         {"min", {0, 0, 0}},
+         {"max", {1, 1, 0}},
+         {"sparse",
+          {{"count", 1},
+           {"indices", {{"bufferView", 4}, {"componentType", 5121}}},
+           {"values", {{"bufferView", 5}}}}}},
+        {{"bufferView", 1},
+         {"componentType", 5121},
+         {"normalized", true},
+         {"count", 3},
+         {"type", "VEC2"}},
+        {{"bufferView", 2}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}},
+        {{"bufferView", 3}, {"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}}}},
+      {"buffers", ibl::test::embeddedBuffers(buffer)}};
+  const std::string text = gltf.dump();
+  ibl::writeFileAtomic(gltfPath, std::vector<std::uint8_t>(text.begin(), text.end()));
+  // The GLB: the buffer in the BIN chunk, the image in a buffer view of it.
+  buffer.insert(buffer.end(), png.begin(), png.end());
+  gltf["bufferViews"].push_back(
+      {{"buffer", 0}, {"byteOffset", imageOffset}, {"byteLength", png.size()}});
+  gltf["images"] = {{{"bufferView", 6}, {"mimeType", "image/png"}}};
+  gltf["buffers"] = {{{"byteLength", buffer.size()}}};
+  writeGlb(glbPath, gltf, buffer);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   namespace fs = std::filesystem;
@@ -86,5 +309,13 @@ int main(int argc, char** argv) {
       }
     }
   }
+  // glTF: the loader's features, the compressed primitives, a textured quad.
+  fs::create_directories(root / "gltf");
+  writeFeatures(root / "gltf" / "features.gltf", root / "gltf" / "features.glb");
+  writeDracoCube(root / "gltf" / "draco_edgebreaker.glb", draco::MESH_EDGEBREAKER_ENCODING);
+  writeDracoCube(root / "gltf" / "draco_sequential.glb", draco::MESH_SEQUENTIAL_ENCODING);
+  ibl::test::writeMeshoptMesh(root / "gltf" / "meshopt.gltf", cube());
+  ibl::test::writeMeshoptMesh(root / "gltf" / "meshopt.glb", cube());
+  ibl::test::writeTexturedQuad(root / "gltf" / "quad.gltf", true);
   return 0;
 }

@@ -78,6 +78,7 @@ std::vector<Misuse> sceneMisuses() {
   return {
       {"--env", "--env nosuch.exr", 1, "nosuch.exr: no such file"},
       {"--env", "--env sky:elevation=100", 2, "elevation"},
+      {"--strict", "--strict", 2, "--strict: applies to a glTF scene, not the built-in"},
       {"--lights", "--lights nosuch.json", 1, "nosuch.json: no such file"},
       {"--spot-lumens", "--spot-lumens lots", 2, "--spot-lumens"},
       {"--bake", "--bake nosuch", 1, "nosuch: no such directory"},
@@ -251,6 +252,7 @@ TEST(Usage, Probe) {
       "probe", "--size 8 --spp 1",
       {
           {"--env", "grid --at 0,0,0 -o out --env nosuch.exr", 1, "nosuch.exr: no such file"},
+          {"--strict", "grid --at 0,0,0 -o out --strict", 2, "--strict: applies to a glTF"},
           {"--lights", "grid --at 0,0,0 -o out --lights nosuch.json", 1,
            "nosuch.json: no such file"},
           {"--bake", "grid --at 0,0,0 -o out --bake nosuch", 1, "nosuch: no such directory"},

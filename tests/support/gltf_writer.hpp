@@ -422,3 +422,46 @@ inline void writeSceneAsGltf(const Scene& scene, const std::filesystem::path& pa
 }
 
 }  // namespace ibl::test
+
+namespace ibl::test {
+
+// A GLB container of the JSON and the BIN chunk.
+inline std::vector<std::uint8_t> glbOf(const nlohmann::json& j, std::vector<std::uint8_t> bin) {
+  std::string text = j.dump();
+  while (text.size() % 4) text += ' ';
+  while (bin.size() % 4) bin.push_back(0);
+  std::vector<std::uint8_t> glb;
+  const auto le32 = [&](std::size_t v) {
+    for (int i = 0; i < 4; ++i) glb.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+  };
+  le32(0x46546C67u);
+  le32(2);
+  le32(28 + text.size() + bin.size());
+  le32(text.size());
+  le32(0x4E4F534Au);
+  glb.insert(glb.end(), text.begin(), text.end());
+  le32(bin.size());
+  le32(0x004E4942u);
+  glb.insert(glb.end(), bin.begin(), bin.end());
+  return glb;
+}
+
+// The JSON and the BIN chunk of a GLB file.
+inline std::pair<nlohmann::json, std::vector<std::uint8_t>> splitGlb(
+    const std::vector<std::uint8_t>& b) {
+  const auto le32 = [&](std::size_t at) {
+    return static_cast<std::size_t>(b[at] | (b[at + 1] << 8) | (b[at + 2] << 16) |
+                                    (static_cast<std::uint32_t>(b[at + 3]) << 24));
+  };
+  const std::size_t jsonLength = le32(12), binAt = 20 + jsonLength;
+  return {
+      nlohmann::json::parse(b.begin() + 20, b.begin() + static_cast<std::ptrdiff_t>(binAt)),
+      std::vector<std::uint8_t>(b.begin() + static_cast<std::ptrdiff_t>(binAt + 8),
+                                b.begin() + static_cast<std::ptrdiff_t>(binAt + 8 + le32(binAt)))};
+}
+
+inline void setLe32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) b[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+}
+
+}  // namespace ibl::test
