@@ -37,6 +37,7 @@ struct SceneCliOptions {
   bool noDominant = false;
   std::string irradiance = "cube";
   std::string areaLights = "ltc";
+  std::string sheenVisibility;      // empty: the bake's (--bake), else charlie
   std::vector<std::string> probes;  // local probe directories (split sum)
   bool noParallax = false;
   bool noDistanceRoughness = false;
@@ -69,6 +70,9 @@ struct LoadedBake {
 // Fails on lighting options that contradict each other (--env with --bake).
 void checkLightingOptions(const SceneCliOptions& o);
 // `sheen`: the scene has KHR_materials_sheen materials, so the bake needs the sheen chain.
+// options.sheenVisibility is the sheen lobe's visibility the render must use: --sheen-visibility
+// (charlie when not given) for a bake made here; the bake's recorded one for --bake, which
+// --sheen-visibility must not contradict.
 LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, bool sheen = false);
 // Whether any material of the scene has a sheen layer.
 bool hasSheen(const Scene& scene);
@@ -76,8 +80,9 @@ bool hasSheen(const Scene& scene);
 // The camera: the options, else the scene file's, else one framing the scene from +Z.
 Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height);
 
-// The shading switches (mode, spp and the reference's options left at their defaults).
-RenderOptions shadingOptions(const SceneCliOptions& o);
+// The shading switches (mode, spp and the reference's options left at their defaults), with
+// the sheen visibility of the bake (loadOrBake).
+RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked);
 
 // EV100 from --ev100, else --aperture/--shutter/--iso, else the image's average luminance.
 float chooseEv100(const SceneCliOptions& o, const Image& linear);
