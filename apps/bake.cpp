@@ -1,4 +1,5 @@
 // `ibl bake`: an HDR environment in, engine-ready IBL assets out.
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cstdio>
@@ -38,6 +39,7 @@ struct BakeCliOptions {
   int samples = 64;
   bool fresnelWeighted = false;
   bool sheen = false;
+  std::string sheenVisibility;  // empty: charlie
   std::vector<std::string> targets = {"ibl"};
   int irradianceSize = 32;
   int dfgSize = 128;
@@ -70,6 +72,8 @@ BakeOptions bakeOptionsOf(const BakeCliOptions& o) {
   options.specular.samples = o.samples;
   options.fresnelWeighted = o.fresnelWeighted;
   options.sheen = o.sheen;
+  if (!o.sheenVisibility.empty())
+    options.sheenVisibility = *parseSheenVisibility(o.sheenVisibility);
   options.targets.clear();
   for (const std::string& t : o.targets) {
     const EngineTarget target = *parseEngineTarget(t);
@@ -226,6 +230,11 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
     failUsage("--levels", fmt::format("{} levels need a cube of at least {}^2; --size {} has {} "
                                       "(down to 1x1)",
                                       *o.levels, 1 << (*o.levels - 1), o.size, mipCount));
+  if (!o.sheenVisibility.empty() && !o.sheen &&
+      std::find(o.targets.begin(), o.targets.end(), "gltf-sample-viewer") == o.targets.end())
+    failUsage("--sheen-visibility",
+              "chooses the visibility of the sheen table, which only --sheen or --target "
+              "gltf-sample-viewer bakes");
   const bool batch =
       o.inputs.size() > 1 || !o.list.empty() ||
       (o.inputs.size() == 1 && o.inputs[0].find_first_of("*?[") != std::string::npos &&
@@ -304,6 +313,11 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                 "Also bake the C(n,l)-weighted specular pair (specular_f0_0, specular_f0_1)");
   cmd->add_flag("--sheen", opts->sheen,
                 "Also bake the sheen (Charlie) prefiltered cube and its table (sheen, sheen_dfg)");
+  cmd->add_option("--sheen-visibility", opts->sheenVisibility,
+                  "The sheen lobe's visibility in the sheen table: charlie (Estevez & Kulla, "
+                  "KHR_materials_sheen's; default) or neubelt (simpler, gains energy at grazing "
+                  "angles); recorded in manifest.json")
+      ->check(CLI::IsMember({"charlie", "neubelt"}));
   cmd->add_option("--target", opts->targets,
                   "What to write, one or several (comma-separated): ibl (our KTX2 set), filament "
                   "(cmgen --deploy's KTX files and sh.txt), gltf-sample-viewer "

@@ -37,7 +37,7 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
   const LoadedBake baked = loadOrBake(o.scene, global, hasSheen(scene));
   scene.lights.insert(scene.lights.end(), baked.lights.begin(), baked.lights.end());
-  RenderOptions r = shadingOptions(o.scene);
+  RenderOptions r = shadingOptions(o.scene, baked);
   r.mode = o.mode == "reference" ? RenderMode::Reference : RenderMode::SplitSum;
   r.spp = o.scene.spp > 0 ? o.scene.spp : (r.mode == RenderMode::Reference ? 256 : 4);
   r.noiseThreshold = o.noise;

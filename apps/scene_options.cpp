@@ -92,6 +92,11 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "cosines (ltc, measured closer) or Frostbite's approximations (frostbite)")
       ->check(CLI::IsMember({"ltc", "frostbite"}))
       ->capture_default_str();
+  cmd->add_option("--sheen-visibility", o.sheenVisibility,
+                  "The sheen lobe's visibility (KHR_materials_sheen): charlie (Estevez & Kulla, "
+                  "the specification's) or neubelt (simpler, gains energy at grazing angles); "
+                  "default: the bake's with --bake, else charlie")
+      ->check(CLI::IsMember({"charlie", "neubelt"}));
   cmd->add_option("--background", o.background, "'env' (the environment) or a color R,G,B")
       ->capture_default_str();
   cmd->add_option("--ev100", o.ev100,
@@ -200,8 +205,19 @@ bool hasSheen(const Scene& scene) {
 LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, bool sheen) {
   LoadedBake out;
   out.options.sheen = sheen;
+  const std::optional<SheenVisibility> asked =
+      o.sheenVisibility.empty() ? std::nullopt : parseSheenVisibility(o.sheenVisibility);
+  if (asked) out.options.sheenVisibility = *asked;
   if (!o.bakeDir.empty()) {
     out.bake = loadBake(o.bakeDir, &out.options);
+    if (asked && out.bake.sheenDfg && *asked != out.options.sheenVisibility)
+      failUsage("--sheen-visibility",
+                fmt::format("{} contradicts --bake {}, whose sheen table (sheen_dfg.ktx2) was "
+                            "integrated with the {} visibility; leave the option out or bake again "
+                            "with --sheen-visibility {}",
+                            o.sheenVisibility, o.bakeDir,
+                            sheenVisibilityName(out.options.sheenVisibility), o.sheenVisibility));
+    if (asked) out.options.sheenVisibility = *asked;  // a bake without a sheen table
     // The sun the bake's environment brought (a sky's, or one extracted from the HDRI).
     const std::filesystem::path manifest = std::filesystem::path(o.bakeDir) / "manifest.json";
     const nlohmann::json m = readJsonFile(manifest);
@@ -291,8 +307,9 @@ Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int 
   return camera;
 }
 
-RenderOptions shadingOptions(const SceneCliOptions& o) {
+RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) {
   RenderOptions r;
+  r.sheenVisibility = baked.options.sheenVisibility;
   r.diffuse = o.diffuse == "lambert" ? DiffuseModel::Lambert : DiffuseModel::Disney;
   r.only = o.only == "diffuse"    ? ShadingTerms::Diffuse
            : o.only == "specular" ? ShadingTerms::Specular

@@ -39,6 +39,7 @@ struct SceneCliOptions {
   bool noDominant = false;
   std::string irradiance = "cube";
   std::string areaLights = "ltc";
+  std::string sheenVisibility;      // empty: the bake's (--bake), else charlie
   std::vector<std::string> probes;  // local probe directories (split sum)
   bool noParallax = false;
   bool noDistanceRoughness = false;
@@ -75,6 +76,9 @@ void checkSceneOptions(const SceneCliOptions& o);
 
 // The --bake directory, or a bake of --env (or the bundled environment) on the CPU.
 // `sheen`: the scene has KHR_materials_sheen materials, so the bake needs the sheen chain.
+// options.sheenVisibility is the sheen lobe's visibility the render must use: --sheen-visibility
+// (charlie when not given) for a bake made here; the bake's recorded one for --bake, which
+// --sheen-visibility must not contradict.
 LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, bool sheen = false);
 // Whether any material of the scene has a sheen layer.
 bool hasSheen(const Scene& scene);
@@ -87,8 +91,9 @@ std::vector<std::filesystem::path> sceneInputFiles(const SceneCliOptions& o);
 // The camera: the options, else the scene file's, else one framing the scene from +Z.
 Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height);
 
-// The shading switches (mode, spp and the reference's options left at their defaults).
-RenderOptions shadingOptions(const SceneCliOptions& o);
+// The shading switches (mode, spp and the reference's options left at their defaults), with
+// the sheen visibility of the bake (loadOrBake).
+RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked);
 
 // The peak memory of rendering a width x height image, estimated from measured renders
 // (docs/render.md, "Memory"): the bake of the environment and the buffers per pixel.

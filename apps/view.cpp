@@ -55,7 +55,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     skySpec = parseSkySpec(o.scene.env);
     if (baked.lights.empty()) scene.lights.push_back(skySun(skySpec->parameters));
   }
-  RenderOptions shading = shadingOptions(o.scene);
+  RenderOptions shading = shadingOptions(o.scene, baked);
   shading.spp = o.scene.spp > 0 ? o.scene.spp : 4;
 
   if (!o.screenshot.empty()) {

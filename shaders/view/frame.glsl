@@ -17,6 +17,7 @@ layout(std140, set = 0, binding = 0) uniform Frame {
   vec4 probes;          // local probes: count, their specular levels - 1, flags (1 parallax
                         // correction, 2 distance-based roughness, 4 Frostbite's roughness mapping)
   vec4 sh[9];           // radiance SH9 times the cosine lobe's A_l / pi: irradiance / pi
+  ivec4 sheen;          // the sheen lobe's visibility (kSheenVisibilityCharlie, ...Neubelt)
 } frame;
 layout(set = 0, binding = 1) uniform samplerCube specularMap;
 layout(set = 0, binding = 2) uniform samplerCube irradianceMap;

@@ -15,6 +15,7 @@ SplitSumSwitches frameSwitches() {
   s.specularOcclusion = frame.terms.w != 0;
   s.disneyDiffuse = frame.models.x == 0;
   s.ltcAreaLights = frame.viewport.z != 0.0;
+  s.sheenVisibility = frame.sheen.x;
   return s;
 }
 
@@ -158,7 +159,8 @@ vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m, vec4 sh
       LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s, ltc);
       float profile = iesProfileFactor(l, lightData[5 * i + 4].w, normalize(position - l.position));
       vec3 radiance = belowScale * lightRadiance(direct, n, view, inc, dfg.xy, s);
-      if (shadeSheen) radiance += sheenLightRadiance(sheen.rgb, sheenAlpha, n, view, inc);
+      if (shadeSheen)
+        radiance += sheenLightRadiance(sheen.rgb, sheenAlpha, s.sheenVisibility, n, view, inc);
       lit += l.color * profile * radiance;
     }
   }

@@ -245,7 +245,7 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
         });
         if (o.wantsSheen())
           r.sheenDfg = time("sheen_dfg", [&] {
-            return integrateSheenDfgLut(o.dfgSize, o.dfgSize, 4 * o.dfgSamples);
+            return integrateSheenDfgLut(o.dfgSize, o.dfgSize, 4 * o.dfgSamples, o.sheenVisibility);
           });
       });
   r.timingsMs["total"] =
@@ -684,10 +684,11 @@ void addSheen(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
                           {"u", "n.v = (i + 0.5) / W"},
                           {"v", "r = (j + 0.5) / H, row 0 first"},
                           {"channels", {"E", "0", "0"}},
-                          {"r",
-                           "E = integral of D_charlie V_neubelt (n.l): sheen = sheenColor * "
-                           "prefiltered sheen * E; base layer scaled by "
-                           "1 - max(sheenColor) * E"}});
+                          {"visibility", std::string(sheenVisibilityName(o.sheenVisibility))},
+                          {"r", fmt::format("E = integral of D_charlie V_{} (n.l): sheen = "
+                                            "sheenColor * prefiltered sheen * E; base layer "
+                                            "scaled by 1 - max(sheenColor) * E",
+                                            sheenVisibilityName(o.sheenVisibility))}});
 }
 
 }  // namespace
@@ -777,8 +778,16 @@ BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
     r.dfg = readImageFile(dir / "dfg.ktx2").levels.at(0).at(0);
     for (const auto& o : manifest.at("outputs")) {
       if (o.at("role") == "sheen" && o.at("path") == "sheen.ktx2") r.sheen = cube("sheen.ktx2");
-      if (o.at("role") == "sheen_dfg" && o.at("path") == "sheen_dfg.ktx2")
+      if (o.at("role") == "sheen_dfg" && o.at("path") == "sheen_dfg.ktx2") {
         r.sheenDfg = readImageFile(dir / "sheen_dfg.ktx2").levels.at(0).at(0);
+        // Bakes from before the choice recorded none: their tables used Neubelt's.
+        const std::string name = o.value("visibility", "neubelt");
+        const std::optional<SheenVisibility> v = parseSheenVisibility(name);
+        if (!v)
+          fail(manifestPath.string(),
+               fmt::format("sheen_dfg.ktx2: unknown visibility '{}' (charlie or neubelt)", name));
+        if (options) options->sheenVisibility = *v;
+      }
       if (o.at("role") == "sh")
         for (int k = 0; k < 9; ++k)
           for (int c = 0; c < 3; ++c) r.sh[k][c] = o.at("coefficients").at(k).at(c).get<float>();

@@ -93,7 +93,8 @@ std::vector<glm::vec3> uniformHalfVectors(int samples) {
   return h;
 }
 
-float integrateSheenDfgWith(float NoV, float roughness, const std::vector<glm::vec3>& halfVectors) {
+float integrateSheenDfgWith(float NoV, float roughness, const std::vector<glm::vec3>& halfVectors,
+                            SheenVisibility visibility) {
   const float alpha = alphaFromRoughness(roughness);
   const glm::vec3 v(std::sqrt(std::max(0.0f, 1.0f - NoV * NoV)), 0.0f, NoV);
   double sum = 0.0;
@@ -101,8 +102,8 @@ float integrateSheenDfgWith(float NoV, float roughness, const std::vector<glm::v
     const float VoH = glm::dot(v, h);
     const float NoL = 2.0f * VoH * h.z - NoV;
     if (NoL <= 0.0f || VoH <= 0.0f) continue;
-    sum += shared::charlieDistribution(h.z, alpha) * shared::neubeltVisibility(NoV, NoL) * NoL *
-           4.0f * VoH;
+    sum += shared::charlieDistribution(h.z, alpha) * sheenVisibility(visibility, NoV, NoL, alpha) *
+           NoL * 4.0f * VoH;
   }
   return static_cast<float>(sum * 2.0 * std::numbers::pi / static_cast<double>(halfVectors.size()));
 }
@@ -114,18 +115,18 @@ float integrateSheenDfgWith(float NoV, float roughness, const std::vector<glm::v
 // Filament's cmgen cloth DFG do): dl = 4 (v.h) dh and the pdf of h is 1 / (2 pi), so each
 // point adds D V (n.l) 4 (v.h) 2 pi. Uniform half vectors keep the points where the Charlie
 // lobe lives, near the horizon, for every roughness.
-float integrateSheenDfg(float NoV, float roughness, int samples) {
-  return integrateSheenDfgWith(NoV, roughness, uniformHalfVectors(samples));
+float integrateSheenDfg(float NoV, float roughness, int samples, SheenVisibility visibility) {
+  return integrateSheenDfgWith(NoV, roughness, uniformHalfVectors(samples), visibility);
 }
 
-Image integrateSheenDfgLut(int width, int height, int samples) {
+Image integrateSheenDfgLut(int width, int height, int samples, SheenVisibility visibility) {
   Image lut(width, height);
   const std::vector<glm::vec3> halfVectors = uniformHalfVectors(samples);
   parallelFor(0, height, [&](int j) {
     const float r = (static_cast<float>(j) + 0.5f) / static_cast<float>(height);
     for (int i = 0; i < width; ++i) {
       const float e = integrateSheenDfgWith(
-          (static_cast<float>(i) + 0.5f) / static_cast<float>(width), r, halfVectors);
+          (static_cast<float>(i) + 0.5f) / static_cast<float>(width), r, halfVectors, visibility);
       lut.at(i, j) = glm::vec3(e, 0.0f, 0.0f);
     }
   });

@@ -318,15 +318,17 @@ void addGltfSampleViewer(OutputPlan& plan, const BakeResult& r, const BakeOption
   }
   const auto lut = [&](const std::string& file, std::shared_ptr<Image> image, Json channels) {
     plan.add(dir + file, [image] { return encodePngData(*image); });
-    plan.outputs.push_back({{"role", "lut"},
-                            {"target", "gltf-sample-viewer"},
-                            {"path", dir + file},
-                            {"format", "png"},
-                            {"encoding", "8-bit unorm, linear (round(255 v))"},
-                            {"size", {image->width, image->height}},
-                            {"u", "n.v = (i + 0.5) / W"},
-                            {"v", "r = (j + 0.5) / H, row 0 first"},
-                            {"channels", channels}});
+    plan.outputs.push_back(
+        {{"role", "lut"},
+         {"target", "gltf-sample-viewer"},
+         {"path", dir + file},
+         {"format", "png"},
+         {"encoding", "8-bit unorm, linear (round(255 v))"},
+         {"size", {image->width, image->height}},
+         {"u", "n.v = (i + 0.5) / W"},
+         {"v", "r = (j + 0.5) / H, row 0 first"},
+         {"channels", channels},
+         {"sheen_visibility", std::string(sheenVisibilityName(o.sheenVisibility))}});
   };
   lut("lut_ggx.png", combined, {"A", "B", "sheen E"});
   lut("lut_charlie.png", combined, {"A", "B", "sheen E"});

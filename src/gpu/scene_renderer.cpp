@@ -30,8 +30,9 @@ struct FrameUniforms {
   glm::ivec4 terms, models;
   glm::vec4 probes;  // count, the probes' specular levels - 1, flags (view/frame.glsl)
   std::array<glm::vec4, 9> sh;
+  glm::ivec4 sheen;  // the sheen lobe's visibility (view/frame.glsl)
 };
-static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16);
+static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16);
 
 // vec4s per probe in the probes buffer (view/frame.glsl).
 constexpr int kProbeVec4s = 11;
@@ -335,6 +336,7 @@ void SceneRenderer::Impl::uploadBake(const BakeResult& bake, const BakeOptions& 
   specularMaxLod = static_cast<float>(bake.specular.levelCount() - 1);
   skyboxMaxLod = static_cast<float>(bake.source.levelCount() - 1);
   frostbiteMapping = bakeOptions.specular.mapping == RoughnessMapping::Frostbite;
+  sheenVisibility = bakeOptions.sheenVisibility;
   for (int k = 0; k < 9; ++k)
     shIrradianceOverPi[k] = bake.sh[k] * (shCosineLobe(shBand(k)) / std::numbers::pi_v<float>);
 }
@@ -778,6 +780,7 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
 
 void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& o,
                                  float skyboxLod) {
+  if (sceneHasSheen) checkSheenVisibility(sheenVisibility, o);
   const Targets& t = *targets;
   FrameUniforms u{};
   u.viewProjection = viewProjectionOf(camera, bounds);
@@ -806,6 +809,7 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
                                    (probeFrostbiteMapping ? 4 : 0)),
                 0.0f);
   for (int k = 0; k < 9; ++k) u.sh[k] = glm::vec4(shIrradianceOverPi[k], 0.0f);
+  u.sheen = glm::ivec4(s.sheenVisibility, 0, 0, 0);
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
 
   std::array<VkClearValue, 3> clears{};

@@ -47,6 +47,7 @@ struct SceneRenderer::Impl {
   // The sheen chain and its table (1 x 1 black when the bake has none).
   std::unique_ptr<DeviceImage> sheen, sheenDfg;
   bool sceneHasSheen = false;  // a material has a sheen: every bake must bring one
+  SheenVisibility sheenVisibility = SheenVisibility::Charlie;  // the bake's sheen table's
   float specularMaxLod = 0.0f, skyboxMaxLod = 0.0f;
   bool frostbiteMapping = false;
   Sh9 shIrradianceOverPi{};

@@ -6,6 +6,16 @@
 
 namespace ibl {
 
+std::string_view sheenVisibilityName(SheenVisibility v) {
+  return v == SheenVisibility::Neubelt ? "neubelt" : "charlie";
+}
+
+std::optional<SheenVisibility> parseSheenVisibility(std::string_view name) {
+  if (name == "charlie") return SheenVisibility::Charlie;
+  if (name == "neubelt") return SheenVisibility::Neubelt;
+  return std::nullopt;
+}
+
 glm::vec2 dfgBlackOps2(float roughness, float NoV) {
   const float g = 1.0f - roughness;
   const float tx = g / 0.96f;

@@ -37,21 +37,24 @@ const std::vector<float>& directionalAlbedoTable() {
   return table;
 }
 
-// E(n.v, r) of the sheen lobe (D_charlie V_neubelt), bilinear in a table integrated once per
-// process like the one above (integrateSheenDfg: 33^2 nodes of 1024 points, the edges
-// included).
-const std::vector<float>& sheenAlbedoTable() {
-  static const std::vector<float> table = [] {
-    std::vector<float> t(kNodes * kNodes);
-    parallelFor(0, kNodes, [&](int j) {
-      for (int i = 0; i < kNodes; ++i)
-        t[static_cast<std::size_t>(j) * kNodes + i] =
-            integrateSheenDfg(std::max(static_cast<float>(i) / (kNodes - 1), 1e-3f),
-                              std::max(static_cast<float>(j) / (kNodes - 1), 1e-3f), 1024);
-    });
-    return t;
-  }();
-  return table;
+// E(n.v, r) of the sheen lobe (D_charlie V, V the chosen visibility), bilinear in a table
+// integrated once per process and visibility like the one above (integrateSheenDfg: 33^2 nodes
+// of 1024 points, the edges included).
+std::vector<float> sheenAlbedoNodes(SheenVisibility visibility) {
+  std::vector<float> t(kNodes * kNodes);
+  parallelFor(0, kNodes, [&](int j) {
+    for (int i = 0; i < kNodes; ++i)
+      t[static_cast<std::size_t>(j) * kNodes + i] = integrateSheenDfg(
+          std::max(static_cast<float>(i) / (kNodes - 1), 1e-3f),
+          std::max(static_cast<float>(j) / (kNodes - 1), 1e-3f), 1024, visibility);
+  });
+  return t;
+}
+const std::vector<float>& sheenAlbedoTable(SheenVisibility visibility) {
+  static const std::vector<float> charlie = sheenAlbedoNodes(SheenVisibility::Charlie);
+  if (visibility == SheenVisibility::Charlie) return charlie;
+  static const std::vector<float> neubelt = sheenAlbedoNodes(SheenVisibility::Neubelt);
+  return neubelt;
 }
 
 // Bilinear in one of the tables above at (n.v, r).
@@ -82,9 +85,11 @@ struct Brdf {
   ShadingTerms only;
   glm::vec3 multipleScattering;  // the specular lobe's scale for the bounces between microfacets
   // KHR_materials_sheen: f = f_sheen + f_below min(1 - s E(n.v), 1 - s E(n.l)), s =
-  // max(sheenColor), f_sheen = sheenColor D_charlie V_neubelt (the specification's layering).
+  // max(sheenColor), f_sheen = sheenColor D_charlie V (the specification's layering), V the
+  // visibility of RenderOptions::sheenVisibility.
   glm::vec3 sheenColor{0.0f};
   float sheenRoughness = 0.0f, sheenAlpha = 1.0f, sheenScaleV = 1.0f;
+  SheenVisibility sheenVisibility = SheenVisibility::Charlie;
   bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
 
   // The material at p seen from local direction v; `only` selects lobes.
@@ -107,6 +112,7 @@ struct Brdf {
     if (p.sheenColor != glm::vec3(0.0f)) {
       // The split sum's sheen prefilter stops at kMinSheenRoughness: the same material here.
       b.sheenColor = p.sheenColor;
+      b.sheenVisibility = o.sheenVisibility;
       b.sheenRoughness = std::max(p.sheenRoughness, kMinSheenRoughness);
       b.sheenAlpha = alphaFromRoughness(b.sheenRoughness);
       b.sheenScaleV = b.albedoScaling(v.z);
@@ -121,8 +127,8 @@ struct Brdf {
   }
   // 1 - max(sheenColor) E(c, sheen roughness).
   float albedoScaling(float c) const {
-    return shared::sheenAlbedoScaling(
-        sheenColor, tableLookup(sheenAlbedoTable(), std::max(c, 1e-4f), sheenRoughness));
+    return shared::sheenAlbedoScaling(sheenColor, tableLookup(sheenAlbedoTable(sheenVisibility),
+                                                              std::max(c, 1e-4f), sheenRoughness));
   }
 
   // f(v, l) (n.l), with n = +Z of the local frame.
@@ -146,7 +152,7 @@ struct Brdf {
       result *= std::min(sheenScaleV, albedoScaling(NoL));
       if (sheenLobe())
         result += sheenColor * (shared::charlieDistribution(h.z, sheenAlpha) *
-                                shared::neubeltVisibility(NoV, NoL));
+                                ibl::sheenVisibility(sheenVisibility, NoV, NoL, sheenAlpha));
     }
     return result * NoL;
   }

@@ -123,6 +123,7 @@ ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResu
   o.cameraSeesSpecular = options.specular;
   o.cameraSeesEmitters = false;
   o.seed = options.seed;
+  o.sheenVisibility = bakeOptions.sheenVisibility;  // the sheen of the bake it lights with
   const RenderResult strip =
       renderRays(scene, kFaceCount * n, n, faceRays, bake, bakeOptions, o, progress);
   ProbeCapture c;

@@ -53,6 +53,7 @@ shared::SplitSumSwitches splitSumSwitches(const RenderOptions& o) {
   s.specularOcclusion = o.specularOcclusion;
   s.disneyDiffuse = o.diffuse == DiffuseModel::Disney;
   s.ltcAreaLights = o.areaLights == AreaLightModel::Ltc;
+  s.sheenVisibility = static_cast<int>(o.sheenVisibility);
   return s;
 }
 
@@ -143,10 +144,18 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
     if (o.only != ShadingTerms::Sheen)
       radiance += belowScale * shared::lightRadiance(m, p.normal, view, inc, dfg, s);
     if (sheen)
-      radiance += shared::sheenLightRadiance(p.sheenColor, sheenAlpha, p.normal, view, inc);
+      radiance += shared::sheenLightRadiance(p.sheenColor, sheenAlpha, s.sheenVisibility, p.normal,
+                                             view, inc);
     sum += sl.color * profile * radiance;
   }
   return sum;
+}
+
+void checkSheenVisibility(SheenVisibility table, const RenderOptions& o) {
+  if (o.mode == RenderMode::SplitSum && table != o.sheenVisibility)
+    fail("render", fmt::format("the sheen lobe's visibility is {}, but the bake's sheen table "
+                               "(sheen_dfg) was integrated with {}",
+                               sheenVisibilityName(o.sheenVisibility), sheenVisibilityName(table)));
 }
 
 RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeResult& bake,
@@ -164,6 +173,9 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                         const RenderOptions& o, const std::function<void(float)>& progress) {
   if (width < 1 || height < 1)
     fail("render", fmt::format("an image of {} x {} pixels is empty", width, height));
+  if (bake.sheenDfg)
+    for (const Material& m : scene.materials)
+      if (m.sheenColor != glm::vec3(0.0f)) checkSheenVisibility(bakeOptions.sheenVisibility, o);
   const auto start = std::chrono::steady_clock::now();
   const RayTracer tracer(scene);
   const EnvironmentSampler env(bake.source.levels[0]);

@@ -79,6 +79,7 @@ std::vector<Misuse> sceneMisuses() {
       {"--env", "--env nosuch.exr", 1, "nosuch.exr: no such file"},
       {"--env", "--env sky:elevation=100", 2, "elevation"},
       {"--strict", "--strict", 2, "--strict: applies to a glTF scene, not the built-in"},
+      {"--sheen-visibility", "--sheen-visibility ward", 2, "--sheen-visibility"},
       {"--lights", "--lights nosuch.json", 1, "nosuch.json: no such file"},
       {"--spot-lumens", "--spot-lumens lots", 2, "--spot-lumens"},
       {"--bake", "--bake nosuch", 1, "nosuch: no such directory"},
@@ -140,6 +141,9 @@ TEST(Usage, Bake) {
       {
           {"--list", "--list nosuch.txt -o out", 1, "nosuch.txt: cannot read the list"},
           {"--output", "", 2, "--output: an output directory is required"},
+          {"--sheen-visibility", "-o out --sheen-visibility neubelt", 2,
+           "--sheen-visibility: chooses the visibility of the sheen table, which only --sheen"},
+          {"--sheen-visibility", "-o out --sheen --sheen-visibility ward", 2, "--sheen-visibility"},
           {"--output", "-o park.exr/x", 1, "park.exr"},
           {"--device", "--device tpu -o out", 2, "--device"},
           {"--list-devices", "--list-devices=maybe", 2, "--list-devices"},
@@ -253,6 +257,8 @@ TEST(Usage, Probe) {
       {
           {"--env", "grid --at 0,0,0 -o out --env nosuch.exr", 1, "nosuch.exr: no such file"},
           {"--strict", "grid --at 0,0,0 -o out --strict", 2, "--strict: applies to a glTF"},
+          {"--sheen-visibility", "grid --at 0,0,0 -o out --sheen-visibility ward", 2,
+           "--sheen-visibility"},
           {"--lights", "grid --at 0,0,0 -o out --lights nosuch.json", 1,
            "nosuch.json: no such file"},
           {"--bake", "grid --at 0,0,0 -o out --bake nosuch", 1, "nosuch: no such directory"},

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <glm/trigonometric.hpp>
 
+#include "ibl/bake/dfg.hpp"
 #include "ibl/env/cubemap.hpp"
 #include "ibl/env/sky.hpp"
 #include "ibl/gpu/viewer.hpp"
@@ -414,6 +415,25 @@ TEST(Viewer, SheenMatchesTheCpu) {
   const Comparison lit = renderBoth(scene, camera, o, 0.0f, sheenBake);
   std::printf("sheen sphere and a point light, viewer vs CPU: %.2e\n", lit.meanRelative);
   EXPECT_LT(lit.meanRelative, 1e-3);
+  // Neubelt's visibility, named: its table in place of the bake's and the lights' lobe through
+  // the frame's uniforms; a lobe that contradicts the table is refused.
+  Baked neubelt = sheenBake;
+  neubelt.options.sheenVisibility = SheenVisibility::Neubelt;
+  neubelt.bake.sheenDfg =
+      integrateSheenDfgLut(neubelt.options.dfgSize, neubelt.options.dfgSize,
+                           4 * neubelt.options.dfgSamples, SheenVisibility::Neubelt);
+  o.sheenVisibility = SheenVisibility::Neubelt;
+  const Comparison named = renderBoth(scene, camera, o, 0.0f, neubelt);
+  std::printf("Neubelt sheen sphere and a point light, viewer vs CPU: %.2e\n", named.meanRelative);
+  EXPECT_LT(named.meanRelative, 1e-3);
+  o.sheenVisibility = SheenVisibility::Charlie;
+  try {
+    gpu::SceneRenderer viewer(graphicsContext(), scene, neubelt.bake, neubelt.options);
+    viewer.render(camera, o);
+    ADD_FAILURE() << "a Charlie lobe was drawn with a Neubelt table";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("neubelt"), std::string::npos) << e.what();
+  }
   // A sheen without the bake's sheen chain is refused, as `ibl render` refuses it.
   try {
     gpu::SceneRenderer viewer(graphicsContext(), scene, sunsetBake().bake, sunsetBake().options);

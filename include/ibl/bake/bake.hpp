@@ -14,6 +14,7 @@
 #include "ibl/env/environment.hpp"
 #include "ibl/env/export.hpp"
 #include "ibl/io/pixel_formats.hpp"
+#include "ibl/math/brdf.hpp"
 #include "ibl/math/sh.hpp"
 
 namespace ibl {
@@ -30,6 +31,9 @@ struct BakeOptions {
   // mapping as the specular chain) and integrate the sheen table (manifest roles sheen and
   // sheen_dfg). The glTF Sample Viewer target always does.
   bool sheen = false;
+  // The sheen lobe's visibility in the sheen table (recorded in manifest.json; renders of the
+  // bake use the same).
+  SheenVisibility sheenVisibility = SheenVisibility::Charlie;
   // What to write (writeBakeOutputs) and so what to compute: the ibl set, engine targets.
   std::vector<EngineTarget> targets = {EngineTarget::Ibl};
   bool wants(EngineTarget t) const;
@@ -122,8 +126,9 @@ void checkBakeOutputDirectory(const std::filesystem::path& outDir, bool force);
 std::uint64_t estimateBakeMemoryBytes(const BakeOptions& options, const BakeOutputOptions& output);
 std::uint64_t estimateBakeOutputBytes(const BakeOptions& options, const BakeOutputOptions& output);
 
-// Reads a bake written by writeBakeOutputs back (specular, irradiance, source, DFG, SH9 and the
-// roughness mapping from its manifest), for rendering without baking again.
+// Reads a bake written by writeBakeOutputs back (specular, irradiance, source, DFG, SH9, the
+// sheen pair, and the roughness mapping and sheen visibility from its manifest), for rendering
+// without baking again.
 BakeResult loadBake(const std::filesystem::path& dir, BakeOptions* options);
 
 }  // namespace ibl

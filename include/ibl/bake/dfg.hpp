@@ -17,6 +17,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibl/core/image.hpp"
+#include "ibl/math/brdf.hpp"
 
 namespace ibl {
 
@@ -28,13 +29,14 @@ glm::vec3 integrateDfg(float NoV, float roughness, int samples);
 // The whole table (RGB = A, B, diffuse).
 Image integrateDfgLut(int width, int height, int samples);
 
-// The sheen table (KHR_materials_sheen, Filament's cloth): texel (i, j) as above, R holds
-//   E = integral of D_charlie(h) V_neubelt(v, l) (n.l) dl      (G = B = 0)
-// the sheen lobe's directional albedo, so that sheen = sheenColor * prefilteredCharlie(r) * E
-// and the layer below is scaled by 1 - max(sheenColor) * E (KHR_materials_sheen's albedo
-// scaling). `samples` half vectors uniform on the hemisphere, Hammersley points.
-float integrateSheenDfg(float NoV, float roughness, int samples);
-Image integrateSheenDfgLut(int width, int height, int samples);
+// The sheen table (KHR_materials_sheen): texel (i, j) as above, R holds
+//   E = integral of D_charlie(h) V(v, l) (n.l) dl      (G = B = 0)
+// with V the chosen visibility (Charlie by default), the sheen lobe's directional albedo, so
+// that sheen = sheenColor * prefilteredCharlie(r) * E and the layer below is scaled by
+// 1 - max(sheenColor) * E (KHR_materials_sheen's albedo scaling). `samples` half vectors
+// uniform on the hemisphere, Hammersley points.
+float integrateSheenDfg(float NoV, float roughness, int samples, SheenVisibility visibility);
+Image integrateSheenDfgLut(int width, int height, int samples, SheenVisibility visibility);
 
 // Bilinear lookup in a DFG table at (n.v, r).
 glm::vec3 sampleDfgLut(const Image& lut, float NoV, float roughness);

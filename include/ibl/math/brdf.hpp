@@ -3,6 +3,9 @@
 // section 3; glTF 2.0 metallic-roughness): GGX distribution, height-correlated Smith
 // visibility, Schlick Fresnel, renormalized Disney diffuse; and the analytic fits of the DFG
 // term used by mobile renderers.
+#include <optional>
+#include <string_view>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -18,6 +21,23 @@ using shared::ggxDistribution;
 using shared::schlickWeight;
 using shared::smithGgxCorrelatedVisibility;
 using shared::smithGgxMasking;
+
+// The visibility of the sheen lobe (KHR_materials_sheen), one choice passed from the command
+// line to the bake's sheen table, the split sum's lights, the reference and the viewer:
+// Charlie (Estevez & Kulla 2017, the specification's; the default) or Neubelt & Pettineo's
+// (2013; energy-gaining at grazing angles, only when asked by name). The values are the
+// shaders' (shared::sheenVisibility in ibl/shared/brdf.h).
+enum class SheenVisibility {
+  Charlie = shared::kSheenVisibilityCharlie,
+  Neubelt = shared::kSheenVisibilityNeubelt
+};
+// "charlie" or "neubelt", as the option and manifest.json spell them.
+std::string_view sheenVisibilityName(SheenVisibility v);
+std::optional<SheenVisibility> parseSheenVisibility(std::string_view name);
+// V(n.v, n.l) of the chosen model at sheen alpha = r^2.
+inline float sheenVisibility(SheenVisibility v, float NoV, float NoL, float alpha) {
+  return shared::sheenVisibility(static_cast<int>(v), NoV, NoL, alpha);
+}
 
 // Analytic fits of the split-sum DFG term: (scale A, bias B) with specular = F0 A + B.
 // Lazarov 2013, "Getting More Physical in Call of Duty: Black Ops II" (gloss = 1 - roughness).

@@ -34,6 +34,9 @@ struct RenderOptions {
   bool specularOcclusion = true;   // split sum: from the occlusion texture
   IrradianceSource irradiance = IrradianceSource::Cube;
   AreaLightModel areaLights = AreaLightModel::Ltc;  // split sum (measured closer: docs/lights.md)
+  // The sheen lobe's visibility: the split sum's lights, the reference. A split sum must use
+  // the bake's (BakeOptions::sheenVisibility, its sheen table's): renderRays refuses another.
+  SheenVisibility sheenVisibility = SheenVisibility::Charlie;
   bool shadows = false;  // reference: ray-traced visibility of the environment and the lights
   // Reference: bounces of indirect light between the scene's surfaces (0: direct light only;
   // any bounce implies shadows). The command's default is 4.
@@ -82,6 +85,11 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                         const BakeResult& bake, const BakeOptions& bakeOptions,
                         const RenderOptions& options,
                         const std::function<void(float)>& progress = {});
+
+// Throws when a split sum would read a sheen table integrated with the visibility `table`
+// while `options` gives the lights' sheen lobe another (renderRays and the viewer call it for
+// scenes with a sheen).
+void checkSheenVisibility(SheenVisibility table, const RenderOptions& options);
 
 // Shading of one surface point, exposed for the tests.
 struct SurfacePoint {

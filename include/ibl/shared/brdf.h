@@ -98,7 +98,7 @@ IBL_FN float prefilterLobe(int kind, float c, float a2) {
 // sheen).
 const float kMinSheenRoughness = 0.1f;
 
-// The sheen BRDF of KHR_materials_sheen and Filament's cloth model, f = D_charlie V.
+// The sheen BRDF of KHR_materials_sheen, f = D_charlie V (sheenVisibility below).
 // The "Charlie" distribution (Estevez & Kulla 2017, "Production Friendly Microfacet Sheen
 // BRDF", eq. 2): D(h) = (2 + 1 / alpha) sin(theta_h)^(1 / alpha) / (2 pi), alpha = r^2.
 IBL_FN float charlieDistribution(float NoH, float alpha) {
@@ -107,9 +107,52 @@ IBL_FN float charlieDistribution(float NoH, float alpha) {
   return (2.0f + invAlpha) * pow(sin2h, 0.5f * invAlpha) / (2.0f * kPi);
 }
 // Neubelt & Pettineo's visibility (2013, "Crafting a Next-Gen Material Pipeline for The
-// Order: 1886", the Ashikhmin-style cloth term): V = 1 / (4 (n.l + n.v - n.l n.v)).
+// Order: 1886", the Ashikhmin-style cloth term): V = 1 / (4 (n.l + n.v - n.l n.v)). Cheaper,
+// but no masking-shadowing term of the Charlie D: at grazing n.v its lobe reflects more than it
+// receives up to r = 0.5 (E = 1.35 at r = 0.3, n.v = 0.004), as KHR_materials_sheen's notes
+// warn; only when named (--sheen-visibility neubelt).
 IBL_FN float neubeltVisibility(float NoV, float NoL) {
   return 1.0f / (4.0f * (NoL + NoV - NoL * NoV));
+}
+
+// The "Charlie" visibility (Estevez & Kulla 2017, section 3; the one KHR_materials_sheen's
+// implementation notes define), V = G2 / (4 n.v n.l) with the height-correlated Smith term
+// G2 = 1 / (1 + Lambda(n.v) + Lambda(n.l)) and their fit of Lambda:
+//   ln Lambda(mu) = L(mu) = a / (1 + b mu^c) + d mu + e               for mu < 0.5,
+//   ln Lambda(mu) = 2 L(0.5) - L(1 - mu)                              for mu >= 0.5,
+// the second the symmetric extension that carries the fit from 0.5 to mu = 1, where Lambda
+// vanishes. The five coefficients are interpolated between the paper's fits at r = 0 and r = 1
+// by t = (1 - r)^2, with r = alpha (= sheen roughness^2, as KHR_materials_sheen maps it). The
+// fit follows the Smith Lambda of D from alpha = 0.07 (r = 0.27) up; below, it falls short (0.4
+// of it at alpha = 0.01) and the lobe's albedo passes 1 at grazing n.v (docs/targets.md,
+// "Sheen"). Without the paper's terminator softening (section 4: Lambda(n.l) raised to
+// 1 + 2 (1 - n.l)^8), a non-reciprocal artistic adjustment that neither the specification nor
+// the glTF Sample Viewer applies.
+IBL_FN float charlieLambdaExponent(float mu, float alpha) {
+  float t = (1.0f - alpha) * (1.0f - alpha);
+  float a = mix(21.5473f, 25.3245f, t);
+  float b = mix(3.82987f, 3.32435f, t);
+  float c = mix(0.19823f, 0.16801f, t);
+  float d = mix(-1.97760f, -1.27393f, t);
+  float e = mix(-4.32054f, -4.85967f, t);
+  return a / (1.0f + b * pow(max(mu, 0.0f), c)) + d * mu + e;
+}
+IBL_FN float charlieLambda(float mu, float alpha) {
+  if (mu < 0.5f) return exp(charlieLambdaExponent(mu, alpha));
+  return exp(2.0f * charlieLambdaExponent(0.5f, alpha) - charlieLambdaExponent(1.0f - mu, alpha));
+}
+IBL_FN float charlieVisibility(float NoV, float NoL, float alpha) {
+  return 1.0f /
+         ((1.0f + charlieLambda(NoV, alpha) + charlieLambda(NoL, alpha)) * (4.0f * NoV * NoL));
+}
+
+// The sheen lobe's visibility, by model: kSheenVisibilityCharlie (the default everywhere) or
+// kSheenVisibilityNeubelt (SheenVisibility in ibl/math/brdf.hpp holds these values).
+const int kSheenVisibilityCharlie = 0;
+const int kSheenVisibilityNeubelt = 1;
+IBL_FN float sheenVisibility(int model, float NoV, float NoL, float alpha) {
+  if (model == kSheenVisibilityNeubelt) return neubeltVisibility(NoV, NoL);
+  return charlieVisibility(NoV, NoL, alpha);
 }
 
 // A smoothstep from 0 at c = lo to 1 at c = lo + 1 / inv: the radial windows that split the

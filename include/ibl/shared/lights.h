@@ -592,10 +592,11 @@ IBL_FN LightIncidence lightIncidence(ShadingLight light, vec3 p, vec3 n, vec3 v,
   return punctualIncidence(light, c, n);
 }
 
-// The sheen lobe (KHR_materials_sheen) lit by one light: sheenColor D_charlie V_neubelt times
-// the illuminance, from the light's diffuse representative direction (the Charlie lobe is
-// broad, like the diffuse one; for punctual lights and the sun this is exact).
-IBL_FN vec3 sheenLightRadiance(vec3 sheenColor, float sheenAlpha, vec3 n, vec3 v,
+// The sheen lobe (KHR_materials_sheen) lit by one light: sheenColor D_charlie V times the
+// illuminance, V the visibility model `visibility` (sheenVisibility in brdf.h), from the light's
+// diffuse representative direction (the Charlie lobe is broad, like the diffuse one; for
+// punctual lights and the sun this is exact).
+IBL_FN vec3 sheenLightRadiance(vec3 sheenColor, float sheenAlpha, int visibility, vec3 n, vec3 v,
                                LightIncidence inc) {
   vec3 l = inc.diffuseDirection;
   float NoL = dot(n, l);
@@ -603,7 +604,7 @@ IBL_FN vec3 sheenLightRadiance(vec3 sheenColor, float sheenAlpha, vec3 n, vec3 v
   float NoV = max(dot(n, v), 1e-4f);
   vec3 h = normalize(v + l);
   return sheenColor * (charlieDistribution(clamp(dot(n, h), 0.0f, 1.0f), sheenAlpha) *
-                       neubeltVisibility(NoV, NoL) * inc.diffuseIlluminance);
+                       sheenVisibility(visibility, NoV, NoL, sheenAlpha) * inc.diffuseIlluminance);
 }
 
 // The radiance the standard material (the BRDF of the IBL path) reflects toward v from a light's

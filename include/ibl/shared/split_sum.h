@@ -24,6 +24,7 @@ struct SplitSumSwitches {
   bool specularOcclusion;   // Frostbite listing 26
   bool disneyDiffuse;       // Frostbite's renormalized Disney diffuse, else Lambert
   bool ltcAreaLights;       // area lights through LTCs (lights.h), else Frostbite's
+  int sheenVisibility;      // the sheen lobe's: kSheenVisibilityCharlie or ...Neubelt (brdf.h)
 };
 
 // The material at the point: glTF metallic-roughness, linear base color, perceptual roughness.
