@@ -326,6 +326,14 @@ TEST(Lights, TubeLuminanceFromPowerMatchesTheFarField) {
       EXPECT_NEAR(intensity(theta), luminance * silhouette, 2e-3 * luminance * silhouette)
           << length << " " << degrees;
     }
+    if (length == 0.0) {  // Frostbite's forms too: the caps alone (no 0 / 0 from the rect)
+      const glm::dvec3 w(0.0, 1.0, 0.0);
+      EXPECT_NEAR(s::lightIncidence(tube, glm::vec3(d * w), glm::vec3(-w), glm::vec3(-w), 0.5f,
+                                    areaLightSwitches(false), kLambertLtc)
+                          .diffuseIlluminance *
+                      luminance * d * d,
+                  luminance * kPi * r * r, 1e-3 * luminance * kPi * r * r);
+    }
     constexpr int n = 2000;
     double power = 0.0;  // the intensity is symmetric about the axis: 2 pi d(cos theta)
     for (int i = 0; i < n; ++i) power += intensity(std::acos(-1.0 + 2.0 * (i + 0.5) / n));
