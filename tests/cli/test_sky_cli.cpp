@@ -93,7 +93,8 @@ TEST(SkyCli, ExtractSunRecoversThePaintedSun) {
   // A sky with its sun painted in (ibl sky --sun-disk), baked with --extract-sun: the manifest's
   // sun is the sky's own (ibl sky --sun-json) in lux, direction and color.
   TempDir dir;
-  const std::string angles = " --sun-elevation 25 --sun-azimuth 140 --size 512x256";
+  // 2048 x 1024: the sun's disk (0.533 degrees) spans three pixels, so its size can be measured.
+  const std::string angles = " --sun-elevation 25 --sun-azimuth 140 --size 2048x1024";
   ASSERT_EQ(runIbl("sky -o " + quote(dir / "painted.exr") + angles + " --sun-disk").status, 0);
   ASSERT_EQ(runIbl("sky -o " + quote(dir / "plain.exr") + angles + " --sun-json " +
                    quote(dir / "sun.json"))
@@ -110,12 +111,20 @@ TEST(SkyCli, ExtractSunRecoversThePaintedSun) {
       parseLights(nlohmann::json({{"lights", m.at("lights")}}).dump(), "manifest", dir.path());
   ASSERT_EQ(found.size(), 1u);
   std::printf(
-      "extracted %.0f lx (sky's sun %.0f lx), %.3f degrees off\n", found[0].intensity,
-      truth.intensity,
-      glm::degrees(std::acos(std::min(1.0f, glm::dot(found[0].direction, truth.direction)))));
+      "extracted %.0f lx (sky's sun %.0f lx), %.3f degrees off, %.3f degrees wide\n",
+      found[0].intensity, truth.intensity,
+      glm::degrees(std::acos(std::min(1.0f, glm::dot(found[0].direction, truth.direction)))),
+      glm::degrees(found[0].angularDiameter));
   EXPECT_NEAR(found[0].intensity, truth.intensity, 0.02 * truth.intensity);
   EXPECT_GT(glm::dot(found[0].direction, truth.direction), std::cos(glm::radians(0.2f)));
   EXPECT_NEAR(found[0].color.z, truth.color.z, 0.03f);
+  // The Sun's angular diameter, 2 asin(R / au) = 0.533 degrees (IAU 2015 nominal radius at 1 au),
+  // in the sun file and as extracted from the painted disk (the diameter of a uniform disk with
+  // the brightest pixel's radiance: measured 0.496 degrees, the limb-darkened disk's center
+  // being brighter than its mean); a disk twice as wide reads about 1 degree.
+  const double diameter = glm::degrees(2.0 * std::asin(6.957e8 / 1.495978707e11));
+  EXPECT_NEAR(glm::degrees(truth.angularDiameter), diameter, 1e-3);
+  EXPECT_NEAR(glm::degrees(found[0].angularDiameter), diameter, 0.1);
   // convert --extract-sun writes the image without its sun and the lights file, together.
   ASSERT_EQ(runIbl("convert " + quote(dir / "painted.exr") + " --extract-sun --sun-json " +
                    quote(dir / "x.json") + " -o " + quote(dir / "desunned.exr") + " -q")

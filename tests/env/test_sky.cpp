@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -40,6 +41,92 @@ double skyHorizontalIlluminance(const SkyModel& sky) {
     }
   }
   return e;
+}
+
+// The sky's horizontal illuminance (lux) by the model and by the path-traced reference over the
+// same n x n directions, stratified and cosine-distributed (Malley: uniform points of the unit
+// disk lifted to the hemisphere), E = pi times the mean radiance; the reference traces `paths`
+// paths per band per direction.
+struct HorizontalIlluminance {
+  double model = 0.0, reference = 0.0;
+};
+HorizontalIlluminance horizontalIlluminanceBoth(const SkyParameters& p, int n, int paths) {
+  const SkyModel sky(p);
+  HorizontalIlluminance e;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double u = (i + 0.5) / n, phi = 2.0 * kPi * (j + 0.5) / n;
+      const double rho = std::sqrt(u);
+      const glm::vec3 d(static_cast<float>(rho * std::cos(phi)),
+                        static_cast<float>(std::sqrt(1.0 - u)),
+                        static_cast<float>(rho * std::sin(phi)));
+      e.model += spectrumToXyz(sky.radiance(d)).y;
+      e.reference +=
+          spectrumToXyz(pathTracedSkyRadiance(p, d, paths, static_cast<unsigned>(1 + i * n + j))).y;
+    }
+  e.model *= kPi / (n * n);
+  e.reference *= kPi / (n * n);
+  return e;
+}
+
+// The sky's spectral radiance toward the ground from direction `view` in single scattering, for
+// unit solar irradiance at the top, integrated here from the definitions (apart from the model's
+// tables, its march and its phase functions): along the view ray from the ground to the top of
+// the atmosphere (t = length s^2, midpoint rule in s, 120 steps), the light the air and the
+// aerosols scatter toward the ground, sigma_s(h) P(cos) times the transmittance to the sun (the
+// columns toward it by the same rule, 60 steps; 0 behind the planet) and back to the ground.
+// Profiles as in SunIsTheTopSpectrumThroughTheSlantColumn; Rayleigh's phase 3 (1 + mu^2) / 16 pi,
+// Cornette-Shanks' 3 (1 - g^2)(1 + mu^2) / (8 pi (2 + g^2)(1 + g^2 - 2 g mu)^1.5), g = 0.8.
+constexpr double kBottom = 6371.0e3, kTop = 6471.0e3;
+const double kRayleighHeight = 1.380649e-23 * 288.15 / (28.9647e-3 / 6.02214076e23 * 9.80665);
+glm::dvec3 densities(double h) {
+  return {std::exp(-h / kRayleighHeight), std::exp(-h / 1200.0),
+          std::max(0.0, 1.0 - std::abs(h - 25.0e3) / 15.0e3)};
+}
+// The distance from p along unit d to the top of the atmosphere, or -1 through the ground.
+double toTop(glm::dvec3 p, glm::dvec3 d) {
+  const double b = glm::dot(p, d), c = glm::dot(p, p);
+  if (b < 0.0 && b * b - c + kBottom * kBottom >= 0.0) return -1.0;
+  return -b + std::sqrt(b * b - c + kTop * kTop);
+}
+std::vector<double> singleScatteringHere(const SkyParameters& p, glm::dvec3 view) {
+  const AtmosphereCoefficients c = atmosphereCoefficients(p);
+  const glm::dvec3 sun(sunDirection(p.sunElevation, p.sunAzimuth));
+  const double g = 0.8, mu = glm::dot(view, sun);
+  const double rayleighPhase = 3.0 * (1.0 + mu * mu) / (16.0 * kPi);
+  const double miePhase = 3.0 * (1.0 - g * g) * (1.0 + mu * mu) /
+                          (8.0 * kPi * (2.0 + g * g) * std::pow(1.0 + g * g - 2.0 * g * mu, 1.5));
+  const glm::dvec3 origin(0.0, kBottom + 1e-3, 0.0);
+  const double length = toTop(origin, view);
+  std::vector<double> l(kSkyBands, 0.0);
+  constexpr int kSteps = 120, kSunSteps = 60;
+  glm::dvec3 column(0.0);  // air, aerosols, ozone from the ground to the step
+  for (int i = 0; i < kSteps; ++i) {
+    const double s0 = static_cast<double>(i) / kSteps, s1 = static_cast<double>(i + 1) / kSteps;
+    const double t = length * 0.5 * (s0 * s0 + s1 * s1), dt = length * (s1 * s1 - s0 * s0);
+    const glm::dvec3 x = origin + t * view;
+    const glm::dvec3 rho = densities(glm::length(x) - kBottom);
+    const glm::dvec3 here = column + 0.5 * dt * rho;  // to the middle of the step
+    column += dt * rho;
+    const double sunLength = toTop(x, sun);
+    if (sunLength < 0.0) continue;
+    glm::dvec3 sunColumn(0.0);
+    for (int k = 0; k < kSunSteps; ++k) {
+      const double u0 = static_cast<double>(k) / kSunSteps,
+                   u1 = static_cast<double>(k + 1) / kSunSteps;
+      sunColumn +=
+          densities(glm::length(x + sunLength * 0.5 * (u0 * u0 + u1 * u1) * sun) - kBottom) *
+          (sunLength * (u1 * u1 - u0 * u0));
+    }
+    for (int b = 0; b < kSkyBands; ++b) {
+      const glm::dvec3 extinction(c.rayleighScattering[b], c.mieExtinction[b],
+                                  c.ozoneAbsorption[b]);
+      const double scattered =
+          c.rayleighScattering[b] * rho.x * rayleighPhase + c.mieScattering[b] * rho.y * miePhase;
+      l[b] += scattered * std::exp(-glm::dot(extinction, here + sunColumn)) * dt;
+    }
+  }
+  return l;
 }
 
 SkyParameters sunAt(float elevation, float azimuth = 180.0f) {
@@ -137,7 +224,8 @@ TEST(Sky, SunIlluminanceMatchesMeasurements) {
   EXPECT_GT(luxTop, 120000.0);
   EXPECT_LT(luxTop, 136000.0);
   // Clear sky, sun high (60 degrees): direct normal illuminance about 100 klx at sea level
-  // (IES Lighting Handbook: 75-110 klx for a clear sky at high sun).
+  // (IES Lighting Handbook: 75-110 klx for a clear sky at high sun): the range of clear skies;
+  // the model's own sun is checked within 0.2 % in SunIsTheTopSpectrumThroughTheSlantColumn.
   const Light high = SkyModel(sunAt(60.0f)).sun();
   std::printf("sun at 60 deg: %.0f lx, color %.3f %.3f %.3f\n", high.intensity, high.color.x,
               high.color.y, high.color.z);
@@ -153,9 +241,72 @@ TEST(Sky, SunIlluminanceMatchesMeasurements) {
   EXPECT_EQ(SkyModel(sunAt(-5.0f)).sun().intensity, 0.0f);
 }
 
+TEST(Sky, SunIsTheTopSpectrumThroughTheSlantColumn) {
+  // The sun light against Beer-Lambert along its own path, integrated here: the spectrum at the
+  // top of the atmosphere (checked against published figures above) times exp(-tau) per band,
+  // tau the sea-level coefficients times the constituents' columns along the ray from the
+  // ground to the top of a spherical atmosphere of 6371 + 100 km (midpoint rule on 200000 steps;
+  // air exp(-h / H), H = kT / (mg) at 288.15 K; aerosols exp(-h / 1.2 km); ozone a tent 15 km
+  // wide on each side of 25 km). From high sun to the horizon, three atmospheres.
+  const double bottom = 6371.0e3, top = 6471.0e3;
+  const double rayleighHeight = 1.380649e-23 * 288.15 / (28.9647e-3 / 6.02214076e23 * 9.80665);
+  double worst = 0.0, worstColor = 0.0;
+  for (const auto& [turbidity, ozone] :
+       {std::pair{2.0f, 300.0f}, std::pair{1.0f, 0.0f}, std::pair{5.0f, 450.0f}})
+    for (float elevation : {60.0f, 20.0f, 5.0f, 1.0f}) {
+      SkyParameters p = sunAt(elevation);
+      p.turbidity = turbidity;
+      p.ozone = ozone;
+      const AtmosphereCoefficients c = atmosphereCoefficients(p);
+      const double mu = std::sin(elevation * kPi / 180.0);
+      const double length =
+          -bottom * mu + std::sqrt(bottom * bottom * mu * mu + top * top - bottom * bottom);
+      constexpr int kSteps = 200000;
+      double air = 0.0, aerosols = 0.0, ozoneColumn = 0.0;
+      for (int i = 0; i < kSteps; ++i) {
+        const double t = (i + 0.5) * length / kSteps;
+        const double h = std::sqrt(bottom * bottom + t * t + 2.0 * bottom * t * mu) - bottom;
+        air += std::exp(-h / rayleighHeight);
+        aerosols += std::exp(-h / 1200.0);
+        ozoneColumn += std::max(0.0, 1.0 - std::abs(h - 25.0e3) / 15.0e3);
+      }
+      const double dt = length / kSteps;
+      Spectrum e{};
+      for (int i = 0; i < kSkyBands; ++i)
+        e[i] = static_cast<float>(
+            solarIrradianceAtTop()[i] *
+            std::exp(-(c.rayleighScattering[i] * air + c.mieExtinction[i] * aerosols +
+                       c.ozoneAbsorption[i] * ozoneColumn) *
+                     dt));
+      const glm::vec3 xyz = spectrumToXyz(e);
+      const glm::vec3 color = xyzToLinearRec709(xyz) / xyz.y;
+      const Light sun = skySun(p);
+      const double error = sun.intensity / xyz.y - 1.0;
+      std::printf(
+          "T %.0f, ozone %3.0f DU, sun at %2.0f deg: %8.1f lx, Beer-Lambert here %8.1f lx "
+          "(%+.4f %%)\n",
+          turbidity, ozone, elevation, sun.intensity, xyz.y, 100.0 * error);
+      if (xyz.y < 1.0f) {  // the sun at 1 degree through a thick haze: nothing
+        EXPECT_NEAR(sun.intensity, xyz.y, 1e-2);
+        continue;
+      }
+      worst = std::max(worst, std::abs(error));
+      for (int k = 0; k < 3; ++k)
+        worstColor = std::max(worstColor, static_cast<double>(std::abs(sun.color[k] - color[k])));
+    }
+  // Measured 0.0005 % at high sun to 0.10 % at 5 degrees through haze (the model's 256
+  // quadratic steps along the path), colors within 1e-4.
+  std::printf("worst %.5f %%, color %.6f\n", 100.0 * worst, worstColor);
+  EXPECT_LT(worst, 2e-3);
+  EXPECT_LT(worstColor, 1e-3);
+}
+
 TEST(Sky, SkyIlluminanceAndColorsMatchMeasurements) {
   // The diffuse horizontal illuminance of a clear sky with the sun high is 10-30 klx (Darula &
-  // Kittler 2002, CIE standard general sky types 11-13).
+  // Kittler 2002, CIE standard general sky types 11-13): the range of measured clear skies, not
+  // a tolerance on this one. The model's own error is measured against computations of this
+  // very atmosphere: SingleScatteringIlluminanceMatchesAnIntegrationWrittenHere (0.8 %) and
+  // AgreesWithThePathTracedReference (every order, 10 %).
   const SkyModel sky(sunAt(60.0f, 180.0f));
   const double e = skyHorizontalIlluminance(sky);
   std::printf("sky horizontal illuminance, sun at 60 deg: %.0f lx\n", e);
@@ -178,6 +329,47 @@ TEST(Sky, SkyIlluminanceAndColorsMatchMeasurements) {
   EXPECT_LT(eDusk, 0.25 * e);
   const glm::vec3 west = skyRgb(dusk, glm::normalize(glm::vec3(-1.0f, 0.03f, 0.0f)));
   EXPECT_GT(west.x / west.z, horizon.x / horizon.z * 1.5f);
+}
+
+TEST(Sky, SingleScatteringIlluminanceMatchesAnIntegrationWrittenHere) {
+  // The model's single scattering (multiple scattering off, a black ground) against
+  // singleScatteringHere, over the whole sky: the horizontal illuminance by the midpoint rule in
+  // (theta, phi), 24 x 48 directions, the same for both, and the worst direction.
+  for (float elevation : {60.0f, 10.0f}) {
+    SkyParameters p = sunAt(elevation);
+    p.multipleScattering = false;
+    p.groundAlbedo = 0.0f;
+    const SkyModel sky(p);
+    constexpr int kTheta = 24, kPhi = 48;
+    double model = 0.0, here = 0.0, worst = 0.0;
+    for (int a = 0; a < kTheta; ++a) {
+      const double theta = 0.5 * kPi * (a + 0.5) / kTheta;
+      for (int b = 0; b < kPhi; ++b) {
+        const double phi = 2.0 * kPi * (b + 0.5) / kPhi;
+        const glm::dvec3 d(std::sin(theta) * std::cos(phi), std::cos(theta),
+                           std::sin(theta) * std::sin(phi));
+        const double weight =
+            std::cos(theta) * std::sin(theta) * (0.5 * kPi / kTheta) * (2.0 * kPi / kPhi);
+        const std::vector<double> l = singleScatteringHere(p, d);
+        Spectrum s{};
+        for (int i = 0; i < kSkyBands; ++i)
+          s[i] = static_cast<float>(l[i] * solarIrradianceAtTop()[i]);
+        const double expected = spectrumToXyz(s).y,
+                     got = spectrumToXyz(sky.radiance(glm::vec3(d))).y;
+        model += got * weight;
+        here += expected * weight;
+        worst = std::max(worst, std::abs(got / expected - 1.0));
+      }
+    }
+    std::printf(
+        "sun at %.0f deg, single scattering: %.1f lx (here %.1f lx, %+.3f %%), worst "
+        "direction %.3f %%\n",
+        elevation, model, here, 100.0 * (model / here - 1.0), 100.0 * worst);
+    // Measured -0.46 % (sun at 60) and -0.14 % (10), 0.70 % in the worst direction: the model's
+    // 40 steps along each view ray and its optical-depth table, against 120 x 60 steps here.
+    EXPECT_NEAR(model / here, 1.0, 0.008) << elevation;
+    EXPECT_LT(worst, 0.012) << elevation;
+  }
 }
 
 TEST(Sky, MultipleScatteringBrightensTheSkyByAFraction) {
@@ -211,7 +403,46 @@ TEST(Sky, PaintedSunCarriesTheSunsIlluminance) {
                                           (static_cast<float>(best / w) + 0.5f) / h);
   EXPECT_GT(glm::dot(d, sun.direction), std::cos(2.0 * kPi / h));
   EXPECT_NEAR(glm::dot(sunDirection(35.0f, 130.0f), glm::vec3(0, 1, 0)), std::sin(35.0 * kPi / 180),
-              1e-6);
+              1e-6);  // Its size and shape, apart from the painting: the share of the illuminance
+                      // each pixel near
+  // the sun holds, against the Sun's disk integrated over each pixel here (32 x 32 points per
+  // pixel, each with its solid angle) and divided by the disk's total in closed form: angular
+  // radius r = asin(R / au) = 0.2665 deg (IAU 2015 nominal radius, 6.957e8 m, at 1 au), linear
+  // limb darkening I = 1 - u (1 - cos), u = 0.6 (Neckel & Labs 1994), whose integral over the
+  // disk is pi r^2 (1 - u / 3). The sum of the shares' differences measures the disk's
+  // misplaced light: measured 0.0032 (the painting's 16 x 16 points per pixel on the limb).
+  const double r = std::asin(6.957e8 / 1.495978707e11), u = 0.6;
+  const double total = kPi * r * r * (1.0 - u / 3.0);
+  double misplaced = 0.0, expectedSum = 0.0;
+  constexpr int kSub = 32;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const glm::vec3 c = equirectToDirection((x + 0.5f) / w, (y + 0.5f) / h);
+      if (glm::dot(c, sun.direction) < std::cos(r + 4.0 * kPi / h)) continue;
+      double disk = 0.0;
+      for (int a = 0; a < kSub; ++a) {
+        const double t0 = kPi * (y + static_cast<double>(a) / kSub) / h;
+        const double t1 = kPi * (y + static_cast<double>(a + 1) / kSub) / h;
+        const double omega = 2.0 * kPi / (w * kSub) * (std::cos(t0) - std::cos(t1));
+        for (int b = 0; b < kSub; ++b) {
+          const glm::vec3 sample =
+              equirectToDirection(static_cast<float>((x + (b + 0.5) / kSub) / w),
+                                  static_cast<float>((y + (a + 0.5) / kSub) / h));
+          const double angle =
+              std::acos(std::min(1.0, static_cast<double>(glm::dot(sample, sun.direction))));
+          if (angle < r)
+            disk += (1.0 - u * (1.0 - std::sqrt(1.0 - (angle / r) * (angle / r)))) * omega;
+        }
+      }
+      const double share = luminance(painted.at(x, y) - plain.at(x, y)) *
+                           equirectPixelSolidAngle(y, w, h) / sun.intensity;
+      misplaced += std::abs(share - disk / total);
+      expectedSum += disk / total;
+    }
+  std::printf(
+      "painted sun: %.4f of its light misplaced against the disk (whose pixels hold %.4f)\n",
+      misplaced, expectedSum);
+  EXPECT_LT(misplaced, 0.006);
 }
 
 TEST(Sky, CompassConventions) {
@@ -325,16 +556,20 @@ TEST(Sky, AgreesWithThePathTracedReference) {
   // delta tracking, every order of scattering, no tables), luminance per direction over a black
   // ground. Single scattering (the march, the optical-depth table, the phase functions) must
   // agree within the reference's noise; with every order, Hillaire's isotropic multiple
-  // scattering must bring the model closer than single scattering alone (docs/sky.md lists the
-  // remaining error: + at the zenith, - toward the horizon).
+  // scattering must bring the model closer than single scattering alone, and stay within its
+  // measured error (docs/sky.md: + at the zenith, - toward the horizon, the more so at low sun).
+  // The reference's noise, measured over four seeds: 1 to 2 % (one standard deviation) with
+  // 3000 paths per band, 0.5 to 1.4 % single scattering with 1500; each bound below is the
+  // error measured here plus three of those and 1 %.
   struct Case {
     float sunElevation;
     glm::vec3 view;
+    double bound;  // |model / reference - 1| with every order
   };
-  const Case cases[] = {{30.0f, {0.0f, 1.0f, 0.0f}},
-                        {30.0f, glm::normalize(glm::vec3(0.0f, 0.1f, -1.0f))},
-                        {30.0f, glm::normalize(glm::vec3(0.2f, 0.5f, 1.0f))},
-                        {6.0f, glm::normalize(glm::vec3(0.3f, 0.05f, -1.0f))}};
+  const Case cases[] = {{30.0f, {0.0f, 1.0f, 0.0f}, 0.15},                             // +7.9 %
+                        {30.0f, glm::normalize(glm::vec3(0.0f, 0.1f, -1.0f)), 0.17},   // -13.2 %
+                        {30.0f, glm::normalize(glm::vec3(0.2f, 0.5f, 1.0f)), 0.11},    // -6.7 %
+                        {6.0f, glm::normalize(glm::vec3(0.3f, 0.05f, -1.0f)), 0.31}};  // -26.0 %
   for (const Case& c : cases) {
     SkyParameters p = sunAt(c.sunElevation, 180.0f);
     p.groundAlbedo = 0.0f;
@@ -349,8 +584,19 @@ TEST(Sky, AgreesWithThePathTracedReference) {
         c.sunElevation, c.view.x, c.view.y, c.view.z, single, referenceSingle,
         100.0 * (single / referenceSingle - 1.0), full, referenceFull,
         100.0 * (full / referenceFull - 1.0));
-    EXPECT_NEAR(single / referenceSingle, 1.0, 0.06);
+    EXPECT_NEAR(single / referenceSingle, 1.0, 0.05);  // measured within 1.2 %
     EXPECT_LT(std::abs(full - referenceFull), std::abs(single - referenceFull));
-    EXPECT_NEAR(full / referenceFull, 1.0, 0.35);
+    EXPECT_NEAR(full / referenceFull, 1.0, c.bound);
   }
+  // The sky's horizontal illuminance, sun at 60 degrees over the default ground (albedo 0.3),
+  // against the reference over the same 64 x 64 cosine-distributed directions, one path per band
+  // each: measured +0.5 % here, +1.8 % and +5.2 % with other seeds (the reference's noise, 2.4 %,
+  // the sun's aureole dominating it; the model's own error about +2.5 %, the zenith's excess and
+  // the horizon's deficit partly cancelling): the bound is that mean plus three deviations. Single
+  // scattering alone is checked against a deterministic integration within 0.8 %
+  // (SingleScatteringIlluminanceMatchesAnIntegrationWrittenHere).
+  const HorizontalIlluminance e = horizontalIlluminanceBoth(sunAt(60.0f, 180.0f), 64, 1);
+  std::printf("sky horizontal illuminance, sun at 60 deg: %.0f lx, reference %.0f lx (%+.1f %%)\n",
+              e.model, e.reference, 100.0 * (e.model / e.reference - 1.0));
+  EXPECT_NEAR(e.model / e.reference, 1.0, 0.10);
 }

@@ -126,6 +126,77 @@ TEST(Probes, InfluenceFadesFromTheInnerVolumeToTheBorder) {
   EXPECT_FLOAT_EQ(shared::probeShare(1.0f, coverage), 0.0f);
 }
 
+// Two nested probes of different sizes and colors, written as `ibl probe` writes them and read
+// back by loadProbes (named largest first), composed at points inside both, inside the larger
+// only and at the smaller's center. Expected: Frostbite section 4.9.5's listing worked by hand:
+// probes from the smallest influence to the largest, each taking its weight less the coverage
+// the ones before it reached (never below 0), the distant environment the rest. The weights:
+// smoothstep of the distance into the fade, (1 - d / r) / fade for the sphere, 1 - (distance
+// beyond the inner box) / fade for the box.
+TEST(Probes, NestedProbesComposeSmallestFirst) {
+  const TempDir dir;
+  const glm::vec3 red(1.0f, 0.25f, 0.125f), blue(0.125f, 0.25f, 1.0f);  // exact in half floats
+  const auto writeProbe = [&](const char* name, glm::vec3 color, const ProbeVolume& influence,
+                              float fade) {
+    const Bake b = bakeOf([color](glm::vec3) { return color; }, 8);
+    ProbePlacement p;
+    p.position = influence.center;
+    p.influence = influence;
+    p.fade = fade;
+    BakeOutputOptions out;
+    out.preview = false;
+    out.manifestRecords = "{\"probe\": " + probeRecordJson(p, CaptureOptions{}, 0.0) + "}";
+    BakeSource source;
+    source.format = "capture";
+    source.layout = "cube";
+    source.width = source.height = 8;
+    writeBakeOutputs(b.result, b.options, out, source, dir.path() / name);
+  };
+  // The small probe: a sphere of radius 1 about (1.8, 0, 0) fading over its outer 0.4; the
+  // large one: the box [-3, 3]^3 fading over its outer 1 (its inner box [-2, 2]^3). The sphere
+  // reaches into the box's fade.
+  const glm::vec3 center(1.8f, 0.0f, 0.0f);
+  writeProbe("small", red, sphereVolume(center, 1.0f), 0.4f);
+  writeProbe("large", blue, boxVolume(glm::vec3(-3.0f), glm::vec3(3.0f)), 1.0f);
+  const std::vector<LocalProbe> probes =
+      loadProbes({(dir.path() / "large").string(), (dir.path() / "small").string()});
+  ASSERT_EQ(probes.size(), 2u);
+  const struct {
+    glm::vec3 at;
+    float small, large;  // the shares, by hand
+  } cases[] = {
+      // The small probe's inner sphere: it takes everything.
+      {center + glm::vec3(0.0f, 0.3f, 0.0f), 1.0f, 0.0f},
+      // 0.1 inside the sphere, a quarter of its fade: smoothstep(0.25) = 0.15625; the large
+      // probe's weight there is 1, its share 1 - 0.15625.
+      {center - glm::vec3(0.9f, 0.0f, 0.0f), 0.15625f, 0.84375f},
+      // Halfway through the sphere's fade: 0.5 and 0.5.
+      {center + glm::vec3(0.0f, 0.0f, 0.8f), 0.5f, 0.5f},
+      // As far into the sphere's fade on the box's border side, 0.7 beyond the inner box: the
+      // box's weight smoothstep(0.3) = 0.216, its share 0.216 - 0.15625 (where taking
+      // min(weight, 1 - coverage) would give 0.216, weight x (1 - coverage) 0.18225).
+      {center + glm::vec3(0.9f, 0.0f, 0.0f), 0.15625f, 0.05975f},
+      // Inside the large probe only, inside its inner box: all of it.
+      {{-1.5f, -1.5f, 0.0f}, 0.0f, 1.0f},
+      // In the box's fade, 0.5 beyond the inner box: 0.5, the environment the other half; 0.75
+      // beyond: smoothstep(0.25).
+      {{-2.5f, 0.0f, 0.0f}, 0.0f, 0.5f},
+      {{0.0f, 2.75f, 0.0f}, 0.0f, 0.15625f},
+  };
+  RenderOptions o;
+  for (const auto& c : cases) {
+    const ProbeLighting l =
+        lookupProbes(probes, c.at, glm::vec3(0, 1, 0), glm::vec3(0, 1, 0), 0.3f, o);
+    const glm::vec3 expected = c.small * red + c.large * blue;
+    EXPECT_NEAR(l.coverage, c.small + c.large, 1e-5f) << c.at.x << "," << c.at.y << "," << c.at.z;
+    for (int k = 0; k < 3; ++k) {
+      // A uniform environment's prefiltered map and irradiance (E / pi) are its radiance.
+      EXPECT_NEAR(l.prefiltered[k], expected[k], 2e-3f) << c.at.x << "," << c.at.y << "," << c.at.z;
+      EXPECT_NEAR(l.irradiance[k], expected[k], 2e-3f) << c.at.x << "," << c.at.y << "," << c.at.z;
+    }
+  }
+}
+
 TEST(Probes, DistanceBasedRoughnessFollowsTheDocument) {
   // Frostbite appendix F, worked by hand: receiver 1 from the hit, probe center 2, r = 0.4:
   // clamp(1 / 2 x 0.4, 0, 0.4) = 0.2, then lerp(0.2, 0.4, 0.4) = 0.28. Farther from the

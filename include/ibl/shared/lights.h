@@ -370,8 +370,10 @@ IBL_FN LightIncidence tubeIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, 
   float hl = 0.5f * light.width;
   vec3 a = c - axis * hl, b = c + axis * hl;
   ShadingLight rect = tubeFacingRect(light, c);
-  vec2 e = quadIlluminanceStructured(n, rectCorner(rect, c, 0), rectCorner(rect, c, 1),
-                                     rectCorner(rect, c, 2), rectCorner(rect, c, 3), c);
+  // A tube of length 0 is its caps alone (the rect's solid angle would be 0 / 0).
+  vec2 e = hl > 0.0f ? quadIlluminanceStructured(n, rectCorner(rect, c, 0), rectCorner(rect, c, 1),
+                                                 rectCorner(rect, c, 2), rectCorner(rect, c, 3), c)
+                     : vec2(0.0f);
   vec3 onSegment = tubeCapsCenter(light, c);
   float capsE = sphereIlluminanceFactor(n, onSegment, light.radius);
   LightIncidence inc = noIncidence(c / sqrt(d2));
