@@ -235,18 +235,22 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
         });
       },
       [&] {
-        if (progress)
-          progress(fmt::format("DFG table {}x{} ({} samples per texel)", o.dfgSize, o.dfgSize,
-                               o.dfgSamples),
-                   0.0);
+        const std::string dfgStage = fmt::format("DFG table {}x{} ({} samples per texel)",
+                                                 o.dfgSize, o.dfgSize, o.dfgSamples);
+        if (progress) progress(dfgStage, 0.0);
         r.dfg = time("dfg", [&] {
           return device ? gpu::integrateDfgLut(*device, o.dfgSize, o.dfgSize, o.dfgSamples)
-                        : integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples);
+                        : integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples, progress, dfgStage);
         });
-        if (o.wantsSheen())
+        if (o.wantsSheen()) {
+          const std::string sheenStage = fmt::format("sheen table {}x{} ({} samples per texel)",
+                                                     o.dfgSize, o.dfgSize, 4 * o.dfgSamples);
+          if (progress) progress(sheenStage, 0.0);
           r.sheenDfg = time("sheen_dfg", [&] {
-            return integrateSheenDfgLut(o.dfgSize, o.dfgSize, 4 * o.dfgSamples, o.sheenVisibility);
+            return integrateSheenDfgLut(o.dfgSize, o.dfgSize, 4 * o.dfgSamples, o.sheenVisibility,
+                                        progress, sheenStage);
           });
+        }
       });
   r.timingsMs["total"] =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -609,11 +613,10 @@ std::vector<fs::path> writeAll(std::vector<PendingFile>& pending, const fs::path
                                bool force, const ProgressFn& progress) {
   const std::string stage = fmt::format("writing {} files", pending.size());
   if (progress) progress(stage, 0.0);
-  std::atomic<std::size_t> encoded{0};
+  ProgressCounter encoded(progress, stage, static_cast<std::int64_t>(pending.size()));
   parallelFor(std::size_t{0}, pending.size(), [&](std::size_t i) {
     pending[i].bytes = pending[i].encode();
-    const std::size_t done = encoded.fetch_add(1) + 1;
-    if (progress) progress(stage, static_cast<double>(done) / static_cast<double>(pending.size()));
+    encoded.advance();
   });
   std::vector<EncodedFile> files;
   for (auto& f : pending) files.push_back({outDir / f.path, std::move(f.bytes)});

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibl/core/parallel.hpp"
+#include "ibl/core/progress.hpp"
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/sampling.hpp"
 
@@ -63,14 +64,17 @@ glm::vec3 integrateDfg(float NoV, float roughness, int samples) {
   return integrateDfgWith(NoV, roughness, QuadratureNodes(samples));
 }
 
-Image integrateDfgLut(int width, int height, int samples) {
+Image integrateDfgLut(int width, int height, int samples, const ProgressFn& progress,
+                      const std::string& stage) {
   Image lut(width, height);
   const QuadratureNodes nodes(samples);
+  ProgressCounter rows(progress, stage, height);
   parallelFor(0, height, [&](int j) {
     const float r = (static_cast<float>(j) + 0.5f) / static_cast<float>(height);
     for (int i = 0; i < width; ++i)
       lut.at(i, j) =
           integrateDfgWith((static_cast<float>(i) + 0.5f) / static_cast<float>(width), r, nodes);
+    rows.advance();
   });
   return lut;
 }
@@ -119,9 +123,11 @@ float integrateSheenDfg(float NoV, float roughness, int samples, SheenVisibility
   return integrateSheenDfgWith(NoV, roughness, uniformHalfVectors(samples), visibility);
 }
 
-Image integrateSheenDfgLut(int width, int height, int samples, SheenVisibility visibility) {
+Image integrateSheenDfgLut(int width, int height, int samples, SheenVisibility visibility,
+                           const ProgressFn& progress, const std::string& stage) {
   Image lut(width, height);
   const std::vector<glm::vec3> halfVectors = uniformHalfVectors(samples);
+  ProgressCounter rows(progress, stage, height);
   parallelFor(0, height, [&](int j) {
     const float r = (static_cast<float>(j) + 0.5f) / static_cast<float>(height);
     for (int i = 0; i < width; ++i) {
@@ -129,6 +135,7 @@ Image integrateSheenDfgLut(int width, int height, int samples, SheenVisibility v
           (static_cast<float>(i) + 0.5f) / static_cast<float>(width), r, halfVectors, visibility);
       lut.at(i, j) = glm::vec3(e, 0.0f, 0.0f);
     }
+    rows.advance();
   });
   return lut;
 }

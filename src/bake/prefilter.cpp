@@ -11,6 +11,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/core/parallel.hpp"
+#include "ibl/core/progress.hpp"
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/sampling.hpp"
 #include "ibl/shared/split_sum.h"
@@ -226,11 +227,10 @@ void accumulateCap(const TexelArrays& t, glm::vec3 n, float cosCap, DestTile& ti
 }
 
 // convolvePass over texel arrays: output texels are processed in square tiles of up to 16
-// sharing one cap that covers them all. `fraction`, if given, hears of each percent of the tiles
-// done (from the worker threads).
+// sharing one cap that covers them all. `progress`, if given, hears of `stage` as tiles finish.
 ConvolutionSums convolveTexels(const TexelArrays& texels, int size, LobeWeight lobe,
-                               RadialWindow win, float cosCap,
-                               const std::function<void(double)>& fraction = {}) {
+                               RadialWindow win, float cosCap, const ProgressFn& progress = {},
+                               const std::string& stage = {}) {
   const bool windowed = win.outerLo > -2.0f || win.innerLo < 1.5f;
   const int side = std::min(size, 4);  // tile side in texels
   const int tilesPerRow = (size + side - 1) / side;
@@ -240,7 +240,7 @@ ConvolutionSums convolveTexels(const TexelArrays& texels, int size, LobeWeight l
     out.weight[f] = Image(size, size);
   }
   const int tiles = kFaceCount * tilesPerRow * tilesPerRow;
-  std::atomic<int> tilesDone{0}, percentReported{0};
+  ProgressCounter counter(progress, stage, tiles);
   parallelFor(0, tiles, [&](int index) {
     const int face = index / (tilesPerRow * tilesPerRow);
     const int ty = index / tilesPerRow % tilesPerRow, tx = index % tilesPerRow;
@@ -282,13 +282,7 @@ ConvolutionSums convolveTexels(const TexelArrays& texels, int size, LobeWeight l
         out.sum[face].at(x, y) = glm::vec3(tile.r[lanes], tile.g[lanes], tile.b[lanes]);
         out.weight[face].at(x, y) = glm::vec3(tile.w[lanes], 0.0f, 0.0f);
       }
-    if (fraction) {
-      const int percent = static_cast<int>(100LL * (tilesDone.fetch_add(1) + 1) / tiles);
-      int reported = percentReported.load();
-      while (percent > reported && !percentReported.compare_exchange_weak(reported, percent)) {
-      }
-      if (percent > reported) fraction(percent / 100.0);
-    }
+    counter.advance();
   });
   return out;
 }
@@ -307,9 +301,10 @@ std::array<Image, kFaceCount> normalize(const ConvolutionSums& s) {
 
 std::array<Image, kFaceCount> convolveLevel(const std::array<Image, kFaceCount>& sourceLevel,
                                             int size, LobeWeight lobe,
-                                            const std::function<void(double)>& fraction = {}) {
+                                            const ProgressFn& progress = {},
+                                            const std::string& stage = {}) {
   return normalize(
-      convolveTexels(TexelArrays(sourceLevel), size, lobe, RadialWindow{}, 0.0f, fraction));
+      convolveTexels(TexelArrays(sourceLevel), size, lobe, RadialWindow{}, 0.0f, progress, stage));
 }
 
 std::vector<glm::vec3> convolveDirections(const std::array<Image, kFaceCount>& sourceLevel,
@@ -700,11 +695,9 @@ CubeMap convolveIrradiance(const CubeMap& source, int size, int sourceLevel,
                            const ProgressFn& progress) {
   const std::string stage = fmt::format("irradiance {}x{}", size, size);
   if (progress) progress(stage, 0.0);
-  std::function<void(double)> fraction;
-  if (progress) fraction = [&](double f) { progress(stage, f); };
   CubeMap out;
-  out.levels.push_back(
-      convolveLevel(source.levels[sourceLevel], size, {LobeWeight::Kind::Cosine, 0.0f}, fraction));
+  out.levels.push_back(convolveLevel(source.levels[sourceLevel], size,
+                                     {LobeWeight::Kind::Cosine, 0.0f}, progress, stage));
   return out;
 }
 

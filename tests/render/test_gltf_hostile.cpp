@@ -317,7 +317,7 @@ TEST(GltfHostile, GlbChunkLengthsThatLie) {
                    size)},
       {"BIN chunk by 4 bytes", [&](auto& b) { setLe32(b, 20 + jsonLength, 88); },
        fmt::format("GLB BIN chunk of 88 bytes runs past the end of the GLB ({} bytes)", size)},
-      {"truncated file", [](auto& b) { b.resize(b.size() - 8); },
+      {"truncated file", [](auto& b) { b.erase(b.end() - 8, b.end()); },
        fmt::format("truncated GLB: its header says {} bytes, the file has {}", size, size - 8)},
       {"version", [](auto& b) { setLe32(b, 4, 1); }, "GLB version 1 (ibl reads version 2)"},
   };

@@ -40,7 +40,8 @@ std::string errorOf(const std::string& lights) {
 // `light` on a surface at p facing along n.
 double illuminance(const Light& light, glm::vec3 p, glm::vec3 n) {
   const shared::ShadingLight s = shadingLightOf(light);
-  const shared::SplitSumSwitches ltc{0, false, false, false, false, true};
+  shared::SplitSumSwitches ltc{};
+  ltc.ltcAreaLights = true;
   return shared::lightIncidence(s, p, n, n, 0.5f, ltc, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f))
              .diffuseIlluminance *
          luminance(s.color);

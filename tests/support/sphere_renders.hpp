@@ -15,14 +15,17 @@ struct Baked {
   BakeResult result;
 };
 
-// The environment f, baked at `size` (with the sheen chain if asked).
-inline Baked bakeOf(const RadianceFn& f, int size = 64, bool sheen = false) {
+// The environment f, baked at `size` (with the sheen chain if asked, its table integrated with
+// `visibility`).
+inline Baked bakeOf(const RadianceFn& f, int size = 64, bool sheen = false,
+                    SheenVisibility visibility = SheenVisibility::Charlie) {
   Baked b;
   b.options.specular.size = size;
   b.options.irradianceSize = 16;
   b.options.dfgSize = 64;
   b.options.dfgSamples = 1024;
   b.options.sheen = sheen;
+  b.options.sheenVisibility = visibility;
   b.result = bakeEnvironment(equirectEnvironment(equirectFromFunction(512, f)), b.options);
   return b;
 }

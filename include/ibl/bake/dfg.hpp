@@ -14,9 +14,13 @@
 // comes back through further bounces. Scale the single-scattering specular by
 //   1 + F0 (1 / (A + B) - 1)
 // (exact for F0 = 1, and the Fdez-Aguera/Filament approximation for colored F0).
+
+#include <string>
+
 #include <glm/vec3.hpp>
 
 #include "ibl/core/image.hpp"
+#include "ibl/core/progress.hpp"
 #include "ibl/math/brdf.hpp"
 
 namespace ibl {
@@ -26,8 +30,9 @@ namespace ibl {
 // [0, 1]), cosine sampling for the diffuse term. 512 points: RMS error 1e-3 over the table.
 glm::vec3 integrateDfg(float NoV, float roughness, int samples);
 
-// The whole table (RGB = A, B, diffuse).
-Image integrateDfgLut(int width, int height, int samples);
+// The whole table (RGB = A, B, diffuse). `progress`, if given, hears of `stage` as rows finish.
+Image integrateDfgLut(int width, int height, int samples, const ProgressFn& progress = {},
+                      const std::string& stage = {});
 
 // The sheen table (KHR_materials_sheen): texel (i, j) as above, R holds
 //   E = integral of D_charlie(h) V(v, l) (n.l) dl      (G = B = 0)
@@ -36,7 +41,8 @@ Image integrateDfgLut(int width, int height, int samples);
 // 1 - max(sheenColor) * E (KHR_materials_sheen's albedo scaling). `samples` half vectors
 // uniform on the hemisphere, Hammersley points.
 float integrateSheenDfg(float NoV, float roughness, int samples, SheenVisibility visibility);
-Image integrateSheenDfgLut(int width, int height, int samples, SheenVisibility visibility);
+Image integrateSheenDfgLut(int width, int height, int samples, SheenVisibility visibility,
+                           const ProgressFn& progress = {}, const std::string& stage = {});
 
 // Bilinear lookup in a DFG table at (n.v, r).
 glm::vec3 sampleDfgLut(const Image& lut, float NoV, float roughness);

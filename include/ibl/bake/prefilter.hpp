@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "ibl/core/progress.hpp"
 #include "ibl/env/cubemap.hpp"
 #include "ibl/shared/brdf.h"
 
@@ -71,10 +72,6 @@ inline constexpr int kMinSpecularSize = 8;
 int defaultSpecularLevels(int size);
 // The number of specular levels `options` asks for (options.levels, or the default).
 int specularLevelCount(const PrefilterOptions& options);
-
-// Progress of long work: `stage` has done `fraction` of its work (0 when it starts). Called
-// from any thread; stages may run at the same time (the DFG table beside the convolutions).
-using ProgressFn = std::function<void(const std::string& stage, double fraction)>;
 
 // Prefiltered specular cube map: level m holds the environment averaged with the GGX lobe of
 // roughness roughnessForLevel(m) around n = v = r. Level 0 (r = 0) is the source itself.
