@@ -6,6 +6,7 @@
 #include <fstream>
 #include <numbers>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
@@ -193,6 +194,44 @@ TEST(Probes, NestedProbesComposeSmallestFirst) {
       // A uniform environment's prefiltered map and irradiance (E / pi) are its radiance.
       EXPECT_NEAR(l.prefiltered[k], expected[k], 2e-3f) << c.at.x << "," << c.at.y << "," << c.at.z;
       EXPECT_NEAR(l.irradiance[k], expected[k], 2e-3f) << c.at.x << "," << c.at.y << "," << c.at.z;
+    }
+  }
+}
+
+// A probe at the center of a cube of outward-facing quads sees each present face over a sixth
+// of its sphere, from behind: with k faces, k/6 of its rays leave through the back of a face
+// (the Fibonacci spiral's 512 rays give each face 1/6 within a ray or two). The capture is
+// refused above one half: four faces (2/3) and six are inside geometry, two (1/3) are not; the
+// message gives the share.
+TEST(Probes, CaptureSitesInsideGeometryAreToldApart) {
+  const auto cubeWithFaces = [](int faces) {
+    Scene scene;
+    scene.materials.push_back(Material{});
+    const glm::vec3 lo(-1.0f);
+    for (int f = 0; f < faces; ++f) {
+      const int axis = f / 2;
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      glm::vec3 corner = lo, u(0.0f), v(0.0f), out(0.0f);
+      if (f % 2 == 1) corner[axis] = 1.0f;
+      out[axis] = f % 2 == 1 ? 1.0f : -1.0f;
+      u[a] = 2.0f;
+      v[b] = 2.0f;
+      // Facing a point outside the face: the cube's normals point outward.
+      addQuad(scene, corner, u, v, 0, corner + 0.5f * (u + v) + 5.0f * out);
+    }
+    return scene;
+  };
+  for (const auto& [faces, refused] :
+       std::vector<std::pair<int, bool>>{{2, false}, {4, true}, {6, true}}) {
+    const CaptureSite site = inspectCaptureSite(cubeWithFaces(faces), glm::vec3(0.0f));
+    EXPECT_NEAR(site.backFaceShare, faces / 6.0f, 0.01f) << faces;
+    EXPECT_NEAR(site.nearestHit, 1.0f, 0.01f) << faces;
+    const std::string reason = unusableCaptureReason(site, nullptr);
+    EXPECT_EQ(!reason.empty(), refused) << faces << " faces: " << reason;
+    if (refused) {
+      EXPECT_NE(reason.find(fmt::format("{:.0f} %", 100.0f * site.backFaceShare)),
+                std::string::npos)
+          << reason;
     }
   }
 }
