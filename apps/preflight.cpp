@@ -60,13 +60,23 @@ fs::path resolved(const fs::path& path) {
   return ec ? fs::absolute(path).lexically_normal() : p;
 }
 
+// Whether `out` names the file `in`: as the system resolves it, or with ".." taken lexically
+// first (through a folder that does not exist yet, "new/../in.exr" is in.exr once the folder
+// is created).
+bool namesTheSameFile(const fs::path& out, const fs::path& in) {
+  std::error_code ec;
+  const fs::path lexical = fs::absolute(out, ec).lexically_normal();
+  return sameFile(out, in) || sameFile(lexical, in) || resolved(out) == resolved(in) ||
+         resolved(lexical) == resolved(in);
+}
+
 }  // namespace
 
 void refuseOverwritingInputs(const std::vector<fs::path>& outputs,
                              const std::vector<fs::path>& inputs) {
   for (const fs::path& out : outputs)
     for (const fs::path& in : inputs)
-      if (sameFile(out, in) || resolved(out) == resolved(in))
+      if (namesTheSameFile(out, in))
         failUsage(out.string(), fmt::format("is the input {}: writing it would destroy the input; "
                                             "choose another output",
                                             in.string()));

@@ -256,6 +256,8 @@ TEST(Outputs, OutputsThatAreInputsAreRefused) {
       {"convert " + park + " -o " + quote(dir / "sub" / ".." / "park.exr"), "is the input"},
       {"convert " + quote(dir / "link.exr") + " -o " + park, "is the input"},
       {"convert " + park + " -o " + quote(dir / "link.exr"), "is the input"},
+      {"convert " + park + " -o " + quote(dir / "new" / ".." / "link.exr"),
+       "is the input"},  // through a folder the write would create
       {"convert " + quote(dir / "hard.exr") + " -o " + park + " --exr-type float", "is the input"},
       {"convert " + quote(dir / "f_{face}.exr") + " -o " + quote(dir / "f_px.exr") +
            " --layout faces",
