@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "commands.hpp"
+#include "ibl/core/error.hpp"
 #include "ibl/render/probe.hpp"
 #include "preflight.hpp"
 #include "scene_options.hpp"
@@ -19,7 +20,6 @@ struct RenderCliOptions {
   std::string output;
   std::string mode = "split-sum";
   float noise = 0.0f;
-  bool shadows = false;
   int bounces = 4;
   bool exrExposed = false;
   unsigned seed = 1;
@@ -28,6 +28,8 @@ struct RenderCliOptions {
 void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   checkRenderedImagePath(o.output);
   checkSceneOptions(o.scene);
+  if (o.mode == "reference" && o.scene.shadows && *o.scene.shadows == "map")
+    failUsage("--shadows", "map is the split sum's; the reference traces rays (--shadows alone)");
   const auto [width, height] = parseSize(o.scene.size);
   refuseOverwritingInputs({o.output}, sceneInputFiles(o.scene));
   requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
@@ -38,10 +40,16 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   const LoadedBake baked = loadOrBake(o.scene, global, hasSheen(scene));
   scene.lights.insert(scene.lights.end(), baked.lights.begin(), baked.lights.end());
   RenderOptions r = shadingOptions(o.scene, baked);
+  if (o.mode != "reference" && r.realTimeShadows == ShadowMode::Map)
+    requireMemory(shadowMapBytes(scene.lights, r.shadowSettings),
+                  fmt::format("shadow maps of {} texels for {} lights", o.scene.shadowMapSize,
+                              scene.lights.size()),
+                  "use a smaller --shadow-map-size or --shadows none");
   r.mode = o.mode == "reference" ? RenderMode::Reference : RenderMode::SplitSum;
   r.spp = o.scene.spp > 0 ? o.scene.spp : (r.mode == RenderMode::Reference ? 256 : 4);
   r.noiseThreshold = o.noise;
-  r.shadows = o.shadows;
+  // --shadows: the reference's visibility (given bare or as ray), the split sum's mode.
+  r.shadows = o.scene.shadows && (o.scene.shadows->empty() || *o.scene.shadows == "ray");
   r.bounces = o.bounces;
   r.probes = &probes;
   r.seed = o.seed;
@@ -85,8 +93,10 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global) {
                   "shadows); 0: direct light only")
       ->check(numberIn(0, 1000))
       ->capture_default_str();
-  cmd->add_flag("--shadows", opts->shadows,
-                "Reference with --bounces 0: ray-traced visibility of the environment and lights");
+  cmd->add_option("--shadow-rays", opts->scene.shadowRays,
+                  "Split sum with --shadows ray: rays per area light or sun and pixel sample")
+      ->check(numberIn(1, 4096))
+      ->capture_default_str();
   cmd->add_flag("--exr-exposed", opts->exrExposed,
                 "Write the exposed, tone-mapped image to the EXR too");
   cmd->add_option("--seed", opts->seed, "Random seed of the reference")->capture_default_str();

@@ -81,6 +81,18 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "Split sum: ambient occlusion from N rays per pixel where the model has no "
                   "occlusion texture (0: none)")
       ->check(numberIn(0, 4096));
+  cmd->add_option("--shadows", o.shadows,
+                  "The lights' shadows. Split sum and viewer: none, map (shadow maps, default) or "
+                  "ray (ray-traced per light sample; `ibl render` only). Reference: --shadows "
+                  "alone traces visibility with --bounces 0")
+      ->expected(0, 1);
+  cmd->add_option("--shadow-map-size", o.shadowMapSize,
+                  "Texels per side of each shadow map layer (a power of two)")
+      ->check(powerOfTwo(16, 8192))
+      ->capture_default_str();
+  cmd->add_option("--shadow-cascades", o.shadowCascades, "The sun's shadow cascades")
+      ->check(numberIn(1, 4))
+      ->capture_default_str();
   cmd->add_flag("--no-dominant", o.noDominant,
                 "Split sum: sample along n and r, not the dominant directions");
   cmd->add_option("--irradiance", o.irradiance,
@@ -194,6 +206,9 @@ void checkSceneOptions(const SceneCliOptions& o) {
     failUsage("--ortho-width", fmt::format("must be positive, not {}", *o.orthoWidth));
   if (o.background != "env") parseVec3(o.background, "--background");
   if (!o.ev100.empty()) parseNumbers(o.ev100, 1, "--ev100");
+  if (o.shadows && !o.shadows->empty() && *o.shadows != "none" && *o.shadows != "map" &&
+      *o.shadows != "ray")
+    failUsage("--shadows", fmt::format("'{}' is not none, map or ray", *o.shadows));
 }
 
 bool hasSheen(const Scene& scene) {
@@ -307,6 +322,12 @@ Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int 
   return camera;
 }
 
+ShadowMode realTimeShadowMode(const SceneCliOptions& o) {
+  if (o.shadows && *o.shadows == "none") return ShadowMode::None;
+  if (o.shadows && *o.shadows == "ray") return ShadowMode::Ray;
+  return ShadowMode::Map;
+}
+
 RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) {
   RenderOptions r;
   r.sheenVisibility = baked.options.sheenVisibility;
@@ -319,6 +340,10 @@ RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) 
   r.parallaxCorrection = !o.noParallax;
   r.distanceRoughness = !o.noDistanceRoughness;
   r.aoRays = o.aoRays;
+  r.realTimeShadows = realTimeShadowMode(o);
+  r.shadowSettings.mapSize = o.shadowMapSize;
+  r.shadowSettings.cascades = o.shadowCascades;
+  r.shadowSettings.raySamples = o.shadowRays;
   r.dominantDirections = !o.noDominant;
   r.irradiance = o.irradiance == "sh" ? IrradianceSource::Sh : IrradianceSource::Cube;
   r.areaLights = o.areaLights == "frostbite" ? AreaLightModel::Frostbite : AreaLightModel::Ltc;

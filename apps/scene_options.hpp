@@ -44,6 +44,11 @@ struct SceneCliOptions {
   bool noParallax = false;
   bool noDistanceRoughness = false;
   int aoRays = 0;
+  // --shadows: unset (the split sum's default, map), "" (given bare), none, map or ray.
+  std::optional<std::string> shadows;
+  int shadowMapSize = 1024;
+  int shadowCascades = 4;
+  int shadowRays = 16;
   std::string background = "env";
   std::string ev100;  // empty: automatic
   float aperture = 0.0f, shutter = 0.0f, iso = 0.0f;
@@ -69,6 +74,9 @@ struct LoadedBake {
   BakeOptions options;
   std::vector<Light> lights;  // the environment's sun (a sky's, or extracted), to add to the scene
 };
+// The split sum's (and the viewer's) shadows from --shadows: map unless none or ray is given.
+ShadowMode realTimeShadowMode(const SceneCliOptions& o);
+
 // Every scene option that can be checked before anything is read (usage errors): --env with
 // --bake, a sky description, the size, the camera's points and up, the built-in scenes' color,
 // the background, --ev100.

@@ -37,6 +37,8 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   checkSceneOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   if (o.scene.aoRays > 0) failUsage("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
+  if (o.scene.shadows && *o.scene.shadows == "ray")
+    failUsage("--shadows", "ray is `ibl render`'s alone; the viewer casts shadow maps (map)");
   const std::vector<std::filesystem::path> inputs = sceneInputFiles(o.scene);
   if (!o.screenshot.empty()) refuseOverwritingInputs({o.screenshot}, inputs);
   requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
@@ -57,6 +59,11 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   }
   RenderOptions shading = shadingOptions(o.scene, baked);
   shading.spp = o.scene.spp > 0 ? o.scene.spp : 4;
+  if (shading.realTimeShadows == ShadowMode::Map)
+    requireMemory(shadowMapBytes(scene.lights, shading.shadowSettings),
+                  fmt::format("shadow maps of {} texels for {} lights", o.scene.shadowMapSize,
+                              scene.lights.size()),
+                  "use a smaller --shadow-map-size or --shadows none");
 
   if (!o.screenshot.empty()) {
     gpu::ContextOptions co;

@@ -18,6 +18,8 @@ layout(std140, set = 0, binding = 0) uniform Frame {
                         // correction, 2 distance-based roughness, 4 Frostbite's roughness mapping)
   vec4 sh[9];           // radiance SH9 times the cosine lobe's A_l / pi: irradiance / pi
   ivec4 sheen;          // the sheen lobe's visibility (kSheenVisibilityCharlie, ...Neubelt)
+  vec4 shadows;         // the lights' shadow maps: texels per side, 1 when they are on, the first
+                        // layer's record in shadowData
 } frame;
 layout(set = 0, binding = 1) uniform samplerCube specularMap;
 layout(set = 0, binding = 2) uniform samplerCube irradianceMap;
@@ -60,3 +62,13 @@ layout(set = 0, binding = 10) uniform samplerCubeArray probeIrradianceMaps;
 // table (R: the lobe's albedo E at (n.v, sheen roughness)); 1 x 1 black when the bake has none.
 layout(set = 0, binding = 11) uniform samplerCube sheenMap;
 layout(set = 0, binding = 12) uniform sampler2D sheenDfgLut;
+// The lights' shadows (uploadShadows in src/gpu/scene_renderer.cpp): per light a caster, five
+// vec4 ((kind, first layer, layer count, size), light position, view origin, view forward,
+// cascade splits), then per layer four ((origin, perspective), (right, scale), (up, near),
+// (forward, far)); and the layers' depths, layer after layer in rows (ibl/shared/shadows.h).
+layout(std430, set = 0, binding = 13) readonly buffer ShadowRecords {
+  vec4 shadowData[];
+};
+layout(std430, set = 0, binding = 14) readonly buffer ShadowDepths {
+  float shadowDepths[];
+};

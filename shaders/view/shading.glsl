@@ -4,6 +4,7 @@
 #include "ibl/shared/lights.h"
 #include "ibl/shared/sh.h"
 #include "ibl/shared/probes.h"
+#include "ibl/shared/shadows.h"
 #include "ibl/shared/split_sum.h"
 
 // The frame's shading switches (splitSumSwitches in src/render/renderer.cpp fills them).
@@ -42,6 +43,42 @@ ShadingLight lightAt(int i) {
   l.cosOuter = e.y;
   l.invSquaredRange = e.z;
   return l;
+}
+
+// The shadow maps' records and depths (view/frame.glsl) for ibl/shared/shadows.h.
+ShadowCaster shadowCasterAt(int light) {
+  int b = 5 * light;
+  ShadowCaster c;
+  c.kind = int(shadowData[b].x);
+  c.firstLayer = int(shadowData[b].y);
+  c.layerCount = int(shadowData[b].z);
+  c.size = shadowData[b].w;
+  c.lightPosition = shadowData[b + 1].xyz;
+  c.viewOrigin = shadowData[b + 2].xyz;
+  c.viewForward = shadowData[b + 3].xyz;
+  c.splits = shadowData[b + 4];
+  return c;
+}
+ShadowLayer shadowLayerAt(int i) {
+  int b = int(frame.shadows.z) + 4 * i;
+  ShadowLayer l;
+  l.origin = shadowData[b].xyz;
+  l.perspective = int(shadowData[b].w);
+  l.right = shadowData[b + 1].xyz;
+  l.scale = shadowData[b + 1].w;
+  l.up = shadowData[b + 2].xyz;
+  l.near = shadowData[b + 2].w;
+  l.forward = shadowData[b + 3].xyz;
+  l.far = shadowData[b + 3].w;
+  return l;
+}
+float shadowDepthTexel(int layer, ivec2 t) {
+  int n = int(frame.shadows.x);
+  ivec2 c = clamp(t, ivec2(0), ivec2(n - 1));
+  return shadowDepths[(layer * n + c.y) * n + c.x];
+}
+float shadowMapSize() {
+  return frame.shadows.x;
 }
 
 // An IES profile's candela toward unit w leaving the light, over its peak (which the light's
@@ -155,9 +192,13 @@ vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m, vec4 sh
     if (s.ltcAreaLights) ltc = ltcTableEntry(m.roughness, look.NoV);
     float sheenAlpha = alphaFromRoughness(sheenRoughness);
     for (int i = 0; i < frame.models.w; ++i) {
+      // The light's shadow first: what it hides costs nothing more.
+      float visible = frame.shadows.y > 0.5 ? shadowVisibility(shadowCasterAt(i), position, n) : 1.0;
+      if (visible <= 0.0) continue;
       ShadingLight l = lightAt(i);
       LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s, ltc);
-      float profile = iesProfileFactor(l, lightData[5 * i + 4].w, normalize(position - l.position));
+      float profile = visible *
+                      iesProfileFactor(l, lightData[5 * i + 4].w, normalize(position - l.position));
       vec3 radiance = belowScale * lightRadiance(direct, n, view, inc, dfg.xy, s);
       if (shadeSheen)
         radiance += sheenLightRadiance(sheen.rgb, sheenAlpha, s.sheenVisibility, n, view, inc);

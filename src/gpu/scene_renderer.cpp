@@ -31,8 +31,9 @@ struct FrameUniforms {
   glm::vec4 probes;  // count, the probes' specular levels - 1, flags (view/frame.glsl)
   std::array<glm::vec4, 9> sh;
   glm::ivec4 sheen;  // the sheen lobe's visibility (view/frame.glsl)
+  glm::vec4 shadows;  // texels per side, 1 when on, the first layer's record (view/frame.glsl)
 };
-static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16);
+static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16);
 
 // vec4s per probe in the probes buffer (view/frame.glsl).
 constexpr int kProbeVec4s = 11;
@@ -313,7 +314,80 @@ std::vector<glm::vec4> lightRecords(const std::vector<Light>& lights,
   return data;
 }
 
+// The shadow maps' records as view/frame.glsl reads them: five vec4 per caster, four per layer.
+std::vector<glm::vec4> shadowRecordsOf(const ShadowMaps& maps) {
+  std::vector<glm::vec4> data;
+  for (const shared::ShadowCaster& c : maps.casters) {
+    data.emplace_back(static_cast<float>(c.kind), static_cast<float>(c.firstLayer),
+                      static_cast<float>(c.layerCount), c.size);
+    data.emplace_back(c.lightPosition, 0.0f);
+    data.emplace_back(c.viewOrigin, 0.0f);
+    data.emplace_back(c.viewForward, 0.0f);
+    data.push_back(c.splits);
+  }
+  for (const shared::ShadowLayer& l : maps.layers) {
+    data.emplace_back(l.origin, static_cast<float>(l.perspective));
+    data.emplace_back(l.right, l.scale);
+    data.emplace_back(l.up, l.near);
+    data.emplace_back(l.forward, l.far);
+  }
+  if (data.empty()) data.emplace_back(0.0f);
+  return data;
+}
+
+bool sameCamera(const Camera& a, const Camera& b) {
+  return a.perspective == b.perspective && a.yfovDegrees == b.yfovDegrees &&
+         a.orthoWidth == b.orthoWidth && a.from == b.from && a.at == b.at && a.up == b.up &&
+         a.width == b.width && a.height == b.height;
+}
+
 }  // namespace
+
+bool SceneRenderer::Impl::prepareShadows(const Camera& camera, const RenderOptions& o) {
+  if (o.realTimeShadows != ShadowMode::Map || currentLights.empty() || !shadowBuilder) return false;
+  const bool settingsChanged = o.shadowSettings.mapSize != shadowSettings.mapSize ||
+                               o.shadowSettings.cascades != shadowSettings.cascades;
+  if (shadowMapsCurrent && !settingsChanged && sameCamera(camera, shadowCamera)) return true;
+  vkDeviceWaitIdle(device);  // nothing in flight reads what is replaced
+  shadowMaps = shadowBuilder->build(currentLights, &camera, o.shadowSettings,
+                                    settingsChanged ? nullptr : &shadowMaps);
+  shadowCamera = camera;
+  shadowSettings = o.shadowSettings;
+  shadowMapsCurrent = true;
+  const std::vector<glm::vec4> records = shadowRecordsOf(shadowMaps);
+  const std::size_t recordBytes = records.size() * sizeof(glm::vec4);
+  const std::size_t depthBytes = std::max<std::size_t>(shadowMaps.depths.size(), 1) * sizeof(float);
+  bool rebind = false;
+  if (!shadowRecords || shadowRecords->size() < recordBytes) {
+    shadowRecords = std::make_unique<Buffer>(context, recordBytes, BufferMemory::Host);
+    rebind = true;
+  }
+  if (!shadowDepths || shadowDepths->size() != depthBytes) {
+    shadowDepths = std::make_unique<Buffer>(context, depthBytes);
+    rebind = true;
+  }
+  std::memcpy(shadowRecords->mapped(), records.data(), recordBytes);
+  if (!shadowMaps.depths.empty())
+    shadowDepths->upload(shadowMaps.depths.data(), shadowMaps.depths.size() * sizeof(float));
+  if (rebind) writeShadowDescriptors();
+  return true;
+}
+
+void SceneRenderer::Impl::writeShadowDescriptors() {
+  const VkDescriptorBufferInfo buffers[2] = {
+      {static_cast<VkBuffer>(shadowRecords->handle()), 0, VK_WHOLE_SIZE},
+      {static_cast<VkBuffer>(shadowDepths->handle()), 0, VK_WHOLE_SIZE}};
+  std::array<VkWriteDescriptorSet, 2> writes{};
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstSet = frameSet;
+    writes[i].dstBinding = 13 + i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &buffers[i];
+  }
+  vkUpdateDescriptorSets(device, 2, writes.data(), 0, nullptr);
+}
 
 void SceneRenderer::Impl::uploadBake(const BakeResult& bake, const BakeOptions& bakeOptions) {
   if (sceneHasSheen && (!bake.sheen || !bake.sheenDfg))
@@ -352,6 +426,8 @@ void SceneRenderer::Impl::setEnvironment(const BakeResult& bake, const BakeOptio
   std::vector<float> iesTexels;
   const std::vector<glm::vec4> data = lightRecords(lights, iesProfiles, iesTexels);
   std::memcpy(lightsBuffer->mapped(), data.data(), data.size() * sizeof(glm::vec4));
+  currentLights = lights;
+  shadowMapsCurrent = false;
   const std::vector<VkWriteDescriptorSet> writes = bakeWrites();
   vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
                          nullptr);
@@ -478,6 +554,14 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   ies = uploadTexels2d(
       context, iesTexels, iesProfiles.empty() ? 1 : shared::kIesTableColumns,
       iesProfiles.empty() ? 1 : shared::kIesTableRows * static_cast<int>(iesProfiles.size()));
+  currentLights = scene.lights;
+  if (!currentLights.empty()) {
+    shadowScene = std::make_unique<Scene>(scene);
+    shadowBuilder = std::make_unique<ShadowMapBuilder>(*shadowScene);
+  }
+  shadowRecords = std::make_unique<Buffer>(context, sizeof(glm::vec4), BufferMemory::Host);
+  std::memset(shadowRecords->mapped(), 0, sizeof(glm::vec4));
+  shadowDepths = std::make_unique<Buffer>(context, sizeof(float));
   lightsBuffer =
       std::make_unique<Buffer>(context, lightData.size() * sizeof(glm::vec4), BufferMemory::Host);
   std::memcpy(lightsBuffer->mapped(), lightData.data(), lightData.size() * sizeof(glm::vec4));
@@ -500,6 +584,9 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   for (std::uint32_t b = 9; b <= 12; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  for (std::uint32_t b = 13; b <= 14; ++b)
+    frameBindings.push_back(
+        {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
   std::vector<VkDescriptorSetLayoutBinding> materialBindings;
   for (std::uint32_t b = 0; b < kMaterialTextures; ++b)
@@ -519,7 +606,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   const auto materialCount = static_cast<std::uint32_t>(materials.size());
   const std::array<VkDescriptorPoolSize, 3> sizes{
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                            10 + kMaterialTextures * materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -581,6 +668,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   }
   vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
                          nullptr);
+  writeShadowDescriptors();
 
   sceneVert = context.impl().shaderModule("scene_vert");
   sceneFrag = context.impl().shaderModule("scene_frag");
@@ -781,6 +869,7 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
 void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& o,
                                  float skyboxLod) {
   if (sceneHasSheen) checkSheenVisibility(sheenVisibility, o);
+  const bool shadows = prepareShadows(camera, o);
   const Targets& t = *targets;
   FrameUniforms u{};
   u.viewProjection = viewProjectionOf(camera, bounds);
@@ -810,6 +899,8 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
                 0.0f);
   for (int k = 0; k < 9; ++k) u.sh[k] = glm::vec4(shIrradianceOverPi[k], 0.0f);
   u.sheen = glm::ivec4(s.sheenVisibility, 0, 0, 0);
+  u.shadows = glm::vec4(static_cast<float>(shadowMaps.mapSize), shadows ? 1.0f : 0.0f,
+                        5.0f * static_cast<float>(shadowMaps.casters.size()), 0.0f);
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
 
   std::array<VkClearValue, 3> clears{};

@@ -10,6 +10,7 @@
 #include "gpu/vulkan.hpp"
 #include "ibl/gpu/viewer.hpp"
 #include "ibl/render/probe.hpp"
+#include "ibl/render/shadows.hpp"
 
 namespace ibl::gpu {
 
@@ -68,6 +69,17 @@ struct SceneRenderer::Impl {
   std::unique_ptr<Buffer> frameUniforms;
   std::unique_ptr<Buffer> lightsBuffer;  // the scene's lights (view/frame.glsl)
   int lightCount = 0;
+  // The lights' shadow maps (view/frame.glsl): built on the CPU through the scene's copy, again
+  // when the camera (the sun's cascades), the lights or the settings change; a layer whose
+  // record is unchanged keeps its depths.
+  std::unique_ptr<Scene> shadowScene;
+  std::unique_ptr<ShadowMapBuilder> shadowBuilder;
+  std::vector<Light> currentLights;  // setEnvironment replaces them
+  ShadowMaps shadowMaps;
+  bool shadowMapsCurrent = false;
+  Camera shadowCamera;
+  ShadowSettings shadowSettings;
+  std::unique_ptr<Buffer> shadowRecords, shadowDepths;
   VkShaderModule sceneVert = VK_NULL_HANDLE, sceneFrag = VK_NULL_HANDLE,
                  fullscreenVert = VK_NULL_HANDLE, skyboxFrag = VK_NULL_HANDLE;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
@@ -107,6 +119,11 @@ struct SceneRenderer::Impl {
   // The frame set's writes of the bake's images (bindings 1-4, 11, 12), pointing into bakeImages.
   std::vector<VkWriteDescriptorSet> bakeWrites();
   std::array<VkDescriptorImageInfo, 6> bakeImages{};
+  // Builds the shadow maps for this camera and settings unless they are current, and uploads
+  // them (waiting for the device to be idle first). Returns whether there are any.
+  bool prepareShadows(const Camera& camera, const RenderOptions& options);
+  // Points bindings 13 and 14 at the shadow buffers.
+  void writeShadowDescriptors();
   // The probes' cube map arrays and placements (or stand-ins when there are none).
   void uploadProbes(const std::vector<LocalProbe>& probes, const BakeResult& bake);
   // Frees every Vulkan object made so far (null handles are skipped by Vulkan itself).

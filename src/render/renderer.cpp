@@ -19,9 +19,11 @@
 #include "ibl/render/ltc.hpp"
 #include "ibl/render/probe.hpp"
 #include "ibl/shared/lights.h"
+#include "ibl/shared/shadows.h"
 #include "ibl/shared/split_sum.h"
 #include "path_tracer.hpp"
 #include "ray_tracer.hpp"
+#include "shadow_rays.hpp"
 
 namespace ibl {
 
@@ -118,7 +120,8 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
 
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
                               const std::vector<Light>& lights, glm::vec2 dfg,
-                              const RenderOptions& o, float belowScale) {
+                              const RenderOptions& o, float belowScale,
+                              const std::vector<float>& visibility) {
   const shared::SplitSumSwitches s = splitSumSwitches(o);
   shared::SplitSumMaterial m;
   m.baseColor = p.baseColor;
@@ -134,7 +137,10 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
   const float sheenAlpha =
       shared::alphaFromRoughness(std::max(p.sheenRoughness, kMinSheenRoughness));
   glm::vec3 sum(0.0f);
-  for (const Light& light : lights) {
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const Light& light = lights[i];
+    const float visible = i < visibility.size() ? visibility[i] : 1.0f;
+    if (visible <= 0.0f) continue;
     const shared::ShadingLight sl = shadingLightOf(light);
     const shared::LightIncidence inc =
         shared::lightIncidence(sl, position, p.normal, view, p.roughness, s, ltc);
@@ -146,7 +152,7 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
     if (sheen)
       radiance += shared::sheenLightRadiance(p.sheenColor, sheenAlpha, s.sheenVisibility, p.normal,
                                              view, inc);
-    sum += sl.color * profile * radiance;
+    sum += sl.color * (profile * visible) * radiance;
   }
   return sum;
 }
@@ -162,6 +168,15 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
                          const BakeOptions& bakeOptions, const RenderOptions& o,
                          const std::function<void(float)>& progress) {
   checkCamera(camera);
+  if (o.mode == RenderMode::SplitSum && o.realTimeShadows == ShadowMode::Map && !o.shadowMaps &&
+      !scene.lights.empty()) {
+    // The sun's cascades are fitted to this camera's view.
+    const ShadowMapBuilder builder(scene);
+    const ShadowMaps maps = builder.build(scene.lights, &camera, o.shadowSettings);
+    RenderOptions withMaps = o;
+    withMaps.shadowMaps = &maps;
+    return renderScene(scene, camera, bake, bakeOptions, withMaps, progress);
+  }
   return renderRays(
       scene, camera.width, camera.height,
       [&](glm::vec2 pixel) { return camera.generateRay(pixel.x, pixel.y); }, bake, bakeOptions, o,
@@ -182,6 +197,19 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   if (o.mode == RenderMode::Reference) preparePathTracer();
   const PathTracerScene pathScene{scene, tracer, env, o};
   const auto [lo, hi] = scene.bounds();
+  // The lights' shadows in the split sum: maps (built here over the whole scene unless given),
+  // or rays.
+  const bool shadowed =
+      o.mode == RenderMode::SplitSum && o.realTimeShadows != ShadowMode::None && !scene.lights.empty();
+  ShadowMaps ownMaps;
+  const ShadowMaps* maps = o.shadowMaps;
+  if (shadowed && o.realTimeShadows == ShadowMode::Map && !maps) {
+    ownMaps = buildShadowMaps(tracer, {lo, hi}, scene.lights, nullptr, o.shadowSettings);
+    maps = &ownMaps;
+  }
+  if (maps && maps->casters.size() != scene.lights.size())
+    fail("render", fmt::format("the shadow maps are of {} lights, the scene has {}",
+                               maps->casters.size(), scene.lights.size()));
   const float aoDistance = o.aoDistance > 0.0f ? o.aoDistance : 0.1f * glm::length(hi - lo);
   RenderResult result;
   result.color = Image(width, height);
@@ -239,8 +267,19 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                             sampleDfgLut(*bake.sheenDfg, NoV,
                                          std::max(p.sheenRoughness, kMinSheenRoughness))
                                 .x);
+              std::vector<float> visibility;
+              if (shadowed) {
+                visibility.resize(scene.lights.size());
+                for (std::size_t i = 0; i < scene.lights.size(); ++i)
+                  visibility[i] =
+                      o.realTimeShadows == ShadowMode::Ray
+                          ? rayTracedVisibility(tracer, scene.lights[i], position, p.normal,
+                                                o.shadowSettings.raySamples, rng)
+                          : shared::shadowVisibility(maps->view(), maps->casters[i], position,
+                                                     p.normal);
+              }
               c += shadeLightsRealTime(p, position, -ray.direction, scene.lights, glm::vec2(dfg), o,
-                                       scaling);
+                                       scaling, visibility);
             }
           } else {
             c = tracePath(pathScene, p, position, -ray.direction, rng);

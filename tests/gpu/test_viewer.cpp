@@ -24,6 +24,7 @@
 #include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
 #include "support/probe_capture.hpp"
+#include "support/shadow_scenes.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
@@ -202,6 +203,33 @@ TEST(Viewer, LightsMatchTheCpu) {
       EXPECT_LT(c.meanRelative, 2e-3) << environment << static_cast<int>(model);
       EXPECT_LT(c.fractionOver1, 1e-2) << environment << static_cast<int>(model);
     }
+}
+
+// Shadows: every light type over the blockers and the floor, through the same maps (traced on the
+// CPU at the texel centers, ibl/shared/shadows.h reading them on both sides), with the
+// environment and without, from above and in perspective (the sun's cascades fitted to it).
+TEST(Viewer, ShadowsMatchTheCpu) {
+  RenderOptions o;
+  o.spp = 1;
+  o.realTimeShadows = ShadowMode::Map;
+  o.shadowSettings.mapSize = 256;
+  Camera perspective = lookingAt({2.5f, 2.5f, 3.5f}, 192, 128);
+  perspective.at = {0.0f, 0.3f, 0.0f};
+  for (LightType type : {LightType::Point, LightType::Spot, LightType::Sun, LightType::Sphere,
+                         LightType::Disk, LightType::Tube, LightType::Rect}) {
+    const Scene scene = blockersOverFloor(shadowStudyLight(type));
+    for (bool environment : {true, false}) {
+      o.environmentLight = environment;
+      o.backgroundEnvironment = environment;
+      for (const Camera& camera : {floorCamera(128), perspective}) {
+        const Comparison c = renderBoth(scene, camera, o);
+        EXPECT_LT(c.meanRelative, 2e-3) << lightTypeName(type) << environment;
+        EXPECT_LT(c.fractionOver1, 1e-2) << lightTypeName(type) << environment;
+        std::printf("%s env %d: mean %.5f over 1 %% %.5f\n", std::string(lightTypeName(type)).c_str(),
+                    environment, c.meanRelative, c.fractionOver1);
+      }
+    }
+  }
 }
 
 // Time of day: a viewer made with one sky, given another sky's bake (baked on the viewer's own

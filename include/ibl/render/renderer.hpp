@@ -8,6 +8,7 @@
 #include "ibl/bake/bake.hpp"
 #include "ibl/render/camera.hpp"
 #include "ibl/render/scene.hpp"
+#include "ibl/render/shadows.hpp"
 #include "ibl/shared/split_sum.h"
 
 namespace ibl {
@@ -38,6 +39,13 @@ struct RenderOptions {
   // the bake's (BakeOptions::sheenVisibility, its sheen table's): renderRays refuses another.
   SheenVisibility sheenVisibility = SheenVisibility::Charlie;
   bool shadows = false;  // reference: ray-traced visibility of the environment and the lights
+  // Split sum: the lights' shadows (render/shadows.hpp; the commands' default is Map), the maps'
+  // size and cascades, and the rays per light of ShadowMode::Ray.
+  ShadowMode realTimeShadows = ShadowMode::None;
+  ShadowSettings shadowSettings;
+  // Split sum with ShadowMode::Map: maps built beforehand for these lights (the scene's, in
+  // order); null: renderScene builds them for its camera (renderRays: over the whole scene).
+  const ShadowMaps* shadowMaps = nullptr;
   // Reference: bounces of indirect light between the scene's surfaces (0: direct light only;
   // any bounce implies shadows). The command's default is 4.
   int bounces = 0;
@@ -117,8 +125,10 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
 // IES profiles applied on the CPU); dfg: the DFG table's A, B at the point's n.v (the LTC table
 // is looked up here, once for all the lights). A sheen layer adds its lobe
 // (shared::sheenLightRadiance) and scales the layer below by `belowScale` (its albedo scaling).
+// visibility: the share of each light that reaches the point (its shadow; empty: all of it).
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
                               const std::vector<Light>& lights, glm::vec2 dfg,
-                              const RenderOptions& options, float belowScale = 1.0f);
+                              const RenderOptions& options, float belowScale = 1.0f,
+                              const std::vector<float>& visibility = {});
 
 }  // namespace ibl

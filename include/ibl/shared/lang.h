@@ -16,6 +16,7 @@
 
 #ifdef __cplusplus
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include <glm/common.hpp>

@@ -1,0 +1,18 @@
+#pragma once
+// Internal to the renderer: the exact visibility that ShadowMode::Ray gives the CPU split sum.
+#include <glm/vec3.hpp>
+
+#include "ibl/render/light.hpp"
+
+namespace ibl {
+
+class RayTracer;
+class Random;
+
+// The share of `samples` samples of the light (sampleLight; one for punctual lights) that p
+// (normal n) sees unoccluded: stratified, each traced to the sampled point (the sun: to
+// infinity). 1 when no sample reaches p.
+float rayTracedVisibility(const RayTracer& tracer, const Light& light, glm::vec3 p, glm::vec3 n,
+                          int samples, Random& rng);
+
+}  // namespace ibl
