@@ -10,6 +10,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/core/parallel.hpp"
+#include "ibl/math/color.hpp"
 #include "ibl/render/light_sampling.hpp"
 #include "path_tracer.hpp"
 #include "ray_tracer.hpp"
@@ -141,10 +142,12 @@ void planCascades(const Light& sun, const Bounds& bounds, const Camera* camera, 
     const float halfDiagonal = camera->perspective
                                    ? tanY * std::sqrt(1.0f + aspect * aspect)
                                    : 0.5f * camera->orthoWidth * std::sqrt(1.0f + 1.0f / (aspect * aspect));
-    const auto [dLo, dHi] = extentAlong(f.forward, bounds);
-    const float base = glm::dot(camera->from, f.forward);
-    const float farEnd = dHi - base;
-    const float nearEnd = std::max(dLo - base, camera->perspective ? 1e-3f * farEnd : 0.0f);
+    // The depth range from the camera's distance to the scene's bounding sphere: it does not
+    // change as the camera turns, nor then do the slices.
+    const float distance = glm::length(camera->from - sceneCenter);
+    const float farEnd = distance + sceneRadius;
+    const float nearEnd =
+        std::max(distance - sceneRadius, camera->perspective ? 1e-2f * farEnd : 0.0f);
     c.viewOrigin = camera->from;
     c.viewForward = f.forward;
     if (farEnd > nearEnd) {
@@ -338,7 +341,10 @@ float rayTracedVisibility(const RayTracer& tracer, const Light& light, glm::vec3
                           int samples, Random& rng) {
   const int count = light.isPunctual() ? 1 : std::max(1, samples);
   const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<float>(count))));
-  int valid = 0, open = 0;
+  // Each sample weighs what it brings to a diffuse surface: its radiance times the cosine over
+  // its density (the irradiance estimate), so that the visibility is the share of the light's
+  // irradiance that arrives, as the reference shadows it.
+  double total = 0.0, open = 0.0;
   const float scale = 1e-4f * std::max(1.0f, glm::length(p));
   for (int i = 0; i < count; ++i) {
     // Stratified over a side x side grid (the rest uniform).
@@ -348,12 +354,16 @@ float rayTracedVisibility(const RayTracer& tracer, const Light& light, glm::vec3
            static_cast<float>(side);
     const LightSample s = sampleLight(light, p, xi);
     if (!s.delta && s.pdf <= 0.0f) continue;
-    ++valid;
+    const float cosine = std::abs(glm::dot(n, s.direction));
+    const double weight =
+        s.delta ? 1.0 : static_cast<double>(luminance(s.radiance)) * cosine / s.pdf;
+    if (!(weight > 0.0)) continue;
+    total += weight;
     const glm::vec3 origin = p + (glm::dot(n, s.direction) >= 0.0f ? n : -n) * scale;
     const float reach = std::isfinite(s.distance) ? s.distance * (1.0f - 1e-4f) : INFINITY;
-    if (!tracer.occluded(origin, s.direction, reach)) ++open;
+    if (!tracer.occluded(origin, s.direction, reach)) open += weight;
   }
-  return valid == 0 ? 1.0f : static_cast<float>(open) / static_cast<float>(valid);
+  return total > 0.0 ? static_cast<float>(open / total) : 1.0f;
 }
 
 }  // namespace ibl

