@@ -99,7 +99,7 @@ ibl::gpu::Context& graphicsContext() {
 // Frames of `scene` at 1280x720 seen from +Z, lit by the default bake, `spp` samples per pixel.
 void viewerFrames(benchmark::State& state, const ibl::Scene& scene, int spp,
                   const std::string& label,
-                  ibl::AreaLightModel areaLights = ibl::AreaLightModel::Ltc) {
+                  ibl::AreaLightModel areaLights = ibl::AreaLightModel::Ltc, bool shadows = false) {
   ibl::BakeOptions o;
   const ibl::BakeResult bake = ibl::bakeEnvironment(environment(), o);
   ibl::gpu::SceneRenderer viewer(graphicsContext(), scene, bake, o);
@@ -110,6 +110,10 @@ void viewerFrames(benchmark::State& state, const ibl::Scene& scene, int spp,
   ibl::RenderOptions shading;
   shading.spp = spp;
   shading.areaLights = areaLights;
+  // Shadow maps of 256 texels (256 lights hold about 1,300 layers); built on the first frame,
+  // kept while the camera stays.
+  shading.realTimeShadows = shadows ? ibl::ShadowMode::Map : ibl::ShadowMode::None;
+  shading.shadowSettings.mapSize = 256;
   viewer.render(camera, shading);  // the driver compiles the pipelines on the first frame
   for (auto _ : state) benchmark::DoNotOptimize(viewer.render(camera, shading));
   state.SetLabel(graphicsContext().device().name + ", " + std::to_string(viewer.samples()) +
@@ -121,14 +125,16 @@ void BM_ViewerFrame1280x720(benchmark::State& state) {
 }
 
 // The same frame (1 sample per pixel) lit by N analytic lights as well, the seven types in
-// turn, above the grid; area lights through LTCs (second argument 1) or Frostbite's (0).
+// turn, above the grid; area lights through LTCs (second argument 1) or Frostbite's (0); with
+// shadow maps (third argument 1) or none.
 void BM_ViewerFrameWithLights(benchmark::State& state) {
   ibl::Scene scene = ibl::makeSphereGrid(glm::vec3(1.0f));
   for (int i = 0; i < state.range(0); ++i) {
     ibl::Light l;
     l.type = static_cast<ibl::LightType>(i % 7);
     l.name = "bench light";
-    l.position = {-6.0f + 12.0f * static_cast<float>(i) / 64.0f, 6.0f, 4.0f};
+    l.position = {-6.0f + 12.0f * static_cast<float>(i % 64) / 64.0f,
+                  6.0f + static_cast<float>(i / 64), 4.0f};
     l.direction = glm::normalize(glm::vec3(0.1f, -1.0f, -0.5f));
     l.up = glm::normalize(glm::cross(l.direction, glm::vec3(1, 0, 0)));
     l.intensity = 100.0f;
@@ -136,10 +142,11 @@ void BM_ViewerFrameWithLights(benchmark::State& state) {
     l.length = l.width = l.height = 1.0f;
     scene.lights.push_back(l);
   }
-  const bool ltc = state.range(1) != 0;
+  const bool ltc = state.range(1) != 0, shadows = state.range(2) != 0;
   viewerFrames(state, scene, 1,
-               ", " + std::to_string(state.range(0)) + " lights, " + (ltc ? "ltc" : "frostbite"),
-               ltc ? ibl::AreaLightModel::Ltc : ibl::AreaLightModel::Frostbite);
+               ", " + std::to_string(state.range(0)) + " lights, " + (ltc ? "ltc" : "frostbite") +
+                   (shadows ? ", shadow maps" : ""),
+               ltc ? ibl::AreaLightModel::Ltc : ibl::AreaLightModel::Frostbite, shadows);
 }
 
 // The sky of W x W/2 on this device (ibl sky --device gpu): its tables and panorama, sun painted.
@@ -183,7 +190,11 @@ BENCHMARK(BM_GpuPrefilterRings256)->Unit(benchmark::kMillisecond)->UseRealTime()
 BENCHMARK(BM_BakeDeviceGpu)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ViewerFrame1280x720)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithLights)
-    ->ArgsProduct({{1, 16, 64}, {0, 1}})
+    ->ArgsProduct({{1, 16, 64}, {0}, {0}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_ViewerFrameWithLights)
+    ->ArgsProduct({{1, 16, 64, 256}, {1}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GpuSkyPanorama)->Arg(512)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-ninja -C build ibl_bench_io ibl_bench_bake ibl_bench_render ibl_bench_gpu ibl_accuracy ibl_roundtrip ibl_process ibl_memory ibl_lights >/dev/null
+ninja -C build ibl_bench_io ibl_bench_bake ibl_bench_render ibl_bench_gpu ibl_accuracy ibl_roundtrip ibl_process ibl_memory ibl_lights ibl_shadows >/dev/null
 echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "== I/O and conversion (2048x1024 EXR -> 256^2 cube with mips -> KTX2)"
 ./build/bench/ibl_bench_io --benchmark_min_time=1
@@ -24,3 +24,5 @@ echo "== peak memory of \`ibl render\` on a large glTF (4.9 M triangles, five 20
 ./build/bench/ibl_memory
 echo "== analytic lights: each real-time approximation against the reference, and the CPU cost"
 ./build/bench/ibl_lights 256
+echo "== shadows: shadow maps and ray-traced visibility against the reference"
+./build/bench/ibl_shadows 256

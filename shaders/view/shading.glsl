@@ -7,6 +7,11 @@
 #include "ibl/shared/shadows.h"
 #include "ibl/shared/split_sum.h"
 
+// Specialization constants (SceneRenderer::Impl::scenePipeline): whether the lights cast shadows
+// and whether area lights go through LTCs. The pipeline of each variant has only its own code.
+layout(constant_id = 0) const bool kCastShadows = false;
+layout(constant_id = 1) const bool kLtcAreaLights = true;
+
 // The frame's shading switches (splitSumSwitches in src/render/renderer.cpp fills them).
 SplitSumSwitches frameSwitches() {
   SplitSumSwitches s;
@@ -15,7 +20,7 @@ SplitSumSwitches frameSwitches() {
   s.dominantDirections = frame.terms.z != 0;
   s.specularOcclusion = frame.terms.w != 0;
   s.disneyDiffuse = frame.models.x == 0;
-  s.ltcAreaLights = frame.viewport.z != 0.0;
+  s.ltcAreaLights = kLtcAreaLights;
   s.sheenVisibility = frame.sheen.x;
   return s;
 }
@@ -193,7 +198,7 @@ vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m, vec4 sh
     float sheenAlpha = alphaFromRoughness(sheenRoughness);
     for (int i = 0; i < frame.models.w; ++i) {
       // The light's shadow first: what it hides costs nothing more.
-      float visible = frame.shadows.y > 0.5 ? shadowVisibility(shadowCasterAt(i), position, n) : 1.0;
+      float visible = kCastShadows ? shadowVisibility(shadowCasterAt(i), position, n) : 1.0;
       if (visible <= 0.0) continue;
       ShadingLight l = lightAt(i);
       LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s, ltc);

@@ -682,7 +682,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescrip
                                       0, VK_SHADER_STAGE_VERTEX_BIT, d.vertex, "main", nullptr},
       VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr,
                                       0, VK_SHADER_STAGE_FRAGMENT_BIT, d.fragment, "main",
-                                      nullptr}};
+                                      d.fragmentSpecialization}};
   VkPipelineVertexInputStateCreateInfo input{
       VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   input.vertexBindingDescriptionCount = static_cast<std::uint32_t>(d.bindings.size());

@@ -30,7 +30,7 @@ struct FrameUniforms {
   glm::ivec4 terms, models;
   glm::vec4 probes;  // count, the probes' specular levels - 1, flags (view/frame.glsl)
   std::array<glm::vec4, 9> sh;
-  glm::ivec4 sheen;  // the sheen lobe's visibility (view/frame.glsl)
+  glm::ivec4 sheen;   // the sheen lobe's visibility (view/frame.glsl)
   glm::vec4 shadows;  // texels per side, 1 when on, the first layer's record (view/frame.glsl)
 };
 static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16);
@@ -707,7 +707,7 @@ void SceneRenderer::Impl::destroy() {
 
 void SceneRenderer::Impl::destroyTargets() {
   if (!targets) return;
-  vkDestroyPipeline(device, targets->scenePipeline, nullptr);
+  for (VkPipeline pipeline : targets->scenePipelines) vkDestroyPipeline(device, pipeline, nullptr);
   vkDestroyPipeline(device, targets->skyboxPipeline, nullptr);
   vkDestroyFramebuffer(device, targets->framebuffer, nullptr);
   vkDestroyRenderPass(device, targets->renderPass, nullptr);
@@ -840,16 +840,8 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
   fbInfo.layers = 1;
   check(vkCreateFramebuffer(device, &fbInfo, nullptr, &t.framebuffer), "vkCreateFramebuffer");
 
-  // The two pipelines: meshes (depth tested, both faces: the CPU renderer sees both sides too)
-  // and the skybox (a full-screen triangle).
-  const VkVertexInputBindingDescription binding{0, kVertexFloats * sizeof(float),
-                                                VK_VERTEX_INPUT_RATE_VERTEX};
-  const std::array<VkVertexInputAttributeDescription, 5> attributes{
-      VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-      VkVertexInputAttributeDescription{1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
-      VkVertexInputAttributeDescription{2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 6 * sizeof(float)},
-      VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, 10 * sizeof(float)},
-      VkVertexInputAttributeDescription{4, 0, VK_FORMAT_R32G32_SFLOAT, 12 * sizeof(float)}};
+  // The skybox's pipeline (a full-screen triangle); the meshes' are made when first used.
+  t.sampleBits = sampleBits;
   targets = std::move(t);  // from here on, destroyTargets() frees what exists
   GraphicsPipelineDescription p;
   p.layout = pipelineLayout;
@@ -858,12 +850,40 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
   p.vertex = fullscreenVert;
   p.fragment = skyboxFrag;
   targets->skyboxPipeline = createGraphicsPipeline(device, p);
+}
+
+VkPipeline SceneRenderer::Impl::scenePipeline(bool shadows, bool ltcAreaLights) {
+  VkPipeline& pipeline = targets->scenePipelines[(shadows ? 2 : 0) + (ltcAreaLights ? 1 : 0)];
+  if (pipeline) return pipeline;
+  // Meshes: depth tested, both faces (the CPU renderer sees both sides too).
+  const VkVertexInputBindingDescription binding{0, kVertexFloats * sizeof(float),
+                                                VK_VERTEX_INPUT_RATE_VERTEX};
+  const std::array<VkVertexInputAttributeDescription, 5> attributes{
+      VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+      VkVertexInputAttributeDescription{1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
+      VkVertexInputAttributeDescription{2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 6 * sizeof(float)},
+      VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, 10 * sizeof(float)},
+      VkVertexInputAttributeDescription{4, 0, VK_FORMAT_R32G32_SFLOAT, 12 * sizeof(float)}};
+  // shaders/view/shading.glsl's specialization constants: 0 the lights cast shadows, 1 area
+  // lights through LTCs.
+  const std::array<VkBool32, 2> values{shadows ? VK_TRUE : VK_FALSE,
+                                       ltcAreaLights ? VK_TRUE : VK_FALSE};
+  const std::array<VkSpecializationMapEntry, 2> entries{
+      VkSpecializationMapEntry{0, 0, sizeof(VkBool32)},
+      VkSpecializationMapEntry{1, sizeof(VkBool32), sizeof(VkBool32)}};
+  const VkSpecializationInfo specialization{2, entries.data(), sizeof(values), values.data()};
+  GraphicsPipelineDescription p;
+  p.layout = pipelineLayout;
+  p.renderPass = targets->renderPass;
+  p.samples = targets->sampleBits;
   p.vertex = sceneVert;
   p.fragment = sceneFrag;
   p.bindings = {&binding, 1};
   p.attributes = attributes;
   p.depth = true;
-  targets->scenePipeline = createGraphicsPipeline(device, p);
+  p.fragmentSpecialization = &specialization;
+  pipeline = createGraphicsPipeline(device, p);
+  return pipeline;
 }
 
 void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& o,
@@ -921,7 +941,8 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
                           nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t.skyboxPipeline);
   vkCmdDraw(cmd, 3, 1, 0, 0);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t.scenePipeline);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                    scenePipeline(shadows, o.areaLights == AreaLightModel::Ltc));
   for (const DrawMesh& m : meshes) {
     const auto mi =
         static_cast<std::size_t>(std::clamp(m.material, 0, static_cast<int>(materials.size()) - 1));

@@ -1,6 +1,7 @@
 #pragma once
 // Internal: the state behind gpu::SceneRenderer, shared with the window (which records a frame
 // of the scene into its own command buffer before tone mapping it to the swapchain).
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -90,7 +91,12 @@ struct SceneRenderer::Impl {
     std::unique_ptr<DeviceImage> color, depth, resolved;  // color: multisampled (samples > 1)
     VkRenderPass renderPass = VK_NULL_HANDLE;
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
-    VkPipeline scenePipeline = VK_NULL_HANDLE, skyboxPipeline = VK_NULL_HANDLE;
+    VkPipeline skyboxPipeline = VK_NULL_HANDLE;
+    // The meshes' pipeline per variant of the shading (scenePipelineIndex), made when first used:
+    // each specializes shaders/view/scene.frag, so that the code of a model it does not use
+    // (shadows, the other area-light model) is compiled out.
+    std::array<VkPipeline, 4> scenePipelines{};
+    VkSampleCountFlagBits sampleBits = VK_SAMPLE_COUNT_1_BIT;
   };
   std::optional<Targets> targets;
   std::pair<glm::vec3, glm::vec3> bounds;
@@ -102,6 +108,8 @@ struct SceneRenderer::Impl {
   int supportedSamples(int requested) const;
   // (Re)creates the attachments and pipelines for this size and multisample count.
   void prepare(int width, int height, int samples);
+  // The meshes' pipeline for these switches (made on first use).
+  VkPipeline scenePipeline(bool shadows, bool ltcAreaLights);
   // Records the frame into `cmd`; the output image ends shader-readable.
   void record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& options,
               float skyboxLod);

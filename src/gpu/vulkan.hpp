@@ -103,6 +103,8 @@ struct GraphicsPipelineDescription {
   std::span<const VkVertexInputAttributeDescription> attributes;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   bool depth = false;  // depth test (less) and write
+  // The fragment shader's specialization constants (null: their defaults).
+  const VkSpecializationInfo* fragmentSpecialization = nullptr;
 };
 VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescription& d);
 

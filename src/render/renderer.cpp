@@ -199,8 +199,8 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   const auto [lo, hi] = scene.bounds();
   // The lights' shadows in the split sum: maps (built here over the whole scene unless given),
   // or rays.
-  const bool shadowed =
-      o.mode == RenderMode::SplitSum && o.realTimeShadows != ShadowMode::None && !scene.lights.empty();
+  const bool shadowed = o.mode == RenderMode::SplitSum && o.realTimeShadows != ShadowMode::None &&
+                        !scene.lights.empty();
   ShadowMaps ownMaps;
   const ShadowMaps* maps = o.shadowMaps;
   if (shadowed && o.realTimeShadows == ShadowMode::Map && !maps) {

@@ -139,9 +139,9 @@ void planCascades(const Light& sun, const Bounds& bounds, const Camera* camera, 
     const CameraFrame f = camera->frame();
     const float aspect = static_cast<float>(camera->width) / static_cast<float>(camera->height);
     const float tanY = std::tan(0.5f * glm::radians(camera->yfovDegrees));
-    const float halfDiagonal = camera->perspective
-                                   ? tanY * std::sqrt(1.0f + aspect * aspect)
-                                   : 0.5f * camera->orthoWidth * std::sqrt(1.0f + 1.0f / (aspect * aspect));
+    const float halfDiagonal = camera->perspective ? tanY * std::sqrt(1.0f + aspect * aspect)
+                                                   : 0.5f * camera->orthoWidth *
+                                                         std::sqrt(1.0f + 1.0f / (aspect * aspect));
     // The depth range from the camera's distance to the scene's bounding sphere: it does not
     // change as the camera turns, nor then do the slices.
     const float distance = glm::length(camera->from - sceneCenter);
@@ -156,8 +156,9 @@ void planCascades(const Light& sun, const Bounds& bounds, const Camera* camera, 
         const float t = static_cast<float>(i) / static_cast<float>(count);
         const float logarithmic = nearEnd > 0.0f ? nearEnd * std::pow(farEnd / nearEnd, t) : 0.0f;
         const float uniform = nearEnd + (farEnd - nearEnd) * t;
-        const float end =
-            i == count ? farEnd : (nearEnd > 0.0f ? 0.75f * logarithmic + 0.25f * uniform : uniform);
+        const float end = i == count
+                              ? farEnd
+                              : (nearEnd > 0.0f ? 0.75f * logarithmic + 0.25f * uniform : uniform);
         auto [along, radius] = sliceSphere(previous, end, halfDiagonal, camera->perspective);
         glm::vec3 center = camera->from + along * f.forward;
         if (radius >= sceneRadius) {  // the slice holds more than the scene: the scene's sphere
@@ -242,11 +243,12 @@ ShadowMaps planShadowMaps(const std::vector<Light>& lights, std::pair<glm::vec3,
   ShadowMaps maps;
   maps.mapSize = settings.mapSize;
   const bool empty = !(bounds.first.x <= bounds.second.x);
-  const float sceneRadius = empty ? 1.0f : std::max(0.5f * glm::length(bounds.second - bounds.first), 1e-4f);
+  const float sceneRadius =
+      empty ? 1.0f : std::max(0.5f * glm::length(bounds.second - bounds.first), 1e-4f);
   // Cube faces and a spot's cone reach past their edges by the widest filter, so that the taps
   // of a point near an edge stay in its layer.
-  const float edge = 1.0f + 2.0f * (shared::kShadowMaxFilterTexels + 2.0f) /
-                                static_cast<float>(settings.mapSize);
+  const auto size = static_cast<float>(settings.mapSize);
+  const float edge = 1.0f + 2.0f * (shared::shadowMaxFilterTexels(size) + 2.0f) / size;
   for (const Light& light : lights) {
     shared::ShadowCaster c = noCaster();
     if (empty) {
@@ -303,7 +305,8 @@ ShadowMaps buildShadowMaps(const RayTracer& tracer, std::pair<glm::vec3, glm::ve
       for (std::size_t j = 0; j < previous->layers.size() && !kept; ++j)
         if (sameLayer(previous->layers[j], maps.layers[i])) {
           std::copy_n(previous->depths.begin() + static_cast<std::ptrdiff_t>(j * layerTexels),
-                      layerTexels, maps.depths.begin() + static_cast<std::ptrdiff_t>(i * layerTexels));
+                      layerTexels,
+                      maps.depths.begin() + static_cast<std::ptrdiff_t>(i * layerTexels));
           kept = true;
         }
     if (!kept) traced.push_back(static_cast<int>(i));
@@ -319,7 +322,8 @@ ShadowMaps buildShadowMaps(const RayTracer& tracer, std::pair<glm::vec3, glm::ve
       const glm::vec2 t(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
       const glm::vec3 d = shared::shadowRayDirection(l, t, size);
       const float length = glm::length(d);
-      const RayTracer::Hit hit = tracer.intersect({shared::shadowRayOrigin(l, t, size), d / length});
+      const RayTracer::Hit hit =
+          tracer.intersect({shared::shadowRayOrigin(l, t, size), d / length});
       // d's forward component is 1 (orthographic: d is forward): depth = t / |d|.
       if (hit.found) out[x] = shared::shadowStoredDepth(l, hit.t / length);
     }
@@ -333,7 +337,8 @@ ShadowMapBuilder::ShadowMapBuilder(const Scene& scene)
 ShadowMapBuilder::~ShadowMapBuilder() = default;
 
 ShadowMaps ShadowMapBuilder::build(const std::vector<Light>& lights, const Camera* camera,
-                                   const ShadowSettings& settings, const ShadowMaps* previous) const {
+                                   const ShadowSettings& settings,
+                                   const ShadowMaps* previous) const {
   return buildShadowMaps(*owned_, scene_.bounds(), lights, camera, settings, previous);
 }
 

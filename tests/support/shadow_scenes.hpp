@@ -167,13 +167,13 @@ inline Camera fieldCamera(int width, int height) {
 }
 
 struct ShadowError {
-  double compared = 0.0;       // pixels compared (lit without shadows)
-  double stateMismatch = 0.0;  // share whose state (visibility above or below 1/2) differs
-  double shadowMismatch = 0.0;  // the same, of the pixels either shadows
+  double compared = 0.0;          // pixels compared (lit without shadows)
+  double stateMismatch = 0.0;     // share whose state (visibility above or below 1/2) differs
+  double shadowMismatch = 0.0;    // the same, of the pixels either shadows
   double medianVisibility = 0.0;  // median |visibility - the reference's| where either is < 0.99
-  double acne = 0.0;  // share of the pixels the reference lights fully (visibility > 0.999)
-                      // that are less than 0.9 visible
-  double relative = 0.0;       // sum |radiance - the reference's| / sum of the reference's
+  double acne = 0.0;      // share of the pixels the reference lights fully (visibility > 0.999)
+                          // that are less than 0.9 visible
+  double relative = 0.0;  // sum |radiance - the reference's| / sum of the reference's
   double referenceShadowed = 0.0;  // share of the compared pixels the reference shadows
 };
 
@@ -201,8 +201,8 @@ inline double median(std::vector<double> v) {
 struct ShadowStudy {
   RenderResult reference, referenceOpen, fast, fastOpen;
 };
-inline ShadowStudy renderShadowStudy(const Scene& scene, const Camera& camera, const BlackBake& bake,
-                                     RenderOptions options, int spp) {
+inline ShadowStudy renderShadowStudy(const Scene& scene, const Camera& camera,
+                                     const BlackBake& bake, RenderOptions options, int spp) {
   options.environmentLight = false;
   options.backgroundEnvironment = false;
   options.cameraSeesEmitters = false;
@@ -225,7 +225,8 @@ inline ShadowError compareShadows(const ShadowStudy& s) {
   const std::vector<double> vRef = visibilityOf(s.reference, s.referenceOpen);
   const std::vector<double> vFast = visibilityOf(s.fast, s.fastOpen);
   double peak = 0.0;
-  for (const glm::vec3& c : s.referenceOpen.color.pixels) peak = std::max(peak, double(luminance(c)));
+  for (const glm::vec3& c : s.referenceOpen.color.pixels)
+    peak = std::max(peak, double(luminance(c)));
   ShadowError e;
   std::vector<double> dv;
   double diff = 0.0, sum = 0.0, mismatched = 0.0, shadowed = 0.0, eitherShadowed = 0.0;
@@ -243,7 +244,8 @@ inline ShadowError compareShadows(const ShadowStudy& s) {
       if (vFast[i] < 0.9) acne += 1.0;
     }
     if (vRef[i] < 0.99 || vFast[i] < 0.99) dv.push_back(std::abs(vRef[i] - vFast[i]));
-    diff += std::abs(double(luminance(s.fast.color.pixels[i])) - luminance(s.reference.color.pixels[i]));
+    diff += std::abs(double(luminance(s.fast.color.pixels[i])) -
+                     luminance(s.reference.color.pixels[i]));
     sum += luminance(s.reference.color.pixels[i]);
   }
   if (e.compared > 0.0) {

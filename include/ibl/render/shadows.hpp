@@ -23,8 +23,8 @@ enum class ShadowMode { None, Map, Ray };
 std::string_view shadowModeName(ShadowMode mode);
 
 struct ShadowSettings {
-  int mapSize = 1024;  // texels per side of every layer (a power of two, 16 to 8192)
-  int cascades = 4;    // the sun's cascades, 1 to 4
+  int mapSize = 1024;   // texels per side of every layer (a power of two, 16 to 8192)
+  int cascades = 4;     // the sun's cascades, 1 to 4
   int raySamples = 16;  // ShadowMode::Ray: rays per area light or sun and pixel sample
 };
 

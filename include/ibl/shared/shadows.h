@@ -24,23 +24,25 @@ const int kShadowSingle = 1;    // one perspective layer (a spot's cone)
 const int kShadowCube = 2;      // six perspective layers in the cube's face order (cube.h)
 const int kShadowCascades = 3;  // orthographic layers over consecutive slices of the view depth
 
-// The filter: taps of the blocker search and of the percentage-closer filter, its smallest
-// radius (hides the texels of punctual lights' hard shadows) and its largest (bounds the cost
-// of wide penumbrae), in texels.
+// The filter: taps of the blocker search and of the percentage-closer filter, and its smallest
+// radius (hides the texels of punctual lights' hard shadows), in texels.
 const int kShadowTaps = 16;
 const float kShadowMinFilterTexels = 1.5f;
-const float kShadowMaxFilterTexels = 24.0f;
-// The bias, in texels' world size at the receiver: along the normal (normal offset) and along
-// the light's depth (constant, on top of the receiver plane the filter follows).
+// The bias, in texels' world size at the receiver: along the normal (normal offset), and along
+// the light's depth a constant plus a slope-scaled part (times tan of the angle between the
+// normal and the light, at most kShadowMaxSlope), on top of the receiver plane the filter
+// follows.
 const float kShadowNormalOffsetTexels = 1.0f;
 const float kShadowDepthBiasTexels = 1.0f;
+const float kShadowSlopeBiasTexels = 1.0f;
+const float kShadowMaxSlope = 10.0f;
 
 // One layer: its light space (origin, orthonormal axes; z along `forward`) and projection.
 struct ShadowLayer {
-  vec3 origin;   // perspective: the eye; orthographic: the center of the near plane
-  vec3 right;    // the map's x (texel column) grows along it
-  vec3 up;       // the map's y (texel row) grows along it
-  vec3 forward;  // depth
+  vec3 origin;      // perspective: the eye; orthographic: the center of the near plane
+  vec3 right;       // the map's x (texel column) grows along it
+  vec3 up;          // the map's y (texel row) grows along it
+  vec3 forward;     // depth
   int perspective;  // 1 perspective, 0 orthographic
   float scale;      // perspective: tan of the half field of view; orthographic: the half width
   float near;       // the depth range the map stores (world units along forward)
@@ -60,6 +62,12 @@ struct ShadowCaster {
   vec3 viewForward;
   vec4 splits;  // cascades: the far end of each slice's view depth (unused entries: 0)
 };
+
+// The filter's largest radius in texels of a map of mapSize texels: 5 % of its width (at least
+// 24 texels), so that a penumbra covers as much of the scene at any map size.
+IBL_FN float shadowMaxFilterTexels(float mapSize) {
+  return max(24.0f, 0.05f * mapSize);
+}
 
 // Where a point falls in a layer: its continuous texel coordinates ((0, 0) the corner of texel
 // (0, 0); texel centers at + 0.5), its depth along forward, the world size of a texel there.
@@ -137,9 +145,9 @@ IBL_FN vec2 shadowDiskTap(int i) {
 #ifdef __cplusplus
 // The maps as the CPU holds them (render/shadows.hpp owns the storage).
 struct ShadowMapView {
-  int size = 0;                          // texels per side of every layer
-  const float* depths = nullptr;         // layer after layer, rows of `size` texels
-  const ShadowLayer* layers = nullptr;   // the layers' records
+  int size = 0;                         // texels per side of every layer
+  const float* depths = nullptr;        // layer after layer, rows of `size` texels
+  const ShadowLayer* layers = nullptr;  // the layers' records
 };
 inline ShadowLayer shadowLayerAt(const ShadowMapView& maps, int i) {
   return maps.layers[i];
@@ -196,7 +204,7 @@ IBL_FN vec2 shadowCompareBilinear(IBL_SHADOW_MAPS int layer, ShadowLayer l, vec3
 // The share of `c`'s light that reaches point p (normal n, facing the light's side) in layer
 // `layer`: the blocker search, then percentage-closer filtering over the penumbra the light's
 // size gives at the blockers' mean depth (at least kShadowMinFilterTexels, at most
-// kShadowMaxFilterTexels). Outside the layer: 1.
+// shadowMaxFilterTexels). Outside the layer: 1.
 IBL_FN float shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec3 p, vec3 n) {
   float mapSize = shadowMapSize(IBL_SHADOW_ONLY);
   ShadowLayer l = shadowLayerAt(IBL_SHADOW_ARG layer);
@@ -204,36 +212,38 @@ IBL_FN float shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, ve
   // Normal offset: the point is moved off its surface by a texel's size (the more, the more
   // the surface turns from the light), then projected again.
   vec3 toLight = l.perspective != 0 ? normalize(l.origin - p) : -l.forward;
-  float sinAngle = sqrt(max(1.0f - dot(n, toLight) * dot(n, toLight), 0.0f));
+  float cosAngle = abs(dot(n, toLight));
+  float sinAngle = sqrt(max(1.0f - cosAngle * cosAngle, 0.0f));
   vec3 q = p + n * (kShadowNormalOffsetTexels * at.texelSize * sinAngle);
   at = shadowProject(l, q, mapSize);
   if (at.depth <= l.near || at.texel.x < 0.0f || at.texel.y < 0.0f || at.texel.x > mapSize ||
       at.texel.y > mapSize)
     return 1.0f;
-  float bias = kShadowDepthBiasTexels * at.texelSize;
-  float limit = at.texelSize * (kShadowMaxFilterTexels + 2.0f) * 4.0f;
+  float slope = min(sinAngle / max(cosAngle, 1e-4f), kShadowMaxSlope);
+  float bias = (kShadowDepthBiasTexels + kShadowSlopeBiasTexels * slope) * at.texelSize;
+  float maxFilter = shadowMaxFilterTexels(mapSize);
+  float limit = at.texelSize * (maxFilter + 2.0f) * 4.0f;
   float filterTexels = kShadowMinFilterTexels;
   if (c.size > 0.0f) {
     // The region where blockers of any part of the light project: for a light of radius r at
     // the eye, r (z_r - z) / z at depth z, largest at the near plane; for the sun, the depth
     // difference times tan of its angular radius.
-    float search = l.perspective != 0
-                       ? c.size * (at.depth - l.near) / at.depth /
-                             (2.0f * l.near * l.scale / mapSize)
-                       : (at.depth - l.near) * c.size / at.texelSize;
-    search = clamp(search, 1.0f, kShadowMaxFilterTexels);
+    float search = l.perspective != 0 ? c.size * (at.depth - l.near) / at.depth /
+                                            (2.0f * l.near * l.scale / mapSize)
+                                      : (at.depth - l.near) * c.size / at.texelSize;
+    search = clamp(search, 1.0f, maxFilter);
     vec2 found = vec2(0.0f);
     for (int i = 0; i < kShadowTaps; ++i)
-      found += shadowCompareBilinear(IBL_SHADOW_ARG layer, l, q, n,
-                                     at.texel + search * shadowDiskTap(i), at.depth, bias, limit,
-                                     true);
+      found +=
+          shadowCompareBilinear(IBL_SHADOW_ARG layer, l, q, n, at.texel + search * shadowDiskTap(i),
+                                at.depth, bias, limit, true);
     if (found.y == 0.0f) return 1.0f;
     float blocker = found.x / found.y;
     // The penumbra's half width at the receiver (similar triangles, PCSS eq. 1): r (z_r - z_b)
     // / z_b from a light of radius r; (z_r - z_b) tan(angular radius) from the sun.
     float penumbra = l.perspective != 0 ? c.size * (at.depth - blocker) / max(blocker, 1e-6f)
                                         : (at.depth - blocker) * c.size;
-    filterTexels = clamp(penumbra / at.texelSize, kShadowMinFilterTexels, kShadowMaxFilterTexels);
+    filterTexels = clamp(penumbra / at.texelSize, kShadowMinFilterTexels, maxFilter);
   }
   float lit = 0.0f;
   for (int i = 0; i < kShadowTaps; ++i)
