@@ -124,28 +124,36 @@ void BM_ViewerFrame1280x720(benchmark::State& state) {
   viewerFrames(state, ibl::makeSphereGrid(glm::vec3(1.0f)), static_cast<int>(state.range(0)), "");
 }
 
-// The same frame (1 sample per pixel) lit by N analytic lights as well, the seven types in
-// turn, above the grid; area lights through LTCs (second argument 1) or Frostbite's (0); with
-// shadow maps (third argument 1) or none.
+// The same frame (1 sample per pixel) lit by N analytic lights as well, the six local types in
+// turn (a scene's many lights are local; its sun is one), in a 16 x 4 grid of layers of 64 in front
+// of the spheres; area lights through LTCs (second argument 1) or Frostbite's (0); with shadow maps
+// (third argument 1) or none; the lights without a range (fourth argument 0: each reaches every
+// pixel, bar a spot's cone and a rect's or disk's back) or with a range of 2.5 m (1: the clusters
+// hold only the lights that reach them).
 void BM_ViewerFrameWithLights(benchmark::State& state) {
+  constexpr ibl::LightType kLocalTypes[] = {ibl::LightType::Point,  ibl::LightType::Spot,
+                                            ibl::LightType::Sphere, ibl::LightType::Disk,
+                                            ibl::LightType::Tube,   ibl::LightType::Rect};
   ibl::Scene scene = ibl::makeSphereGrid(glm::vec3(1.0f));
+  const bool ltc = state.range(1) != 0, shadows = state.range(2) != 0, ranged = state.range(3) != 0;
   for (int i = 0; i < state.range(0); ++i) {
     ibl::Light l;
-    l.type = static_cast<ibl::LightType>(i % 7);
+    l.type = kLocalTypes[i % 6];
     l.name = "bench light";
-    l.position = {-6.0f + 12.0f * static_cast<float>(i % 64) / 64.0f,
-                  6.0f + static_cast<float>(i / 64), 4.0f};
-    l.direction = glm::normalize(glm::vec3(0.1f, -1.0f, -0.5f));
+    l.position = {-7.0f + 14.0f * (static_cast<float>(i % 16) + 0.5f) / 16.0f,
+                  -2.5f + 5.0f * (static_cast<float>((i / 16) % 4) + 0.5f) / 4.0f,
+                  1.5f + 0.5f * static_cast<float>(i / 64)};
+    l.direction = glm::normalize(glm::vec3(0.1f, -0.3f, -1.0f));
     l.up = glm::normalize(glm::cross(l.direction, glm::vec3(1, 0, 0)));
     l.intensity = 100.0f;
-    l.radius = 0.3f;
-    l.length = l.width = l.height = 1.0f;
+    l.radius = 0.1f;
+    l.length = l.width = l.height = 0.3f;
+    l.range = ranged ? 2.5f : 0.0f;
     scene.lights.push_back(l);
   }
-  const bool ltc = state.range(1) != 0, shadows = state.range(2) != 0;
   viewerFrames(state, scene, 1,
                ", " + std::to_string(state.range(0)) + " lights, " + (ltc ? "ltc" : "frostbite") +
-                   (shadows ? ", shadow maps" : ""),
+                   (shadows ? ", shadow maps" : "") + (ranged ? ", 2.5 m range" : ", no range"),
                ltc ? ibl::AreaLightModel::Ltc : ibl::AreaLightModel::Frostbite, shadows);
 }
 
@@ -190,11 +198,11 @@ BENCHMARK(BM_GpuPrefilterRings256)->Unit(benchmark::kMillisecond)->UseRealTime()
 BENCHMARK(BM_BakeDeviceGpu)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ViewerFrame1280x720)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithLights)
-    ->ArgsProduct({{1, 16, 64}, {0}, {0}})
+    ->ArgsProduct({{1, 16, 64, 256}, {0}, {0}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithLights)
-    ->ArgsProduct({{1, 16, 64, 256}, {1}, {0, 1}})
+    ->ArgsProduct({{1, 16, 64, 256}, {1}, {0, 1}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GpuSkyPanorama)->Arg(512)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();

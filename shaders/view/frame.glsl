@@ -20,6 +20,9 @@ layout(std140, set = 0, binding = 0) uniform Frame {
   ivec4 sheen;          // the sheen lobe's visibility (kSheenVisibilityCharlie, ...Neubelt)
   vec4 shadows;         // the lights' shadow maps: texels per side, 1 when they are on, the first
                         // layer's record in shadowData
+  ivec4 clusterGrid;    // the light clusters (ibl/shared/clusters.h): tile size in pixels, tiles
+                        // across, tiles down, depth slices
+  vec4 clusterDepths;   // near, far, 1 perspective (exponential slices), 0 orthographic
 } frame;
 layout(set = 0, binding = 1) uniform samplerCube specularMap;
 layout(set = 0, binding = 2) uniform samplerCube irradianceMap;
@@ -71,4 +74,10 @@ layout(std430, set = 0, binding = 13) readonly buffer ShadowRecords {
 };
 layout(std430, set = 0, binding = 14) readonly buffer ShadowDepths {
   float shadowDepths[];
+};
+// The clustered light lists (buildLightClusters in src/render/light_clusters.cpp): (first,
+// count) per cluster (clusterIndex in ibl/shared/clusters.h), then per tile for its emitters,
+// each `first` the position in this array of a run of light indices.
+layout(std430, set = 0, binding = 15) readonly buffer LightClusters {
+  uint clusterData[];
 };

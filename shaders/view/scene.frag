@@ -159,12 +159,13 @@ void main() {
   m.roughness = clamp(roughness, 0.0, 1.0);
   m.occlusion = occlusion;
   m.emissive = emissive;
-  vec3 color = shadeSplitSum(position, n, -ray, m, sheen);
+  vec3 color = shadeSplitSum(position, gl_FragCoord.xy, n, -ray, m, sheen);
   // An area light between the camera and the surface is what the pixel sees.
   Ray center = primaryRay(gl_FragCoord.xy);
   vec3 emitted;
   bool surface;
-  if (nearestEmitter(center, dot(position - center.origin, center.direction), emitted, surface))
+  if (nearestEmitter(center, gl_FragCoord.xy, dot(position - center.origin, center.direction),
+                     emitted, surface))
     color = emitted;
   outColor = vec4(color, 1.0);
 }

@@ -1,6 +1,7 @@
 // The split-sum shading of a surface point: the formulas of ibl/shared/split_sum.h (which
 // shadeSplitSum in src/render/renderer.cpp calls too) with the GPU's lookups: samplerCube
 // trilinear filtering, the DFG table bilinear and clamped. Needs view/frame.glsl.
+#include "ibl/shared/clusters.h"
 #include "ibl/shared/lights.h"
 #include "ibl/shared/sh.h"
 #include "ibl/shared/probes.h"
@@ -30,6 +31,31 @@ vec3 irradianceSh9OverPi(vec3 n) {
   vec3 sum = vec3(0.0);
   for (int k = 0; k < 9; ++k) sum += frame.sh[k].rgb * shBasis(k, n);
   return sum;
+}
+
+// The clustered light lists (buildLightClusters in src/render/light_clusters.cpp): the grid of
+// this frame, and (first, count) in clusterData of the lights that may reach the cluster of a
+// point seen at framebuffer point `pixel`, or of the emitters the tile's rays may meet.
+LightClusterGrid frameClusterGrid() {
+  LightClusterGrid g;
+  g.tileSize = frame.clusterGrid.x;
+  g.tilesX = frame.clusterGrid.y;
+  g.tilesY = frame.clusterGrid.z;
+  g.slices = frame.clusterGrid.w;
+  g.near = frame.clusterDepths.x;
+  g.far = frame.clusterDepths.y;
+  g.perspective = int(frame.clusterDepths.z);
+  return g;
+}
+uvec2 clusterLights(vec2 pixel, vec3 position) {
+  float z = dot(position - frame.cameraPosition.xyz, frame.cameraForward.xyz);
+  int c = clusterIndex(frameClusterGrid(), pixel, z);
+  return uvec2(clusterData[2 * c], clusterData[2 * c + 1]);
+}
+uvec2 tileEmitters(vec2 pixel) {
+  LightClusterGrid g = frameClusterGrid();
+  int c = clusterCount(g) + clusterTile(g, pixel);
+  return uvec2(clusterData[2 * c], clusterData[2 * c + 1]);
 }
 
 ShadingLight lightAt(int i) {
@@ -103,12 +129,14 @@ float iesProfileFactor(ShadingLight l, float profile, vec3 w) {
 
 // The nearest emitter (area light or sun) the ray meets closer than maxDistance, as the CPU's
 // nearestLight (src/render/renderer.cpp) finds it: its luminance; `surface` false for the sun.
-bool nearestEmitter(Ray r, float maxDistance, out vec3 radiance, out bool surface) {
+// Only the emitters of the tile of framebuffer point `pixel` (the ray's) are tried.
+bool nearestEmitter(Ray r, vec2 pixel, float maxDistance, out vec3 radiance, out bool surface) {
   float best = maxDistance;
   bool found = false;
   radiance = vec3(0.0);
-  for (int i = 0; i < frame.models.w; ++i) {
-    ShadingLight l = lightAt(i);
+  uvec2 list = frame.models.w > 0 ? tileEmitters(pixel) : uvec2(0u);
+  for (uint k = list.x; k < list.x + list.y; ++k) {
+    ShadingLight l = lightAt(int(clusterData[k]));
     float t = emitterDistance(l, r.origin, r.direction);
     if (t >= 0.0 && t < best) {
       best = t;
@@ -174,7 +202,8 @@ float localProbes(vec3 position, vec3 r, vec3 d, float roughness, int terms,
 // The environment's split sum plus the scene's lights (shadeSplitSum and shadeLightsRealTime in
 // src/render/renderer.cpp) at a point at `position`, under a sheen layer (sheen: color and
 // roughness of KHR_materials_sheen; color 0: none) that scales the rest by its albedo scaling.
-vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m, vec4 sheen) {
+// The lights evaluated are those of the point's cluster (seen at framebuffer point `pixel`).
+vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMaterial m, vec4 sheen) {
   SplitSumSwitches s = frameSwitches();
   bool sheenOnly = s.terms == 3;
   if (sheenOnly) s.terms = 0;
@@ -196,7 +225,9 @@ vec3 shadeSplitSum(vec3 position, vec3 n, vec3 view, SplitSumMaterial m, vec4 sh
     vec4 ltc = vec4(1.0, 0.0, 0.0, 1.0);
     if (s.ltcAreaLights) ltc = ltcTableEntry(m.roughness, look.NoV);
     float sheenAlpha = alphaFromRoughness(sheenRoughness);
-    for (int i = 0; i < frame.models.w; ++i) {
+    uvec2 list = clusterLights(pixel, position);
+    for (uint k = list.x; k < list.x + list.y; ++k) {
+      int i = int(clusterData[k]);
       // The light's shadow first: what it hides costs nothing more.
       float visible = kCastShadows ? shadowVisibility(shadowCasterAt(i), position, n) : 1.0;
       if (visible <= 0.0) continue;

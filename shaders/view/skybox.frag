@@ -15,7 +15,7 @@ void main() {
   // pixel as a surface does; the sun does not).
   vec3 emitted;
   bool surface;
-  if (nearestEmitter(r, 3.0e38, emitted, surface)) {
+  if (nearestEmitter(r, gl_FragCoord.xy, 3.0e38, emitted, surface)) {
     color = emitted;
     alpha = surface ? 1.0 : 0.0;
   }

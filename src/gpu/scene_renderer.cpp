@@ -30,10 +30,12 @@ struct FrameUniforms {
   glm::ivec4 terms, models;
   glm::vec4 probes;  // count, the probes' specular levels - 1, flags (view/frame.glsl)
   std::array<glm::vec4, 9> sh;
-  glm::ivec4 sheen;   // the sheen lobe's visibility (view/frame.glsl)
-  glm::vec4 shadows;  // texels per side, 1 when on, the first layer's record (view/frame.glsl)
+  glm::ivec4 sheen;        // the sheen lobe's visibility (view/frame.glsl)
+  glm::vec4 shadows;       // texels per side, 1 when on, the first layer's record (view/frame.glsl)
+  glm::ivec4 clusterGrid;  // tile size, tiles across and down, slices (view/frame.glsl)
+  glm::vec4 clusterDepths;  // near, far, 1 perspective
 };
-static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16);
+static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32);
 
 // vec4s per probe in the probes buffer (view/frame.glsl).
 constexpr int kProbeVec4s = 11;
@@ -373,6 +375,37 @@ bool SceneRenderer::Impl::prepareShadows(const Camera& camera, const RenderOptio
   return true;
 }
 
+void SceneRenderer::Impl::prepareClusters(const Camera& camera) {
+  if (clustersCurrent && sameCamera(camera, clusterCamera)) return;
+  vkDeviceWaitIdle(device);  // nothing in flight reads what is replaced
+  clusters = buildLightClusters(currentLights, camera, bounds);
+  clusterCamera = camera;
+  clustersCurrent = true;
+  // One array: the (first, count) pairs, their `first` moved past the pairs, then the indices.
+  std::vector<std::uint32_t> data = clusters.ranges;
+  const auto header = static_cast<std::uint32_t>(data.size());
+  for (std::size_t i = 0; i < data.size(); i += 2) data[i] += header;
+  data.insert(data.end(), clusters.indices.begin(), clusters.indices.end());
+  const std::size_t bytes = data.size() * sizeof(std::uint32_t);
+  if (!clustersBuffer || clustersBuffer->size() < bytes) {
+    clustersBuffer = std::make_unique<Buffer>(context, bytes, BufferMemory::Host);
+    writeClusterDescriptor();
+  }
+  std::memcpy(clustersBuffer->mapped(), data.data(), bytes);
+}
+
+void SceneRenderer::Impl::writeClusterDescriptor() {
+  const VkDescriptorBufferInfo info{static_cast<VkBuffer>(clustersBuffer->handle()), 0,
+                                    VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = frameSet;
+  w.dstBinding = 15;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  w.pBufferInfo = &info;
+  vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
+}
+
 void SceneRenderer::Impl::writeShadowDescriptors() {
   const VkDescriptorBufferInfo buffers[2] = {
       {static_cast<VkBuffer>(shadowRecords->handle()), 0, VK_WHOLE_SIZE},
@@ -428,6 +461,7 @@ void SceneRenderer::Impl::setEnvironment(const BakeResult& bake, const BakeOptio
   std::memcpy(lightsBuffer->mapped(), data.data(), data.size() * sizeof(glm::vec4));
   currentLights = lights;
   shadowMapsCurrent = false;
+  clustersCurrent = false;
   const std::vector<VkWriteDescriptorSet> writes = bakeWrites();
   vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
                          nullptr);
@@ -584,7 +618,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   for (std::uint32_t b = 9; b <= 12; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-  for (std::uint32_t b = 13; b <= 14; ++b)
+  for (std::uint32_t b = 13; b <= 15; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
@@ -606,7 +640,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   const auto materialCount = static_cast<std::uint32_t>(materials.size());
   const std::array<VkDescriptorPoolSize, 3> sizes{
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                            10 + kMaterialTextures * materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -669,6 +703,9 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
                          nullptr);
   writeShadowDescriptors();
+  clustersBuffer = std::make_unique<Buffer>(context, 4 * sizeof(std::uint32_t), BufferMemory::Host);
+  std::memset(clustersBuffer->mapped(), 0, 4 * sizeof(std::uint32_t));
+  writeClusterDescriptor();
 
   sceneVert = context.impl().shaderModule("scene_vert");
   sceneFrag = context.impl().shaderModule("scene_frag");
@@ -890,6 +927,7 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
                                  float skyboxLod) {
   if (sceneHasSheen) checkSheenVisibility(sheenVisibility, o);
   const bool shadows = prepareShadows(camera, o);
+  if (lightCount > 0) prepareClusters(camera);
   const Targets& t = *targets;
   FrameUniforms u{};
   u.viewProjection = viewProjectionOf(camera, bounds);
@@ -921,6 +959,9 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   u.sheen = glm::ivec4(s.sheenVisibility, 0, 0, 0);
   u.shadows = glm::vec4(static_cast<float>(shadowMaps.mapSize), shadows ? 1.0f : 0.0f,
                         5.0f * static_cast<float>(shadowMaps.casters.size()), 0.0f);
+  const shared::LightClusterGrid& g = clusters.grid;
+  u.clusterGrid = glm::ivec4(g.tileSize, g.tilesX, g.tilesY, g.slices);
+  u.clusterDepths = glm::vec4(g.near, g.far, static_cast<float>(g.perspective), 0.0f);
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
 
   std::array<VkClearValue, 3> clears{};

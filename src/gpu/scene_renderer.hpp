@@ -10,6 +10,7 @@
 #include "gpu/buffers.hpp"
 #include "gpu/vulkan.hpp"
 #include "ibl/gpu/viewer.hpp"
+#include "ibl/render/light_clusters.hpp"
 #include "ibl/render/probe.hpp"
 #include "ibl/render/shadows.hpp"
 
@@ -81,6 +82,12 @@ struct SceneRenderer::Impl {
   Camera shadowCamera;
   ShadowSettings shadowSettings;
   std::unique_ptr<Buffer> shadowRecords, shadowDepths;
+  // The clustered light lists of the current camera (view/frame.glsl), rebuilt when the camera
+  // or the lights change.
+  LightClusters clusters;
+  Camera clusterCamera;
+  bool clustersCurrent = false;
+  std::unique_ptr<Buffer> clustersBuffer;
   VkShaderModule sceneVert = VK_NULL_HANDLE, sceneFrag = VK_NULL_HANDLE,
                  fullscreenVert = VK_NULL_HANDLE, skyboxFrag = VK_NULL_HANDLE;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
@@ -130,6 +137,11 @@ struct SceneRenderer::Impl {
   // Builds the shadow maps for this camera and settings unless they are current, and uploads
   // them (waiting for the device to be idle first). Returns whether there are any.
   bool prepareShadows(const Camera& camera, const RenderOptions& options);
+  // Builds the light clusters for this camera unless they are current, and uploads them
+  // (waiting for the device to be idle first).
+  void prepareClusters(const Camera& camera);
+  // Points binding 15 at the clusters' buffer.
+  void writeClusterDescriptor();
   // Points bindings 13 and 14 at the shadow buffers.
   void writeShadowDescriptors();
   // The probes' cube map arrays and placements (or stand-ins when there are none).

@@ -217,8 +217,10 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   std::atomic<int> rowsDone{0};
   std::atomic<std::uint64_t> samples{0};
   const int spp = std::max(1, o.spp);
+  const shared::ShadowMapView shadowView = maps ? maps->view() : shared::ShadowMapView{};
   parallelFor(0, height, [&](int y) {
     std::uint64_t rowSamples = 0;
+    std::vector<float> visibility(shadowed ? scene.lights.size() : 0);  // per light, reused
     for (int x = 0; x < width; ++x) {
       Random rng(o.seed, static_cast<std::uint64_t>(y) * width + x);
       glm::dvec3 sum(0.0);
@@ -267,15 +269,13 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                             sampleDfgLut(*bake.sheenDfg, NoV,
                                          std::max(p.sheenRoughness, kMinSheenRoughness))
                                 .x);
-              std::vector<float> visibility;
               if (shadowed) {
-                visibility.resize(scene.lights.size());
                 for (std::size_t i = 0; i < scene.lights.size(); ++i)
                   visibility[i] =
                       o.realTimeShadows == ShadowMode::Ray
                           ? rayTracedVisibility(tracer, scene.lights[i], position, p.normal,
                                                 o.shadowSettings.raySamples, rng)
-                          : shared::shadowVisibility(maps->view(), maps->casters[i], position,
+                          : shared::shadowVisibility(shadowView, maps->casters[i], position,
                                                      p.normal);
               }
               c += shadeLightsRealTime(p, position, -ray.direction, scene.lights, glm::vec2(dfg), o,

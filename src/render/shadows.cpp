@@ -35,13 +35,15 @@ std::pair<glm::vec3, glm::vec3> basisAround(glm::vec3 forward) {
 }
 
 // The distance from p to the farthest corner of the bounds.
+// Corner i (0 to 7) of the bounds: bit 0 picks x's max, bit 1 y's, bit 2 z's.
+glm::vec3 boundsCorner(const Bounds& b, int i) {
+  return {(i & 1) ? b.second.x : b.first.x, (i & 2) ? b.second.y : b.first.y,
+          (i & 4) ? b.second.z : b.first.z};
+}
+
 float farthestCorner(glm::vec3 p, const Bounds& b) {
   float d = 0.0f;
-  for (int i = 0; i < 8; ++i) {
-    const glm::vec3 c((i & 1) ? b.second.x : b.first.x, (i & 2) ? b.second.y : b.first.y,
-                      (i & 4) ? b.second.z : b.first.z);
-    d = std::max(d, glm::length(c - p));
-  }
+  for (int i = 0; i < 8; ++i) d = std::max(d, glm::length(boundsCorner(b, i) - p));
   return d;
 }
 
@@ -49,10 +51,8 @@ float farthestCorner(glm::vec3 p, const Bounds& b) {
 std::pair<float, float> extentAlong(glm::vec3 a, const Bounds& b) {
   float lo = std::numeric_limits<float>::max(), hi = -lo;
   for (int i = 0; i < 8; ++i) {
-    const glm::vec3 c((i & 1) ? b.second.x : b.first.x, (i & 2) ? b.second.y : b.first.y,
-                      (i & 4) ? b.second.z : b.first.z);
-    lo = std::min(lo, glm::dot(c, a));
-    hi = std::max(hi, glm::dot(c, a));
+    lo = std::min(lo, glm::dot(boundsCorner(b, i), a));
+    hi = std::max(hi, glm::dot(boundsCorner(b, i), a));
   }
   return {lo, hi};
 }

@@ -53,6 +53,7 @@ using glm::exp;
 using glm::exp2;
 using glm::floor;
 using glm::length;
+using glm::log;
 using glm::max;
 using glm::min;
 using glm::mix;
