@@ -3,6 +3,8 @@
 // FIS prefilter (64 samples),
 // irradiance 32^2, SH9, DFG 128^2; the default bake with --device gpu; and the viewer's frame
 // (1280x720 sphere grid, split sum, 4x MSAA, read back to the host).
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -157,6 +159,43 @@ void BM_ViewerFrameWithLights(benchmark::State& state) {
                ltc ? ibl::AreaLightModel::Ltc : ibl::AreaLightModel::Frostbite, shadows);
 }
 
+// Orbiting the sphere grid under a sun with shadow maps of N texels: each frame moves the
+// camera, so the light clusters are rebuilt and the sun's 4 cascades are drawn again (on the
+// device: the depth-only pass per layer) before the frame itself; 0: the same orbit without
+// shadows.
+void BM_ViewerOrbitUnderTheSun(benchmark::State& state) {
+  ibl::Scene scene = ibl::makeSphereGrid(glm::vec3(1.0f));
+  ibl::Light sun;
+  sun.type = ibl::LightType::Sun;
+  sun.direction = glm::normalize(glm::vec3(0.4f, 1.0f, 0.6f));
+  sun.intensity = 1000.0f;
+  scene.lights.push_back(sun);
+  ibl::BakeOptions o;
+  const ibl::BakeResult bake = ibl::bakeEnvironment(environment(), o);
+  ibl::gpu::SceneRenderer viewer(graphicsContext(), scene, bake, o);
+  ibl::Camera camera;
+  camera.width = 1280;
+  camera.height = 720;
+  ibl::RenderOptions shading;
+  shading.spp = 1;
+  const int size = static_cast<int>(state.range(0));
+  shading.realTimeShadows = size > 0 ? ibl::ShadowMode::Map : ibl::ShadowMode::None;
+  shading.shadowSettings.mapSize = std::max(size, 16);
+  float angle = 0.0f;
+  const auto orbit = [&] {
+    angle += 0.05f;
+    camera.from = {20.0f * std::sin(angle), 3.0f, 20.0f * std::cos(angle)};
+  };
+  orbit();
+  viewer.render(camera, shading);  // the driver compiles the pipelines on the first frame
+  for (auto _ : state) {
+    orbit();
+    benchmark::DoNotOptimize(viewer.render(camera, shading));
+  }
+  state.SetLabel(graphicsContext().device().name +
+                 (size > 0 ? ", sun shadow maps of " + std::to_string(size) : ", no shadows"));
+}
+
 // The sky of W x W/2 on this device (ibl sky --device gpu): its tables and panorama, sun painted.
 void BM_GpuSkyPanorama(benchmark::State& state) {
   const int w = static_cast<int>(state.range(0));
@@ -203,6 +242,12 @@ BENCHMARK(BM_ViewerFrameWithLights)
     ->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithLights)
     ->ArgsProduct({{1, 16, 64, 256}, {1}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_ViewerOrbitUnderTheSun)
+    ->Arg(0)
+    ->Arg(1024)
+    ->Arg(2048)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_GpuSkyPanorama)->Arg(512)->Arg(2048)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -53,6 +53,17 @@ Ray primaryRay(vec2 p) {
   return Ray(frame.cameraPosition.xyz,
              normalize(frame.cameraForward.xyz + x * frame.cameraRight.xyz + y * frame.cameraUp.xyz));
 }
+// Distance along r to the sphere's nearest point in front of the origin, or -1.
+float intersectSphere(Ray r, vec4 sphere) {
+  vec3 oc = r.origin - sphere.xyz;
+  float b = dot(oc, r.direction);
+  float c = dot(oc, oc) - sphere.w * sphere.w;
+  float disc = b * b - c;
+  if (disc < 0.0) return -1.0;
+  float s = sqrt(disc);
+  return -b - s >= 0.0 ? -b - s : (-b + s >= 0.0 ? -b + s : -1.0);
+}
+
 // The local probes, smallest influence first (uploadProbes in src/gpu/scene_renderer.cpp), 11
 // vec4 each: (capture point, has a proxy), proxy (center and shape, half extent, the three
 // columns of its world-to-local rotation), influence (the same; the half extent's w: the fade).

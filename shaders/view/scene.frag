@@ -4,7 +4,6 @@
 // (view/shading.glsl), with the sheen layer of KHR_materials_sheen.
 #extension GL_GOOGLE_include_directive : require
 #include "ibl/shared/color.h"
-#include "ibl/shared/material.h"
 #include "view/frame.glsl"
 #include "view/shading.glsl"
 layout(location = 0) in vec3 worldPosition;
@@ -13,55 +12,7 @@ layout(location = 2) in vec4 worldTangent;
 layout(location = 3) in vec2 texCoord0;
 layout(location = 4) in vec2 texCoord1;
 layout(location = 0) out vec4 outColor;
-
-layout(set = 1, binding = 0) uniform sampler2D baseColorTexture;  // an sRGB format: linear here
-layout(set = 1, binding = 1) uniform sampler2D metallicRoughnessTexture;
-layout(set = 1, binding = 2) uniform sampler2D normalTexture;
-layout(set = 1, binding = 3) uniform sampler2D occlusionTexture;
-layout(set = 1, binding = 4) uniform sampler2D emissiveTexture;  // an sRGB format: linear here
-layout(set = 1, binding = 5) uniform sampler2D sheenColorTexture;  // an sRGB format: linear here
-layout(set = 1, binding = 6) uniform sampler2D sheenRoughnessTexture;  // A
-layout(push_constant) uniform Material {
-  vec4 baseColorMetallic;
-  vec4 emissiveRoughness;
-  vec4 scales;       // normal scale, occlusion strength
-  vec4 sphere;       // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
-  vec4 alpha;        // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
-  vec4 sheen;        // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
-  uint textureMask;   // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive,
-                      // 32 sheen color, 64 sheen roughness
-  uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
-} material;
-
-// A uniform number in [0, 1) per pixel and surface depth: BLEND's stochastic threshold (hashed
-// alpha; the CPU renderer hashes its rays instead, so the two agree on average, not per pixel).
-// (gl_PrimitiveID would need the geometry shader feature.)
-float blendThreshold() {
-  uvec3 v = uvec3(uvec2(gl_FragCoord.xy), floatBitsToUint(gl_FragCoord.z));
-  v = v * 1664525u + 1013904223u;
-  v.x += v.y * v.z;
-  v.y += v.z * v.x;
-  v.z += v.x * v.y;
-  v ^= v >> 16u;
-  v.x += v.y * v.z;
-  return float(v.x >> 8u) * (1.0 / 16777216.0);
-}
-
-// The UV set texture slot `bit` reads (glTF texCoord).
-vec2 texCoordOf(uint bit) {
-  return (material.texCoordMask & bit) != 0u ? texCoord1 : texCoord0;
-}
-
-// Distance along r to the sphere's nearest point in front of the origin, or -1.
-float intersectSphere(Ray r, vec4 sphere) {
-  vec3 oc = r.origin - sphere.xyz;
-  float b = dot(oc, r.direction);
-  float c = dot(oc, oc) - sphere.w * sphere.w;
-  float disc = b * b - c;
-  if (disc < 0.0) return -1.0;
-  float s = sqrt(disc);
-  return -b - s >= 0.0 ? -b - s : (-b + s >= 0.0 ? -b + s : -1.0);
-}
+#include "view/material.glsl"
 
 // Standard sample locations (Vulkan, "Multisampling"), in pixel units.
 vec2 samplePosition(int count, int i) {
@@ -129,13 +80,8 @@ void main() {
   float occlusion = 1.0;
   uint mask = material.textureMask;
   // sRGB textures are decoded before filtering (their formats), as Texture::sample does.
-  float alpha = material.alpha.x;
-  if ((mask & 1u) != 0u) {
-    vec4 texel = texture(baseColorTexture, texCoordOf(1u));
-    baseColor *= texel.rgb;
-    alpha *= texel.a;
-  }
-  if (!alphaCovers(int(material.alpha.y), alpha, material.alpha.z, blendThreshold())) discard;
+  if ((mask & 1u) != 0u) baseColor *= texture(baseColorTexture, texCoordOf(1u)).rgb;
+  if (!materialCovers()) discard;
   if ((mask & 2u) != 0u) {
     vec2 mr = applyMetallicRoughnessTexel(metallic, roughness,
                                           texture(metallicRoughnessTexture, texCoordOf(2u)));

@@ -5,7 +5,7 @@
 #include "ibl/shared/lights.h"
 #include "ibl/shared/sh.h"
 #include "ibl/shared/probes.h"
-#include "ibl/shared/shadows.h"
+#include "view/shadow_maps.glsl"
 #include "ibl/shared/split_sum.h"
 
 // Specialization constants (SceneRenderer::Impl::scenePipeline): whether the lights cast shadows
@@ -74,42 +74,6 @@ ShadingLight lightAt(int i) {
   l.cosOuter = e.y;
   l.invSquaredRange = e.z;
   return l;
-}
-
-// The shadow maps' records and depths (view/frame.glsl) for ibl/shared/shadows.h.
-ShadowCaster shadowCasterAt(int light) {
-  int b = 5 * light;
-  ShadowCaster c;
-  c.kind = int(shadowData[b].x);
-  c.firstLayer = int(shadowData[b].y);
-  c.layerCount = int(shadowData[b].z);
-  c.size = shadowData[b].w;
-  c.lightPosition = shadowData[b + 1].xyz;
-  c.viewOrigin = shadowData[b + 2].xyz;
-  c.viewForward = shadowData[b + 3].xyz;
-  c.splits = shadowData[b + 4];
-  return c;
-}
-ShadowLayer shadowLayerAt(int i) {
-  int b = int(frame.shadows.z) + 4 * i;
-  ShadowLayer l;
-  l.origin = shadowData[b].xyz;
-  l.perspective = int(shadowData[b].w);
-  l.right = shadowData[b + 1].xyz;
-  l.scale = shadowData[b + 1].w;
-  l.up = shadowData[b + 2].xyz;
-  l.near = shadowData[b + 2].w;
-  l.forward = shadowData[b + 3].xyz;
-  l.far = shadowData[b + 3].w;
-  return l;
-}
-float shadowDepthTexel(int layer, ivec2 t) {
-  int n = int(frame.shadows.x);
-  ivec2 c = clamp(t, ivec2(0), ivec2(n - 1));
-  return shadowDepths[(layer * n + c.y) * n + c.x];
-}
-float shadowMapSize() {
-  return frame.shadows.x;
 }
 
 // An IES profile's candela toward unit w leaving the light, over its peak (which the light's

@@ -346,19 +346,35 @@ bool sameCamera(const Camera& a, const Camera& b) {
 }  // namespace
 
 bool SceneRenderer::Impl::prepareShadows(const Camera& camera, const RenderOptions& o) {
-  if (o.realTimeShadows != ShadowMode::Map || currentLights.empty() || !shadowBuilder) return false;
+  if (o.realTimeShadows != ShadowMode::Map || currentLights.empty()) return false;
   const bool settingsChanged = o.shadowSettings.mapSize != shadowSettings.mapSize ||
                                o.shadowSettings.cascades != shadowSettings.cascades;
   if (shadowMapsCurrent && !settingsChanged && sameCamera(camera, shadowCamera)) return true;
   vkDeviceWaitIdle(device);  // nothing in flight reads what is replaced
-  shadowMaps = shadowBuilder->build(currentLights, &camera, o.shadowSettings,
-                                    settingsChanged ? nullptr : &shadowMaps);
+  if (rasterShadows) {
+    ShadowMaps planned = planShadowMaps(currentLights, bounds, &camera, o.shadowSettings);
+    // A layer planned as before keeps its depths (the buffer keeps its size only when the map
+    // size and the layers' count do).
+    const bool kept =
+        shadowMapsCurrent && !settingsChanged && planned.layers.size() == shadowMaps.layers.size();
+    pendingLayers.clear();
+    for (std::size_t i = 0; i < planned.layers.size(); ++i)
+      if (!kept || !sameShadowLayer(planned.layers[i], shadowMaps.layers[i]))
+        pendingLayers.push_back(static_cast<int>(i));
+    shadowMaps = std::move(planned);
+  } else {
+    shadowMaps = shadowBuilder->build(currentLights, &camera, o.shadowSettings,
+                                      settingsChanged ? nullptr : &shadowMaps);
+  }
   shadowCamera = camera;
   shadowSettings = o.shadowSettings;
   shadowMapsCurrent = true;
   const std::vector<glm::vec4> records = shadowRecordsOf(shadowMaps);
   const std::size_t recordBytes = records.size() * sizeof(glm::vec4);
-  const std::size_t depthBytes = std::max<std::size_t>(shadowMaps.depths.size(), 1) * sizeof(float);
+  const std::size_t texels = shadowMaps.layers.size() *
+                             static_cast<std::size_t>(shadowMaps.mapSize) *
+                             static_cast<std::size_t>(shadowMaps.mapSize);
+  const std::size_t depthBytes = std::max<std::size_t>(texels, 1) * sizeof(float);
   bool rebind = false;
   if (!shadowRecords || shadowRecords->size() < recordBytes) {
     shadowRecords = std::make_unique<Buffer>(context, recordBytes, BufferMemory::Host);
@@ -373,6 +389,174 @@ bool SceneRenderer::Impl::prepareShadows(const Camera& camera, const RenderOptio
     shadowDepths->upload(shadowMaps.depths.data(), shadowMaps.depths.size() * sizeof(float));
   if (rebind) writeShadowDescriptors();
   return true;
+}
+
+namespace {
+
+// The shadow maps' pass: one depth attachment, cleared, left ready to be copied out.
+VkRenderPass createShadowRenderPass(VkDevice device) {
+  VkAttachmentDescription depth{};
+  depth.format = VK_FORMAT_D32_SFLOAT;
+  depth.samples = VK_SAMPLE_COUNT_1_BIT;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  depth.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  depth.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  depth.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  const VkAttachmentReference depthRef{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.pDepthStencilAttachment = &depthRef;
+  const VkPipelineStageFlags tests =
+      VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  const VkAccessFlags depthAccess =
+      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  // The previous layer's copy has read the image before this layer clears it; this layer's
+  // depths are written before they are copied.
+  const std::array<VkSubpassDependency, 2> dependencies{
+      VkSubpassDependency{VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, tests, 0,
+                          depthAccess, 0},
+      VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, tests, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                          0}};
+  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  info.attachmentCount = 1;
+  info.pAttachments = &depth;
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = static_cast<std::uint32_t>(dependencies.size());
+  info.pDependencies = dependencies.data();
+  VkRenderPass pass = VK_NULL_HANDLE;
+  check(vkCreateRenderPass(device, &info, nullptr, &pass), "vkCreateRenderPass");
+  return pass;
+}
+
+}  // namespace
+
+void SceneRenderer::Impl::prepareShadowTarget(int size) {
+  if (!shadowPass) {
+    shadowPass = createShadowRenderPass(device);
+    // Meshes in the light's space: depth tested, both faces, no color; positions and the UV sets
+    // (alpha coverage).
+    const VkVertexInputBindingDescription binding{0, kVertexFloats * sizeof(float),
+                                                  VK_VERTEX_INPUT_RATE_VERTEX};
+    const std::array<VkVertexInputAttributeDescription, 3> attributes{
+        VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+        VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, 10 * sizeof(float)},
+        VkVertexInputAttributeDescription{4, 0, VK_FORMAT_R32G32_SFLOAT, 12 * sizeof(float)}};
+    GraphicsPipelineDescription p;
+    p.layout = pipelineLayout;
+    p.renderPass = shadowPass;
+    p.vertex = shadowVert;
+    p.fragment = shadowFrag;
+    p.bindings = {&binding, 1};
+    p.attributes = attributes;
+    p.depth = true;
+    p.color = false;
+    shadowPipeline = createGraphicsPipeline(device, p);
+  }
+  if (shadowTarget && static_cast<int>(shadowTarget->description().width) == size) return;
+  vkDestroyFramebuffer(device, shadowFramebuffer, nullptr);
+  shadowFramebuffer = VK_NULL_HANDLE;
+  DeviceImage::Description d;
+  d.format = VK_FORMAT_D32_SFLOAT;
+  d.width = d.height = static_cast<std::uint32_t>(size);
+  d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+  shadowTarget = std::make_unique<DeviceImage>(context, d);
+  const VkImageView view = shadowTarget->view();
+  VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  fb.renderPass = shadowPass;
+  fb.attachmentCount = 1;
+  fb.pAttachments = &view;
+  fb.width = fb.height = d.width;
+  fb.layers = 1;
+  check(vkCreateFramebuffer(device, &fb, nullptr, &shadowFramebuffer), "vkCreateFramebuffer");
+}
+
+void SceneRenderer::Impl::drawMeshes(VkCommandBuffer cmd, int layer) {
+  for (const DrawMesh& m : meshes) {
+    const auto mi =
+        static_cast<std::size_t>(std::clamp(m.material, 0, static_cast<int>(materials.size()) - 1));
+    MaterialConstants mc = materials[mi];
+    mc.sphere = m.sphere;
+    mc.shadowLayer = layer;
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 1, 1,
+                            &materialSets[mi], 0, nullptr);
+    vkCmdPushConstants(cmd, pipelineLayout, kMaterialStages, 0, sizeof(mc), &mc);
+    const VkBuffer vertexBuffer = static_cast<VkBuffer>(m.vertices->handle());
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+    vkCmdBindIndexBuffer(cmd, static_cast<VkBuffer>(m.indices->handle()), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, m.indexCount, 1, 0, 0, 0);
+  }
+}
+
+void SceneRenderer::Impl::recordShadowLayers(VkCommandBuffer cmd) {
+  if (pendingLayers.empty()) return;
+  const int n = shadowMaps.mapSize;
+  prepareShadowTarget(n);
+  // Earlier frames' fragment shaders have read the depths before they are overwritten.
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       0, 0, nullptr, 0, nullptr, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &frameSet, 0,
+                          nullptr);
+  VkClearValue clear{};
+  clear.depthStencil = {1.0f, 0};  // nothing: the far end
+  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  begin.renderPass = shadowPass;
+  begin.framebuffer = shadowFramebuffer;
+  begin.renderArea = {{0, 0}, {static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(n)}};
+  begin.clearValueCount = 1;
+  begin.pClearValues = &clear;
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(n), static_cast<float>(n), 0.0f, 1.0f};
+  const VkDeviceSize layerBytes = static_cast<VkDeviceSize>(n) * n * sizeof(float);
+  for (int layer : pendingLayers) {
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &begin.renderArea);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, shadowPipeline);
+    drawMeshes(cmd, layer);
+    vkCmdEndRenderPass(cmd);
+    VkBufferImageCopy region{};
+    region.bufferOffset = static_cast<VkDeviceSize>(layer) * layerBytes;
+    region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+    region.imageExtent = {static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(n), 1};
+    vkCmdCopyImageToBuffer(cmd, shadowTarget->image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           static_cast<VkBuffer>(shadowDepths->handle()), 1, &region);
+  }
+  VkMemoryBarrier written{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  written.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  written.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1,
+                       &written, 0, nullptr, 0, nullptr);
+  pendingLayers.clear();
+}
+
+ShadowMaps SceneRenderer::Impl::readShadowMaps(const Camera& camera, const RenderOptions& o) {
+  checkCamera(camera);
+  prepare(camera.width, camera.height, 1);
+  context.impl().submitAndWait([&](VkCommandBuffer cmd) { record(cmd, camera, o, 0.0f); });
+  if (o.realTimeShadows != ShadowMode::Map || currentLights.empty()) return {};
+  ShadowMaps maps = shadowMaps;
+  if (!rasterShadows) return maps;
+  const std::size_t count = maps.layers.size() * static_cast<std::size_t>(maps.mapSize) *
+                            static_cast<std::size_t>(maps.mapSize);
+  Buffer host(context, count * sizeof(float), BufferMemory::Host);
+  context.impl().submitAndWait([&](VkCommandBuffer cmd) {
+    const VkBufferCopy region{0, 0, count * sizeof(float)};
+    vkCmdCopyBuffer(cmd, static_cast<VkBuffer>(shadowDepths->handle()),
+                    static_cast<VkBuffer>(host.handle()), 1, &region);
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                         &barrier, 0, nullptr, 0, nullptr);
+  });
+  maps.depths = host.read<float>(count);
+  return maps;
 }
 
 void SceneRenderer::Impl::prepareClusters(const Camera& camera) {
@@ -589,10 +773,6 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
       context, iesTexels, iesProfiles.empty() ? 1 : shared::kIesTableColumns,
       iesProfiles.empty() ? 1 : shared::kIesTableRows * static_cast<int>(iesProfiles.size()));
   currentLights = scene.lights;
-  if (!currentLights.empty()) {
-    shadowScene = std::make_unique<Scene>(scene);
-    shadowBuilder = std::make_unique<ShadowMapBuilder>(*shadowScene);
-  }
   shadowRecords = std::make_unique<Buffer>(context, sizeof(glm::vec4), BufferMemory::Host);
   std::memset(shadowRecords->mapped(), 0, sizeof(glm::vec4));
   shadowDepths = std::make_unique<Buffer>(context, sizeof(float));
@@ -618,7 +798,9 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   for (std::uint32_t b = 9; b <= 12; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-  for (std::uint32_t b = 13; b <= 15; ++b)
+  // The shadow records: the shadow maps' pass reads its layer in the vertex shader.
+  frameBindings.push_back({13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, both, nullptr});
+  for (std::uint32_t b = 14; b <= 15; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
@@ -628,7 +810,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   materialLayout = createSetLayout(device, materialBindings);
   const std::array<VkDescriptorSetLayout, 2> setLayouts{frameLayout, materialLayout};
-  const VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(MaterialConstants)};
+  const VkPushConstantRange push{kMaterialStages, 0, sizeof(MaterialConstants)};
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layoutInfo.setLayoutCount = 2;
   layoutInfo.pSetLayouts = setLayouts.data();
@@ -711,6 +893,8 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   sceneFrag = context.impl().shaderModule("scene_frag");
   fullscreenVert = context.impl().shaderModule("fullscreen_vert");
   skyboxFrag = context.impl().shaderModule("skybox_frag");
+  shadowVert = context.impl().shaderModule("shadow_vert");
+  shadowFrag = context.impl().shaderModule("shadow_frag");
   for (VkFormat f : {VK_FORMAT_D32_SFLOAT, VK_FORMAT_X8_D24_UNORM_PACK32, VK_FORMAT_D16_UNORM}) {
     VkFormatProperties props;
     vkGetPhysicalDeviceFormatProperties(context.impl().physical, f, &props);
@@ -720,6 +904,17 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
     }
   }
   if (depthFormat == VK_FORMAT_UNDEFINED) fail("vulkan", "no depth format");
+  // Shadow maps are rasterized where 32-bit float depth can be drawn and copied out (the depth
+  // the CPU's maps hold, exactly); elsewhere they are traced on the CPU.
+  VkFormatProperties d32;
+  vkGetPhysicalDeviceFormatProperties(context.impl().physical, VK_FORMAT_D32_SFLOAT, &d32);
+  const VkFormatFeatureFlags needed =
+      VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
+  rasterShadows = (d32.optimalTilingFeatures & needed) == needed;
+  if (!rasterShadows && !currentLights.empty()) {
+    shadowScene = std::make_unique<Scene>(scene);
+    shadowBuilder = std::make_unique<ShadowMapBuilder>(*shadowScene);
+  }
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(context.impl().physical, &props);
   standardSampleLocations = props.limits.standardSampleLocations == VK_TRUE;
@@ -732,8 +927,13 @@ SceneRenderer::Impl::~Impl() {
 void SceneRenderer::Impl::destroy() {
   vkDeviceWaitIdle(device);
   destroyTargets();
-  for (VkShaderModule m : {sceneVert, sceneFrag, fullscreenVert, skyboxFrag})
+  for (VkShaderModule m :
+       {sceneVert, sceneFrag, fullscreenVert, skyboxFrag, shadowVert, shadowFrag})
     vkDestroyShaderModule(device, m, nullptr);
+  vkDestroyPipeline(device, shadowPipeline, nullptr);
+  vkDestroyFramebuffer(device, shadowFramebuffer, nullptr);
+  vkDestroyRenderPass(device, shadowPass, nullptr);
+  shadowTarget.reset();
   vkDestroyDescriptorPool(device, descriptorPool, nullptr);
   vkDestroyPipelineLayout(device, pipelineLayout, nullptr);
   vkDestroyDescriptorSetLayout(device, frameLayout, nullptr);
@@ -963,6 +1163,7 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   u.clusterGrid = glm::ivec4(g.tileSize, g.tilesX, g.tilesY, g.slices);
   u.clusterDepths = glm::vec4(g.near, g.far, static_cast<float>(g.perspective), 0.0f);
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
+  if (shadows && rasterShadows) recordShadowLayers(cmd);
 
   std::array<VkClearValue, 3> clears{};
   clears[1].depthStencil = {1.0f, 0};
@@ -984,20 +1185,7 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                     scenePipeline(shadows, o.areaLights == AreaLightModel::Ltc));
-  for (const DrawMesh& m : meshes) {
-    const auto mi =
-        static_cast<std::size_t>(std::clamp(m.material, 0, static_cast<int>(materials.size()) - 1));
-    MaterialConstants mc = materials[mi];
-    mc.sphere = m.sphere;
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 1, 1,
-                            &materialSets[mi], 0, nullptr);
-    vkCmdPushConstants(cmd, pipelineLayout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(mc), &mc);
-    const VkBuffer vertexBuffer = static_cast<VkBuffer>(m.vertices->handle());
-    const VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
-    vkCmdBindIndexBuffer(cmd, static_cast<VkBuffer>(m.indices->handle()), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cmd, m.indexCount, 1, 0, 0, 0);
-  }
+  drawMeshes(cmd, 0);
   vkCmdEndRenderPass(cmd);
 }
 
@@ -1013,6 +1201,10 @@ void SceneRenderer::setEnvironment(const BakeResult& bake, const BakeOptions& ba
 
 Context& SceneRenderer::context() {
   return impl_->context;
+}
+
+ShadowMaps SceneRenderer::shadowMaps(const Camera& camera, const RenderOptions& options) {
+  return impl_->readShadowMaps(camera, options);
 }
 
 int SceneRenderer::samples() const {

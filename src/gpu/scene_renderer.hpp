@@ -21,12 +21,17 @@ namespace ibl::gpu {
 // normal, occlusion, emissive, sheen color, sheen roughness.
 inline constexpr std::uint32_t kMaterialTextures = 7;
 
+// The stages that read them: the fragment shaders, and the shadow maps' vertex shader its layer.
+inline constexpr VkShaderStageFlags kMaterialStages =
+    VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
 struct MaterialConstants {
   glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
   glm::vec4 alpha;            // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff
   glm::vec4 sheen;            // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
+  std::int32_t shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
 };
 
 struct SceneRenderer::Impl {
@@ -71,9 +76,17 @@ struct SceneRenderer::Impl {
   std::unique_ptr<Buffer> frameUniforms;
   std::unique_ptr<Buffer> lightsBuffer;  // the scene's lights (view/frame.glsl)
   int lightCount = 0;
-  // The lights' shadow maps (view/frame.glsl): built on the CPU through the scene's copy, again
-  // when the camera (the sun's cascades), the lights or the settings change; a layer whose
-  // record is unchanged keeps its depths.
+  // The lights' shadow maps (view/frame.glsl), planned again when the camera (the sun's
+  // cascades), the lights or the settings change; a layer whose record is unchanged keeps its
+  // depths. Rasterized on the device (view/shadow.vert and .frag: a depth-only pass per layer
+  // into shadowTarget, copied into shadowDepths), or, on a device without 32-bit float depth
+  // attachments, traced on the CPU through the scene's copy.
+  bool rasterShadows = false;
+  VkRenderPass shadowPass = VK_NULL_HANDLE;
+  VkPipeline shadowPipeline = VK_NULL_HANDLE;
+  VkFramebuffer shadowFramebuffer = VK_NULL_HANDLE;
+  std::unique_ptr<DeviceImage> shadowTarget;  // mapSize^2, D32_SFLOAT
+  std::vector<int> pendingLayers;             // layers to draw before the frame (rasterShadows)
   std::unique_ptr<Scene> shadowScene;
   std::unique_ptr<ShadowMapBuilder> shadowBuilder;
   std::vector<Light> currentLights;  // setEnvironment replaces them
@@ -89,7 +102,8 @@ struct SceneRenderer::Impl {
   bool clustersCurrent = false;
   std::unique_ptr<Buffer> clustersBuffer;
   VkShaderModule sceneVert = VK_NULL_HANDLE, sceneFrag = VK_NULL_HANDLE,
-                 fullscreenVert = VK_NULL_HANDLE, skyboxFrag = VK_NULL_HANDLE;
+                 fullscreenVert = VK_NULL_HANDLE, skyboxFrag = VK_NULL_HANDLE,
+                 shadowVert = VK_NULL_HANDLE, shadowFrag = VK_NULL_HANDLE;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
   bool standardSampleLocations = false;
   // Size-dependent: attachments, render pass, framebuffer, pipelines.
@@ -121,6 +135,8 @@ struct SceneRenderer::Impl {
   void record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& options,
               float skyboxLod);
   const DeviceImage& output() const { return *targets->resolved; }
+  // SceneRenderer::shadowMaps: the maps as the device holds them (depths read back).
+  ShadowMaps readShadowMaps(const Camera& camera, const RenderOptions& options);
   // SceneRenderer::setEnvironment.
   void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                       const std::vector<Light>& lights);
@@ -134,9 +150,17 @@ struct SceneRenderer::Impl {
   // The frame set's writes of the bake's images (bindings 1-4, 11, 12), pointing into bakeImages.
   std::vector<VkWriteDescriptorSet> bakeWrites();
   std::array<VkDescriptorImageInfo, 6> bakeImages{};
-  // Builds the shadow maps for this camera and settings unless they are current, and uploads
-  // them (waiting for the device to be idle first). Returns whether there are any.
+  // Plans the shadow maps for this camera and settings unless they are current, and uploads
+  // their records (waiting for the device to be idle first) and, traced on the CPU, their
+  // depths; rasterized, the layers to draw go to pendingLayers. Returns whether there are any.
   bool prepareShadows(const Camera& camera, const RenderOptions& options);
+  // Records the pending layers' passes and copies (rasterShadows), leaving shadowDepths
+  // readable by fragment shaders.
+  void recordShadowLayers(VkCommandBuffer cmd);
+  // The depth target, its pass and framebuffer, and the pipeline for maps of `size` texels.
+  void prepareShadowTarget(int size);
+  // Binds and draws every mesh with its material (set 1, push constants) and `layer`.
+  void drawMeshes(VkCommandBuffer cmd, int layer);
   // Builds the light clusters for this camera unless they are current, and uploads them
   // (waiting for the device to be idle first).
   void prepareClusters(const Camera& camera);

@@ -103,6 +103,7 @@ struct GraphicsPipelineDescription {
   std::span<const VkVertexInputAttributeDescription> attributes;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   bool depth = false;  // depth test (less) and write
+  bool color = true;   // one color attachment (false: a depth-only pass)
   // The fragment shader's specialization constants (null: their defaults).
   const VkSpecializationInfo* fragmentSpecialization = nullptr;
 };

@@ -73,11 +73,6 @@ float penumbraRadius(const Light& l) {
   }
 }
 
-bool sameLayer(const shared::ShadowLayer& a, const shared::ShadowLayer& b) {
-  return a.origin == b.origin && a.right == b.right && a.up == b.up && a.forward == b.forward &&
-         a.perspective == b.perspective && a.scale == b.scale && a.near == b.near && a.far == b.far;
-}
-
 shared::ShadowCaster noCaster() {
   shared::ShadowCaster c;
   c.kind = shared::kShadowNone;
@@ -200,6 +195,11 @@ void planCascades(const Light& sun, const Bounds& bounds, const Camera* camera, 
 
 }  // namespace
 
+bool sameShadowLayer(const shared::ShadowLayer& a, const shared::ShadowLayer& b) {
+  return a.origin == b.origin && a.right == b.right && a.up == b.up && a.forward == b.forward &&
+         a.perspective == b.perspective && a.scale == b.scale && a.near == b.near && a.far == b.far;
+}
+
 std::string_view shadowModeName(ShadowMode mode) {
   switch (mode) {
     case ShadowMode::None:
@@ -303,7 +303,7 @@ ShadowMaps buildShadowMaps(const RayTracer& tracer, std::pair<glm::vec3, glm::ve
     bool kept = false;
     if (previous && previous->mapSize == n)
       for (std::size_t j = 0; j < previous->layers.size() && !kept; ++j)
-        if (sameLayer(previous->layers[j], maps.layers[i])) {
+        if (sameShadowLayer(previous->layers[j], maps.layers[i])) {
           std::copy_n(previous->depths.begin() + static_cast<std::ptrdiff_t>(j * layerTexels),
                       layerTexels,
                       maps.depths.begin() + static_cast<std::ptrdiff_t>(i * layerTexels));

@@ -14,6 +14,7 @@
 #include "ibl/render/probe.hpp"
 #include "ibl/render/renderer.hpp"
 #include "ibl/render/scene.hpp"
+#include "ibl/render/shadows.hpp"
 
 namespace ibl::gpu {
 
@@ -36,6 +37,11 @@ class SceneRenderer {
   RenderResult render(const Camera& camera, const RenderOptions& options, float skyboxLod = 0.0f);
   // Multisample count of the last frame.
   int samples() const;
+  // The lights' shadow maps as the frame of `camera` with `options` reads them, depths read back
+  // from the device (rasterized there; see docs/lights.md, "Shadows"): what ShadowMapBuilder
+  // traces on the CPU. Empty (no casters) when options.realTimeShadows is not Map or the scene
+  // has no lights.
+  ShadowMaps shadowMaps(const Camera& camera, const RenderOptions& options);
   // Replaces the environment (the bake's maps and SH9) and the scene's lights, as when the time
   // of day changes: `lights` must be as many as the scene's (the sun's new direction, color and
   // illuminance; an IES light keeps its profile). Waits for the device to be idle.

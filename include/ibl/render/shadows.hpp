@@ -52,6 +52,10 @@ std::size_t shadowMapBytes(const std::vector<Light>& lights, const ShadowSetting
 ShadowMaps planShadowMaps(const std::vector<Light>& lights, std::pair<glm::vec3, glm::vec3> bounds,
                           const Camera* camera, const ShadowSettings& settings);
 
+// Whether two layers are planned alike (the same light space and depth range): a layer planned
+// as before keeps its depths.
+bool sameShadowLayer(const shared::ShadowLayer& a, const shared::ShadowLayer& b);
+
 class RayTracer;  // src/render/ray_tracer.hpp
 
 // Builds the shadow maps of lights over a scene's geometry (the scene is traced through Embree

@@ -1,0 +1,52 @@
+// A mesh's material in the viewer's fragment shaders (the scene's and the shadow maps'): its
+// textures (set 1), its factors and the sphere it may bound (push constants, MaterialConstants in
+// src/gpu/scene_renderer.hpp), and the alpha coverage of glTF's MASK and BLEND modes. The
+// including shader declares the inputs texCoord0 and texCoord1 first.
+#include "ibl/shared/material.h"
+
+layout(set = 1, binding = 0) uniform sampler2D baseColorTexture;  // an sRGB format: linear here
+layout(set = 1, binding = 1) uniform sampler2D metallicRoughnessTexture;
+layout(set = 1, binding = 2) uniform sampler2D normalTexture;
+layout(set = 1, binding = 3) uniform sampler2D occlusionTexture;
+layout(set = 1, binding = 4) uniform sampler2D emissiveTexture;  // an sRGB format: linear here
+layout(set = 1, binding = 5) uniform sampler2D sheenColorTexture;  // an sRGB format: linear here
+layout(set = 1, binding = 6) uniform sampler2D sheenRoughnessTexture;  // A
+layout(push_constant) uniform Material {
+  vec4 baseColorMetallic;
+  vec4 emissiveRoughness;
+  vec4 scales;       // normal scale, occlusion strength
+  vec4 sphere;       // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
+  vec4 alpha;        // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
+  vec4 sheen;        // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
+  uint textureMask;   // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive,
+                      // 32 sheen color, 64 sheen roughness
+  uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
+  int shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
+} material;
+
+// A uniform number in [0, 1) per pixel and surface depth: BLEND's stochastic threshold (hashed
+// alpha; the CPU renderer hashes its rays instead, so the two agree on average, not per pixel).
+// (gl_PrimitiveID would need the geometry shader feature.)
+float blendThreshold() {
+  uvec3 v = uvec3(uvec2(gl_FragCoord.xy), floatBitsToUint(gl_FragCoord.z));
+  v = v * 1664525u + 1013904223u;
+  v.x += v.y * v.z;
+  v.y += v.z * v.x;
+  v.z += v.x * v.y;
+  v ^= v >> 16u;
+  v.x += v.y * v.z;
+  return float(v.x >> 8u) * (1.0 / 16777216.0);
+}
+
+// The UV set texture slot `bit` reads (glTF texCoord).
+vec2 texCoordOf(uint bit) {
+  return (material.texCoordMask & bit) != 0u ? texCoord1 : texCoord0;
+}
+
+// Whether the material covers this fragment: its alpha (factor times the base color texture's)
+// against the mode's rule (alphaCovers in ibl/shared/material.h).
+bool materialCovers() {
+  float alpha = material.alpha.x;
+  if ((material.textureMask & 1u) != 0u) alpha *= texture(baseColorTexture, texCoordOf(1u)).a;
+  return alphaCovers(int(material.alpha.y), alpha, material.alpha.z, blendThreshold());
+}
