@@ -15,6 +15,7 @@
 #include "ibl/env/sky.hpp"
 #include "ibl/gpu/compute.hpp"
 #include "ibl/gpu/viewer.hpp"
+#include "ibl/render/light_clusters.hpp"
 
 namespace {
 
@@ -98,6 +99,15 @@ ibl::gpu::Context& graphicsContext() {
   return *graphics;
 }
 
+// The viewer's camera in these benchmarks: 1280 x 720 from +Z.
+ibl::Camera benchCamera() {
+  ibl::Camera camera;
+  camera.from = {0.0f, 0.0f, 20.0f};
+  camera.width = 1280;
+  camera.height = 720;
+  return camera;
+}
+
 // Frames of `scene` at 1280x720 seen from +Z, lit by the default bake, `spp` samples per pixel.
 void viewerFrames(benchmark::State& state, const ibl::Scene& scene, int spp,
                   const std::string& label,
@@ -105,10 +115,7 @@ void viewerFrames(benchmark::State& state, const ibl::Scene& scene, int spp,
   ibl::BakeOptions o;
   const ibl::BakeResult bake = ibl::bakeEnvironment(environment(), o);
   ibl::gpu::SceneRenderer viewer(graphicsContext(), scene, bake, o);
-  ibl::Camera camera;
-  camera.from = {0.0f, 0.0f, 20.0f};
-  camera.width = 1280;
-  camera.height = 720;
+  const ibl::Camera camera = benchCamera();
   ibl::RenderOptions shading;
   shading.spp = spp;
   shading.areaLights = areaLights;
@@ -132,13 +139,13 @@ void BM_ViewerFrame1280x720(benchmark::State& state) {
 // (third argument 1) or none; the lights without a range (fourth argument 0: each reaches every
 // pixel, bar a spot's cone and a rect's or disk's back) or with a range of 2.5 m (1: the clusters
 // hold only the lights that reach them).
-void BM_ViewerFrameWithLights(benchmark::State& state) {
+// The sphere grid and n lights (see below), with a range of 2.5 m or none.
+ibl::Scene sphereGridWithLights(int n, bool ranged) {
   constexpr ibl::LightType kLocalTypes[] = {ibl::LightType::Point,  ibl::LightType::Spot,
                                             ibl::LightType::Sphere, ibl::LightType::Disk,
                                             ibl::LightType::Tube,   ibl::LightType::Rect};
   ibl::Scene scene = ibl::makeSphereGrid(glm::vec3(1.0f));
-  const bool ltc = state.range(1) != 0, shadows = state.range(2) != 0, ranged = state.range(3) != 0;
-  for (int i = 0; i < state.range(0); ++i) {
+  for (int i = 0; i < n; ++i) {
     ibl::Light l;
     l.type = kLocalTypes[i % 6];
     l.name = "bench light";
@@ -153,10 +160,38 @@ void BM_ViewerFrameWithLights(benchmark::State& state) {
     l.range = ranged ? 2.5f : 0.0f;
     scene.lights.push_back(l);
   }
+  return scene;
+}
+
+void BM_ViewerFrameWithLights(benchmark::State& state) {
+  const bool ltc = state.range(1) != 0, shadows = state.range(2) != 0, ranged = state.range(3) != 0;
+  const ibl::Scene scene = sphereGridWithLights(static_cast<int>(state.range(0)), ranged);
   viewerFrames(state, scene, 1,
                ", " + std::to_string(state.range(0)) + " lights, " + (ltc ? "ltc" : "frostbite") +
                    (shadows ? ", shadow maps" : "") + (ranged ? ", 2.5 m range" : ", no range"),
                ltc ? ibl::AreaLightModel::Ltc : ibl::AreaLightModel::Frostbite, shadows);
+}
+
+// The light clusters of those frames, built on the CPU (each time the camera moves): N ranged
+// lights; the counters give the lights a cluster lists on average, over all clusters and over
+// the clusters that list any.
+void BM_BuildLightClusters(benchmark::State& state) {
+  const ibl::Scene scene = sphereGridWithLights(static_cast<int>(state.range(0)), true);
+  const ibl::Camera camera = benchCamera();
+  ibl::LightClusters clusters;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(clusters =
+                                 ibl::buildLightClusters(scene.lights, camera, scene.bounds()));
+  const int count = ibl::shared::clusterCount(clusters.grid);
+  double listed = 0.0;
+  int nonempty = 0;
+  for (int c = 0; c < count; ++c) {
+    const auto n = clusters.lightsOf(c).size();
+    listed += static_cast<double>(n);
+    nonempty += n > 0 ? 1 : 0;
+  }
+  state.counters["per cluster"] = listed / count;
+  state.counters["per lit cluster"] = listed / std::max(nonempty, 1);
 }
 
 // Orbiting the sphere grid under a sun with shadow maps of N texels: each frame moves the
@@ -244,6 +279,7 @@ BENCHMARK(BM_ViewerFrameWithLights)
     ->ArgsProduct({{1, 16, 64, 256}, {1}, {0, 1}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(BM_BuildLightClusters)->Arg(16)->Arg(256)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ViewerOrbitUnderTheSun)
     ->Arg(0)
     ->Arg(1024)

@@ -109,21 +109,19 @@ bool coneMayTouch(const LightReach& r, const Sphere3& s) {
   return fromSurface <= s.radius && along >= -s.radius;
 }
 
-// The sphere around a cluster: the eight corners of its tile's rays between its depths.
-Sphere3 clusterSphere(const Camera& camera, glm::vec3 forward, float x0, float x1, float y0,
-                      float y1, float z0, float z1) {
-  std::array<glm::vec3, 8> corners;
-  int i = 0;
-  for (float px : {x0, x1})
-    for (float py : {y0, y1}) {
-      const Ray ray = camera.generateRay(px, py);
-      const float perDepth = 1.0f / glm::dot(ray.direction, forward);  // 1 orthographic
-      for (float z : {z0, z1}) corners[i++] = ray.origin + ray.direction * (z * perDepth);
-    }
+// The sphere around a cluster: its tile's four corner rays between its depths.
+Sphere3 clusterSphere(const std::array<Ray, 4>& corners, glm::vec3 forward, float z0, float z1) {
+  std::array<glm::vec3, 8> points;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Ray& ray = corners[i];
+    const float perDepth = 1.0f / glm::dot(ray.direction, forward);  // 1 orthographic
+    points[2 * i] = ray.origin + ray.direction * (z0 * perDepth);
+    points[2 * i + 1] = ray.origin + ray.direction * (z1 * perDepth);
+  }
   glm::vec3 center(0.0f);
-  for (const glm::vec3& c : corners) center += c * 0.125f;
+  for (const glm::vec3& p : points) center += p * 0.125f;
   float radius = 0.0f;
-  for (const glm::vec3& c : corners) radius = std::max(radius, glm::length(c - center));
+  for (const glm::vec3& p : points) radius = std::max(radius, glm::length(p - center));
   return {center, radius};
 }
 
@@ -183,12 +181,14 @@ LightClusters buildLightClusters(const std::vector<Light>& lights, const Camera&
       return std::all_of(sides.begin(), sides.end(),
                          [&](const Plane& p) { return p.distance(s.center) >= -s.radius; });
     };
+    const std::array<Ray, 4> corners{camera.generateRay(x0, y0), camera.generateRay(x1, y0),
+                                     camera.generateRay(x0, y1), camera.generateRay(x1, y1)};
     std::vector<Sphere3> spheres(static_cast<std::size_t>(g.slices));
     for (int k = 0; k < g.slices; ++k) {
       auto [z0, z1] = sliceDepths(g, k);
       z0 = std::isinf(z0) ? 0.0f : z0 * 0.999f;
       z1 = std::isinf(z1) ? g.far * 1.001f : z1 * 1.001f;
-      spheres[static_cast<std::size_t>(k)] = clusterSphere(camera, forward, x0, x1, y0, y1, z0, z1);
+      spheres[static_cast<std::size_t>(k)] = clusterSphere(corners, forward, z0, z1);
       spheres[static_cast<std::size_t>(k)].radius += slack;
     }
     for (std::size_t i = 0; i < reach.size(); ++i) {
@@ -202,7 +202,15 @@ LightClusters buildLightClusters(const std::vector<Light>& lights, const Camera&
       const float reachRadius = bounded ? r.influence.radius + slack : kUnbounded;
       if (bounded && !insideSides({r.influence.center, reachRadius})) continue;
       const float depth = glm::dot(r.influence.center - camera.from, forward);
-      for (int k = 0; k < g.slices; ++k) {
+      // The slices the sphere's depths span (slices are monotonic in depth; those at the ends
+      // are tested again below, with their slack).
+      const int first =
+          bounded ? std::max(shared::clusterSlice(g, (depth - reachRadius) * 0.99f) - 1, 0) : 0;
+      const int last =
+          bounded
+              ? std::min(shared::clusterSlice(g, (depth + reachRadius) * 1.01f) + 1, g.slices - 1)
+              : g.slices - 1;
+      for (int k = first; k <= last; ++k) {
         const auto [z0, z1] = sliceDepths(g, k);
         if (bounded && (depth + reachRadius < z0 * 0.999f || depth - reachRadius > z1 * 1.001f))
           continue;
