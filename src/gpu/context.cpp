@@ -676,6 +676,21 @@ void uploadImage(Context& context, const DeviceImage& image, std::span<const std
   });
 }
 
+VkRenderPass createRenderPass(VkDevice device, std::span<const VkAttachmentDescription> attachments,
+                              const VkSubpassDescription& subpass,
+                              std::span<const VkSubpassDependency> dependencies) {
+  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  info.attachmentCount = static_cast<std::uint32_t>(attachments.size());
+  info.pAttachments = attachments.data();
+  info.subpassCount = 1;
+  info.pSubpasses = &subpass;
+  info.dependencyCount = static_cast<std::uint32_t>(dependencies.size());
+  info.pDependencies = dependencies.data();
+  VkRenderPass pass = VK_NULL_HANDLE;
+  check(vkCreateRenderPass(device, &info, nullptr, &pass), "vkCreateRenderPass");
+  return pass;
+}
+
 VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescription& d) {
   const std::array<VkPipelineShaderStageCreateInfo, 2> stages{
       VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr,

@@ -420,16 +420,7 @@ VkRenderPass createShadowRenderPass(VkDevice device) {
       VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, tests, VK_PIPELINE_STAGE_TRANSFER_BIT,
                           VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_ACCESS_TRANSFER_READ_BIT,
                           0}};
-  VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  info.attachmentCount = 1;
-  info.pAttachments = &depth;
-  info.subpassCount = 1;
-  info.pSubpasses = &subpass;
-  info.dependencyCount = static_cast<std::uint32_t>(dependencies.size());
-  info.pDependencies = dependencies.data();
-  VkRenderPass pass = VK_NULL_HANDLE;
-  check(vkCreateRenderPass(device, &info, nullptr, &pass), "vkCreateRenderPass");
-  return pass;
+  return createRenderPass(device, {&depth, 1}, subpass, dependencies);
 }
 
 }  // namespace
@@ -1022,16 +1013,7 @@ VkRenderPass createSceneRenderPass(VkDevice device, VkFormat depthFormat, int sa
                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                           VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT, 0}};
-  VkRenderPassCreateInfo passInfo{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  passInfo.attachmentCount = static_cast<std::uint32_t>(attachments.size());
-  passInfo.pAttachments = attachments.data();
-  passInfo.subpassCount = 1;
-  passInfo.pSubpasses = &subpass;
-  passInfo.dependencyCount = static_cast<std::uint32_t>(dependencies.size());
-  passInfo.pDependencies = dependencies.data();
-  VkRenderPass pass = VK_NULL_HANDLE;
-  check(vkCreateRenderPass(device, &passInfo, nullptr, &pass), "vkCreateRenderPass");
-  return pass;
+  return createRenderPass(device, attachments, subpass, dependencies);
 }
 
 }  // namespace

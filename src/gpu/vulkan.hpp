@@ -109,6 +109,12 @@ struct GraphicsPipelineDescription {
 };
 VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescription& d);
 
+// A render pass of one subpass over `attachments`, with its dependencies on what comes before
+// and after it.
+VkRenderPass createRenderPass(VkDevice device, std::span<const VkAttachmentDescription> attachments,
+                              const VkSubpassDescription& subpass,
+                              std::span<const VkSubpassDependency> dependencies);
+
 // A descriptor write of one combined image sampler.
 inline VkWriteDescriptorSet imageWrite(VkDescriptorSet set, std::uint32_t binding,
                                        const VkDescriptorImageInfo* info) {

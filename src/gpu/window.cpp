@@ -298,14 +298,7 @@ void createTonemapPass(WindowResources& r, VkFormat format) {
                                        0,
                                        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                                        0};
-  VkRenderPassCreateInfo passInfo{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  passInfo.attachmentCount = 1;
-  passInfo.pAttachments = &attachment;
-  passInfo.subpassCount = 1;
-  passInfo.pSubpasses = &subpass;
-  passInfo.dependencyCount = 1;
-  passInfo.pDependencies = &dependency;
-  check(vkCreateRenderPass(c.device, &passInfo, nullptr, &r.pass), "vkCreateRenderPass");
+  r.pass = createRenderPass(c.device, {&attachment, 1}, subpass, {&dependency, 1});
 
   const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
                                              VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
