@@ -133,13 +133,7 @@ void BM_ViewerFrame1280x720(benchmark::State& state) {
   viewerFrames(state, ibl::makeSphereGrid(glm::vec3(1.0f)), static_cast<int>(state.range(0)), "");
 }
 
-// The same frame (1 sample per pixel) lit by N analytic lights as well, the six local types in
-// turn (a scene's many lights are local; its sun is one), in a 16 x 4 grid of layers of 64 in front
-// of the spheres; area lights through LTCs (second argument 1) or Frostbite's (0); with shadow maps
-// (third argument 1) or none; the lights without a range (fourth argument 0: each reaches every
-// pixel, bar a spot's cone and a rect's or disk's back) or with a range of 2.5 m (1: the clusters
-// hold only the lights that reach them).
-// The sphere grid and n lights (see below), with a range of 2.5 m or none.
+// The sphere grid and n lights, with a range of 2.5 m or none (BM_ViewerFrameWithLights).
 ibl::Scene sphereGridWithLights(int n, bool ranged) {
   constexpr ibl::LightType kLocalTypes[] = {ibl::LightType::Point,  ibl::LightType::Spot,
                                             ibl::LightType::Sphere, ibl::LightType::Disk,
@@ -163,6 +157,12 @@ ibl::Scene sphereGridWithLights(int n, bool ranged) {
   return scene;
 }
 
+// The same frame (1 sample per pixel) lit by N analytic lights as well, the six local types in
+// turn (a scene's many lights are local; its sun is one), in a 16 x 4 grid of layers of 64 in front
+// of the spheres; area lights through LTCs (second argument 1) or Frostbite's (0); with shadow maps
+// (third argument 1) or none; the lights without a range (fourth argument 0: each reaches every
+// pixel, bar a spot's cone and a rect's or disk's back) or with a range of 2.5 m (1: the clusters
+// hold only the lights that reach them).
 void BM_ViewerFrameWithLights(benchmark::State& state) {
   const bool ltc = state.range(1) != 0, shadows = state.range(2) != 0, ranged = state.range(3) != 0;
   const ibl::Scene scene = sphereGridWithLights(static_cast<int>(state.range(0)), ranged);

@@ -351,7 +351,8 @@ bool SceneRenderer::Impl::prepareShadows(const Camera& camera, const RenderOptio
                                o.shadowSettings.cascades != shadowSettings.cascades;
   if (shadowMapsCurrent && !settingsChanged && sameCamera(camera, shadowCamera)) return true;
   vkDeviceWaitIdle(device);  // nothing in flight reads what is replaced
-  if (rasterShadows) {
+  const bool raster = rasterShadows && o.shadowSettings.mapSize <= rasterShadowLimit;
+  if (raster) {
     ShadowMaps planned = planShadowMaps(currentLights, bounds, &camera, o.shadowSettings);
     // A layer planned as before keeps its depths (the buffer keeps its size only when the map
     // size and the layers' count do).
@@ -363,8 +364,11 @@ bool SceneRenderer::Impl::prepareShadows(const Camera& camera, const RenderOptio
         pendingLayers.push_back(static_cast<int>(i));
     shadowMaps = std::move(planned);
   } else {
-    shadowMaps = shadowBuilder->build(currentLights, &camera, o.shadowSettings,
-                                      settingsChanged ? nullptr : &shadowMaps);
+    if (!shadowBuilder) shadowBuilder = std::make_unique<ShadowMapBuilder>(*shadowScene);
+    shadowMaps =
+        shadowBuilder->build(currentLights, &camera, o.shadowSettings,
+                             settingsChanged || shadowMaps.depths.empty() ? nullptr : &shadowMaps);
+    pendingLayers.clear();
   }
   shadowCamera = camera;
   shadowSettings = o.shadowSettings;
@@ -532,7 +536,7 @@ ShadowMaps SceneRenderer::Impl::readShadowMaps(const Camera& camera, const Rende
   context.impl().submitAndWait([&](VkCommandBuffer cmd) { record(cmd, camera, o, 0.0f); });
   if (o.realTimeShadows != ShadowMode::Map || currentLights.empty()) return {};
   ShadowMaps maps = shadowMaps;
-  if (!rasterShadows) return maps;
+  if (!maps.depths.empty()) return maps;  // traced on the CPU
   const std::size_t count = maps.layers.size() * static_cast<std::size_t>(maps.mapSize) *
                             static_cast<std::size_t>(maps.mapSize);
   Buffer host(context, count * sizeof(float), BufferMemory::Host);
@@ -895,19 +899,19 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
     }
   }
   if (depthFormat == VK_FORMAT_UNDEFINED) fail("vulkan", "no depth format");
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(context.impl().physical, &props);
   // Shadow maps are rasterized where 32-bit float depth can be drawn and copied out (the depth
-  // the CPU's maps hold, exactly); elsewhere they are traced on the CPU.
+  // the CPU's maps hold, exactly) at their size; elsewhere they are traced on the CPU.
   VkFormatProperties d32;
   vkGetPhysicalDeviceFormatProperties(context.impl().physical, VK_FORMAT_D32_SFLOAT, &d32);
   const VkFormatFeatureFlags needed =
       VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
   rasterShadows = (d32.optimalTilingFeatures & needed) == needed;
-  if (!rasterShadows && !currentLights.empty()) {
-    shadowScene = std::make_unique<Scene>(scene);
-    shadowBuilder = std::make_unique<ShadowMapBuilder>(*shadowScene);
-  }
-  VkPhysicalDeviceProperties props;
-  vkGetPhysicalDeviceProperties(context.impl().physical, &props);
+  rasterShadowLimit =
+      static_cast<int>(std::min({props.limits.maxImageDimension2D, props.limits.maxFramebufferWidth,
+                                 props.limits.maxFramebufferHeight}));
+  if (!currentLights.empty()) shadowScene = std::make_unique<Scene>(scene);
   standardSampleLocations = props.limits.standardSampleLocations == VK_TRUE;
 }
 
@@ -1145,7 +1149,7 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   u.clusterGrid = glm::ivec4(g.tileSize, g.tilesX, g.tilesY, g.slices);
   u.clusterDepths = glm::vec4(g.near, g.far, static_cast<float>(g.perspective), 0.0f);
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
-  if (shadows && rasterShadows) recordShadowLayers(cmd);
+  if (shadows) recordShadowLayers(cmd);  // none pending when traced on the CPU
 
   std::array<VkClearValue, 3> clears{};
   clears[1].depthStencil = {1.0f, 0};

@@ -2,6 +2,7 @@
 // Internal: the state behind gpu::SceneRenderer, shared with the window (which records a frame
 // of the scene into its own command buffer before tone mapping it to the swapchain).
 #include <array>
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <optional>
@@ -33,6 +34,8 @@ struct MaterialConstants {
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
   std::int32_t shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
 };
+static_assert(offsetof(MaterialConstants, shadowLayer) == 104,
+              "view/shadow.vert reads the layer at offset 104");
 
 struct SceneRenderer::Impl {
   Context& context;
@@ -80,8 +83,9 @@ struct SceneRenderer::Impl {
   // cascades), the lights or the settings change; a layer whose record is unchanged keeps its
   // depths. Rasterized on the device (view/shadow.vert and .frag: a depth-only pass per layer
   // into shadowTarget, copied into shadowDepths), or, on a device without 32-bit float depth
-  // attachments, traced on the CPU through the scene's copy.
+  // attachments or maps larger than it draws, traced on the CPU through the scene's copy.
   bool rasterShadows = false;
+  int rasterShadowLimit = 0;  // the largest map the device draws (image and framebuffer limits)
   VkRenderPass shadowPass = VK_NULL_HANDLE;
   VkPipeline shadowPipeline = VK_NULL_HANDLE;
   VkFramebuffer shadowFramebuffer = VK_NULL_HANDLE;

@@ -164,8 +164,11 @@ LightClusters buildLightClusters(const std::vector<Light>& lights, const Camera&
   reach.reserve(lights.size());
   for (const Light& l : lights) reach.push_back(reachOf(l));
   // Slack for the fragments' rounding (the shader's depth, slice and interpolated position
-  // against this file's): spheres grow by a thousandth of the range sliced, slices by 0.1 %.
-  const float slack = 1e-3f * g.far;
+  // against this file's): spheres grow by a thousandth of the range sliced, slices by 0.1 %,
+  // and by what the coordinates' own rounding can reach far from the origin.
+  const float magnitude =
+      std::max({glm::length(camera.from), glm::length(bounds.first), glm::length(bounds.second)});
+  const float slack = std::max(1e-3f * g.far, 1e-5f * magnitude);
   const int tiles = g.tilesX * g.tilesY;
   // Per tile: its slices' lists, then its emitters.
   std::vector<std::vector<std::vector<std::uint32_t>>> lists(static_cast<std::size_t>(tiles));

@@ -40,7 +40,8 @@ class SceneRenderer {
   // The lights' shadow maps as the frame of `camera` with `options` reads them, depths read back
   // from the device (rasterized there; see docs/lights.md, "Shadows"): what ShadowMapBuilder
   // traces on the CPU. Empty (no casters) when options.realTimeShadows is not Map or the scene
-  // has no lights.
+  // has no lights. Draws that frame (at one sample per pixel: the next render() restores its
+  // own count).
   ShadowMaps shadowMaps(const Camera& camera, const RenderOptions& options);
   // Replaces the environment (the bake's maps and SH9) and the scene's lights, as when the time
   // of day changes: `lights` must be as many as the scene's (the sun's new direction, color and

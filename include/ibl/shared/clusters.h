@@ -33,8 +33,8 @@ IBL_FN float clusterDepthFraction(LightClusterGrid g, float z) {
 // The slice that holds depth z.
 IBL_FN int clusterSlice(LightClusterGrid g, float z) {
   if (z < g.near) return 0;
-  int k = 1 + int(floor(clusterDepthFraction(g, z) * float(g.slices - 1)));
-  return clamp(k, 1, g.slices - 1);
+  float k = 1.0f + floor(clusterDepthFraction(g, z) * float(g.slices - 1));
+  return int(clamp(k, 1.0f, float(g.slices - 1)));  // clamped before the conversion
 }
 
 // The depth where slice k (1 to slices - 1) begins: near times (far / near)^t in perspective,

@@ -113,16 +113,17 @@ IBL_FN float shadowWorldDepth(ShadowLayer l, float stored) {
 // Where the rasterizer puts p when it draws a layer as a map of texels (Vulkan's clip space,
 // row 0 at y = -1): x / w and y / w cover [-1, 1] across the map exactly as shadowProject's
 // texel coordinates cover [0, mapSize], so that a texel's center samples the surface its ray
-// meets. Clip z keeps what lies in front of the layer (perspective: from 1e-4 to 2 times its
-// far depth; orthographic: from its origin's plane to 2 times far); the depth a texel stores
-// is written by the fragment shader (shadowStoredDepth of the surface's own depth).
+// meets. Clip z keeps what lies in front of the layer (perspective: from 1e-6 x far to 2 x far,
+// so that a surface nearer than the layer's near depth stores 0, as the CPU's texel ray finds
+// it; orthographic: from its origin's plane to 2 x far); the depth a texel stores is written by
+// the fragment shader (shadowStoredDepth of the surface's own depth).
 IBL_FN vec4 shadowClipPosition(ShadowLayer l, vec3 p) {
   vec3 q = p - l.origin;
   float z = dot(q, l.forward);
   vec2 xy = vec2(dot(q, l.right), dot(q, l.up)) / l.scale;
   float zFar = 2.0f * l.far;
   if (l.perspective == 0) return vec4(xy, z / zFar, 1.0f);
-  float zNear = 1e-4f * l.far;
+  float zNear = 1e-6f * l.far;
   return vec4(xy, zFar * (z - zNear) / (zFar - zNear), z);
 }
 
