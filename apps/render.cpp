@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
+#include "ibl/render/bloom.hpp"
 #include "ibl/render/probe.hpp"
 #include "preflight.hpp"
 #include "scene_options.hpp"
@@ -54,12 +55,13 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   r.probes = &probes;
   r.seed = o.seed;
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
-  const RenderResult result =
-      renderScene(scene, camera, baked.bake, baked.options, r, [&](float f) {
-        if (showProgress) fmt::print(stderr, "\rrendering {:3.0f} %", 100.0f * f);
-      });
+  RenderResult result = renderScene(scene, camera, baked.bake, baked.options, r, [&](float f) {
+    if (showProgress) fmt::print(stderr, "\rrendering {:3.0f} %", 100.0f * f);
+  });
   if (showProgress) fmt::print(stderr, "\r");
   const float ev100 = chooseEv100(o.scene, result.color);
+  if (const std::optional<float> bloom = bloomCompensation(o.scene, std::nullopt))
+    result.color = applyBloom(result.color, ev100 - o.scene.compensation, *bloom);
   writeRenderedImage(o.output, result, ev100 - o.scene.compensation, toneCurve(o.scene),
                      o.exrExposed);
   if (!global.quiet)

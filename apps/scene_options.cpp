@@ -70,6 +70,10 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_flag("--multiscatter,!--no-multiscatter", o.multiscatter,
                 "Multiple scattering between microfacets as energy compensation, in both modes "
                 "(default on: the split sum and the reference compute the same material)");
+  cmd->add_flag("--specular-micro-occlusion", o.specularMicroOcclusion,
+                "Both modes: Schlick's f90 from F0, saturate(50 dot(F0, 0.33)), darkening the "
+                "grazing reflection of materials whose F0 is below any real one's (0.02); off by "
+                "default, as glTF's Fresnel");
   cmd->add_option("--probes", o.probes,
                   "Split sum: local light probes (directories written by `ibl probe`: one probe, "
                   "or a grid with probes.json), composed before the distant environment");
@@ -81,6 +85,19 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "Split sum: ambient occlusion from N rays per pixel where the model has no "
                   "occlusion texture (0: none)")
       ->check(numberIn(0, 4096));
+  cmd->add_option("--ssao", o.ssao,
+                  "Split sum and viewer: screen-space ambient occlusion (GTAO) from the view's "
+                  "depth and normals, min with the material's occlusion (default: on for glTF "
+                  "scenes without --ao, off for the built-in ones)")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--ssao-radius", o.ssaoRadius,
+                  "The screen-space occlusion's reach in scene units (meters; default: a tenth "
+                  "of the scene's bounding diagonal)")
+      ->check(positiveNumber());
+  cmd->add_option("--ssao-quality", o.ssaoQuality,
+                  "Slices x steps per pixel: low (2 x 4), medium (4 x 6) or high (8 x 8)")
+      ->check(CLI::IsMember({"low", "medium", "high"}))
+      ->capture_default_str();
   cmd->add_option("--shadows", o.shadows,
                   "The lights' shadows. Split sum and viewer: none, map (shadow maps, default) or "
                   "ray (ray-traced per light sample; `ibl render` only). Reference: --shadows "
@@ -120,6 +137,10 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--exposure-compensation", o.compensation, "Stops added to the exposure")
       ->check(finiteNumber())
       ->capture_default_str();
+  cmd->add_option("--bloom", o.bloom,
+                  "Bloom: the light EC stops above the exposure's middle grey spreads over a wide "
+                  "kernel, the image's total power unchanged; off: none (default: off for `ibl "
+                  "render`, 3 for `ibl view`)");
   cmd->add_option("--tonemap", o.tonemap, "none, aces or filmic")
       ->check(CLI::IsMember({"none", "aces", "filmic"}))
       ->capture_default_str();
@@ -206,6 +227,16 @@ void checkSceneOptions(const SceneCliOptions& o) {
     failUsage("--ortho-width", fmt::format("must be positive, not {}", *o.orthoWidth));
   if (o.background != "env") parseVec3(o.background, "--background");
   if (!o.ev100.empty()) parseNumbers(o.ev100, 1, "--ev100");
+  if (!o.bloom.empty() && o.bloom != "off") {
+    const float ec = parseNumbers(o.bloom, 1, "--bloom")[0];
+    if (std::abs(ec) > 30.0f)
+      failUsage("--bloom",
+                fmt::format("{} stops is beyond any exposure; give -30 to 30 or off", ec));
+  }
+  if (o.ssao == "on" && o.aoRays > 0)
+    failUsage("--ssao", fmt::format("on contradicts --ao {}: the ray-traced occlusion is the "
+                                    "screen-space one's reference; pass one of them",
+                                    o.aoRays));
   if (o.shadows && !o.shadows->empty() && *o.shadows != "none" && *o.shadows != "map" &&
       *o.shadows != "ray")
     failUsage("--shadows", fmt::format("'{}' is not none, map or ray", *o.shadows));
@@ -322,6 +353,11 @@ Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int 
   return camera;
 }
 
+bool screenAmbientOcclusionOn(const SceneCliOptions& o) {
+  if (!o.ssao.empty()) return o.ssao == "on";
+  return o.scene != "sphere" && o.scene != "grid" && o.aoRays == 0;
+}
+
 ShadowMode realTimeShadowMode(const SceneCliOptions& o) {
   if (o.shadows && *o.shadows == "none") return ShadowMode::None;
   if (o.shadows && *o.shadows == "ray") return ShadowMode::Ray;
@@ -337,9 +373,15 @@ RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) 
            : o.only == "sheen"    ? ShadingTerms::Sheen
                                   : ShadingTerms::Both;
   r.multipleScattering = o.multiscatter;
+  r.specularMicroOcclusion = o.specularMicroOcclusion;
   r.parallaxCorrection = !o.noParallax;
   r.distanceRoughness = !o.noDistanceRoughness;
   r.aoRays = o.aoRays;
+  r.screenAmbientOcclusion.enabled = screenAmbientOcclusionOn(o);
+  r.screenAmbientOcclusion.radius = o.ssaoRadius;
+  r.screenAmbientOcclusion.quality = o.ssaoQuality == "low"    ? AmbientOcclusionQuality::Low
+                                     : o.ssaoQuality == "high" ? AmbientOcclusionQuality::High
+                                                               : AmbientOcclusionQuality::Medium;
   r.realTimeShadows = realTimeShadowMode(o);
   r.shadowSettings.mapSize = o.shadowMapSize;
   r.shadowSettings.cascades = o.shadowCascades;
@@ -357,8 +399,15 @@ RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) 
 }
 
 std::uint64_t renderMemoryBytes(int width, int height) {
-  // Measured: 52 bytes per pixel at 2048^2, 50 at 4096^2, and 40 MB besides.
-  return static_cast<std::uint64_t>(60e6 + 56.0 * width * height);
+  // Measured: 52 bytes per pixel at 2048^2, 50 at 4096^2, and 40 MB besides; the screen-space
+  // occlusion's view buffers and result add 40 bytes per pixel while it is computed.
+  return static_cast<std::uint64_t>(60e6 + 96.0 * width * height);
+}
+
+std::optional<float> bloomCompensation(const SceneCliOptions& o, std::optional<float> otherwise) {
+  if (o.bloom == "off") return std::nullopt;
+  if (o.bloom.empty()) return otherwise;
+  return parseNumbers(o.bloom, 1, "--bloom")[0];
 }
 
 float chooseEv100(const SceneCliOptions& o, const Image& linear) {

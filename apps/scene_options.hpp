@@ -36,6 +36,7 @@ struct SceneCliOptions {
   std::string diffuse = "disney";
   std::string only;
   bool multiscatter = true;
+  bool specularMicroOcclusion = false;
   bool noDominant = false;
   std::string irradiance = "cube";
   std::string areaLights = "ltc";
@@ -44,6 +45,9 @@ struct SceneCliOptions {
   bool noParallax = false;
   bool noDistanceRoughness = false;
   int aoRays = 0;
+  std::string ssao;  // on or off; empty: on for glTF scenes without --ao, off for built-in ones
+  float ssaoRadius = 0.0f;  // 0: a tenth of the scene's bounding diagonal
+  std::string ssaoQuality = "medium";
   // --shadows: unset (the split sum's default, map), "" (given bare), none, map or ray.
   std::optional<std::string> shadows;
   int shadowMapSize = 1024;
@@ -54,6 +58,7 @@ struct SceneCliOptions {
   float aperture = 0.0f, shutter = 0.0f, iso = 0.0f;
   float compensation = 0.0f;
   std::string tonemap = "aces";
+  std::string bloom;  // EC (stops) or off; empty: the command's default
 };
 
 // Registers the shared options on `cmd` (the scene positional argument included).
@@ -74,6 +79,8 @@ struct LoadedBake {
   BakeOptions options;
   std::vector<Light> lights;  // the environment's sun (a sky's, or extracted), to add to the scene
 };
+// Whether --ssao (or its default) turns screen-space ambient occlusion on.
+bool screenAmbientOcclusionOn(const SceneCliOptions& o);
 // The split sum's (and the viewer's) shadows from --shadows: map unless none or ray is given.
 ShadowMode realTimeShadowMode(const SceneCliOptions& o);
 
@@ -110,6 +117,8 @@ std::uint64_t renderMemoryBytes(int width, int height);
 // EV100 from --ev100, else --aperture/--shutter/--iso, else the image's average luminance.
 float chooseEv100(const SceneCliOptions& o, const Image& linear);
 ToneMap toneCurve(const SceneCliOptions& o);
+// The bloom's exposure compensation from --bloom (none: off), else the command's default.
+std::optional<float> bloomCompensation(const SceneCliOptions& o, std::optional<float> otherwise);
 
 // Writes a rendered image: .exr (linear radiance and coverage, or the exposed image) or .png
 // (exposed, tone-mapped, sRGB). Throws for other extensions.

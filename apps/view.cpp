@@ -10,12 +10,16 @@
 #include "ibl/core/error.hpp"
 #include "ibl/env/sky.hpp"
 #include "ibl/gpu/viewer.hpp"
+#include "ibl/render/bloom.hpp"
 #include "preflight.hpp"
 #include "scene_options.hpp"
 
 namespace ibl::cli {
 
 namespace {
+
+// The display's bloom unless --bloom says otherwise: light 3 stops above middle grey spreads.
+constexpr float kViewBloom = 3.0f;
 
 struct ViewCliOptions {
   SceneCliOptions scene;
@@ -70,11 +74,13 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     co.graphics = true;
     const auto context = gpu::Context::create(co);
     gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes);
-    const RenderResult result = renderer.render(camera, shading, o.skyboxMip);
+    RenderResult result = renderer.render(camera, shading, o.skyboxMip);
     if (renderer.samples() < shading.spp && !global.quiet)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
                  shading.spp, context->device().name, renderer.samples(), renderer.samples());
     const float ev100 = chooseEv100(o.scene, result.color);
+    if (const std::optional<float> bloom = bloomCompensation(o.scene, kViewBloom))
+      result.color = applyBloom(result.color, ev100 - o.scene.compensation, *bloom);
     writeRenderedImage(o.screenshot, result, ev100 - o.scene.compensation, toneCurve(o.scene),
                        false);
     if (!global.quiet)
@@ -95,7 +101,10 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   w.title = "ibl view " + o.scene.scene;
   w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve) {
     const std::string path = unusedScreenshotName();
-    writeRenderedImage(path, result, ev100, curve, false);
+    RenderResult shown = result;
+    if (const std::optional<float> bloom = bloomCompensation(o.scene, kViewBloom))
+      shown.color = applyBloom(result.color, ev100, *bloom);
+    writeRenderedImage(path, shown, ev100, curve, false);
     if (!global.quiet) fmt::print(stderr, "screenshot {}\n", path);
   };
   if (skySpec) {

@@ -108,21 +108,26 @@ ibl::Camera benchCamera() {
   return camera;
 }
 
-// Frames of `scene` at 1280x720 seen from +Z, lit by the default bake, `spp` samples per pixel.
-void viewerFrames(benchmark::State& state, const ibl::Scene& scene, int spp,
-                  const std::string& label,
-                  ibl::AreaLightModel areaLights = ibl::AreaLightModel::Ltc, bool shadows = false) {
+// The shading of these frames: `spp` samples per pixel, area lights through `areaLights`, shadow
+// maps of 256 texels or none (256 lights hold about 1,300 layers; built on the first frame, kept
+// while the camera stays).
+ibl::RenderOptions frameShading(int spp, ibl::AreaLightModel areaLights = ibl::AreaLightModel::Ltc,
+                                bool shadows = false) {
+  ibl::RenderOptions shading;
+  shading.spp = spp;
+  shading.areaLights = areaLights;
+  shading.realTimeShadows = shadows ? ibl::ShadowMode::Map : ibl::ShadowMode::None;
+  shading.shadowSettings.mapSize = 256;
+  return shading;
+}
+
+// Frames of `scene` at 1280x720 seen from +Z, lit by the default bake.
+void viewerFrames(benchmark::State& state, const ibl::Scene& scene,
+                  const ibl::RenderOptions& shading, const std::string& label) {
   ibl::BakeOptions o;
   const ibl::BakeResult bake = ibl::bakeEnvironment(environment(), o);
   ibl::gpu::SceneRenderer viewer(graphicsContext(), scene, bake, o);
   const ibl::Camera camera = benchCamera();
-  ibl::RenderOptions shading;
-  shading.spp = spp;
-  shading.areaLights = areaLights;
-  // Shadow maps of 256 texels (256 lights hold about 1,300 layers); built on the first frame,
-  // kept while the camera stays.
-  shading.realTimeShadows = shadows ? ibl::ShadowMode::Map : ibl::ShadowMode::None;
-  shading.shadowSettings.mapSize = 256;
   viewer.render(camera, shading);  // the driver compiles the pipelines on the first frame
   for (auto _ : state) benchmark::DoNotOptimize(viewer.render(camera, shading));
   state.SetLabel(graphicsContext().device().name + ", " + std::to_string(viewer.samples()) +
@@ -130,7 +135,35 @@ void viewerFrames(benchmark::State& state, const ibl::Scene& scene, int spp,
 }
 
 void BM_ViewerFrame1280x720(benchmark::State& state) {
-  viewerFrames(state, ibl::makeSphereGrid(glm::vec3(1.0f)), static_cast<int>(state.range(0)), "");
+  viewerFrames(state, ibl::makeSphereGrid(glm::vec3(1.0f)),
+               frameShading(static_cast<int>(state.range(0))), "");
+}
+
+// The sphere grid 0.3 m in front of a wall that fills the frame: every pixel has a surface.
+ibl::Scene sphereGridOnAWall() {
+  ibl::Scene scene = ibl::makeSphereGrid(glm::vec3(1.0f));
+  ibl::Mesh wall;
+  wall.positions = {{-20.0f, -12.0f, -1.3f},
+                    {20.0f, -12.0f, -1.3f},
+                    {20.0f, 12.0f, -1.3f},
+                    {-20.0f, 12.0f, -1.3f}};
+  wall.normals.assign(4, glm::vec3(0.0f, 0.0f, 1.0f));
+  wall.indices = {0, 1, 2, 0, 2, 3};
+  wall.material = 0;
+  scene.meshes.push_back(wall);
+  return scene;
+}
+
+// A frame of it (1 sample per pixel) with screen-space ambient occlusion: -1 none, 0 low (2
+// slices x 4 steps), 1 medium (4 x 6), 2 high (8 x 8); the view buffers' pass and GTAO's.
+void BM_ViewerFrameWithOcclusion(benchmark::State& state) {
+  ibl::RenderOptions shading = frameShading(1);
+  shading.screenAmbientOcclusion.enabled = state.range(0) >= 0;
+  shading.screenAmbientOcclusion.quality =
+      static_cast<ibl::AmbientOcclusionQuality>(std::max<int>(0, static_cast<int>(state.range(0))));
+  const char* names[] = {"off", "low", "medium", "high"};
+  viewerFrames(state, sphereGridOnAWall(), shading,
+               std::string(", screen-space occlusion ") + names[state.range(0) + 1]);
 }
 
 // The sphere grid and n lights, with a range of 2.5 m or none (BM_ViewerFrameWithLights).
@@ -166,10 +199,11 @@ ibl::Scene sphereGridWithLights(int n, bool ranged) {
 void BM_ViewerFrameWithLights(benchmark::State& state) {
   const bool ltc = state.range(1) != 0, shadows = state.range(2) != 0, ranged = state.range(3) != 0;
   const ibl::Scene scene = sphereGridWithLights(static_cast<int>(state.range(0)), ranged);
-  viewerFrames(state, scene, 1,
-               ", " + std::to_string(state.range(0)) + " lights, " + (ltc ? "ltc" : "frostbite") +
-                   (shadows ? ", shadow maps" : "") + (ranged ? ", 2.5 m range" : ", no range"),
-               ltc ? ibl::AreaLightModel::Ltc : ibl::AreaLightModel::Frostbite, shadows);
+  viewerFrames(
+      state, scene,
+      frameShading(1, ltc ? ibl::AreaLightModel::Ltc : ibl::AreaLightModel::Frostbite, shadows),
+      ", " + std::to_string(state.range(0)) + " lights, " + (ltc ? "ltc" : "frostbite") +
+          (shadows ? ", shadow maps" : "") + (ranged ? ", 2.5 m range" : ", no range"));
 }
 
 // The light clusters of those frames, built on the CPU (each time the camera moves): N ranged
@@ -271,6 +305,10 @@ BENCHMARK(BM_GpuPrefilterRings256)->Unit(benchmark::kMillisecond)->UseRealTime()
 // 0: the default bake (rings), 1: --method sampled.
 BENCHMARK(BM_BakeDeviceGpu)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ViewerFrame1280x720)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ViewerFrameWithOcclusion)
+    ->DenseRange(-1, 2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithLights)
     ->ArgsProduct({{1, 16, 64, 256}, {0}, {0}, {0, 1}})
     ->Unit(benchmark::kMillisecond)

@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include "ibl/bake/bake.hpp"
+#include "ibl/render/bloom.hpp"
 #include "ibl/render/probe.hpp"
 #include "ibl/render/renderer.hpp"
 
@@ -38,6 +39,20 @@ void BM_SplitSumGrid512(benchmark::State& state) {
   o.spp = 4;
   for (auto _ : state)
     benchmark::DoNotOptimize(ibl::renderScene(scene, gridCamera(512), f.bake, f.options, o));
+}
+
+// Bloom of a 1280 x 720 frame of the sphere grid under the sunset (8 scales), light 2 stops above
+// middle grey spreading.
+void BM_Bloom1280x720(benchmark::State& state) {
+  const auto& f = fixture();
+  ibl::Camera camera = gridCamera(720);
+  camera.width = 1280;
+  ibl::RenderOptions o;
+  o.spp = 1;
+  const ibl::RenderResult frame = ibl::renderScene(ibl::makeSphereGrid(glm::vec3(0.9f, 0.7f, 0.5f)),
+                                                   camera, f.bake, f.options, o);
+  const float ev100 = ibl::ev100FromAverageLuminance(ibl::averageLogLuminance(frame.color));
+  for (auto _ : state) benchmark::DoNotOptimize(ibl::applyBloom(frame.color, ev100, 2.0f));
 }
 
 void BM_ReferenceSphere128(benchmark::State& state) {
@@ -132,5 +147,6 @@ BENCHMARK(BM_SplitSumGrid512WithProbes)
     ->UseRealTime();
 BENCHMARK(BM_PathTracedSphereGrid128)->Arg(0)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SplitSumGrid512)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Bloom1280x720)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ReferenceSphere128)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

@@ -17,12 +17,16 @@ layout(std140, set = 0, binding = 0) uniform Frame {
   vec4 probes;          // local probes: count, their specular levels - 1, flags (1 parallax
                         // correction, 2 distance-based roughness, 4 Frostbite's roughness mapping)
   vec4 sh[9];           // radiance SH9 times the cosine lobe's A_l / pi: irradiance / pi
-  ivec4 sheen;          // the sheen lobe's visibility (kSheenVisibilityCharlie, ...Neubelt)
+  ivec4 shading;        // the sheen lobe's visibility (kSheenVisibilityCharlie, ...Neubelt),
+                        // specular micro-occlusion (1 on), multiple-bounce occlusion (1 on)
   vec4 shadows;         // the lights' shadow maps: texels per side, 1 when they are on, the first
                         // layer's record in shadowData
   ivec4 clusterGrid;    // the light clusters (ibl/shared/clusters.h): tile size in pixels, tiles
                         // across, tiles down, depth slices
   vec4 clusterDepths;   // near, far, 1 perspective (exponential slices), 0 orthographic
+  vec4 ambientOcclusion;  // screen-space (ibl/shared/ambient_occlusion.h): radius, falloff,
+                          // slices (0: off), steps
+  vec4 projection;      // ScreenProjection's scale (x, y), perspective (1) or orthographic (0)
 } frame;
 layout(set = 0, binding = 1) uniform samplerCube specularMap;
 layout(set = 0, binding = 2) uniform samplerCube irradianceMap;
@@ -92,3 +96,9 @@ layout(std430, set = 0, binding = 14) readonly buffer ShadowDepths {
 layout(std430, set = 0, binding = 15) readonly buffer LightClusters {
   uint clusterData[];
 };
+// Screen-space ambient occlusion: the view buffers (view/view_buffers.frag: view-space position,
+// w 1 where a surface is; view-space normal) and the occlusion (view/gtao.frag: visibility, bent
+// normal in world space), one texel per pixel, read by texelFetch; 1 x 1 stand-ins when off.
+layout(set = 0, binding = 16) uniform sampler2D viewPositions;
+layout(set = 0, binding = 17) uniform sampler2D viewNormals;
+layout(set = 0, binding = 18) uniform sampler2D screenOcclusion;

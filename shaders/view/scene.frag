@@ -13,105 +13,26 @@ layout(location = 3) in vec2 texCoord0;
 layout(location = 4) in vec2 texCoord1;
 layout(location = 0) out vec4 outColor;
 #include "view/material.glsl"
-
-// Standard sample locations (Vulkan, "Multisampling"), in pixel units.
-vec2 samplePosition(int count, int i) {
-  if (count == 2) return i == 0 ? vec2(0.75) : vec2(0.25);
-  if (count == 4) {
-    const vec2 p4[4] = vec2[4](vec2(0.375, 0.125), vec2(0.875, 0.375), vec2(0.125, 0.625),
-                               vec2(0.625, 0.875));
-    return p4[i];
-  }
-  if (count == 8) {
-    const vec2 p8[8] = vec2[8](vec2(0.5625, 0.3125), vec2(0.4375, 0.6875), vec2(0.8125, 0.5625),
-                               vec2(0.3125, 0.1875), vec2(0.1875, 0.8125), vec2(0.0625, 0.4375),
-                               vec2(0.6875, 0.9375), vec2(0.9375, 0.0625));
-    return p8[i];
-  }
-  return vec2(0.5);
-}
-
-// A sphere ray traced in its bounding polyhedron, as the CPU renderer intersects it: the samples
-// the sphere covers, and the hit point of the pixel's center ray (or of a covered sample's).
-// Returns false when the sphere covers none of the pixel's samples.
-bool traceSphere(out vec3 position, out vec3 normal) {
-  Ray center = primaryRay(gl_FragCoord.xy);
-  float t = intersectSphere(center, material.sphere);
-  Ray shaded = center;
-  int count = frame.models.z;
-  if (count > 1) {
-    vec2 corner = floor(gl_FragCoord.xy);
-    int mask = 0;
-    for (int i = 0; i < count; ++i) {
-      Ray r = primaryRay(corner + samplePosition(count, i));
-      float ti = intersectSphere(r, material.sphere);
-      if (ti < 0.0) continue;
-      mask |= 1 << i;
-      if (t < 0.0) {
-        t = ti;
-        shaded = r;
-      }
-    }
-    gl_SampleMask[0] = mask;
-  } else {
-    gl_SampleMask[0] = -1;
-  }
-  if (t < 0.0) return false;
-  position = shaded.origin + t * shaded.direction;
-  normal = normalize(position - material.sphere.xyz);
-  vec4 clip = frame.viewProjection * vec4(position, 1.0);
-  gl_FragDepth = clip.z / clip.w;
-  return true;
-}
+#include "view/surface.glsl"
 
 void main() {
-  vec3 n = normalize(worldNormal);
-  vec3 position = worldPosition;
-  if (material.sphere.w > 0.0) {
-    if (!traceSphere(position, n)) discard;
-  } else {
-    gl_SampleMask[0] = -1;
-    gl_FragDepth = gl_FragCoord.z;
+  ShadedSurface surface = fragmentSurface();
+  vec3 bentNormal = vec3(0.0);
+  if (frame.ambientOcclusion.z > 0.0) {
+    // Screen-space ambient occlusion (view/gtao.frag) at this pixel: min with the material's
+    // (Lagarde & de Rousiers 2014, 4.10.3), and the bent normal for the irradiance.
+    vec4 ao = texelFetch(screenOcclusion, ivec2(gl_FragCoord.xy), 0);
+    surface.material.occlusion = min(surface.material.occlusion, ao.x);
+    bentNormal = ao.yzw;
   }
-  vec3 baseColor = material.baseColorMetallic.rgb;
-  float metallic = material.baseColorMetallic.a;
-  float roughness = material.emissiveRoughness.a;
-  vec3 emissive = material.emissiveRoughness.rgb;
-  float occlusion = 1.0;
-  uint mask = material.textureMask;
-  // sRGB textures are decoded before filtering (their formats), as Texture::sample does.
-  if ((mask & 1u) != 0u) baseColor *= texture(baseColorTexture, texCoordOf(1u)).rgb;
-  if (!materialCovers()) discard;
-  if ((mask & 2u) != 0u) {
-    vec2 mr = applyMetallicRoughnessTexel(metallic, roughness,
-                                          texture(metallicRoughnessTexture, texCoordOf(2u)));
-    metallic = mr.x;
-    roughness = mr.y;
-  }
-  if ((mask & 8u) != 0u)
-    occlusion = occlusionFromTexel(material.scales.y, texture(occlusionTexture, texCoordOf(8u)));
-  if ((mask & 16u) != 0u) emissive *= texture(emissiveTexture, texCoordOf(16u)).rgb;
-  vec4 sheen = material.sheen;
-  if ((mask & 32u) != 0u) sheen.rgb *= texture(sheenColorTexture, texCoordOf(32u)).rgb;
-  if ((mask & 64u) != 0u) sheen.w *= texture(sheenRoughnessTexture, texCoordOf(64u)).a;
-  if ((mask & 4u) != 0u)
-    n = applyNormalMap(n, worldTangent, texture(normalTexture, texCoordOf(4u)), material.scales.x);
-  vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
-                                           : normalize(position - frame.cameraPosition.xyz);
-  if (dot(n, ray) > 0.0) n = -n;  // shade the side the camera sees
-  SplitSumMaterial m;
-  m.baseColor = baseColor;
-  m.metallic = clamp(metallic, 0.0, 1.0);
-  m.roughness = clamp(roughness, 0.0, 1.0);
-  m.occlusion = occlusion;
-  m.emissive = emissive;
-  vec3 color = shadeSplitSum(position, gl_FragCoord.xy, n, -ray, m, sheen);
+  vec3 color = shadeSplitSum(surface.position, gl_FragCoord.xy, surface.normal, surface.view,
+                             surface.material, surface.sheen, bentNormal);
   // An area light between the camera and the surface is what the pixel sees.
   Ray center = primaryRay(gl_FragCoord.xy);
   vec3 emitted;
-  bool surface;
-  if (nearestEmitter(center, gl_FragCoord.xy, dot(position - center.origin, center.direction),
-                     emitted, surface))
+  bool isSurface;
+  if (nearestEmitter(center, gl_FragCoord.xy,
+                     dot(surface.position - center.origin, center.direction), emitted, isSurface))
     color = emitted;
   outColor = vec4(color, 1.0);
 }

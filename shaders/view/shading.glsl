@@ -22,7 +22,9 @@ SplitSumSwitches frameSwitches() {
   s.specularOcclusion = frame.terms.w != 0;
   s.disneyDiffuse = frame.models.x == 0;
   s.ltcAreaLights = kLtcAreaLights;
-  s.sheenVisibility = frame.sheen.x;
+  s.sheenVisibility = frame.shading.x;
+  s.specularMicroOcclusion = frame.shading.y != 0;
+  s.multiBounceOcclusion = frame.shading.z != 0;
   return s;
 }
 
@@ -167,7 +169,9 @@ float localProbes(vec3 position, vec3 r, vec3 d, float roughness, int terms,
 // src/render/renderer.cpp) at a point at `position`, under a sheen layer (sheen: color and
 // roughness of KHR_materials_sheen; color 0: none) that scales the rest by its albedo scaling.
 // The lights evaluated are those of the point's cluster (seen at framebuffer point `pixel`).
-vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMaterial m, vec4 sheen) {
+// bentNormal: the irradiance's direction from the screen-space occlusion (0: the normal).
+vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMaterial m, vec4 sheen,
+                   vec3 bentNormal) {
   SplitSumSwitches s = frameSwitches();
   bool sheenOnly = s.terms == 3;
   if (sheenOnly) s.terms = 0;
@@ -176,6 +180,7 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
   vec3 emissive = m.emissive;
   m.emissive = vec3(0.0);
   SplitSumLookup look = splitSumLookup(n, view, m.roughness, s);
+  if (bentNormal != vec3(0.0)) look = bendDiffuseLookup(look, bentNormal, view, m.roughness, s);
   vec3 dfg = textureLod(dfgLut, vec2(look.NoV, m.roughness), 0.0).rgb;
   // The sheen's table at the clamped roughness, and the scaling of the layer below.
   float sheenRoughness = max(sheen.w, kMinSheenRoughness);

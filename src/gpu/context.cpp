@@ -676,6 +676,20 @@ void uploadImage(Context& context, const DeviceImage& image, std::span<const std
   });
 }
 
+VkFramebuffer createFramebuffer(VkDevice device, VkRenderPass pass,
+                                std::span<const VkImageView> views, int width, int height) {
+  VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  info.renderPass = pass;
+  info.attachmentCount = static_cast<std::uint32_t>(views.size());
+  info.pAttachments = views.data();
+  info.width = static_cast<std::uint32_t>(width);
+  info.height = static_cast<std::uint32_t>(height);
+  info.layers = 1;
+  VkFramebuffer framebuffer;
+  check(vkCreateFramebuffer(device, &info, nullptr, &framebuffer), "vkCreateFramebuffer");
+  return framebuffer;
+}
+
 VkRenderPass createRenderPass(VkDevice device, std::span<const VkAttachmentDescription> attachments,
                               const VkSubpassDescription& subpass,
                               std::span<const VkSubpassDependency> dependencies) {
@@ -726,10 +740,12 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescrip
   VkPipelineColorBlendAttachmentState blendAttachment{};
   blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                                    VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  const std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(d.colorAttachments,
+                                                                          blendAttachment);
   VkPipelineColorBlendStateCreateInfo blend{
       VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  blend.attachmentCount = d.color ? 1 : 0;
-  blend.pAttachments = d.color ? &blendAttachment : nullptr;
+  blend.attachmentCount = d.colorAttachments;
+  blend.pAttachments = blendAttachments.data();
   const std::array<VkDynamicState, 2> dynamic{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
   VkPipelineDynamicStateCreateInfo dynamicState{
       VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};

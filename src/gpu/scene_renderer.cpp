@@ -30,12 +30,14 @@ struct FrameUniforms {
   glm::ivec4 terms, models;
   glm::vec4 probes;  // count, the probes' specular levels - 1, flags (view/frame.glsl)
   std::array<glm::vec4, 9> sh;
-  glm::ivec4 sheen;        // the sheen lobe's visibility (view/frame.glsl)
+  glm::ivec4 shading;      // the sheen lobe's visibility, specular micro-occlusion
   glm::vec4 shadows;       // texels per side, 1 when on, the first layer's record (view/frame.glsl)
   glm::ivec4 clusterGrid;  // tile size, tiles across and down, slices (view/frame.glsl)
-  glm::vec4 clusterDepths;  // near, far, 1 perspective
+  glm::vec4 clusterDepths;     // near, far, 1 perspective
+  glm::vec4 ambientOcclusion;  // radius, falloff, slices (0: off), steps
+  glm::vec4 projection;        // the screen projection's scale, perspective
 };
-static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32);
+static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32 + 32);
 
 // vec4s per probe in the probes buffer (view/frame.glsl).
 constexpr int kProbeVec4s = 11;
@@ -399,15 +401,9 @@ namespace {
 
 // The shadow maps' pass: one depth attachment, cleared, left ready to be copied out.
 VkRenderPass createShadowRenderPass(VkDevice device) {
-  VkAttachmentDescription depth{};
-  depth.format = VK_FORMAT_D32_SFLOAT;
-  depth.samples = VK_SAMPLE_COUNT_1_BIT;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  depth.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  depth.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  depth.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  const VkAttachmentDescription depth =
+      attachmentDescription(VK_FORMAT_D32_SFLOAT, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                            VK_ATTACHMENT_STORE_OP_STORE, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
   const VkAttachmentReference depthRef{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -448,7 +444,7 @@ void SceneRenderer::Impl::prepareShadowTarget(int size) {
     p.bindings = {&binding, 1};
     p.attributes = attributes;
     p.depth = true;
-    p.color = false;
+    p.colorAttachments = 0;
     shadowPipeline = createGraphicsPipeline(device, p);
   }
   if (shadowTarget && static_cast<int>(shadowTarget->description().width) == size) return;
@@ -461,13 +457,7 @@ void SceneRenderer::Impl::prepareShadowTarget(int size) {
   d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
   shadowTarget = std::make_unique<DeviceImage>(context, d);
   const VkImageView view = shadowTarget->view();
-  VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  fb.renderPass = shadowPass;
-  fb.attachmentCount = 1;
-  fb.pAttachments = &view;
-  fb.width = fb.height = d.width;
-  fb.layers = 1;
-  check(vkCreateFramebuffer(device, &fb, nullptr, &shadowFramebuffer), "vkCreateFramebuffer");
+  shadowFramebuffer = createFramebuffer(device, shadowPass, {&view, 1}, size, size);
 }
 
 void SceneRenderer::Impl::drawMeshes(VkCommandBuffer cmd, int layer) {
@@ -576,12 +566,7 @@ void SceneRenderer::Impl::prepareClusters(const Camera& camera) {
 void SceneRenderer::Impl::writeClusterDescriptor() {
   const VkDescriptorBufferInfo info{static_cast<VkBuffer>(clustersBuffer->handle()), 0,
                                     VK_WHOLE_SIZE};
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = frameSet;
-  w.dstBinding = 15;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  w.pBufferInfo = &info;
+  const VkWriteDescriptorSet w = storageBufferWrite(frameSet, 15, &info);
   vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
 }
 
@@ -589,15 +574,8 @@ void SceneRenderer::Impl::writeShadowDescriptors() {
   const VkDescriptorBufferInfo buffers[2] = {
       {static_cast<VkBuffer>(shadowRecords->handle()), 0, VK_WHOLE_SIZE},
       {static_cast<VkBuffer>(shadowDepths->handle()), 0, VK_WHOLE_SIZE}};
-  std::array<VkWriteDescriptorSet, 2> writes{};
-  for (std::uint32_t i = 0; i < 2; ++i) {
-    writes[i] = VkWriteDescriptorSet{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[i].dstSet = frameSet;
-    writes[i].dstBinding = 13 + i;
-    writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[i].pBufferInfo = &buffers[i];
-  }
+  const std::array<VkWriteDescriptorSet, 2> writes{storageBufferWrite(frameSet, 13, &buffers[0]),
+                                                   storageBufferWrite(frameSet, 14, &buffers[1])};
   vkUpdateDescriptorSets(device, 2, writes.data(), 0, nullptr);
 }
 
@@ -798,6 +776,10 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   for (std::uint32_t b = 14; b <= 15; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  // The screen-space occlusion's view buffers and result.
+  for (std::uint32_t b = 16; b <= 18; ++b)
+    frameBindings.push_back(
+        {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
   std::vector<VkDescriptorSetLayoutBinding> materialBindings;
   for (std::uint32_t b = 0; b < kMaterialTextures; ++b)
@@ -819,7 +801,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                           10 + kMaterialTextures * materialCount}};
+                           13 + kMaterialTextures * materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1 + materialCount;
   poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
@@ -858,19 +840,14 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   const VkDescriptorImageInfo probeImages[2] = {{cubeSampler, probeSpecular->view(), readable},
                                                 {cubeSampler, probeIrradiance->view(), readable}};
   writes.push_back(imageWrite(frameSet, 9, &probeImages[0]));
+  const VkDescriptorImageInfo whiteImage{lutSampler, white->view(), readable};
+  for (std::uint32_t b = 16; b <= 18; ++b) writes.push_back(imageWrite(frameSet, b, &whiteImage));
   writes.push_back(imageWrite(frameSet, 10, &probeImages[1]));
   const VkDescriptorBufferInfo buffers[2] = {
       {static_cast<VkBuffer>(lightsBuffer->handle()), 0, VK_WHOLE_SIZE},
       {static_cast<VkBuffer>(probesBuffer->handle()), 0, VK_WHOLE_SIZE}};
-  for (std::uint32_t i = 0; i < 2; ++i) {
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = frameSet;
-    w.dstBinding = i == 0 ? 5 : 8;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    w.pBufferInfo = &buffers[i];
-    writes.push_back(w);
-  }
+  writes.push_back(storageBufferWrite(frameSet, 5, &buffers[0]));
+  writes.push_back(storageBufferWrite(frameSet, 8, &buffers[1]));
   for (std::size_t m = 0; m < materials.size(); ++m) {
     for (std::size_t b = 0; b < kMaterialTextures; ++b) {
       writes.push_back(
@@ -886,6 +863,8 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
 
   sceneVert = context.impl().shaderModule("scene_vert");
   sceneFrag = context.impl().shaderModule("scene_frag");
+  viewBuffersFrag = context.impl().shaderModule("view_buffers_frag");
+  gtaoFrag = context.impl().shaderModule("gtao_frag");
   fullscreenVert = context.impl().shaderModule("fullscreen_vert");
   skyboxFrag = context.impl().shaderModule("skybox_frag");
   shadowVert = context.impl().shaderModule("shadow_vert");
@@ -922,8 +901,8 @@ SceneRenderer::Impl::~Impl() {
 void SceneRenderer::Impl::destroy() {
   vkDeviceWaitIdle(device);
   destroyTargets();
-  for (VkShaderModule m :
-       {sceneVert, sceneFrag, fullscreenVert, skyboxFrag, shadowVert, shadowFrag})
+  for (VkShaderModule m : {sceneVert, sceneFrag, fullscreenVert, skyboxFrag, shadowVert, shadowFrag,
+                           viewBuffersFrag, gtaoFrag})
     vkDestroyShaderModule(device, m, nullptr);
   vkDestroyPipeline(device, shadowPipeline, nullptr);
   vkDestroyFramebuffer(device, shadowFramebuffer, nullptr);
@@ -943,6 +922,14 @@ void SceneRenderer::Impl::destroyTargets() {
   vkDestroyPipeline(device, targets->skyboxPipeline, nullptr);
   vkDestroyFramebuffer(device, targets->framebuffer, nullptr);
   vkDestroyRenderPass(device, targets->renderPass, nullptr);
+  if (targets->occlusion) {
+    const ScreenOcclusionTargets& o = *targets->occlusion;
+    for (VkPipeline pipeline : {o.viewBuffersPipeline, o.gtaoPipeline})
+      vkDestroyPipeline(device, pipeline, nullptr);
+    for (VkFramebuffer f : {o.viewBuffersFramebuffer, o.gtaoFramebuffer})
+      vkDestroyFramebuffer(device, f, nullptr);
+    for (VkRenderPass r : {o.viewBuffersPass, o.gtaoPass}) vkDestroyRenderPass(device, r, nullptr);
+  }
   targets.reset();
 }
 
@@ -973,15 +960,10 @@ VkRenderPass createSceneRenderPass(VkDevice device, VkFormat depthFormat, int sa
   const bool msaa = samples > 1;
   const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   std::vector<VkAttachmentDescription> attachments;
-  VkAttachmentDescription color{};
-  color.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  color.samples = sampleBits;
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.storeOp = msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
-  color.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  color.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  color.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  color.finalLayout = msaa ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : readable;
+  const VkAttachmentDescription color =
+      attachmentDescription(VK_FORMAT_R32G32B32A32_SFLOAT, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                            msaa ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE,
+                            msaa ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : readable, sampleBits);
   attachments.push_back(color);
   VkAttachmentDescription depth = color;
   depth.format = depthFormat;
@@ -1054,14 +1036,7 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
   t.renderPass = createSceneRenderPass(device, depthFormat, samples);
   std::vector<VkImageView> views{msaa ? t.color->view() : t.resolved->view(), t.depth->view()};
   if (msaa) views.push_back(t.resolved->view());
-  VkFramebufferCreateInfo fbInfo{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  fbInfo.renderPass = t.renderPass;
-  fbInfo.attachmentCount = static_cast<std::uint32_t>(views.size());
-  fbInfo.pAttachments = views.data();
-  fbInfo.width = d.width;
-  fbInfo.height = d.height;
-  fbInfo.layers = 1;
-  check(vkCreateFramebuffer(device, &fbInfo, nullptr, &t.framebuffer), "vkCreateFramebuffer");
+  t.framebuffer = createFramebuffer(device, t.renderPass, views, width, height);
 
   // The skybox's pipeline (a full-screen triangle); the meshes' are made when first used.
   t.sampleBits = sampleBits;
@@ -1075,18 +1050,153 @@ void SceneRenderer::Impl::prepare(int width, int height, int samples) {
   targets->skyboxPipeline = createGraphicsPipeline(device, p);
 }
 
+namespace {
+
+// The meshes' vertices as view/scene.vert reads them: position, normal, tangent, two UV sets.
+const VkVertexInputBindingDescription kMeshBinding{0, kVertexFloats * sizeof(float),
+                                                   VK_VERTEX_INPUT_RATE_VERTEX};
+const std::array<VkVertexInputAttributeDescription, 5> kMeshAttributes{
+    VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+    VkVertexInputAttributeDescription{1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
+    VkVertexInputAttributeDescription{2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 6 * sizeof(float)},
+    VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, 10 * sizeof(float)},
+    VkVertexInputAttributeDescription{4, 0, VK_FORMAT_R32G32_SFLOAT, 12 * sizeof(float)}};
+
+// A single-sample pass over `formats` color attachments (cleared to 0) and, unless
+// VK_FORMAT_UNDEFINED, a depth attachment, whose colors end readable by fragment shaders.
+VkRenderPass createScreenPass(VkDevice device, std::span<const VkFormat> formats,
+                              VkFormat depthFormat) {
+  std::vector<VkAttachmentDescription> attachments;
+  std::vector<VkAttachmentReference> colorRefs;
+  for (VkFormat f : formats) {
+    colorRefs.push_back(
+        {static_cast<std::uint32_t>(attachments.size()), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
+    attachments.push_back(attachmentDescription(f, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                                VK_ATTACHMENT_STORE_OP_STORE,
+                                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+  }
+  const VkAttachmentReference depthRef{static_cast<std::uint32_t>(attachments.size()),
+                                       VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  if (depthFormat != VK_FORMAT_UNDEFINED)
+    attachments.push_back(attachmentDescription(depthFormat, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                                VK_ATTACHMENT_STORE_OP_DONT_CARE,
+                                                VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL));
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = static_cast<std::uint32_t>(colorRefs.size());
+  subpass.pColorAttachments = colorRefs.data();
+  subpass.pDepthStencilAttachment = depthFormat != VK_FORMAT_UNDEFINED ? &depthRef : nullptr;
+  // The previous frame's readers are done before the clear; this pass's colors are written
+  // before the next pass's fragment shaders read them.
+  const std::array<VkSubpassDependency, 2> dependencies{
+      VkSubpassDependency{
+          VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+          VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+              VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
+          VK_ACCESS_SHADER_READ_BIT,
+          VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0},
+      VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                          VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, 0}};
+  return createRenderPass(device, attachments, subpass, dependencies);
+}
+
+}  // namespace
+
+void SceneRenderer::Impl::prepareScreenOcclusion() {
+  if (targets->occlusion) return;
+  vkDeviceWaitIdle(device);  // the frame set's bindings 16 to 18 change
+  const Targets& t = *targets;
+  auto o = std::make_unique<ScreenOcclusionTargets>();
+  DeviceImage::Description d;
+  d.width = static_cast<std::uint32_t>(t.width);
+  d.height = static_cast<std::uint32_t>(t.height);
+  d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  o->positions = std::make_unique<DeviceImage>(context, d);
+  o->normals = std::make_unique<DeviceImage>(context, d);
+  o->occlusion = std::make_unique<DeviceImage>(context, d);
+  d.format = depthFormat;
+  d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
+  o->depth = std::make_unique<DeviceImage>(context, d);
+  // Owned by the targets from here on: destroyTargets() frees what exists.
+  ScreenOcclusionTargets& s = *(targets->occlusion = std::move(o));
+  const std::array<VkFormat, 2> bufferFormats{VK_FORMAT_R32G32B32A32_SFLOAT,
+                                              VK_FORMAT_R32G32B32A32_SFLOAT};
+  s.viewBuffersPass = createScreenPass(device, bufferFormats, depthFormat);
+  s.gtaoPass = createScreenPass(device, {bufferFormats.data(), 1}, VK_FORMAT_UNDEFINED);
+  const std::array<VkImageView, 3> bufferViews{s.positions->view(), s.normals->view(),
+                                               s.depth->view()};
+  s.viewBuffersFramebuffer =
+      createFramebuffer(device, s.viewBuffersPass, bufferViews, t.width, t.height);
+  const VkImageView occlusionView = s.occlusion->view();
+  s.gtaoFramebuffer = createFramebuffer(device, s.gtaoPass, {&occlusionView, 1}, t.width, t.height);
+  GraphicsPipelineDescription p;
+  p.layout = pipelineLayout;
+  p.renderPass = s.viewBuffersPass;
+  p.vertex = sceneVert;
+  p.fragment = viewBuffersFrag;
+  p.bindings = {&kMeshBinding, 1};
+  p.attributes = kMeshAttributes;
+  p.depth = true;
+  p.colorAttachments = 2;
+  s.viewBuffersPipeline = createGraphicsPipeline(device, p);
+  GraphicsPipelineDescription g;
+  g.layout = pipelineLayout;
+  g.renderPass = s.gtaoPass;
+  g.vertex = fullscreenVert;
+  g.fragment = gtaoFrag;
+  s.gtaoPipeline = createGraphicsPipeline(device, g);
+  const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  const std::array<VkDescriptorImageInfo, 3> images{
+      VkDescriptorImageInfo{lutSampler, s.positions->view(), readable},
+      VkDescriptorImageInfo{lutSampler, s.normals->view(), readable},
+      VkDescriptorImageInfo{lutSampler, s.occlusion->view(), readable}};
+  std::array<VkWriteDescriptorSet, 3> writes{};
+  for (std::uint32_t i = 0; i < 3; ++i) writes[i] = imageWrite(frameSet, 16 + i, &images[i]);
+  vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
+                         nullptr);
+}
+
+void SceneRenderer::Impl::recordScreenOcclusion(VkCommandBuffer cmd) {
+  const Targets& t = *targets;
+  const ScreenOcclusionTargets& s = *t.occlusion;
+  const VkRect2D area{{0, 0},
+                      {static_cast<std::uint32_t>(t.width), static_cast<std::uint32_t>(t.height)}};
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(t.width), static_cast<float>(t.height),
+                            0.0f, 1.0f};
+  std::array<VkClearValue, 3> clears{};  // positions with w = 0: no surface
+  clears[2].depthStencil = {1.0f, 0};
+  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  begin.renderPass = s.viewBuffersPass;
+  begin.framebuffer = s.viewBuffersFramebuffer;
+  begin.renderArea = area;
+  begin.clearValueCount = 3;
+  begin.pClearValues = clears.data();
+  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &area);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &frameSet, 0,
+                          nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.viewBuffersPipeline);
+  drawMeshes(cmd, 0);
+  vkCmdEndRenderPass(cmd);
+  begin.renderPass = s.gtaoPass;
+  begin.framebuffer = s.gtaoFramebuffer;
+  begin.clearValueCount = 1;
+  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &area);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.gtaoPipeline);
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+  vkCmdEndRenderPass(cmd);
+}
+
 VkPipeline SceneRenderer::Impl::scenePipeline(bool shadows, bool ltcAreaLights) {
   VkPipeline& pipeline = targets->scenePipelines[(shadows ? 2 : 0) + (ltcAreaLights ? 1 : 0)];
   if (pipeline) return pipeline;
   // Meshes: depth tested, both faces (the CPU renderer sees both sides too).
-  const VkVertexInputBindingDescription binding{0, kVertexFloats * sizeof(float),
-                                                VK_VERTEX_INPUT_RATE_VERTEX};
-  const std::array<VkVertexInputAttributeDescription, 5> attributes{
-      VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-      VkVertexInputAttributeDescription{1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)},
-      VkVertexInputAttributeDescription{2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 6 * sizeof(float)},
-      VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, 10 * sizeof(float)},
-      VkVertexInputAttributeDescription{4, 0, VK_FORMAT_R32G32_SFLOAT, 12 * sizeof(float)}};
   // shaders/view/shading.glsl's specialization constants: 0 the lights cast shadows, 1 area
   // lights through LTCs.
   const std::array<VkBool32, 2> values{shadows ? VK_TRUE : VK_FALSE,
@@ -1101,8 +1211,8 @@ VkPipeline SceneRenderer::Impl::scenePipeline(bool shadows, bool ltcAreaLights) 
   p.samples = targets->sampleBits;
   p.vertex = sceneVert;
   p.fragment = sceneFrag;
-  p.bindings = {&binding, 1};
-  p.attributes = attributes;
+  p.bindings = {&kMeshBinding, 1};
+  p.attributes = kMeshAttributes;
   p.depth = true;
   p.fragmentSpecialization = &specialization;
   pipeline = createGraphicsPipeline(device, p);
@@ -1142,14 +1252,29 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
                                    (probeFrostbiteMapping ? 4 : 0)),
                 0.0f);
   for (int k = 0; k < 9; ++k) u.sh[k] = glm::vec4(shIrradianceOverPi[k], 0.0f);
-  u.sheen = glm::ivec4(s.sheenVisibility, 0, 0, 0);
+  u.shading = glm::ivec4(s.sheenVisibility, s.specularMicroOcclusion ? 1 : 0,
+                         s.multiBounceOcclusion ? 1 : 0, 0);
   u.shadows = glm::vec4(static_cast<float>(shadowMaps.mapSize), shadows ? 1.0f : 0.0f,
                         5.0f * static_cast<float>(shadowMaps.casters.size()), 0.0f);
   const shared::LightClusterGrid& g = clusters.grid;
   u.clusterGrid = glm::ivec4(g.tileSize, g.tilesX, g.tilesY, g.slices);
   u.clusterDepths = glm::vec4(g.near, g.far, static_cast<float>(g.perspective), 0.0f);
+  const bool occluded = o.screenAmbientOcclusion.enabled;
+  if (occluded) {
+    // As renderScene does on the CPU (src/render/renderer.cpp).
+    const shared::AmbientOcclusionParameters a = ambientOcclusionParameters(
+        o.screenAmbientOcclusion, glm::length(bounds.second - bounds.first));
+    u.ambientOcclusion =
+        glm::vec4(a.radius, a.falloff, static_cast<float>(a.slices), static_cast<float>(a.steps));
+    const shared::ScreenProjection projection = screenProjection(camera);
+    u.projection = glm::vec4(projection.scale, projection.perspective, 0.0f);
+  }
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
   if (shadows) recordShadowLayers(cmd);  // none pending when traced on the CPU
+  if (occluded) {
+    prepareScreenOcclusion();
+    recordScreenOcclusion(cmd);
+  }
 
   std::array<VkClearValue, 3> clears{};
   clears[1].depthStencil = {1.0f, 0};

@@ -107,9 +107,19 @@ struct SceneRenderer::Impl {
   std::unique_ptr<Buffer> clustersBuffer;
   VkShaderModule sceneVert = VK_NULL_HANDLE, sceneFrag = VK_NULL_HANDLE,
                  fullscreenVert = VK_NULL_HANDLE, skyboxFrag = VK_NULL_HANDLE,
-                 shadowVert = VK_NULL_HANDLE, shadowFrag = VK_NULL_HANDLE;
+                 shadowVert = VK_NULL_HANDLE, shadowFrag = VK_NULL_HANDLE,
+                 viewBuffersFrag = VK_NULL_HANDLE, gtaoFrag = VK_NULL_HANDLE;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
   bool standardSampleLocations = false;
+  // Screen-space ambient occlusion, at the frame's size: a pass drawing the meshes' view-space
+  // positions and normals (view/view_buffers.frag) and a full-screen pass of GTAO over them
+  // (view/gtao.frag), whose result the scene pass reads (frame set bindings 16 to 18).
+  struct ScreenOcclusionTargets {
+    std::unique_ptr<DeviceImage> positions, normals, depth, occlusion;
+    VkRenderPass viewBuffersPass = VK_NULL_HANDLE, gtaoPass = VK_NULL_HANDLE;
+    VkFramebuffer viewBuffersFramebuffer = VK_NULL_HANDLE, gtaoFramebuffer = VK_NULL_HANDLE;
+    VkPipeline viewBuffersPipeline = VK_NULL_HANDLE, gtaoPipeline = VK_NULL_HANDLE;
+  };
   // Size-dependent: attachments, render pass, framebuffer, pipelines.
   struct Targets {
     int width = 0, height = 0, samples = 0;
@@ -122,6 +132,7 @@ struct SceneRenderer::Impl {
     // (shadows, the other area-light model) is compiled out.
     std::array<VkPipeline, 4> scenePipelines{};
     VkSampleCountFlagBits sampleBits = VK_SAMPLE_COUNT_1_BIT;
+    std::unique_ptr<ScreenOcclusionTargets> occlusion;  // made when first asked for
   };
   std::optional<Targets> targets;
   std::pair<glm::vec3, glm::vec3> bounds;
@@ -163,6 +174,11 @@ struct SceneRenderer::Impl {
   void recordShadowLayers(VkCommandBuffer cmd);
   // The depth target, its pass and framebuffer, and the pipeline for maps of `size` texels.
   void prepareShadowTarget(int size);
+  // The screen-space occlusion's targets and pipelines for the current size (made once, pointed
+  // at by the frame set after waiting for the device to be idle).
+  void prepareScreenOcclusion();
+  // Records the view buffers' and GTAO's passes, leaving the occlusion readable by the scene pass.
+  void recordScreenOcclusion(VkCommandBuffer cmd);
   // Binds and draws every mesh with its material (set 1, push constants) and `layer`.
   void drawMeshes(VkCommandBuffer cmd, int layer);
   // Builds the light clusters for this camera unless they are current, and uploads them

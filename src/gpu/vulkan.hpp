@@ -102,18 +102,39 @@ struct GraphicsPipelineDescription {
   std::span<const VkVertexInputBindingDescription> bindings;  // empty: no vertex buffers
   std::span<const VkVertexInputAttributeDescription> attributes;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
-  bool depth = false;  // depth test (less) and write
-  bool color = true;   // one color attachment (false: a depth-only pass)
+  bool depth = false;                  // depth test (less) and write
+  std::uint32_t colorAttachments = 1;  // written without blending (0: a depth-only pass)
   // The fragment shader's specialization constants (null: their defaults).
   const VkSpecializationInfo* fragmentSpecialization = nullptr;
 };
 VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescription& d);
+
+// An attachment whose contents start undefined: loaded by `load`, stored by `store`, left in
+// `finalLayout`; its stencil neither loaded nor stored.
+inline VkAttachmentDescription attachmentDescription(
+    VkFormat format, VkAttachmentLoadOp load, VkAttachmentStoreOp store, VkImageLayout finalLayout,
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT) {
+  VkAttachmentDescription a{};
+  a.format = format;
+  a.samples = samples;
+  a.loadOp = load;
+  a.storeOp = store;
+  a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  a.finalLayout = finalLayout;
+  return a;
+}
 
 // A render pass of one subpass over `attachments`, with its dependencies on what comes before
 // and after it.
 VkRenderPass createRenderPass(VkDevice device, std::span<const VkAttachmentDescription> attachments,
                               const VkSubpassDescription& subpass,
                               std::span<const VkSubpassDependency> dependencies);
+
+// A framebuffer of one layer over `views`, width x height, for `pass`.
+VkFramebuffer createFramebuffer(VkDevice device, VkRenderPass pass,
+                                std::span<const VkImageView> views, int width, int height);
 
 // A descriptor write of one combined image sampler.
 inline VkWriteDescriptorSet imageWrite(VkDescriptorSet set, std::uint32_t binding,
@@ -124,6 +145,18 @@ inline VkWriteDescriptorSet imageWrite(VkDescriptorSet set, std::uint32_t bindin
   w.descriptorCount = 1;
   w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   w.pImageInfo = info;
+  return w;
+}
+
+// A descriptor write of one storage buffer.
+inline VkWriteDescriptorSet storageBufferWrite(VkDescriptorSet set, std::uint32_t binding,
+                                               const VkDescriptorBufferInfo* info) {
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  w.pBufferInfo = info;
   return w;
 }
 

@@ -257,16 +257,9 @@ void createSwapchain(WindowResources& r, VkSurfaceFormatKHR format) {
     VkImageView view;
     check(vkCreateImageView(c.device, &viewInfo, nullptr, &view), "vkCreateImageView");
     s.views.push_back(view);
-    VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fb.renderPass = r.pass;
-    fb.attachmentCount = 1;
-    fb.pAttachments = &view;
-    fb.width = extent.width;
-    fb.height = extent.height;
-    fb.layers = 1;
-    VkFramebuffer framebuffer;
-    check(vkCreateFramebuffer(c.device, &fb, nullptr, &framebuffer), "vkCreateFramebuffer");
-    s.framebuffers.push_back(framebuffer);
+    s.framebuffers.push_back(createFramebuffer(c.device, r.pass, {&view, 1},
+                                               static_cast<int>(extent.width),
+                                               static_cast<int>(extent.height)));
     VkSemaphoreCreateInfo semaphoreInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VkSemaphore rendered;
     check(vkCreateSemaphore(c.device, &semaphoreInfo, nullptr, &rendered), "vkCreateSemaphore");
@@ -276,15 +269,9 @@ void createSwapchain(WindowResources& r, VkSurfaceFormatKHR format) {
 
 void createTonemapPass(WindowResources& r, VkFormat format) {
   auto& c = r.context->impl();
-  VkAttachmentDescription attachment{};
-  attachment.format = format;
-  attachment.samples = VK_SAMPLE_COUNT_1_BIT;
-  attachment.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  attachment.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  attachment.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  attachment.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  attachment.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  const VkAttachmentDescription attachment =
+      attachmentDescription(format, VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_STORE,
+                            VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   const VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;

@@ -81,6 +81,7 @@ float maxComponent(glm::vec3 c) {
 struct Brdf {
   glm::vec3 diffuseColor, f0;
   float alpha, roughness;
+  float f90;  // Schlick's grazing reflectance (RenderOptions::specularMicroOcclusion)
   DiffuseModel diffuseModel;
   ShadingTerms only;
   glm::vec3 multipleScattering;  // the specular lobe's scale for the bounces between microfacets
@@ -98,9 +99,11 @@ struct Brdf {
            glm::mix(glm::vec3(0.04f), p.baseColor, p.metallic),
            std::max(alphaFromRoughness(p.roughness), kMinAlpha),
            p.roughness,
+           1.0f,
            o.diffuse,
            only,
            glm::vec3(1.0f)};
+    b.f90 = shared::fresnelF90(b.f0, o.specularMicroOcclusion);
     // The energy the single-scattering lobe loses to further bounces between microfacets,
     // returned by the split sum's own compensation (Fdez-Aguera 2019, as Filament does): the
     // lobe is scaled by 1 + F0 (1 / E(n.v) - 1). With F0 = 1 it
@@ -140,7 +143,7 @@ struct Brdf {
     if (specularLobe()) {
       const float VoH = std::max(glm::dot(v, h), 0.0f);
       result += ggxDistribution(h.z, alpha) * smithGgxCorrelatedVisibility(NoV, NoL, alpha) *
-                fresnelSchlick(f0, 1.0f, VoH) * multipleScattering;
+                fresnelSchlick(f0, f90, VoH) * multipleScattering;
     }
     if (diffuseLobe()) {
       const float fd = diffuseModel == DiffuseModel::Disney

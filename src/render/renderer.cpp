@@ -56,6 +56,8 @@ shared::SplitSumSwitches splitSumSwitches(const RenderOptions& o) {
   s.disneyDiffuse = o.diffuse == DiffuseModel::Disney;
   s.ltcAreaLights = o.areaLights == AreaLightModel::Ltc;
   s.sheenVisibility = static_cast<int>(o.sheenVisibility);
+  s.specularMicroOcclusion = o.specularMicroOcclusion;
+  s.multiBounceOcclusion = o.screenAmbientOcclusion.enabled;
   return s;
 }
 
@@ -64,7 +66,9 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   // The formulas are ibl/shared/split_sum.h (the viewer's shader calls the same); only the
   // three lookups are the CPU's own: seam-aware trilinear and bilinear, the DFG table.
   const shared::SplitSumSwitches s = splitSumSwitches(o);
-  const shared::SplitSumLookup look = shared::splitSumLookup(p.normal, view, p.roughness, s);
+  shared::SplitSumLookup look = shared::splitSumLookup(p.normal, view, p.roughness, s);
+  if (p.bentNormal != glm::vec3(0.0f))
+    look = shared::bendDiffuseLookup(look, p.bentNormal, view, p.roughness, s);
   const glm::vec3 dfg = sampleDfgLut(bake.dfg, look.NoV, p.roughness);
   glm::vec3 prefiltered(0.0f), irradiance(0.0f);
   // Local probes first (smallest influence first), the distant environment for the rest.
@@ -177,6 +181,16 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
     withMaps.shadowMaps = &maps;
     return renderScene(scene, camera, bake, bakeOptions, withMaps, progress);
   }
+  if (o.mode == RenderMode::SplitSum && o.screenAmbientOcclusion.enabled && !o.screenOcclusion) {
+    // From the camera's view of the scene, as a rasterizer's depth and normal buffers hold it.
+    const auto [lo, hi] = scene.bounds();
+    const ScreenOcclusion occlusion = screenSpaceAmbientOcclusion(
+        renderViewBuffers(scene, camera), camera,
+        ambientOcclusionParameters(o.screenAmbientOcclusion, glm::length(hi - lo)));
+    RenderOptions withOcclusion = o;
+    withOcclusion.screenOcclusion = &occlusion;
+    return renderScene(scene, camera, bake, bakeOptions, withOcclusion, progress);
+  }
   return renderRays(
       scene, camera.width, camera.height,
       [&](glm::vec2 pixel) { return camera.generateRay(pixel.x, pixel.y); }, bake, bakeOptions, o,
@@ -207,6 +221,10 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
     ownMaps = buildShadowMaps(tracer, {lo, hi}, scene.lights, nullptr, o.shadowSettings);
     maps = &ownMaps;
   }
+  const ScreenOcclusion* screen = o.mode == RenderMode::SplitSum ? o.screenOcclusion : nullptr;
+  if (screen && (screen->width != width || screen->height != height))
+    fail("render", fmt::format("the screen-space occlusion is of {} x {} pixels, the image {} x {}",
+                               screen->width, screen->height, width, height));
   if (maps && maps->casters.size() != scene.lights.size())
     fail("render", fmt::format("the shadow maps are of {} lights, the scene has {}",
                                maps->casters.size(), scene.lights.size()));
@@ -256,6 +274,12 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
           if (o.mode == RenderMode::SplitSum) {
             if (o.aoRays > 0 && !p.occlusionTexture)
               p.occlusion = ambientOcclusion(tracer, p, o.aoRays, aoDistance, rng);
+            if (screen) {
+              // Lagarde & de Rousiers 2014, 4.10.3: the smaller of the material's and the screen's.
+              const std::size_t i = static_cast<std::size_t>(y) * width + x;
+              p.occlusion = std::min(p.occlusion, screen->visibility[i]);
+              p.bentNormal = screen->bentNormals[i];
+            }
             c = shadeSplitSum(p, -ray.direction, bake, bakeOptions, o);
             if (!scene.lights.empty()) {
               // The layer below the sheen is scaled as for the environment.

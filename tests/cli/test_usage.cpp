@@ -103,6 +103,12 @@ std::vector<Misuse> sceneMisuses() {
       {"--no-parallax", "--no-parallax=maybe", 2, "--no-parallax"},
       {"--no-distance-roughness", "--no-distance-roughness=maybe", 2, "--no-distance-roughness"},
       {"--ao", "--ao -1", 2, "--ao: must be from 0 to 4096, not -1"},
+      {"--ssao", "--ssao maybe", 2, "--ssao"},
+      {"--ssao", "--ssao on --ao 4", 2, "--ssao: on contradicts --ao 4"},
+      {"--ssao-radius", "--ssao-radius 0", 2, "--ssao-radius: must be positive, not 0"},
+      {"--ssao-quality", "--ssao-quality ultra", 2, "--ssao-quality"},
+      {"--specular-micro-occlusion", "--specular-micro-occlusion=maybe", 2,
+       "--specular-micro-occlusion"},
       {"--shadows", "--shadows maybe", 2, "--shadows: 'maybe' is not none, map or ray"},
       {"--shadow-map-size", "--shadow-map-size 1000", 2, "--shadow-map-size"},
       {"--shadow-cascades", "--shadow-cascades 5", 2, "--shadow-cascades: must be from 1 to 4"},
@@ -116,6 +122,8 @@ std::vector<Misuse> sceneMisuses() {
       {"--iso", "--iso 0", 2, "--iso: must be positive, not 0"},
       {"--exposure-compensation", "--exposure-compensation inf", 2, "is not a finite number"},
       {"--tonemap", "--tonemap reinhard", 2, "--tonemap"},
+      {"--bloom", "--bloom bright", 2, "--bloom: 'bright' is not a number"},
+      {"--bloom", "--bloom 40", 2, "--bloom: 40 stops is beyond any exposure"},
   };
 }
 

@@ -338,6 +338,45 @@ TEST(Viewer, ShadowsMatchTheCpu) {
   }
 }
 
+// Screen-space ambient occlusion (GTAO over the view buffers, min with the material's, the
+// diffuse through the multiple-bounce fit and along the bent normal) and specular
+// micro-occlusion, as the CPU's split sum computes them from its own view buffers.
+TEST(Viewer, ScreenSpaceOcclusionMatchesTheCpu) {
+  const Scene scene = blockersOverFloor(shadowStudyLight(LightType::Point));
+  RenderOptions o;
+  o.spp = 1;
+  o.screenAmbientOcclusion.enabled = true;
+  o.screenAmbientOcclusion.radius = 0.5f;
+  Camera perspective = lookingAt({2.5f, 2.5f, 3.5f}, 192, 128);
+  perspective.at = {0.0f, 0.3f, 0.0f};
+  for (const Camera& camera : {floorCamera(128), perspective}) {
+    const Comparison c = renderBoth(scene, camera, o);
+    std::printf("%s: mean %.4f %%, over 1 %% %.3f %%\n",
+                camera.perspective ? "perspective" : "from above", 100.0 * c.meanRelative,
+                100.0 * c.fractionOver1);
+    EXPECT_LT(c.meanRelative, 1e-3);
+    EXPECT_LT(c.fractionOver1, 5e-3);
+  }
+  {
+    // The occlusion is there: near the blockers the floor darkens.
+    gpu::SceneRenderer viewer(graphicsContext(), scene, sunsetBake().bake, sunsetBake().options);
+    RenderOptions open = o;
+    open.screenAmbientOcclusion.enabled = false;
+    const Comparison c = compare(viewer.render(perspective, o), viewer.render(perspective, open));
+    EXPECT_GT(c.meanRelative, 0.003);  // measured 0.5 %, over the whole image
+  }
+  // A dark metal (F0 0.01): micro-occlusion halves its grazing reflection.
+  Material dark;
+  dark.baseColor = glm::vec3(0.01f);
+  dark.metallic = 1.0f;
+  dark.roughness = 0.3f;
+  RenderOptions m;
+  m.spp = 1;
+  m.specularMicroOcclusion = true;
+  const Comparison c = renderBoth(makeSphereScene(dark), lookingAt({0.5f, 1.0f, 4.0f}, 96, 96), m);
+  EXPECT_LT(c.meanRelative, 1e-3);
+}
+
 // Time of day: a viewer made with one sky, given another sky's bake (baked on the viewer's own
 // device) and sun, draws what a viewer made with the second sky from the start draws.
 TEST(Viewer, NewSkyAndSunReplaceTheEnvironment) {
@@ -676,11 +715,12 @@ TEST(Viewer, CliWritesAScreenshot) {
   const Image shot = readImageFile(png).levels[0][0];
   EXPECT_EQ(shot.width, 96);
   EXPECT_EQ(shot.height, 48);
-  // The same view from `ibl render` (pixel centers both), through the same exposure and curve.
+  // The same view from `ibl render` (pixel centers both), through the same exposure, bloom and
+  // curve (the viewer's screenshots bloom by default, `ibl render` when asked).
   const auto cpu = dir / "cpu.png";
-  r = runIbl("render grid --size 96x48 --spp 1 -q -o " + quote(cpu) + bake);
+  r = runIbl("render grid --size 96x48 --spp 1 -q --bloom 1 -o " + quote(cpu) + bake);
   ASSERT_EQ(r.status, 0) << r.output;
-  r = runIbl("view grid --size 96x48 --spp 1 -q --screenshot " + quote(png) + bake);
+  r = runIbl("view grid --size 96x48 --spp 1 -q --bloom 1 --screenshot " + quote(png) + bake);
   ASSERT_EQ(r.status, 0) << r.output;
   const Image a = readImageFile(png).levels[0][0], b = readImageFile(cpu).levels[0][0];
   ASSERT_EQ(a.pixels.size(), b.pixels.size());

@@ -82,6 +82,36 @@ TEST(Render, WhiteFurnace) {
   }
 }
 
+TEST(Render, SpecularMicroOcclusionDarkensTheGrazingReflection) {
+  // A furnace of radiance 1 and a metal of F0 = 0.006, below any real material's: with
+  // micro-occlusion f90 = saturate(50 dot(F0, 0.33)) = 0.297, and single scattering reflects
+  // F0 A + f90 B (A, B by quadrature at the pixel's n.v), in both modes; without, F0 A + B.
+  const Baked b = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 32);
+  const int n = 33;  // pixels small enough for n.v to vary little across each
+  Camera cam = sphereCamera(n);
+  cam.height = 1;
+  const float f0 = 0.006f, r = 0.5f, f90 = 50.0f * f0 * 0.99f;
+  const Scene s = sphere(glm::vec3(f0), 1.0f, r);
+  for (bool micro : {false, true}) {
+    RenderOptions o;
+    o.multipleScattering = false;
+    o.specularMicroOcclusion = micro;
+    o.spp = 1;
+    const RenderResult split = renderScene(s, cam, b.result, b.options, o);
+    o.mode = RenderMode::Reference;
+    o.spp = 32768;
+    const RenderResult ref = renderScene(s, cam, b.result, b.options, o);
+    for (int x : {16, 30}) {  // n.v 1 and 0.53: B grows toward the rim
+      const float d = (x + 0.5f) / n * 2.0f - 1.0f;
+      const float NoV = std::sqrt(1.0f - d * d);
+      const glm::vec3 e = integrateDfg(NoV, r, 8192);
+      const float expected = f0 * e.x + (micro ? f90 : 1.0f) * e.y;
+      EXPECT_NEAR(split.color.at(x, 0).y, expected, 0.04f * expected) << micro << " x " << x;
+      EXPECT_NEAR(ref.color.at(x, 0).y, expected, 0.06f * expected) << micro << " x " << x;
+    }
+  }
+}
+
 TEST(Render, MirrorReflectsTheEnvironment) {
   const Baked b = bakeOf(smoothSky, 128);
   const int n = 9;

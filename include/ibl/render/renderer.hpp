@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ibl/bake/bake.hpp"
+#include "ibl/render/ambient_occlusion.hpp"
 #include "ibl/render/camera.hpp"
 #include "ibl/render/scene.hpp"
 #include "ibl/render/shadows.hpp"
@@ -33,6 +34,9 @@ struct RenderOptions {
   bool multipleScattering = true;  // energy compensation (both modes: the same material)
   bool dominantDirections = true;  // split sum: Frostbite's dominant directions
   bool specularOcclusion = true;   // split sum: from the occlusion texture
+  // Both modes: f90 = saturate(50 dot(F0, 0.33)) in the Fresnel (shared::fresnelF90), for the
+  // cavities a low F0 stands for; off (glTF's Fresnel, f90 = 1) by default.
+  bool specularMicroOcclusion = false;
   IrradianceSource irradiance = IrradianceSource::Cube;
   AreaLightModel areaLights = AreaLightModel::Ltc;  // split sum (measured closer: docs/lights.md)
   // The sheen lobe's visibility: the split sum's lights, the reference. A split sum must use
@@ -64,6 +68,12 @@ struct RenderOptions {
   // aoDistance; 0: a tenth of the scene's size) where the material has no occlusion texture.
   int aoRays = 0;
   float aoDistance = 0.0f;
+  // Split sum: screen-space ambient occlusion (ambient_occlusion.hpp), computed by renderScene
+  // from its camera's view buffers, min with the material's occlusion, the diffuse through the
+  // multiple-bounce fit and read along the bent normal.
+  ScreenAmbientOcclusionSettings screenAmbientOcclusion;
+  // Split sum: that occlusion per pixel, computed beforehand (renderScene fills it in).
+  const ScreenOcclusion* screenOcclusion = nullptr;
   bool environmentLight = true;       // false (--env none): the scene's lights alone
   bool backgroundEnvironment = true;  // else backgroundColor
   glm::vec3 backgroundColor{0.0f};
@@ -107,6 +117,7 @@ struct SurfacePoint {
   float metallic;
   float roughness;  // perceptual
   float occlusion = 1.0f;
+  glm::vec3 bentNormal{0.0f};  // world, unit: the irradiance's direction (0: the normal)
   bool occlusionTexture =
       false;  // the occlusion comes from the material (else --ao may compute it)
   glm::vec3 emissive{0.0f};

@@ -47,6 +47,14 @@ IBL_FN vec3 fresnelSchlick(vec3 f0, float f90, float VoH) {
   return f0 + (vec3(f90) - f0) * schlickWeight(VoH);
 }
 
+// Specular micro-occlusion (Schüler 2009, "An Efficient and Physically Plausible Real-Time
+// Shading Model", as Lagarde & de Rousiers 2014 section 4.10.3 give it): no real material has
+// F0 below 0.02, so a lower one stands for cavities too small to model, which hide the grazing
+// reflection too: f90 = saturate(50 dot(F0, 0.33)). Off, f90 = 1 (glTF's Fresnel).
+IBL_FN float fresnelF90(vec3 f0, bool microOcclusion) {
+  return microOcclusion ? clamp(50.0f * dot(f0, vec3(0.33f)), 0.0f, 1.0f) : 1.0f;
+}
+
 // Burley's diffuse with Frostbite's energy renormalization (Frostbite listing 1), without the
 // 1/pi: 1 for a smooth surface at normal incidence; perceptual roughness.
 IBL_FN float disneyDiffuseRenormalized(float NoV, float NoL, float LoH, float roughness) {

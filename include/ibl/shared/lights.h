@@ -631,7 +631,8 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
   if (s.terms != 1 && inc.specularLobeFraction > 0.0f) {
     // The LTC's fraction of the lobe, times the lobe's directional albedo with Schlick's Fresnel
     // (the DFG table's F0 A + B, as the split sum scales the prefiltered map).
-    vec3 specular = (f0 * dfg.x + vec3(dfg.y)) * inc.specularLobeFraction;
+    vec3 specular = (f0 * dfg.x + vec3(fresnelF90(f0, s.specularMicroOcclusion) * dfg.y)) *
+                    inc.specularLobeFraction;
     if (s.multipleScattering) specular *= multipleScatteringCompensation(f0, dfg);
     color += specular;
   } else if (s.terms != 1 && inc.specularIlluminance > 0.0f) {
@@ -640,7 +641,9 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
     float NoL = max(dot(n, l), 1e-4f);
     float dv = ggxDistribution(clamp(dot(n, h), 0.0f, 1.0f), alpha) * inc.specularNormalization *
                smithGgxCorrelatedVisibility(NoV, NoL, alpha);
-    vec3 specular = dv * fresnelSchlick(f0, 1.0f, max(dot(v, h), 0.0f)) * inc.specularIlluminance;
+    vec3 specular =
+        dv * fresnelSchlick(f0, fresnelF90(f0, s.specularMicroOcclusion), max(dot(v, h), 0.0f)) *
+        inc.specularIlluminance;
     if (s.multipleScattering) specular *= multipleScatteringCompensation(f0, dfg);
     color += specular;
   }

@@ -18,13 +18,15 @@ IBL_BEGIN
 
 // The shading switches (RenderOptions on the CPU, the frame's uniforms on the GPU).
 struct SplitSumSwitches {
-  int terms;                // 0 both, 1 diffuse only, 2 specular only
-  bool multipleScattering;  // Kulla & Conty 2017 energy compensation
-  bool dominantDirections;  // Frostbite listings 22 and 23
-  bool specularOcclusion;   // Frostbite listing 26
-  bool disneyDiffuse;       // Frostbite's renormalized Disney diffuse, else Lambert
-  bool ltcAreaLights;       // area lights through LTCs (lights.h), else Frostbite's
-  int sheenVisibility;      // the sheen lobe's: kSheenVisibilityCharlie or ...Neubelt (brdf.h)
+  int terms;                    // 0 both, 1 diffuse only, 2 specular only
+  bool multipleScattering;      // Kulla & Conty 2017 energy compensation
+  bool dominantDirections;      // Frostbite listings 22 and 23
+  bool specularOcclusion;       // Frostbite listing 26
+  bool disneyDiffuse;           // Frostbite's renormalized Disney diffuse, else Lambert
+  bool ltcAreaLights;           // area lights through LTCs (lights.h), else Frostbite's
+  int sheenVisibility;          // the sheen lobe's: kSheenVisibilityCharlie or ...Neubelt (brdf.h)
+  bool specularMicroOcclusion;  // f90 from F0 (fresnelF90 in brdf.h), else 1
+  bool multiBounceOcclusion;    // the diffuse's occlusion through multiBounceVisibility
 };
 
 // The material at the point: glTF metallic-roughness, linear base color, perceptual roughness.
@@ -69,6 +71,16 @@ IBL_FN vec3 multipleScatteringCompensation(vec3 f0, vec2 dfg) {
   return vec3(1.0f) + f0 * (1.0f / (dfg.x + dfg.y) - 1.0f);
 }
 
+// GTAO's multiple-bounce approximation (Jimenez et al. 2016, its cubic fit in the albedo): the
+// light that surfaces of albedo `albedo` around the point reflect back into the occluded part gives
+// back some of what visibility `v` takes; per channel, never below v.
+IBL_FN vec3 multiBounceVisibility(float v, vec3 albedo) {
+  vec3 a = 2.0404f * albedo - vec3(0.3324f);
+  vec3 b = -4.7951f * albedo + vec3(0.6417f);
+  vec3 c = 2.7552f * albedo + vec3(0.6903f);
+  return max(vec3(v), ((v * a + b) * v + c) * v);
+}
+
 // Where the maps are looked up for a point with unit normal n seen from unit direction v.
 struct SplitSumLookup {
   float NoV;
@@ -88,6 +100,17 @@ IBL_FN SplitSumLookup splitSumLookup(vec3 n, vec3 v, float roughness, SplitSumSw
   return look;
 }
 
+// The lookup with the irradiance read along a bent normal (the unoccluded directions' mean,
+// ambient_occlusion.h) instead of the normal, as Lagarde & de Rousiers 2014 (4.10.3) advise.
+IBL_FN SplitSumLookup bendDiffuseLookup(SplitSumLookup look, vec3 bentNormal, vec3 v,
+                                        float roughness, SplitSumSwitches s) {
+  look.diffuseDirection = bentNormal;
+  if (s.dominantDirections && s.disneyDiffuse)
+    look.diffuseDirection =
+        diffuseDominantDirection(bentNormal, v, look.NoV, alphaFromRoughness(roughness));
+  return look;
+}
+
 // The radiance the point reflects (plus its emission), from the looked-up values: dfg = the
 // DFG table's (A, B, Disney diffuse), prefiltered = the specular map, irradiance = E / pi.
 IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefiltered,
@@ -97,7 +120,7 @@ IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefi
   vec3 f0 = mix(vec3(0.04f), m.baseColor, m.metallic);
   vec3 color = m.emissive;
   if (s.terms != 1) {
-    vec3 specular = prefiltered * (f0 * dfg.x + dfg.y);
+    vec3 specular = prefiltered * (f0 * dfg.x + fresnelF90(f0, s.specularMicroOcclusion) * dfg.y);
     if (s.multipleScattering) specular *= multipleScatteringCompensation(f0, vec2(dfg.x, dfg.y));
     if (s.specularOcclusion && m.occlusion < 1.0f)
       specular *= specularOcclusion(NoV, m.occlusion, alpha);
@@ -105,7 +128,9 @@ IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefi
   }
   if (s.terms != 2) {
     float fd = s.disneyDiffuse ? dfg.z : 1.0f;
-    color += diffuseColor * irradiance * fd * m.occlusion;
+    vec3 occlusion = s.multiBounceOcclusion ? multiBounceVisibility(m.occlusion, diffuseColor)
+                                            : vec3(m.occlusion);
+    color += diffuseColor * irradiance * fd * occlusion;
   }
   return color;
 }

@@ -1,0 +1,113 @@
+// The surface a fragment of the viewer's meshes shows, as surfaceAt (src/render/ray_tracer.cpp)
+// finds it: spheres ray traced in their bounding polyhedra, the material's textures and normal
+// map through ibl/shared/material.h, the side the camera sees. Fragments the material does not
+// cover are discarded. Needs view/frame.glsl, the mesh's inputs (view/scene.vert's outputs) and
+// view/material.glsl.
+
+// Standard sample locations (Vulkan, "Multisampling"), in pixel units.
+vec2 samplePosition(int count, int i) {
+  if (count == 2) return i == 0 ? vec2(0.75) : vec2(0.25);
+  if (count == 4) {
+    const vec2 p4[4] = vec2[4](vec2(0.375, 0.125), vec2(0.875, 0.375), vec2(0.125, 0.625),
+                               vec2(0.625, 0.875));
+    return p4[i];
+  }
+  if (count == 8) {
+    const vec2 p8[8] = vec2[8](vec2(0.5625, 0.3125), vec2(0.4375, 0.6875), vec2(0.8125, 0.5625),
+                               vec2(0.3125, 0.1875), vec2(0.1875, 0.8125), vec2(0.0625, 0.4375),
+                               vec2(0.6875, 0.9375), vec2(0.9375, 0.0625));
+    return p8[i];
+  }
+  return vec2(0.5);
+}
+
+// A sphere ray traced in its bounding polyhedron, as the CPU renderer intersects it: the samples
+// the sphere covers, and the hit point of the pixel's center ray (or of a covered sample's).
+// Returns false when the sphere covers none of the pixel's samples.
+bool traceSphere(out vec3 position, out vec3 normal) {
+  Ray center = primaryRay(gl_FragCoord.xy);
+  float t = intersectSphere(center, material.sphere);
+  Ray shaded = center;
+  int count = frame.models.z;
+  if (count > 1) {
+    vec2 corner = floor(gl_FragCoord.xy);
+    int mask = 0;
+    for (int i = 0; i < count; ++i) {
+      Ray r = primaryRay(corner + samplePosition(count, i));
+      float ti = intersectSphere(r, material.sphere);
+      if (ti < 0.0) continue;
+      mask |= 1 << i;
+      if (t < 0.0) {
+        t = ti;
+        shaded = r;
+      }
+    }
+    gl_SampleMask[0] = mask;
+  } else {
+    gl_SampleMask[0] = -1;
+  }
+  if (t < 0.0) return false;
+  position = shaded.origin + t * shaded.direction;
+  normal = normalize(position - material.sphere.xyz);
+  vec4 clip = frame.viewProjection * vec4(position, 1.0);
+  gl_FragDepth = clip.z / clip.w;
+  return true;
+}
+
+struct ShadedSurface {
+  vec3 position;     // world
+  vec3 normal;       // the shading normal, facing the camera
+  vec3 view;         // unit, toward the camera
+  SplitSumMaterial material;
+  vec4 sheen;        // KHR_materials_sheen: color, roughness
+};
+
+ShadedSurface fragmentSurface() {
+  vec3 n = normalize(worldNormal);
+  vec3 position = worldPosition;
+  if (material.sphere.w > 0.0) {
+    if (!traceSphere(position, n)) discard;
+  } else {
+    gl_SampleMask[0] = -1;
+    gl_FragDepth = gl_FragCoord.z;
+  }
+  vec3 baseColor = material.baseColorMetallic.rgb;
+  float metallic = material.baseColorMetallic.a;
+  float roughness = material.emissiveRoughness.a;
+  vec3 emissive = material.emissiveRoughness.rgb;
+  float occlusion = 1.0;
+  uint mask = material.textureMask;
+  // sRGB textures are decoded before filtering (their formats), as Texture::sample does.
+  if ((mask & 1u) != 0u) baseColor *= texture(baseColorTexture, texCoordOf(1u)).rgb;
+  if (!materialCovers()) discard;
+  if ((mask & 2u) != 0u) {
+    vec2 mr = applyMetallicRoughnessTexel(metallic, roughness,
+                                          texture(metallicRoughnessTexture, texCoordOf(2u)));
+    metallic = mr.x;
+    roughness = mr.y;
+  }
+  if ((mask & 8u) != 0u)
+    occlusion = occlusionFromTexel(material.scales.y, texture(occlusionTexture, texCoordOf(8u)));
+  if ((mask & 16u) != 0u) emissive *= texture(emissiveTexture, texCoordOf(16u)).rgb;
+  vec4 sheen = material.sheen;
+  if ((mask & 32u) != 0u) sheen.rgb *= texture(sheenColorTexture, texCoordOf(32u)).rgb;
+  if ((mask & 64u) != 0u) sheen.w *= texture(sheenRoughnessTexture, texCoordOf(64u)).a;
+  if ((mask & 4u) != 0u)
+    n = applyNormalMap(n, worldTangent, texture(normalTexture, texCoordOf(4u)), material.scales.x);
+  vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
+                                           : normalize(position - frame.cameraPosition.xyz);
+  if (dot(n, ray) > 0.0) n = -n;  // shade the side the camera sees
+  ShadedSurface surface;
+  SplitSumMaterial m;
+  m.baseColor = baseColor;
+  m.metallic = clamp(metallic, 0.0, 1.0);
+  m.roughness = clamp(roughness, 0.0, 1.0);
+  m.occlusion = occlusion;
+  m.emissive = emissive;
+  surface.position = position;
+  surface.normal = n;
+  surface.view = -ray;
+  surface.material = m;
+  surface.sheen = sheen;
+  return surface;
+}

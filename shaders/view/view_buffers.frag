@@ -1,0 +1,29 @@
+#version 450
+// The view buffers of the screen-space ambient occlusion: each pixel's surface (the one the
+// scene pass shades, view/surface.glsl) as its position and normal in the camera's view space
+// (x right, y up, z forward), as the CPU's renderViewBuffers (src/render/ambient_occlusion.cpp)
+// computes them at the pixel centers.
+#extension GL_GOOGLE_include_directive : require
+#include "view/frame.glsl"
+#include "ibl/shared/split_sum.h"
+layout(location = 0) in vec3 worldPosition;
+layout(location = 1) in vec3 worldNormal;
+layout(location = 2) in vec4 worldTangent;
+layout(location = 3) in vec2 texCoord0;
+layout(location = 4) in vec2 texCoord1;
+layout(location = 0) out vec4 outPosition;
+layout(location = 1) out vec4 outNormal;
+#include "view/material.glsl"
+#include "view/surface.glsl"
+
+// World to the camera's view space.
+vec3 toView(vec3 w) {
+  return vec3(dot(w, normalize(frame.cameraRight.xyz)), dot(w, normalize(frame.cameraUp.xyz)),
+              dot(w, frame.cameraForward.xyz));
+}
+
+void main() {
+  ShadedSurface surface = fragmentSurface();
+  outPosition = vec4(toView(surface.position - frame.cameraPosition.xyz), 1.0);
+  outNormal = vec4(toView(surface.normal), 0.0);
+}

@@ -1,0 +1,118 @@
+// Bloom (render/bloom.hpp): energy conservation, exposure-relative threshold, the width of its
+// kernel, against sums and closed forms computed here.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "ibl/math/color.hpp"
+#include "ibl/render/bloom.hpp"
+#include "ibl/render/camera.hpp"
+
+using namespace ibl;
+
+namespace {
+
+glm::dvec3 total(const Image& image) {
+  glm::dvec3 sum(0.0);
+  for (const glm::vec3& p : image.pixels) sum += glm::dvec3(p);
+  return sum;
+}
+
+// A dim gradient with a bright emitter of 3 x 3 pixels off center: the emitter far above the
+// threshold, everything else below it.
+Image emitterScene(int width, int height, float emitter) {
+  Image image(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      image.at(x, y) =
+          glm::vec3(0.2f + 0.3f * static_cast<float>(x) / static_cast<float>(width), 0.3f, 0.25f);
+  for (int y = 40; y < 43; ++y)
+    for (int x = 70; x < 73; ++x)
+      image.at(x, y) = glm::vec3(emitter, 0.8f * emitter, 0.5f * emitter);
+  return image;
+}
+
+}  // namespace
+
+TEST(Bloom, KeepsTheImagesPower) {
+  // Per channel, the sums before and after agree (the light is moved, not made), at sizes whose
+  // halvings are odd too.
+  for (auto [w, h] : {std::pair{160, 120}, std::pair{157, 93}}) {
+    const Image scene = emitterScene(w, h, 5000.0f);
+    const Image bloomed = applyBloom(scene, 0.0f, 3.0f);
+    const glm::dvec3 before = total(scene), after = total(bloomed);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(after[c] / before[c], 1.0, 1e-4) << w << " " << c;
+    // And something moved: the emitter lost light to its surroundings.
+    EXPECT_LT(bloomed.at(71, 41).x, 0.5f * scene.at(71, 41).x);
+    EXPECT_GT(bloomed.at(71, 60).x, scene.at(71, 60).x + 1.0f);
+  }
+}
+
+TEST(Bloom, BelowTheThresholdNothingChanges) {
+  // Threshold at EV100 0 and EC 3: 2^(0 + 3 - 3) = 1 (luminance). An image whose every pixel is
+  // below it is returned as it was; a pixel above it keeps exactly its threshold's share where
+  // nothing else spreads onto it... as far as its own spread allows: at least that share.
+  const Image dim = emitterScene(64, 64, 0.5f);
+  for (const glm::vec3& p : dim.pixels) ASSERT_LT(luminance(p), 1.0f);
+  const Image same = applyBloom(dim, 0.0f, 3.0f);
+  for (std::size_t i = 0; i < dim.pixels.size(); ++i) ASSERT_EQ(same.pixels[i], dim.pixels[i]);
+  Image single(64, 64);
+  single.at(32, 32) = glm::vec3(100.0f);
+  const Image b = applyBloom(single, 0.0f, 3.0f);
+  // Luminance 100 > 1: 99 % of it spreads, 1 % stays, plus what the kernel puts back there.
+  EXPECT_GE(b.at(32, 32).x, 1.0f);
+  EXPECT_LT(b.at(32, 32).x, 100.0f * 0.5f);
+}
+
+TEST(Bloom, TheThresholdFollowsTheExposure) {
+  // The same scene 8 times brighter, exposed 3 stops higher, blooms 8 times brighter: what looks
+  // alike blooms alike (the threshold is 2^(EV100 + EC - 3)).
+  const Image scene = emitterScene(96, 80, 300.0f);
+  Image brighter = scene;
+  for (glm::vec3& p : brighter.pixels) p *= 8.0f;
+  const Image a = applyBloom(scene, 2.0f, 2.0f), b = applyBloom(brighter, 5.0f, 2.0f);
+  for (std::size_t i = 0; i < a.pixels.size(); i += 7)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_NEAR(b.pixels[i][c], 8.0f * a.pixels[i][c], 1e-4f * (1.0f + 8.0f * a.pixels[i][c]));
+  // At one exposure the threshold is what it says: at EV100 2 and EC 2, luminance 2. A bright
+  // left half just below it leaves the dark right half dark; just above it, light crosses over.
+  for (float level : {1.98f, 2.02f}) {
+    Image half(32, 32);
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 16; ++x) half.at(x, y) = glm::vec3(level);
+    const float crossed = applyBloom(half, 2.0f, 2.0f).at(17, 16).x;
+    if (level < 2.0f) {
+      EXPECT_EQ(crossed, 0.0f);
+    } else {
+      EXPECT_GT(crossed, 0.0f);
+    }
+  }
+}
+
+TEST(Bloom, TheKernelIsWideAndRound) {
+  // One bright pixel in the middle of 512 x 512: the spread light falls off with distance alike
+  // in every direction, and the widest scales carry it far: the kernel's scales (2 to 256
+  // pixels, weighted alike) put about half of it beyond 16 pixels.
+  const int n = 512;
+  Image single(n, n);
+  single.at(n / 2, n / 2) = glm::vec3(1e6f);
+  const Image b = applyBloom(single, 0.0f, 0.0f);
+  EXPECT_EQ(bloomLevels(n, n), 8);
+  double near = 0.0, far = 0.0;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const double r = std::hypot(x - n / 2, y - n / 2);
+      (r <= 16.0 ? near : far) += b.at(x, y).x;
+    }
+  const double share = far / (near + far);
+  RecordProperty("share_beyond_16_px", std::to_string(share));
+  EXPECT_GT(share, 0.3);
+  EXPECT_LT(share, 0.8);
+  for (int d : {4, 16, 64}) {
+    const float right = b.at(n / 2 + d, n / 2).x, left = b.at(n / 2 - d, n / 2).x;
+    const float down = b.at(n / 2, n / 2 + d).x;
+    EXPECT_NEAR(left / right, 1.0f, 0.15f) << d;
+    EXPECT_NEAR(down / right, 1.0f, 0.15f) << d;
+    EXPECT_GT(b.at(n / 2 + d / 2, n / 2).x, right) << d;  // decreasing outward
+  }
+}
