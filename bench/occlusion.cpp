@@ -4,8 +4,8 @@
 // (what `ibl` did before), with GTAO at each quality, and with ray-traced occlusion (--ao, the
 // screen-space term's own reference); and the visibility GTAO computes against the ray-traced
 // visibility of the same radius. Also the time of GTAO on the CPU.
-// Usage: ibl_occlusion [reference spp, default 512] [park: under data/hdri/park.exr, else an
-// overcast sky]
+// Usage: ibl_occlusion [reference spp, default 512] [overcast (default), park (under
+// data/hdri/park.exr), park-sun (its sun extracted as a light with shadow maps)]
 #include <chrono>
 #include <cstdlib>
 #include <string>
@@ -13,6 +13,7 @@
 #include <fmt/core.h>
 
 #include "ibl/core/stats.hpp"
+#include "ibl/env/sun_extraction.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/render/ambient_occlusion.hpp"
@@ -65,15 +66,22 @@ double meanRelative(const RenderResult& a, const RenderResult& reference) {
 
 int main(int argc, char** argv) {
   const int spp = argc > 1 ? std::atoi(argv[1]) : 512;
-  const Scene scene = cornerScene();
+  Scene scene = cornerScene();
   const Camera camera = cornerCamera();
   const auto [lo, hi] = scene.bounds();
   const float radius = 0.1f * glm::length(hi - lo);  // the default
-  const bool real = argc > 2 && std::string(argv[2]) == "park";
-  const Baked park = real ? [] {
+  const std::string sky = argc > 2 ? argv[2] : "overcast";
+  const bool real = sky == "park" || sky == "park-sun";
+  const Baked park = real ? [&] {
     Baked b;
     b.options.specular.size = 128;
-    b.result = bakeEnvironment(loadEnvironment(hdriPath("park").string()).environment, b.options);
+    Environment env = loadEnvironment(hdriPath("park").string()).environment;
+    if (sky == "park-sun") {
+      // The sun taken out of the panorama and lit as a light with shadows (Frostbite 4.9.2).
+      const std::optional<ExtractedSun> sun = extractSun(env.equirect);
+      if (sun) scene.lights.push_back(sun->light);
+    }
+    b.result = bakeEnvironment(env, b.options);
     return b;
   }()
                           : bakeOf([](glm::vec3 d) {
@@ -87,6 +95,7 @@ int main(int argc, char** argv) {
   const RenderResult reference = renderScene(scene, camera, park.result, park.options, o);
   o.mode = RenderMode::SplitSum;
   o.spp = 4;
+  o.realTimeShadows = ShadowMode::Map;
   const RenderResult none = renderScene(scene, camera, park.result, park.options, o);
   const double base = meanRelative(none, reference);
   if (const char* dump = std::getenv("IBL_OCCLUSION_IMAGES")) {
@@ -103,7 +112,10 @@ int main(int argc, char** argv) {
       "A sphere and a box in a room's corner under {}, {} x {}; the split sum against the "
       "path tracer (4 bounces, {} spp), mean relative error over the pixels on the model; "
       "the default radius is {:.2f} m\n\n",
-      real ? "data/hdri/park.exr" : "a CIE overcast sky", camera.width, camera.height, spp, radius);
+      sky == "park-sun" ? "data/hdri/park.exr, its sun extracted as a light with shadows"
+      : real            ? "data/hdri/park.exr"
+                        : "a CIE overcast sky",
+      camera.width, camera.height, spp, radius);
   fmt::print(
       "| occlusion | radius | mean relative error | share of the error without occlusion "
       "|\n");
@@ -135,6 +147,7 @@ int main(int argc, char** argv) {
   // pixel's value over the albedo is the visibility (the multiple-bounce fit gives nothing back
   // at that albedo).
   Scene furnace = scene;
+  furnace.lights.clear();
   for (Material& m : furnace.materials) {
     m.baseColor = glm::vec3(0.001f);
     m.metallic = 0.0f;
