@@ -138,9 +138,9 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
       ->check(finiteNumber())
       ->capture_default_str();
   cmd->add_option("--bloom", o.bloom,
-                  "Bloom: the light EC stops above the exposure's middle grey spreads over a wide "
-                  "kernel, the image's total power unchanged; off: none (default: off for `ibl "
-                  "render`, 3 for `ibl view`)");
+                  "Bloom: the light EC stops above the average luminance the exposure is set for "
+                  "spreads over a wide kernel, the image's total power unchanged; off: none "
+                  "(default: off for `ibl render`, 3 for `ibl view`'s screenshots)");
   cmd->add_option("--tonemap", o.tonemap, "none, aces or filmic")
       ->check(CLI::IsMember({"none", "aces", "filmic"}))
       ->capture_default_str();

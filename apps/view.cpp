@@ -18,7 +18,8 @@ namespace ibl::cli {
 
 namespace {
 
-// The display's bloom unless --bloom says otherwise: light 3 stops above middle grey spreads.
+// The screenshots' bloom unless --bloom says otherwise: light 3 stops above the average
+// luminance the exposure is set for spreads (the live window is not bloomed yet).
 constexpr float kViewBloom = 3.0f;
 
 struct ViewCliOptions {

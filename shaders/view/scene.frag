@@ -16,14 +16,15 @@ layout(location = 0) out vec4 outColor;
 #include "view/surface.glsl"
 
 void main() {
-  ShadedSurface surface = fragmentSurface();
+  ShadedSurface surface = fragmentSurface(frame.models.z);
   vec3 bentNormal = vec3(0.0);
   if (frame.ambientOcclusion.z > 0.0) {
     // Screen-space ambient occlusion (view/gtao.frag) at this pixel: min with the material's
     // (Lagarde & de Rousiers 2014, 4.10.3), and the bent normal for the irradiance.
     vec4 ao = texelFetch(screenOcclusion, ivec2(gl_FragCoord.xy), 0);
     surface.material.occlusion = min(surface.material.occlusion, ao.x);
-    bentNormal = ao.yzw;
+    // The pixel's bent normal, unless it is another surface's (an edge, with multisampling).
+    if (dot(ao.yzw, surface.normal) > 0.0) bentNormal = ao.yzw;
   }
   vec3 color = shadeSplitSum(surface.position, gl_FragCoord.xy, surface.normal, surface.view,
                              surface.material, surface.sheen, bentNormal);

@@ -23,12 +23,12 @@ vec2 samplePosition(int count, int i) {
 
 // A sphere ray traced in its bounding polyhedron, as the CPU renderer intersects it: the samples
 // the sphere covers, and the hit point of the pixel's center ray (or of a covered sample's).
-// Returns false when the sphere covers none of the pixel's samples.
-bool traceSphere(out vec3 position, out vec3 normal) {
+// Returns false when the sphere covers none of the pixel's samples. count: the samples per pixel
+// at the standard locations (0 or 1: the center alone).
+bool traceSphere(int count, out vec3 position, out vec3 normal) {
   Ray center = primaryRay(gl_FragCoord.xy);
   float t = intersectSphere(center, material.sphere);
   Ray shaded = center;
-  int count = frame.models.z;
   if (count > 1) {
     vec2 corner = floor(gl_FragCoord.xy);
     int mask = 0;
@@ -62,11 +62,12 @@ struct ShadedSurface {
   vec4 sheen;        // KHR_materials_sheen: color, roughness
 };
 
-ShadedSurface fragmentSurface() {
+// samples: the pass's samples per pixel at the standard locations (0: unknown, the center alone).
+ShadedSurface fragmentSurface(int samples) {
   vec3 n = normalize(worldNormal);
   vec3 position = worldPosition;
   if (material.sphere.w > 0.0) {
-    if (!traceSphere(position, n)) discard;
+    if (!traceSphere(samples, position, n)) discard;
   } else {
     gl_SampleMask[0] = -1;
     gl_FragDepth = gl_FragCoord.z;

@@ -23,7 +23,7 @@ vec3 toView(vec3 w) {
 }
 
 void main() {
-  ShadedSurface surface = fragmentSurface();
+  ShadedSurface surface = fragmentSurface(1);  // single-sampled: the pixel center, as the CPU
   outPosition = vec4(toView(surface.position - frame.cameraPosition.xyz), 1.0);
   outNormal = vec4(toView(surface.normal), 0.0);
 }

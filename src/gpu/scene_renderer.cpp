@@ -923,6 +923,15 @@ void SceneRenderer::Impl::destroyTargets() {
   vkDestroyFramebuffer(device, targets->framebuffer, nullptr);
   vkDestroyRenderPass(device, targets->renderPass, nullptr);
   if (targets->occlusion) {
+    // The frame set's bindings 16 to 18 go back to the stand-in before their images go.
+    if (frameSet && white) {
+      const VkDescriptorImageInfo whiteImage{lutSampler, white->view(),
+                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+      const std::array<VkWriteDescriptorSet, 3> writes{imageWrite(frameSet, 16, &whiteImage),
+                                                       imageWrite(frameSet, 17, &whiteImage),
+                                                       imageWrite(frameSet, 18, &whiteImage)};
+      vkUpdateDescriptorSets(device, 3, writes.data(), 0, nullptr);
+    }
     const ScreenOcclusionTargets& o = *targets->occlusion;
     for (VkPipeline pipeline : {o.viewBuffersPipeline, o.gtaoPipeline})
       vkDestroyPipeline(device, pipeline, nullptr);
@@ -1092,7 +1101,8 @@ VkRenderPass createScreenPass(VkDevice device, std::span<const VkFormat> formats
       VkSubpassDependency{
           VK_SUBPASS_EXTERNAL, 0, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
           VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-              VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
+              VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+              VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
           VK_ACCESS_SHADER_READ_BIT,
           VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0},
       VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -1224,6 +1234,8 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   if (sceneHasSheen) checkSheenVisibility(sheenVisibility, o);
   const bool shadows = prepareShadows(camera, o);
   if (lightCount > 0) prepareClusters(camera);
+  // Before anything binds the frame set: its bindings 16 to 18 may change.
+  if (o.screenAmbientOcclusion.enabled) prepareScreenOcclusion();
   const Targets& t = *targets;
   FrameUniforms u{};
   u.viewProjection = viewProjectionOf(camera, bounds);
@@ -1271,10 +1283,7 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   }
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
   if (shadows) recordShadowLayers(cmd);  // none pending when traced on the CPU
-  if (occluded) {
-    prepareScreenOcclusion();
-    recordScreenOcclusion(cmd);
-  }
+  if (occluded) recordScreenOcclusion(cmd);
 
   std::array<VkClearValue, 3> clears{};
   clears[1].depthStencil = {1.0f, 0};

@@ -77,18 +77,24 @@ Image applyBloom(const Image& linear, float ev100, float compensation) {
   if (levels == 0) return linear;
   const float threshold = shared::bloomThreshold(ev100, compensation);
   Image excess(linear.width, linear.height);
-  for (std::size_t i = 0; i < linear.pixels.size(); ++i)
-    excess.pixels[i] = shared::bloomExcess(linear.pixels[i], threshold);
+  for (std::size_t i = 0; i < linear.pixels.size(); ++i) {
+    // A pixel that is not finite radiance stays as it is (spread, it would poison the image).
+    const glm::vec3 c = linear.pixels[i];
+    const bool radiance = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) &&
+                          c.x >= 0.0f && c.y >= 0.0f && c.z >= 0.0f;
+    if (radiance) excess.pixels[i] = shared::bloomExcess(c, threshold);
+  }
   const glm::dvec3 total = sumOf(excess);
   if (total == glm::dvec3(0.0)) return linear;
-  // The pyramid: level k is the excess filtered to 1 / 2^k of the size.
-  std::vector<Image> pyramid{excess};
-  for (int k = 1; k <= levels; ++k) pyramid.push_back(halve(pyramid.back()));
+  // The pyramid: pyramid[k - 1] is the excess filtered to 1 / 2^k of the size, k = 1..levels.
+  std::vector<Image> pyramid;
+  pyramid.push_back(halve(excess));
+  for (int k = 2; k <= levels; ++k) pyramid.push_back(halve(pyramid.back()));
   // Each scale alike: from the coarsest, doubled and added to the next finer, down to level 1,
   // then doubled to the image's size.
-  Image sum = pyramid[static_cast<std::size_t>(levels)];
+  Image sum = pyramid.back();
   for (int k = levels - 1; k >= 1; --k) {
-    const Image& finer = pyramid[static_cast<std::size_t>(k)];
+    const Image& finer = pyramid[static_cast<std::size_t>(k - 1)];
     sum = doubleOnto(sum, finer.width, finer.height, &finer);
   }
   const Image spread = doubleOnto(sum, linear.width, linear.height, nullptr);

@@ -278,7 +278,9 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
               // Lagarde & de Rousiers 2014, 4.10.3: the smaller of the material's and the screen's.
               const std::size_t i = static_cast<std::size_t>(y) * width + x;
               p.occlusion = std::min(p.occlusion, screen->visibility[i]);
-              p.bentNormal = screen->bentNormals[i];
+              // The pixel's bent normal, unless it is another surface's (an edge sample).
+              if (glm::dot(screen->bentNormals[i], p.normal) > 0.0f)
+                p.bentNormal = screen->bentNormals[i];
             }
             c = shadeSplitSum(p, -ray.direction, bake, bakeOptions, o);
             if (!scene.lights.empty()) {

@@ -364,6 +364,18 @@ TEST(Viewer, ScreenSpaceOcclusionMatchesTheCpu) {
     open.screenAmbientOcclusion.enabled = false;
     const Comparison c = compare(viewer.render(perspective, o), viewer.render(perspective, open));
     EXPECT_GT(c.meanRelative, 0.003);  // measured 0.5 %, over the whole image
+    // Another size without the occlusion, then with it: the targets are made again, and the
+    // frame set never points at the ones that are gone (the validation layer would say so).
+    const std::size_t messages = gpu::validationMessageCount();
+    Camera small = perspective;
+    small.width = 64;
+    small.height = 48;
+    viewer.render(small, open);
+    EXPECT_LT(compare(viewer.render(small, o),
+                      renderScene(scene, small, sunsetBake().bake, sunsetBake().options, o))
+                  .fractionOver1,
+              5e-3);
+    EXPECT_EQ(gpu::validationMessageCount(), messages);
   }
   // A dark metal (F0 0.01): micro-occlusion halves its grazing reflection.
   Material dark;

@@ -137,7 +137,7 @@ TEST(AmbientOcclusion, FloorBesideAWallMatchesTheClosedForm) {
       const double error = std::abs(ao.visibility[i] - e.open);
       sum += error;
       worst = std::max(worst, error);
-      // The mean open direction leans away from the wall (-z): (u toward the wall, normal).
+      // The mean open direction leans away from the wall (+z): (u toward the wall, normal).
       const glm::dvec3 expected = glm::normalize(glm::dvec3(0.0, e.mean.y, -e.mean.x));
       const double angle =
           std::acos(std::min(1.0, glm::dot(glm::dvec3(ao.bentNormals[i]), expected)));

@@ -1,6 +1,7 @@
 // Bloom (render/bloom.hpp): energy conservation, exposure-relative threshold, the width of its
 // kernel, against sums and closed forms computed here.
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -62,6 +63,22 @@ TEST(Bloom, BelowTheThresholdNothingChanges) {
   // Luminance 100 > 1: 99 % of it spreads, 1 % stays, plus what the kernel puts back there.
   EXPECT_GE(b.at(32, 32).x, 1.0f);
   EXPECT_LT(b.at(32, 32).x, 100.0f * 0.5f);
+}
+
+TEST(Bloom, PixelsThatAreNotRadianceStayApart) {
+  // An infinite and a NaN pixel beside a bright emitter: they are left as they are, and every
+  // other pixel stays finite (spread, they would turn the whole image into NaN).
+  Image scene = emitterScene(96, 80, 5000.0f);
+  scene.at(10, 10) = glm::vec3(std::numeric_limits<float>::infinity(), 1.0f, 1.0f);
+  scene.at(20, 10) = glm::vec3(std::numeric_limits<float>::quiet_NaN());
+  const Image b = applyBloom(scene, 0.0f, 3.0f);
+  EXPECT_EQ(b.at(10, 10).x, std::numeric_limits<float>::infinity());
+  EXPECT_TRUE(std::isnan(b.at(20, 10).x));
+  int finite = 0;
+  for (const glm::vec3& p : b.pixels)
+    finite += std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) ? 1 : 0;
+  EXPECT_EQ(finite, 96 * 80 - 2);
+  EXPECT_GT(b.at(71, 60).x, scene.at(71, 60).x + 1.0f);  // the emitter still blooms
 }
 
 TEST(Bloom, TheThresholdFollowsTheExposure) {

@@ -1,7 +1,7 @@
 #pragma once
 // Screen-space ambient occlusion for the CPU's split sum: GTAO (ibl/shared/ambient_occlusion.h,
-// the viewer's compute pass runs the same code) over the view-space positions and normals of the
-// pixel centers, as a rasterizer's depth and normal buffers hold them. Combined with the
+// the viewer's full-screen pass runs the same code) over the view-space positions and normals of
+// the pixel centers, as a rasterizer's depth and normal buffers hold them. Combined with the
 // material's occlusion as Lagarde & de Rousiers 2014 (section 4.10.3) do: min(material, screen)
 // on the indirect light, with the multiple-bounce fit on the diffuse and the bent normal as the
 // irradiance's direction.

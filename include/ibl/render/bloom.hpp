@@ -13,7 +13,9 @@ namespace ibl {
 int bloomLevels(int width, int height);
 
 // `linear` (radiance) with bloom for a frame exposed at ev100: the light `compensation` stops
-// above the exposure's middle grey blooms. The image's per-channel sums are unchanged.
+// above the average luminance the exposure is set for blooms. The image's per-channel sums are
+// unchanged; pixels that are not finite, non-negative radiance neither bloom nor receive any
+// scale change (they are left as they are).
 Image applyBloom(const Image& linear, float ev100, float compensation);
 
 }  // namespace ibl

@@ -1,7 +1,7 @@
 // Screen-space ambient occlusion: ground-truth ambient occlusion (GTAO; Jimenez, Wu, Pesce &
 // Jarabo 2016, "Practical Real-Time Strategies for Accurate Indirect Occlusion"), from a buffer
 // of view-space positions. C++ and GLSL (see lang.h): the CPU's split sum
-// (src/render/ambient_occlusion.cpp) and the viewer's compute pass (shaders/view/gtao.comp)
+// (src/render/ambient_occlusion.cpp) and the viewer's full-screen pass (shaders/view/gtao.frag)
 // both call groundTruthAmbientOcclusion.
 //
 // View space here is the camera's frame: x right, y up, z the distance along the view (> 0 in

@@ -8,9 +8,9 @@
 
 IBL_BEGIN
 
-// The luminance `compensation` stops above the one exposure ev100 renders as middle grey:
-// 2^(EV100 + EC - 3) (Frostbite's computeBloomLuminance; L = 2^(EV100 - 3) for K = 12.5), so
-// that what looks equally bright blooms equally at any exposure.
+// The luminance `compensation` stops above the average luminance exposure ev100 is set for:
+// 2^(EV100 + EC - 3) (Frostbite's computeBloomLuminance; L_avg = 2^(EV100 - 3) with the meter
+// constant K = 12.5), so that what looks equally bright blooms equally at any exposure.
 IBL_FN float bloomThreshold(float ev100, float compensation) {
   return exp2(ev100 + compensation - 3.0f);
 }
