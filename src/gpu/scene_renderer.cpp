@@ -1125,6 +1125,7 @@ void SceneRenderer::Impl::prepareScreenOcclusion() {
   d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
   o->positions = std::make_unique<DeviceImage>(context, d);
   o->normals = std::make_unique<DeviceImage>(context, d);
+  d.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // SceneRenderer::screenOcclusion reads it back
   o->occlusion = std::make_unique<DeviceImage>(context, d);
   d.format = depthFormat;
   d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
@@ -1331,6 +1332,58 @@ int SceneRenderer::samples() const {
   return impl_->targets ? impl_->targets->samples : 0;
 }
 
+namespace {
+
+// Copies a shader-readable RGBA32F image (level 0, layer 0) into a host buffer, readable on the
+// host once the commands have run; the image ends shader-readable again.
+void recordReadback(VkCommandBuffer cmd, const DeviceImage& image, const Buffer& readback) {
+  transitionImage(cmd, image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_READ_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {image.description().width, image.description().height, 1};
+  vkCmdCopyImageToBuffer(cmd, image.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                         static_cast<VkBuffer>(readback.handle()), 1, &region);
+  transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT);
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                       &barrier, 0, nullptr, 0, nullptr);
+}
+
+}  // namespace
+
+ScreenOcclusion SceneRenderer::screenOcclusion(const Camera& camera, const RenderOptions& options) {
+  checkCamera(camera);
+  Impl& r = *impl_;
+  RenderOptions o = options;
+  o.screenAmbientOcclusion.enabled = true;
+  r.prepare(camera.width, camera.height, r.supportedSamples(std::max(o.spp, 1)));
+  const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
+  Buffer readback(r.context, count * sizeof(glm::vec4), BufferMemory::Host);
+  r.context.impl().submitAndWait([&](VkCommandBuffer cmd) {
+    r.record(cmd, camera, o, 0.0f);
+    recordReadback(cmd, *r.targets->occlusion->occlusion, readback);
+  });
+  const auto texels = readback.read<glm::vec4>(count);
+  ScreenOcclusion result;
+  result.width = camera.width;
+  result.height = camera.height;
+  result.visibility.resize(count);
+  result.bentNormals.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    result.visibility[i] = texels[i].x;
+    result.bentNormals[i] = glm::vec3(texels[i].y, texels[i].z, texels[i].w);
+  }
+  return result;
+}
+
 RenderResult SceneRenderer::render(const Camera& camera, const RenderOptions& options,
                                    float skyboxLod) {
   checkCamera(camera);
@@ -1341,26 +1394,7 @@ RenderResult SceneRenderer::render(const Camera& camera, const RenderOptions& op
   Buffer readback(r.context, count * sizeof(glm::vec4), BufferMemory::Host);
   r.context.impl().submitAndWait([&](VkCommandBuffer cmd) {
     r.record(cmd, camera, options, skyboxLod);
-    const DeviceImage& out = r.output();
-    transitionImage(cmd, out, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                    VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                    VK_ACCESS_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {static_cast<std::uint32_t>(camera.width),
-                          static_cast<std::uint32_t>(camera.height), 1};
-    vkCmdCopyImageToBuffer(cmd, out.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                           static_cast<VkBuffer>(readback.handle()), 1, &region);
-    transitionImage(cmd, out, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                    VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                    VK_ACCESS_SHADER_READ_BIT);
-    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
-                         &barrier, 0, nullptr, 0, nullptr);
+    recordReadback(cmd, r.output(), readback);
   });
   const auto texels = readback.read<glm::vec4>(count);
   RenderResult result;

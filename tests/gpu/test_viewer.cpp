@@ -349,6 +349,30 @@ TEST(Viewer, ScreenSpaceOcclusionMatchesTheCpu) {
   o.screenAmbientOcclusion.radius = 0.5f;
   Camera perspective = lookingAt({2.5f, 2.5f, 3.5f}, 192, 128);
   perspective.at = {0.0f, 0.3f, 0.0f};
+  {
+    // The occlusion itself, texel by texel: the device's (its rasterized view buffers) against
+    // the CPU's (ray cast), visibility and bent normal.
+    gpu::SceneRenderer viewer(graphicsContext(), scene, sunsetBake().bake, sunsetBake().options);
+    const ScreenOcclusion g = viewer.screenOcclusion(perspective, o);
+    const ScreenOcclusion c = screenSpaceAmbientOcclusion(
+        renderViewBuffers(scene, perspective), perspective,
+        ambientOcclusionParameters(o.screenAmbientOcclusion,
+                                   glm::length(scene.bounds().second - scene.bounds().first)));
+    double visibility = 0.0, bent = 0.0;
+    int surfaces = 0;
+    for (std::size_t i = 0; i < c.visibility.size(); ++i) {
+      if (c.bentNormals[i] == glm::vec3(0.0f) || g.bentNormals[i] == glm::vec3(0.0f)) continue;
+      visibility += std::abs(g.visibility[i] - c.visibility[i]);
+      bent +=
+          std::acos(std::min(1.0f, glm::dot(glm::normalize(g.bentNormals[i]), c.bentNormals[i])));
+      ++surfaces;
+    }
+    ASSERT_GT(surfaces, 192 * 128 / 2);
+    std::printf("occlusion: mean |visibility difference| %.5f, bent normals %.4f degrees\n",
+                visibility / surfaces, glm::degrees(bent / surfaces));
+    EXPECT_LT(visibility / surfaces, 1e-3);
+    EXPECT_LT(glm::degrees(bent / surfaces), 0.1);
+  }
   for (const Camera& camera : {floorCamera(128), perspective}) {
     const Comparison c = renderBoth(scene, camera, o);
     std::printf("%s: mean %.4f %%, over 1 %% %.3f %%\n",

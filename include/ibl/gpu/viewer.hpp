@@ -43,6 +43,10 @@ class SceneRenderer {
   // has no lights. Draws that frame (at one sample per pixel: the next render() restores its
   // own count).
   ShadowMaps shadowMaps(const Camera& camera, const RenderOptions& options);
+  // The screen-space ambient occlusion of a frame (options.screenAmbientOcclusion, on whether
+  // asked or not) as the device computed it: per pixel the visibility and the bent normal in
+  // world space (zero where no surface is), for comparing with screenSpaceAmbientOcclusion.
+  ScreenOcclusion screenOcclusion(const Camera& camera, const RenderOptions& options);
   // Replaces the environment (the bake's maps and SH9) and the scene's lights, as when the time
   // of day changes: `lights` must be as many as the scene's (the sun's new direction, color and
   // illuminance; an IES light keeps its profile). Waits for the device to be idle.
