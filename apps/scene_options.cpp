@@ -98,6 +98,21 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "Slices x steps per pixel: low (2 x 4), medium (4 x 6) or high (8 x 8)")
       ->check(CLI::IsMember({"low", "medium", "high"}))
       ->capture_default_str();
+  cmd->add_option("--ssr", o.ssr,
+                  "Split sum and viewer: screen-space reflections traced through the view's "
+                  "depth, composed before the probes and the environment (default: on for glTF "
+                  "scenes, off for the built-in ones)")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--ssr-quality", o.ssrQuality,
+                  "Rays x steps x pixels per step: low (1 x 48 x 4), medium (4 x 96 x 2) or high "
+                  "(8 x 192 x 1)")
+      ->check(CLI::IsMember({"low", "medium", "high"}))
+      ->capture_default_str();
+  cmd->add_option("--ssr-thickness", o.ssrThickness,
+                  "The depth a surface is taken to have behind the depth buffer, as a share of "
+                  "its distance")
+      ->check(numberIn(0.001f, 10.0f))
+      ->capture_default_str();
   cmd->add_option("--shadows", o.shadows,
                   "The lights' shadows. Split sum and viewer: none, map (shadow maps, default) or "
                   "ray (ray-traced per light sample; `ibl render` only). Reference: --shadows "
@@ -140,7 +155,7 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--bloom", o.bloom,
                   "Bloom: the light EC stops above the average luminance the exposure is set for "
                   "spreads over a wide kernel, the image's total power unchanged; off: none "
-                  "(default: off for `ibl render`, 3 for `ibl view`'s screenshots)");
+                  "(default: off for `ibl render`, 3 for `ibl view`'s window and screenshots)");
   cmd->add_option("--tonemap", o.tonemap, "none, aces or filmic")
       ->check(CLI::IsMember({"none", "aces", "filmic"}))
       ->capture_default_str();
@@ -358,6 +373,11 @@ bool screenAmbientOcclusionOn(const SceneCliOptions& o) {
   return o.scene != "sphere" && o.scene != "grid" && o.aoRays == 0;
 }
 
+bool screenReflectionsOn(const SceneCliOptions& o) {
+  if (!o.ssr.empty()) return o.ssr == "on";
+  return o.scene != "sphere" && o.scene != "grid";
+}
+
 ShadowMode realTimeShadowMode(const SceneCliOptions& o) {
   if (o.shadows && *o.shadows == "none") return ShadowMode::None;
   if (o.shadows && *o.shadows == "ray") return ShadowMode::Ray;
@@ -382,6 +402,11 @@ RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) 
   r.screenAmbientOcclusion.quality = o.ssaoQuality == "low"    ? AmbientOcclusionQuality::Low
                                      : o.ssaoQuality == "high" ? AmbientOcclusionQuality::High
                                                                : AmbientOcclusionQuality::Medium;
+  r.screenReflections.enabled = screenReflectionsOn(o);
+  r.screenReflections.thickness = o.ssrThickness;
+  r.screenReflections.quality = o.ssrQuality == "low"    ? ReflectionQuality::Low
+                                : o.ssrQuality == "high" ? ReflectionQuality::High
+                                                         : ReflectionQuality::Medium;
   r.realTimeShadows = realTimeShadowMode(o);
   r.shadowSettings.mapSize = o.shadowMapSize;
   r.shadowSettings.cascades = o.shadowCascades;
@@ -400,8 +425,9 @@ RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) 
 
 std::uint64_t renderMemoryBytes(int width, int height) {
   // Measured: 52 bytes per pixel at 2048^2, 50 at 4096^2, and 40 MB besides; the screen-space
-  // occlusion's view buffers and result add 40 bytes per pixel while it is computed.
-  return static_cast<std::uint64_t>(60e6 + 96.0 * width * height);
+  // occlusion's view buffers and result add 40 bytes per pixel while it is computed, the
+  // reflections' lit frame, view buffers and result 56.
+  return static_cast<std::uint64_t>(60e6 + 152.0 * width * height);
 }
 
 std::optional<float> bloomCompensation(const SceneCliOptions& o, std::optional<float> otherwise) {

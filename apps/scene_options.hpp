@@ -48,6 +48,9 @@ struct SceneCliOptions {
   std::string ssao;  // on or off; empty: on for glTF scenes without --ao, off for built-in ones
   float ssaoRadius = 0.0f;  // 0: a tenth of the scene's bounding diagonal
   std::string ssaoQuality = "medium";
+  std::string ssr;  // on or off; empty: on for glTF scenes, off for built-in ones
+  std::string ssrQuality = "medium";
+  float ssrThickness = 0.05f;
   // --shadows: unset (the split sum's default, map), "" (given bare), none, map or ray.
   std::optional<std::string> shadows;
   int shadowMapSize = 1024;
@@ -81,6 +84,8 @@ struct LoadedBake {
 };
 // Whether --ssao (or its default) turns screen-space ambient occlusion on.
 bool screenAmbientOcclusionOn(const SceneCliOptions& o);
+// Whether --ssr (or its default) turns screen-space reflections on.
+bool screenReflectionsOn(const SceneCliOptions& o);
 // The split sum's (and the viewer's) shadows from --shadows: map unless none or ray is given.
 ShadowMode realTimeShadowMode(const SceneCliOptions& o);
 

@@ -18,8 +18,8 @@ namespace ibl::cli {
 
 namespace {
 
-// The screenshots' bloom unless --bloom says otherwise: light 3 stops above the average
-// luminance the exposure is set for spreads (the live window is not bloomed yet).
+// The bloom unless --bloom says otherwise, of the screenshots and the live window: light 3 stops
+// above the average luminance the exposure is set for spreads.
 constexpr float kViewBloom = 3.0f;
 
 struct ViewCliOptions {
@@ -98,6 +98,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   w.compensation = o.scene.compensation;
   w.toneMap = toneCurve(o.scene);
   w.skyboxLod = o.skyboxMip;
+  w.bloom = bloomCompensation(o.scene, kViewBloom);
   w.frames = o.frames;
   w.title = "ibl view " + o.scene.scene;
   w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve) {

@@ -112,6 +112,19 @@ MUTANTS = [
     ("bloom: a box instead of the tent in the halvings",
      [("src/render/bloom.cpp", "kTaps[4] = {0.125f, 0.375f, 0.375f, 0.125f};",
        "kTaps[4] = {0.0f, 0.5f, 0.5f, 0.0f};")]),
+    ("SSR: the reflection about the half vector with the view's sign flipped",
+     [("include/ibl/shared/screen_space_reflections.h", "2.0f * dot(v, h) * h - v",
+       "2.0f * dot(v, h) * h + v")]),
+    ("SSR: the ray's depth interpolated linearly on the screen",
+     [("include/ibl/shared/screen_space_reflections.h",
+       "return mix(z0 * k0, z1 * k1, t) / mix(k0, k1, t);",
+       "return mix(z0, z1, t + 0.0f * k0 * k1);")]),
+    ("SSR: the probes not weighted by the share the reflection leaves",
+     [("include/ibl/shared/screen_space_reflections.h",
+       "(1.0f - reflection.w) * probeOcclusion * probes", "probeOcclusion * probes")]),
+    ("SSR: no roughness fade",
+     [("include/ibl/shared/screen_space_reflections.h",
+       "float fade = roughnessFade(roughness, r);", "float fade = 1.0f;")]),
 ]
 
 

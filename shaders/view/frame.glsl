@@ -27,6 +27,9 @@ layout(std140, set = 0, binding = 0) uniform Frame {
   vec4 ambientOcclusion;  // screen-space (ibl/shared/ambient_occlusion.h): radius, falloff,
                           // slices (0: off), steps
   vec4 projection;      // ScreenProjection's scale (x, y), perspective (1) or orthographic (0)
+  vec4 reflectionMarch;  // screen-space reflections (ibl/shared/screen_space_reflections.h):
+                         // max distance, thickness, stride, max steps
+  vec4 reflectionLobe;   // rays per pixel, roughness fade start and end, edge fade
 } frame;
 layout(set = 0, binding = 1) uniform samplerCube specularMap;
 layout(set = 0, binding = 2) uniform samplerCube irradianceMap;
@@ -96,9 +99,19 @@ layout(std430, set = 0, binding = 14) readonly buffer ShadowDepths {
 layout(std430, set = 0, binding = 15) readonly buffer LightClusters {
   uint clusterData[];
 };
-// Screen-space ambient occlusion: the view buffers (view/view_buffers.frag: view-space position,
-// w 1 where a surface is; view-space normal) and the occlusion (view/gtao.frag: visibility, bent
-// normal in world space), one texel per pixel, read by texelFetch; 1 x 1 stand-ins when off.
+// Screen-space ambient occlusion (and reflections): the view buffers (view/view_buffers.frag:
+// view-space position, w 1 where a surface is; view-space normal, w the perceptual roughness) and
+// the occlusion (view/gtao.frag: visibility, bent normal in world space), one texel per pixel,
+// read by texelFetch; 1 x 1 stand-ins when off.
 layout(set = 0, binding = 16) uniform sampler2D viewPositions;
 layout(set = 0, binding = 17) uniform sampler2D viewNormals;
 layout(set = 0, binding = 18) uniform sampler2D screenOcclusion;
+// Screen-space reflections: the reflection (view/ssr.frag: premultiplied radiance, the lobe's
+// share the screen holds), read by the scene's second pass, and the lit frame (the scene's first
+// pass) whose radiance the rays' hits take; one texel per pixel, read by texelFetch; 1 x 1 zero
+// stand-ins when off.
+layout(set = 0, binding = 19) uniform sampler2D screenReflection;
+layout(set = 0, binding = 20) uniform sampler2D litFrame;
+// The reflection as traced (view/ssr.frag), before the resolve (view/ssr_resolve.frag) shares it
+// between neighbors.
+layout(set = 0, binding = 21) uniform sampler2D tracedReflection;

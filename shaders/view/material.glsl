@@ -22,6 +22,7 @@ layout(push_constant) uniform Material {
                       // 32 sheen color, 64 sheen roughness
   uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
   int shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
+  int readsReflection;  // the scene pass: 1 composes the screen-space reflection (binding 19)
 } material;
 
 // A uniform number in [0, 1) per pixel and surface depth: BLEND's stochastic threshold (hashed

@@ -26,8 +26,12 @@ void main() {
     // The pixel's bent normal, unless it is another surface's (an edge, with multisampling).
     if (dot(ao.yzw, surface.normal) > 0.0) bentNormal = ao.yzw;
   }
+  // The screen-space reflection (view/ssr.frag), in the second pass of a frame that has them.
+  vec4 reflection = material.readsReflection != 0
+                        ? texelFetch(screenReflection, ivec2(gl_FragCoord.xy), 0)
+                        : vec4(0.0);
   vec3 color = shadeSplitSum(surface.position, gl_FragCoord.xy, surface.normal, surface.view,
-                             surface.material, surface.sheen, bentNormal);
+                             surface.material, surface.sheen, bentNormal, reflection);
   // An area light between the camera and the surface is what the pixel sees.
   Ray center = primaryRay(gl_FragCoord.xy);
   vec3 emitted;

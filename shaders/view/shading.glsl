@@ -7,6 +7,7 @@
 #include "ibl/shared/probes.h"
 #include "view/shadow_maps.glsl"
 #include "ibl/shared/split_sum.h"
+#include "ibl/shared/screen_space_reflections.h"
 
 // Specialization constants (SceneRenderer::Impl::scenePipeline): whether the lights cast shadows
 // and whether area lights go through LTCs. The pipeline of each variant has only its own code.
@@ -170,8 +171,9 @@ float localProbes(vec3 position, vec3 r, vec3 d, float roughness, int terms,
 // roughness of KHR_materials_sheen; color 0: none) that scales the rest by its albedo scaling.
 // The lights evaluated are those of the point's cluster (seen at framebuffer point `pixel`).
 // bentNormal: the irradiance's direction from the screen-space occlusion (0: the normal).
+// reflection: the screen-space reflection (view/ssr.frag; 0: none), composed before the probes.
 vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMaterial m, vec4 sheen,
-                   vec3 bentNormal) {
+                   vec3 bentNormal, vec4 reflection) {
   SplitSumSwitches s = frameSwitches();
   bool sheenOnly = s.terms == 3;
   if (sheenOnly) s.terms = 0;
@@ -224,7 +226,15 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
     irradiance += distant * (frame.models.y == 0
                                  ? textureLod(irradianceMap, look.diffuseDirection, 0.0).rgb
                                  : irradianceSh9OverPi(look.diffuseDirection));
-  vec3 color = belowScale * splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+  SplitSumSwitches composed = s;
+  if (reflection != vec4(0.0) && s.terms != 1) {
+    // Lagarde & de Rousiers 2014, 4.9.5: the screen's reflection first, the probes for the rest;
+    // the ambient occlusion's specular occlusion darkens the probes' share alone.
+    prefiltered = composeScreenReflection(reflection, prefiltered,
+                                          probeSpecularOcclusion(s, look.NoV, m));
+    composed.specularOcclusion = false;
+  }
+  vec3 color = belowScale * splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, composed);
   // The sheen chain has the specular chain's levels and mapping; it is read at the normal
   // (src/render/renderer.cpp says why).
   if (environment && shadeSheen) {

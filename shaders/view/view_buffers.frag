@@ -1,8 +1,8 @@
 #version 450
-// The view buffers of the screen-space ambient occlusion: each pixel's surface (the one the
-// scene pass shades, view/surface.glsl) as its position and normal in the camera's view space
-// (x right, y up, z forward), as the CPU's renderViewBuffers (src/render/ambient_occlusion.cpp)
-// computes them at the pixel centers.
+// The view buffers of the screen-space ambient occlusion and reflections: each pixel's surface
+// (the one the scene pass shades, view/surface.glsl) as its position and normal in the camera's
+// view space (x right, y up, z forward) and its perceptual roughness, as the CPU's
+// renderViewBuffers (src/render/view_buffers.cpp) computes them at the pixel centers.
 #extension GL_GOOGLE_include_directive : require
 #include "view/frame.glsl"
 #include "ibl/shared/split_sum.h"
@@ -25,5 +25,5 @@ vec3 toView(vec3 w) {
 void main() {
   ShadedSurface surface = fragmentSurface(1);  // single-sampled: the pixel center, as the CPU
   outPosition = vec4(toView(surface.position - frame.cameraPosition.xyz), 1.0);
-  outNormal = vec4(toView(surface.normal), 0.0);
+  outNormal = vec4(toView(surface.normal), surface.material.roughness);
 }

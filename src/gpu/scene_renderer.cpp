@@ -36,8 +36,10 @@ struct FrameUniforms {
   glm::vec4 clusterDepths;     // near, far, 1 perspective
   glm::vec4 ambientOcclusion;  // radius, falloff, slices (0: off), steps
   glm::vec4 projection;        // the screen projection's scale, perspective
+  glm::vec4 reflectionMarch;   // max distance, thickness, stride, max steps
+  glm::vec4 reflectionLobe;    // rays, roughness fade start and end, edge fade
 };
-static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32 + 32);
+static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32 + 32 + 32);
 
 // vec4s per probe in the probes buffer (view/frame.glsl).
 constexpr int kProbeVec4s = 11;
@@ -460,13 +462,14 @@ void SceneRenderer::Impl::prepareShadowTarget(int size) {
   shadowFramebuffer = createFramebuffer(device, shadowPass, {&view, 1}, size, size);
 }
 
-void SceneRenderer::Impl::drawMeshes(VkCommandBuffer cmd, int layer) {
+void SceneRenderer::Impl::drawMeshes(VkCommandBuffer cmd, int layer, bool readsReflection) {
   for (const DrawMesh& m : meshes) {
     const auto mi =
         static_cast<std::size_t>(std::clamp(m.material, 0, static_cast<int>(materials.size()) - 1));
     MaterialConstants mc = materials[mi];
     mc.sphere = m.sphere;
     mc.shadowLayer = layer;
+    mc.readsReflection = readsReflection ? 1 : 0;
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 1, 1,
                             &materialSets[mi], 0, nullptr);
     vkCmdPushConstants(cmd, pipelineLayout, kMaterialStages, 0, sizeof(mc), &mc);
@@ -776,8 +779,9 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   for (std::uint32_t b = 14; b <= 15; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-  // The screen-space occlusion's view buffers and result.
-  for (std::uint32_t b = 16; b <= 18; ++b)
+  // The screen-space occlusion's view buffers and result, the reflection, the lit frame and the
+  // traced reflection.
+  for (std::uint32_t b = 16; b <= 21; ++b)
     frameBindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   frameLayout = createSetLayout(device, frameBindings);
@@ -801,7 +805,7 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 5},
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                           13 + kMaterialTextures * materialCount}};
+                           15 + kMaterialTextures * materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1 + materialCount;
   poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
@@ -842,6 +846,10 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   writes.push_back(imageWrite(frameSet, 9, &probeImages[0]));
   const VkDescriptorImageInfo whiteImage{lutSampler, white->view(), readable};
   for (std::uint32_t b = 16; b <= 18; ++b) writes.push_back(imageWrite(frameSet, b, &whiteImage));
+  const std::array<float, 4> zeros{};
+  zero = uploadTexels2d(context, zeros, 1, 1);
+  const VkDescriptorImageInfo zeroImage{lutSampler, zero->view(), readable};
+  for (std::uint32_t b = 19; b <= 21; ++b) writes.push_back(imageWrite(frameSet, b, &zeroImage));
   writes.push_back(imageWrite(frameSet, 10, &probeImages[1]));
   const VkDescriptorBufferInfo buffers[2] = {
       {static_cast<VkBuffer>(lightsBuffer->handle()), 0, VK_WHOLE_SIZE},
@@ -865,6 +873,8 @@ void SceneRenderer::Impl::create(const Scene& scene, const BakeResult& bake,
   sceneFrag = context.impl().shaderModule("scene_frag");
   viewBuffersFrag = context.impl().shaderModule("view_buffers_frag");
   gtaoFrag = context.impl().shaderModule("gtao_frag");
+  ssrFrag = context.impl().shaderModule("ssr_frag");
+  ssrResolveFrag = context.impl().shaderModule("ssr_resolve_frag");
   fullscreenVert = context.impl().shaderModule("fullscreen_vert");
   skyboxFrag = context.impl().shaderModule("skybox_frag");
   shadowVert = context.impl().shaderModule("shadow_vert");
@@ -902,7 +912,7 @@ void SceneRenderer::Impl::destroy() {
   vkDeviceWaitIdle(device);
   destroyTargets();
   for (VkShaderModule m : {sceneVert, sceneFrag, fullscreenVert, skyboxFrag, shadowVert, shadowFrag,
-                           viewBuffersFrag, gtaoFrag})
+                           viewBuffersFrag, gtaoFrag, ssrFrag, ssrResolveFrag})
     vkDestroyShaderModule(device, m, nullptr);
   vkDestroyPipeline(device, shadowPipeline, nullptr);
   vkDestroyFramebuffer(device, shadowFramebuffer, nullptr);
@@ -922,22 +932,36 @@ void SceneRenderer::Impl::destroyTargets() {
   vkDestroyPipeline(device, targets->skyboxPipeline, nullptr);
   vkDestroyFramebuffer(device, targets->framebuffer, nullptr);
   vkDestroyRenderPass(device, targets->renderPass, nullptr);
-  if (targets->occlusion) {
-    // The frame set's bindings 16 to 18 go back to the stand-in before their images go.
-    if (frameSet && white) {
-      const VkDescriptorImageInfo whiteImage{lutSampler, white->view(),
-                                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-      const std::array<VkWriteDescriptorSet, 3> writes{imageWrite(frameSet, 16, &whiteImage),
-                                                       imageWrite(frameSet, 17, &whiteImage),
-                                                       imageWrite(frameSet, 18, &whiteImage)};
-      vkUpdateDescriptorSets(device, 3, writes.data(), 0, nullptr);
-    }
-    const ScreenOcclusionTargets& o = *targets->occlusion;
-    for (VkPipeline pipeline : {o.viewBuffersPipeline, o.gtaoPipeline})
-      vkDestroyPipeline(device, pipeline, nullptr);
-    for (VkFramebuffer f : {o.viewBuffersFramebuffer, o.gtaoFramebuffer})
-      vkDestroyFramebuffer(device, f, nullptr);
-    for (VkRenderPass r : {o.viewBuffersPass, o.gtaoPass}) vkDestroyRenderPass(device, r, nullptr);
+  // The frame set's bindings of the screen-space effects go back to their stand-ins before their
+  // images go.
+  const auto standIn = [&](std::uint32_t first, std::uint32_t last, const DeviceImage* image) {
+    if (!frameSet || !image) return;
+    const VkDescriptorImageInfo info{lutSampler, image->view(),
+                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    std::vector<VkWriteDescriptorSet> writes;
+    for (std::uint32_t b = first; b <= last; ++b) writes.push_back(imageWrite(frameSet, b, &info));
+    vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
+                           nullptr);
+  };
+  const auto destroyPass = [&](VkPipeline pipeline, VkFramebuffer framebuffer, VkRenderPass pass) {
+    vkDestroyPipeline(device, pipeline, nullptr);
+    vkDestroyFramebuffer(device, framebuffer, nullptr);
+    vkDestroyRenderPass(device, pass, nullptr);
+  };
+  if (const auto& v = targets->viewBuffers) {
+    standIn(16, 17, white.get());
+    destroyPass(v->pipeline, v->framebuffer, v->pass);
+  }
+  if (const auto& o = targets->occlusion) {
+    standIn(18, 18, white.get());
+    destroyPass(o->pipeline, o->framebuffer, o->pass);
+  }
+  if (const auto& r = targets->reflections) {
+    standIn(19, 21, zero.get());
+    vkDestroyPipeline(device, r->resolvePipeline, nullptr);
+    vkDestroyFramebuffer(device, r->resolveFramebuffer, nullptr);
+    destroyPass(r->pipeline, r->framebuffer, r->pass);
+    vkDestroyFramebuffer(device, r->litFramebuffer, nullptr);
   }
   targets.reset();
 }
@@ -996,14 +1020,22 @@ VkRenderPass createSceneRenderPass(VkDevice device, VkFormat depthFormat, int sa
   subpass.pColorAttachments = &colorRef;
   subpass.pResolveAttachments = msaa ? &resolveRef : nullptr;
   subpass.pDepthStencilAttachment = &depthRef;
+  // Before: the readers of the output, and a previous pass into the same color and depth
+  // attachments (the lit frame's, with screen-space reflections; gl_FragDepth: late tests).
+  const VkPipelineStageFlags attachmentStages = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                                VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                                                VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  const VkAccessFlags attachmentWrites =
+      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   const std::array<VkSubpassDependency, 2> dependencies{
       VkSubpassDependency{
           VK_SUBPASS_EXTERNAL, 0,
-          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-          VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-              VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT,
-          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT,
-          VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, 0},
+          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT | attachmentStages,
+          attachmentStages,
+          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | attachmentWrites,
+          attachmentWrites | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT |
+              VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
+          0},
       VkSubpassDependency{0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                           VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
@@ -1111,68 +1143,133 @@ VkRenderPass createScreenPass(VkDevice device, std::span<const VkFormat> formats
   return createRenderPass(device, attachments, subpass, dependencies);
 }
 
+// A full-screen target of the screen-space passes: RGBA32F (the CPU's precision), drawn into,
+// read by the next passes, and read back by SceneRenderer::screenOcclusion and
+// screenReflections.
+DeviceImage::Description screenTarget(int width, int height) {
+  DeviceImage::Description d;
+  d.width = static_cast<std::uint32_t>(width);
+  d.height = static_cast<std::uint32_t>(height);
+  d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+            VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  return d;
+}
+
 }  // namespace
 
-void SceneRenderer::Impl::prepareScreenOcclusion() {
-  if (targets->occlusion) return;
-  vkDeviceWaitIdle(device);  // the frame set's bindings 16 to 18 change
+void SceneRenderer::Impl::prepareViewBuffers() {
+  if (targets->viewBuffers) return;
+  vkDeviceWaitIdle(device);  // the frame set's bindings 16 and 17 change
   const Targets& t = *targets;
-  auto o = std::make_unique<ScreenOcclusionTargets>();
-  DeviceImage::Description d;
-  d.width = static_cast<std::uint32_t>(t.width);
-  d.height = static_cast<std::uint32_t>(t.height);
-  d.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-  d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  o->positions = std::make_unique<DeviceImage>(context, d);
-  o->normals = std::make_unique<DeviceImage>(context, d);
-  d.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // SceneRenderer::screenOcclusion reads it back
-  o->occlusion = std::make_unique<DeviceImage>(context, d);
+  auto v = std::make_unique<ViewBufferTargets>();
+  DeviceImage::Description d = screenTarget(t.width, t.height);
+  v->positions = std::make_unique<DeviceImage>(context, d);
+  v->normals = std::make_unique<DeviceImage>(context, d);
   d.format = depthFormat;
   d.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
   d.aspect = VK_IMAGE_ASPECT_DEPTH_BIT;
-  o->depth = std::make_unique<DeviceImage>(context, d);
+  v->depth = std::make_unique<DeviceImage>(context, d);
   // Owned by the targets from here on: destroyTargets() frees what exists.
-  ScreenOcclusionTargets& s = *(targets->occlusion = std::move(o));
-  const std::array<VkFormat, 2> bufferFormats{VK_FORMAT_R32G32B32A32_SFLOAT,
-                                              VK_FORMAT_R32G32B32A32_SFLOAT};
-  s.viewBuffersPass = createScreenPass(device, bufferFormats, depthFormat);
-  s.gtaoPass = createScreenPass(device, {bufferFormats.data(), 1}, VK_FORMAT_UNDEFINED);
-  const std::array<VkImageView, 3> bufferViews{s.positions->view(), s.normals->view(),
-                                               s.depth->view()};
-  s.viewBuffersFramebuffer =
-      createFramebuffer(device, s.viewBuffersPass, bufferViews, t.width, t.height);
-  const VkImageView occlusionView = s.occlusion->view();
-  s.gtaoFramebuffer = createFramebuffer(device, s.gtaoPass, {&occlusionView, 1}, t.width, t.height);
+  ViewBufferTargets& s = *(targets->viewBuffers = std::move(v));
+  const std::array<VkFormat, 2> formats{VK_FORMAT_R32G32B32A32_SFLOAT,
+                                        VK_FORMAT_R32G32B32A32_SFLOAT};
+  s.pass = createScreenPass(device, formats, depthFormat);
+  const std::array<VkImageView, 3> views{s.positions->view(), s.normals->view(), s.depth->view()};
+  s.framebuffer = createFramebuffer(device, s.pass, views, t.width, t.height);
   GraphicsPipelineDescription p;
   p.layout = pipelineLayout;
-  p.renderPass = s.viewBuffersPass;
+  p.renderPass = s.pass;
   p.vertex = sceneVert;
   p.fragment = viewBuffersFrag;
   p.bindings = {&kMeshBinding, 1};
   p.attributes = kMeshAttributes;
   p.depth = true;
   p.colorAttachments = 2;
-  s.viewBuffersPipeline = createGraphicsPipeline(device, p);
-  GraphicsPipelineDescription g;
-  g.layout = pipelineLayout;
-  g.renderPass = s.gtaoPass;
-  g.vertex = fullscreenVert;
-  g.fragment = gtaoFrag;
-  s.gtaoPipeline = createGraphicsPipeline(device, g);
+  s.pipeline = createGraphicsPipeline(device, p);
   const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  const std::array<VkDescriptorImageInfo, 3> images{
+  const std::array<VkDescriptorImageInfo, 2> images{
       VkDescriptorImageInfo{lutSampler, s.positions->view(), readable},
-      VkDescriptorImageInfo{lutSampler, s.normals->view(), readable},
-      VkDescriptorImageInfo{lutSampler, s.occlusion->view(), readable}};
-  std::array<VkWriteDescriptorSet, 3> writes{};
-  for (std::uint32_t i = 0; i < 3; ++i) writes[i] = imageWrite(frameSet, 16 + i, &images[i]);
+      VkDescriptorImageInfo{lutSampler, s.normals->view(), readable}};
+  const std::array<VkWriteDescriptorSet, 2> writes{imageWrite(frameSet, 16, &images[0]),
+                                                   imageWrite(frameSet, 17, &images[1])};
   vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
                          nullptr);
 }
 
-void SceneRenderer::Impl::recordScreenOcclusion(VkCommandBuffer cmd) {
+namespace {
+
+// A full-screen pass's pipeline: fullscreen.vert and `fragment`, one color target.
+VkPipeline createScreenPipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass pass,
+                                VkShaderModule vertex, VkShaderModule fragment) {
+  GraphicsPipelineDescription g;
+  g.layout = layout;
+  g.renderPass = pass;
+  g.vertex = vertex;
+  g.fragment = fragment;
+  return createGraphicsPipeline(device, g);
+}
+
+}  // namespace
+
+void SceneRenderer::Impl::prepareScreenOcclusion() {
+  prepareViewBuffers();
+  if (targets->occlusion) return;
+  vkDeviceWaitIdle(device);  // the frame set's binding 18 changes
   const Targets& t = *targets;
-  const ScreenOcclusionTargets& s = *t.occlusion;
+  auto o = std::make_unique<ScreenOcclusionTargets>();
+  const DeviceImage::Description d = screenTarget(t.width, t.height);
+  o->occlusion = std::make_unique<DeviceImage>(context, d);
+  ScreenOcclusionTargets& s = *(targets->occlusion = std::move(o));
+  s.pass = createScreenPass(device, {&d.format, 1}, VK_FORMAT_UNDEFINED);
+  const VkImageView view = s.occlusion->view();
+  s.framebuffer = createFramebuffer(device, s.pass, {&view, 1}, t.width, t.height);
+  s.pipeline = createScreenPipeline(device, pipelineLayout, s.pass, fullscreenVert, gtaoFrag);
+  const VkDescriptorImageInfo image{lutSampler, s.occlusion->view(),
+                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  const VkWriteDescriptorSet write = imageWrite(frameSet, 18, &image);
+  vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+}
+
+bool SceneRenderer::Impl::prepareScreenReflections() {
+  prepareViewBuffers();
+  if (targets->reflections) return false;
+  vkDeviceWaitIdle(device);  // the frame set's bindings 19 to 21 change
+  const Targets& t = *targets;
+  auto r = std::make_unique<ScreenReflectionTargets>();
+  const DeviceImage::Description d = screenTarget(t.width, t.height);
+  r->lit = std::make_unique<DeviceImage>(context, d);
+  r->traced = std::make_unique<DeviceImage>(context, d);
+  r->reflection = std::make_unique<DeviceImage>(context, d);
+  ScreenReflectionTargets& s = *(targets->reflections = std::move(r));
+  // The scene's pass into the lit frame: its multisampled color and depth, resolved into `lit`.
+  std::vector<VkImageView> views{t.color ? t.color->view() : s.lit->view(), t.depth->view()};
+  if (t.color) views.push_back(s.lit->view());
+  s.litFramebuffer = createFramebuffer(device, t.renderPass, views, t.width, t.height);
+  s.pass = createScreenPass(device, {&d.format, 1}, VK_FORMAT_UNDEFINED);
+  // The trace writes `traced`, the resolve reads it and writes `reflection`.
+  const VkImageView tracedView = s.traced->view(), view = s.reflection->view();
+  s.framebuffer = createFramebuffer(device, s.pass, {&tracedView, 1}, t.width, t.height);
+  s.resolveFramebuffer = createFramebuffer(device, s.pass, {&view, 1}, t.width, t.height);
+  s.pipeline = createScreenPipeline(device, pipelineLayout, s.pass, fullscreenVert, ssrFrag);
+  s.resolvePipeline =
+      createScreenPipeline(device, pipelineLayout, s.pass, fullscreenVert, ssrResolveFrag);
+  const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  const std::array<VkDescriptorImageInfo, 3> images{
+      VkDescriptorImageInfo{lutSampler, s.reflection->view(), readable},
+      VkDescriptorImageInfo{lutSampler, s.lit->view(), readable},
+      VkDescriptorImageInfo{lutSampler, s.traced->view(), readable}};
+  const std::array<VkWriteDescriptorSet, 3> writes{imageWrite(frameSet, 19, &images[0]),
+                                                   imageWrite(frameSet, 20, &images[1]),
+                                                   imageWrite(frameSet, 21, &images[2])};
+  vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
+                         nullptr);
+  return true;
+}
+
+void SceneRenderer::Impl::recordViewBuffers(VkCommandBuffer cmd) {
+  const Targets& t = *targets;
+  const ViewBufferTargets& s = *t.viewBuffers;
   const VkRect2D area{{0, 0},
                       {static_cast<std::uint32_t>(t.width), static_cast<std::uint32_t>(t.height)}};
   const VkViewport viewport{0.0f, 0.0f, static_cast<float>(t.width), static_cast<float>(t.height),
@@ -1180,8 +1277,8 @@ void SceneRenderer::Impl::recordScreenOcclusion(VkCommandBuffer cmd) {
   std::array<VkClearValue, 3> clears{};  // positions with w = 0: no surface
   clears[2].depthStencil = {1.0f, 0};
   VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  begin.renderPass = s.viewBuffersPass;
-  begin.framebuffer = s.viewBuffersFramebuffer;
+  begin.renderPass = s.pass;
+  begin.framebuffer = s.framebuffer;
   begin.renderArea = area;
   begin.clearValueCount = 3;
   begin.pClearValues = clears.data();
@@ -1190,16 +1287,31 @@ void SceneRenderer::Impl::recordScreenOcclusion(VkCommandBuffer cmd) {
   vkCmdSetScissor(cmd, 0, 1, &area);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &frameSet, 0,
                           nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.viewBuffersPipeline);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.pipeline);
   drawMeshes(cmd, 0);
   vkCmdEndRenderPass(cmd);
-  begin.renderPass = s.gtaoPass;
-  begin.framebuffer = s.gtaoFramebuffer;
+}
+
+void SceneRenderer::Impl::recordScreenPass(VkCommandBuffer cmd, VkRenderPass pass,
+                                           VkFramebuffer framebuffer, VkPipeline pipeline) {
+  const Targets& t = *targets;
+  const VkRect2D area{{0, 0},
+                      {static_cast<std::uint32_t>(t.width), static_cast<std::uint32_t>(t.height)}};
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(t.width), static_cast<float>(t.height),
+                            0.0f, 1.0f};
+  const VkClearValue clear{};
+  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  begin.renderPass = pass;
+  begin.framebuffer = framebuffer;
+  begin.renderArea = area;
   begin.clearValueCount = 1;
+  begin.pClearValues = &clear;
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &area);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.gtaoPipeline);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 0, 1, &frameSet, 0,
+                          nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdEndRenderPass(cmd);
 }
@@ -1235,8 +1347,11 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   if (sceneHasSheen) checkSheenVisibility(sheenVisibility, o);
   const bool shadows = prepareShadows(camera, o);
   if (lightCount > 0) prepareClusters(camera);
-  // Before anything binds the frame set: its bindings 16 to 18 may change.
-  if (o.screenAmbientOcclusion.enabled) prepareScreenOcclusion();
+  // Before anything binds the frame set: its bindings 16 to 21 may change.
+  const bool occluded = o.screenAmbientOcclusion.enabled;
+  const bool reflected = o.screenReflections.enabled;
+  if (occluded) prepareScreenOcclusion();
+  const bool newReflections = reflected && prepareScreenReflections();
   const Targets& t = *targets;
   FrameUniforms u{};
   u.viewProjection = viewProjectionOf(camera, bounds);
@@ -1272,25 +1387,52 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   const shared::LightClusterGrid& g = clusters.grid;
   u.clusterGrid = glm::ivec4(g.tileSize, g.tilesX, g.tilesY, g.slices);
   u.clusterDepths = glm::vec4(g.near, g.far, static_cast<float>(g.perspective), 0.0f);
-  const bool occluded = o.screenAmbientOcclusion.enabled;
+  // As renderScene does on the CPU (src/render/renderer.cpp).
+  const float sceneSize = glm::length(bounds.second - bounds.first);
   if (occluded) {
-    // As renderScene does on the CPU (src/render/renderer.cpp).
-    const shared::AmbientOcclusionParameters a = ambientOcclusionParameters(
-        o.screenAmbientOcclusion, glm::length(bounds.second - bounds.first));
+    const shared::AmbientOcclusionParameters a =
+        ambientOcclusionParameters(o.screenAmbientOcclusion, sceneSize);
     u.ambientOcclusion =
         glm::vec4(a.radius, a.falloff, static_cast<float>(a.slices), static_cast<float>(a.steps));
-    const shared::ScreenProjection projection = screenProjection(camera);
-    u.projection = glm::vec4(projection.scale, projection.perspective, 0.0f);
   }
+  if (reflected) {
+    const shared::ReflectionParameters r = reflectionParameters(o.screenReflections, sceneSize);
+    u.reflectionMarch =
+        glm::vec4(r.maxDistance, r.thickness, r.stride, static_cast<float>(r.maxSteps));
+    u.reflectionLobe = glm::vec4(static_cast<float>(r.rays), r.fadeStart, r.fadeEnd, r.edgeFade);
+  }
+  const shared::ScreenProjection projection = screenProjection(camera);
+  u.projection = glm::vec4(projection.scale, projection.perspective, 0.0f);
   std::memcpy(frameUniforms->mapped(), &u, sizeof(u));
   if (shadows) recordShadowLayers(cmd);  // none pending when traced on the CPU
-  if (occluded) recordScreenOcclusion(cmd);
+  if (occluded || reflected) recordViewBuffers(cmd);
+  if (occluded)
+    recordScreenPass(cmd, t.occlusion->pass, t.occlusion->framebuffer, t.occlusion->pipeline);
+  const VkPipeline meshPipeline = scenePipeline(shadows, o.areaLights == AreaLightModel::Ltc);
+  if (reflected) {
+    const ScreenReflectionTargets& r = *t.reflections;
+    // The scene's first pass reads no reflection, but its pipeline has the binding: made now, the
+    // reflection is given a layout to be read in.
+    if (newReflections)
+      transitionImage(cmd, *r.reflection, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                      0, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    // The lit frame (without reflections), the reflections traced through it, then the frame.
+    recordScenePass(cmd, r.litFramebuffer, meshPipeline, false);
+    recordScreenPass(cmd, r.pass, r.framebuffer, r.pipeline);
+    recordScreenPass(cmd, r.pass, r.resolveFramebuffer, r.resolvePipeline);
+  }
+  recordScenePass(cmd, t.framebuffer, meshPipeline, reflected);
+}
 
+void SceneRenderer::Impl::recordScenePass(VkCommandBuffer cmd, VkFramebuffer framebuffer,
+                                          VkPipeline meshPipeline, bool readsReflection) {
+  const Targets& t = *targets;
   std::array<VkClearValue, 3> clears{};
   clears[1].depthStencil = {1.0f, 0};
   VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   begin.renderPass = t.renderPass;
-  begin.framebuffer = t.framebuffer;
+  begin.framebuffer = framebuffer;
   begin.renderArea = {{0, 0},
                       {static_cast<std::uint32_t>(t.width), static_cast<std::uint32_t>(t.height)}};
   begin.clearValueCount = static_cast<std::uint32_t>(clears.size());
@@ -1304,9 +1446,8 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
                           nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t.skyboxPipeline);
   vkCmdDraw(cmd, 3, 1, 0, 0);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                    scenePipeline(shadows, o.areaLights == AreaLightModel::Ltc));
-  drawMeshes(cmd, 0);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshPipeline);
+  drawMeshes(cmd, 0, readsReflection);
   vkCmdEndRenderPass(cmd);
 }
 
@@ -1380,6 +1521,47 @@ ScreenOcclusion SceneRenderer::screenOcclusion(const Camera& camera, const Rende
   for (std::size_t i = 0; i < count; ++i) {
     result.visibility[i] = texels[i].x;
     result.bentNormals[i] = glm::vec3(texels[i].y, texels[i].z, texels[i].w);
+  }
+  return result;
+}
+
+SceneRenderer::Reflections SceneRenderer::screenReflections(const Camera& camera,
+                                                            const RenderOptions& options) {
+  checkCamera(camera);
+  Impl& r = *impl_;
+  RenderOptions o = options;
+  o.screenReflections.enabled = true;
+  r.prepare(camera.width, camera.height, r.supportedSamples(std::max(o.spp, 1)));
+  const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
+  const std::size_t bytes = count * sizeof(glm::vec4);
+  Buffer reflection(r.context, bytes, BufferMemory::Host),
+      lit(r.context, bytes, BufferMemory::Host), positions(r.context, bytes, BufferMemory::Host),
+      normals(r.context, bytes, BufferMemory::Host);
+  r.context.impl().submitAndWait([&](VkCommandBuffer cmd) {
+    r.record(cmd, camera, o, 0.0f);
+    const Impl::ScreenReflectionTargets& s = *r.targets->reflections;
+    recordReadback(cmd, *s.reflection, reflection);
+    recordReadback(cmd, *s.lit, lit);
+    recordReadback(cmd, *r.targets->viewBuffers->positions, positions);
+    recordReadback(cmd, *r.targets->viewBuffers->normals, normals);
+  });
+  Reflections result;
+  result.reflections.width = result.viewBuffers.width = camera.width;
+  result.reflections.height = result.viewBuffers.height = camera.height;
+  result.reflections.reflection = reflection.read<glm::vec4>(count);
+  result.litFrame = Image(camera.width, camera.height);
+  const auto litTexels = lit.read<glm::vec4>(count);
+  const auto positionTexels = positions.read<glm::vec4>(count);
+  const auto normalTexels = normals.read<glm::vec4>(count);
+  ViewBuffers& v = result.viewBuffers;
+  v.positions.resize(count);
+  v.normals.resize(count);
+  v.roughness.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    result.litFrame.pixels[i] = glm::vec3(litTexels[i]);
+    v.positions[i] = glm::vec3(positionTexels[i]);
+    v.normals[i] = glm::vec3(normalTexels[i]);
+    v.roughness[i] = normalTexels[i].w;
   }
   return result;
 }

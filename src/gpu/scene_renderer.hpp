@@ -31,11 +31,14 @@ struct MaterialConstants {
   glm::vec4 alpha;            // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff
   glm::vec4 sheen;            // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
-  std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
-  std::int32_t shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
+  std::uint32_t texCoordMask;    // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
+  std::int32_t shadowLayer;      // the shadow maps' pass: the layer drawn (view/shadow.vert)
+  std::int32_t readsReflection;  // the scene pass: 1 composes the screen-space reflection
 };
 static_assert(offsetof(MaterialConstants, shadowLayer) == 104,
               "view/shadow.vert reads the layer at offset 104");
+static_assert(offsetof(MaterialConstants, readsReflection) == 108,
+              "view/material.glsl reads the reflection's switch at offset 108");
 
 struct SceneRenderer::Impl {
   Context& context;
@@ -108,17 +111,39 @@ struct SceneRenderer::Impl {
   VkShaderModule sceneVert = VK_NULL_HANDLE, sceneFrag = VK_NULL_HANDLE,
                  fullscreenVert = VK_NULL_HANDLE, skyboxFrag = VK_NULL_HANDLE,
                  shadowVert = VK_NULL_HANDLE, shadowFrag = VK_NULL_HANDLE,
-                 viewBuffersFrag = VK_NULL_HANDLE, gtaoFrag = VK_NULL_HANDLE;
+                 viewBuffersFrag = VK_NULL_HANDLE, gtaoFrag = VK_NULL_HANDLE,
+                 ssrFrag = VK_NULL_HANDLE, ssrResolveFrag = VK_NULL_HANDLE;
+  // The stand-in of the screen-space reflection and the lit frame when they are off (1 x 1 zero).
+  std::unique_ptr<DeviceImage> zero;
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
   bool standardSampleLocations = false;
-  // Screen-space ambient occlusion, at the frame's size: a pass drawing the meshes' view-space
-  // positions and normals (view/view_buffers.frag) and a full-screen pass of GTAO over them
-  // (view/gtao.frag), whose result the scene pass reads (frame set bindings 16 to 18).
+  // The screen-space effects' view buffers, at the frame's size: a pass drawing the meshes'
+  // view-space positions, normals and roughness (view/view_buffers.frag; frame set bindings 16
+  // and 17).
+  struct ViewBufferTargets {
+    std::unique_ptr<DeviceImage> positions, normals, depth;
+    VkRenderPass pass = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+  };
+  // Screen-space ambient occlusion: a full-screen pass of GTAO over the view buffers
+  // (view/gtao.frag), whose result the scene pass reads (binding 18).
   struct ScreenOcclusionTargets {
-    std::unique_ptr<DeviceImage> positions, normals, depth, occlusion;
-    VkRenderPass viewBuffersPass = VK_NULL_HANDLE, gtaoPass = VK_NULL_HANDLE;
-    VkFramebuffer viewBuffersFramebuffer = VK_NULL_HANDLE, gtaoFramebuffer = VK_NULL_HANDLE;
-    VkPipeline viewBuffersPipeline = VK_NULL_HANDLE, gtaoPipeline = VK_NULL_HANDLE;
+    std::unique_ptr<DeviceImage> occlusion;
+    VkRenderPass pass = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+  };
+  // Screen-space reflections: the scene pass drawn first into `lit` (the lit frame, binding 20;
+  // litFramebuffer: the scene pass's framebuffer with `lit` as its output), a full-screen pass
+  // tracing the reflections over the view buffers and it (view/ssr.frag) into `reflection`
+  // (binding 19), which the scene pass drawn again composes.
+  struct ScreenReflectionTargets {
+    std::unique_ptr<DeviceImage> lit, traced, reflection;
+    VkFramebuffer litFramebuffer = VK_NULL_HANDLE;
+    VkRenderPass pass = VK_NULL_HANDLE;  // the trace's (into traced) and the resolve's
+    VkFramebuffer framebuffer = VK_NULL_HANDLE, resolveFramebuffer = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE, resolvePipeline = VK_NULL_HANDLE;
   };
   // Size-dependent: attachments, render pass, framebuffer, pipelines.
   struct Targets {
@@ -132,7 +157,10 @@ struct SceneRenderer::Impl {
     // (shadows, the other area-light model) is compiled out.
     std::array<VkPipeline, 4> scenePipelines{};
     VkSampleCountFlagBits sampleBits = VK_SAMPLE_COUNT_1_BIT;
-    std::unique_ptr<ScreenOcclusionTargets> occlusion;  // made when first asked for
+    // Made when first asked for.
+    std::unique_ptr<ViewBufferTargets> viewBuffers;
+    std::unique_ptr<ScreenOcclusionTargets> occlusion;
+    std::unique_ptr<ScreenReflectionTargets> reflections;
   };
   std::optional<Targets> targets;
   std::pair<glm::vec3, glm::vec3> bounds;
@@ -174,13 +202,24 @@ struct SceneRenderer::Impl {
   void recordShadowLayers(VkCommandBuffer cmd);
   // The depth target, its pass and framebuffer, and the pipeline for maps of `size` texels.
   void prepareShadowTarget(int size);
-  // The screen-space occlusion's targets and pipelines for the current size (made once, pointed
-  // at by the frame set after waiting for the device to be idle).
+  // The screen-space effects' targets and pipelines for the current size: the view buffers,
+  // the occlusion's, the reflections' (each made once, pointed at by the frame set after waiting
+  // for the device to be idle). prepareScreenReflections returns whether it made them now.
+  void prepareViewBuffers();
   void prepareScreenOcclusion();
-  // Records the view buffers' and GTAO's passes, leaving the occlusion readable by the scene pass.
-  void recordScreenOcclusion(VkCommandBuffer cmd);
+  bool prepareScreenReflections();
+  // Records the view buffers' pass.
+  void recordViewBuffers(VkCommandBuffer cmd);
+  // Records a full-screen pass of `pipeline` into `framebuffer` of `pass` (one cleared target),
+  // leaving it readable by the scene pass: GTAO, the reflections.
+  void recordScreenPass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer,
+                        VkPipeline pipeline);
+  // Records the scene's pass (skybox and meshes) into `framebuffer`, the meshes composing the
+  // screen-space reflection if `readsReflection`.
+  void recordScenePass(VkCommandBuffer cmd, VkFramebuffer framebuffer, VkPipeline meshPipeline,
+                       bool readsReflection);
   // Binds and draws every mesh with its material (set 1, push constants) and `layer`.
-  void drawMeshes(VkCommandBuffer cmd, int layer);
+  void drawMeshes(VkCommandBuffer cmd, int layer, bool readsReflection = false);
   // Builds the light clusters for this camera unless they are current, and uploads them
   // (waiting for the device to be idle first).
   void prepareClusters(const Camera& camera);

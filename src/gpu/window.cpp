@@ -1,4 +1,5 @@
-// The interactive viewer: a GLFW window, a swapchain, the scene renderer and a tone-mapping pass.
+// The interactive viewer: a GLFW window, a swapchain, the scene renderer, the bloom's compute
+// passes (gpu/bloom.hpp) and a tone-mapping pass.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -9,6 +10,7 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
+#include "gpu/bloom.hpp"
 #include "gpu/scene_renderer.hpp"
 #include "ibl/core/error.hpp"
 
@@ -157,6 +159,7 @@ struct WindowResources {
   std::unique_ptr<Context> context;
   VkSurfaceKHR surface = VK_NULL_HANDLE;
   std::unique_ptr<SceneRenderer> renderer;
+  std::unique_ptr<DeviceBloom> bloom;  // with WindowOptions::bloom
   Swapchain swapchain;
   VkRenderPass pass = VK_NULL_HANDLE;
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
@@ -173,6 +176,7 @@ struct WindowResources {
     if (context) {
       VkDevice d = context->impl().device;
       vkDeviceWaitIdle(d);
+      bloom.reset();
       renderer.reset();
       swapchain.destroy();
       vkDestroyFence(d, done, nullptr);
@@ -353,6 +357,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   createSwapchain(r, format);
   r.renderer = std::make_unique<SceneRenderer>(*r.context, scene, bake, bakeOptions, probes);
   auto& renderer = r.renderer->impl();
+  if (o.bloom) r.bloom = std::make_unique<DeviceBloom>(*r.context);
   const int samples = renderer.supportedSamples(std::max(o.render.spp, 1));
 
   Interaction state;
@@ -428,8 +433,11 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     const VkExtent2D extent = r.swapchain.extent;
     const int width = static_cast<int>(extent.width), height = static_cast<int>(extent.height);
     renderer.prepare(width, height, samples);
-    const VkDescriptorImageInfo hdrInfo{r.sampler, renderer.output().view(),
-                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    if (r.bloom) r.bloom->prepare(width, height);
+    // The tone-mapping pass reads the frame, or its bloom.
+    const VkDescriptorImageInfo hdrInfo{
+        r.sampler, r.bloom ? r.bloom->output().view() : renderer.output().view(),
+        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const VkWriteDescriptorSet write = imageWrite(set, 0, &hdrInfo);
     vkUpdateDescriptorSets(c.device, 1, &write, 0, nullptr);
 
@@ -470,6 +478,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(r.cmd, &begin), "vkBeginCommandBuffer");
     renderer.record(r.cmd, state.camera(width, height), shading, state.skyboxLod);
+    if (r.bloom) r.bloom->record(r.cmd, renderer.output(), ev100 - state.compensation, *o.bloom);
     VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     passBegin.renderPass = r.pass;
     passBegin.framebuffer = r.swapchain.framebuffers[imageIndex];

@@ -15,7 +15,6 @@ namespace {
 // texels around each 2 x 2 block (edges clamped): the mean and, unlike a box, the centroid of
 // the light are kept, so that the coarse scales stay centered on what blooms.
 Image halve(const Image& source) {
-  constexpr float kTaps[4] = {0.125f, 0.375f, 0.375f, 0.125f};
   Image half((source.width + 1) / 2, (source.height + 1) / 2);
   parallelFor(0, half.height, [&](int y) {
     for (int x = 0; x < half.width; ++x) {
@@ -24,7 +23,7 @@ Image halve(const Image& source) {
         const int sy = std::clamp(2 * y - 1 + j, 0, source.height - 1);
         for (int i = 0; i < 4; ++i) {
           const int sx = std::clamp(2 * x - 1 + i, 0, source.width - 1);
-          sum += (kTaps[i] * kTaps[j]) * source.at(sx, sy);
+          sum += (shared::bloomTap(i) * shared::bloomTap(j)) * source.at(sx, sy);
         }
       }
       half.at(x, y) = sum;
@@ -38,13 +37,11 @@ Image halve(const Image& source) {
 Image doubleOnto(const Image& source, int width, int height, const Image* base) {
   Image out(width, height);
   parallelFor(0, height, [&](int y) {
-    const float sy = std::clamp((static_cast<float>(y) + 0.5f) * 0.5f - 0.5f, 0.0f,
-                                static_cast<float>(source.height - 1));
+    const float sy = shared::bloomDoublingCoordinate(y, source.height);
     const int y0 = static_cast<int>(sy), y1 = std::min(y0 + 1, source.height - 1);
     const float fy = sy - static_cast<float>(y0);
     for (int x = 0; x < width; ++x) {
-      const float sx = std::clamp((static_cast<float>(x) + 0.5f) * 0.5f - 0.5f, 0.0f,
-                                  static_cast<float>(source.width - 1));
+      const float sx = shared::bloomDoublingCoordinate(x, source.width);
       const int x0 = static_cast<int>(sx), x1 = std::min(x0 + 1, source.width - 1);
       const float fx = sx - static_cast<float>(x0);
       const glm::vec3 top = glm::mix(source.at(x0, y0), source.at(x1, y0), fx);
@@ -64,12 +61,7 @@ glm::dvec3 sumOf(const Image& image) {
 }  // namespace
 
 int bloomLevels(int width, int height) {
-  int levels = 0;
-  for (int w = width, h = height; levels < 8 && w > 1 && h > 1; ++levels) {
-    w = (w + 1) / 2;
-    h = (h + 1) / 2;
-  }
-  return levels;
+  return shared::bloomLevelCount(width, height);
 }
 
 Image applyBloom(const Image& linear, float ev100, float compensation) {

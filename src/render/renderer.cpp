@@ -19,6 +19,7 @@
 #include "ibl/render/ltc.hpp"
 #include "ibl/render/probe.hpp"
 #include "ibl/shared/lights.h"
+#include "ibl/shared/screen_space_reflections.h"
 #include "ibl/shared/shadows.h"
 #include "ibl/shared/split_sum.h"
 #include "path_tracer.hpp"
@@ -95,9 +96,17 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   m.roughness = p.roughness;
   m.occlusion = p.occlusion;
   m.emissive = glm::vec3(0.0f);
-  glm::vec3 below = o.only == ShadingTerms::Sheen
-                        ? glm::vec3(0.0f)
-                        : shared::splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, s);
+  shared::SplitSumSwitches composed = s;
+  if (p.screenReflection != glm::vec4(0.0f) && o.only != ShadingTerms::Diffuse) {
+    // Lagarde & de Rousiers 2014, 4.9.5: the screen's reflection first, the probes for the rest.
+    prefiltered = shared::composeScreenReflection(p.screenReflection, prefiltered,
+                                                  shared::probeSpecularOcclusion(s, look.NoV, m));
+    composed.specularOcclusion = false;
+  }
+  glm::vec3 below =
+      o.only == ShadingTerms::Sheen
+          ? glm::vec3(0.0f)
+          : shared::splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, composed);
   if (p.sheenColor != glm::vec3(0.0f)) {
     if (!bake.sheen || !bake.sheenDfg)
       fail("render",
@@ -191,6 +200,24 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
     withOcclusion.screenOcclusion = &occlusion;
     return renderScene(scene, camera, bake, bakeOptions, withOcclusion, progress);
   }
+  if (o.mode == RenderMode::SplitSum && o.screenReflections.enabled && !o.screenReflection) {
+    // The lit frame whose radiance the reflections' hits take (each surface's emission once),
+    // then the frame with them.
+    RenderOptions lit = o;
+    lit.screenReflections.enabled = false;
+    const RenderResult first = renderScene(scene, camera, bake, bakeOptions, lit, [&](float f) {
+      if (progress) progress(0.5f * f);
+    });
+    const auto [lo, hi] = scene.bounds();
+    const ScreenReflections reflections =
+        screenSpaceReflections(renderViewBuffers(scene, camera), first.color, camera,
+                               reflectionParameters(o.screenReflections, glm::length(hi - lo)));
+    RenderOptions withReflections = o;
+    withReflections.screenReflection = &reflections;
+    return renderScene(scene, camera, bake, bakeOptions, withReflections, [&](float f) {
+      if (progress) progress(0.5f + 0.5f * f);
+    });
+  }
   return renderRays(
       scene, camera.width, camera.height,
       [&](glm::vec2 pixel) { return camera.generateRay(pixel.x, pixel.y); }, bake, bakeOptions, o,
@@ -222,6 +249,12 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
     maps = &ownMaps;
   }
   const ScreenOcclusion* screen = o.mode == RenderMode::SplitSum ? o.screenOcclusion : nullptr;
+  const ScreenReflections* reflections =
+      o.mode == RenderMode::SplitSum ? o.screenReflection : nullptr;
+  if (reflections && (reflections->width != width || reflections->height != height))
+    fail("render", fmt::format("the screen-space reflections are of {} x {} pixels, the image "
+                               "{} x {}",
+                               reflections->width, reflections->height, width, height));
   if (screen && (screen->width != width || screen->height != height))
     fail("render", fmt::format("the screen-space occlusion is of {} x {} pixels, the image {} x {}",
                                screen->width, screen->height, width, height));
@@ -282,6 +315,8 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
               if (glm::dot(screen->bentNormals[i], p.normal) > 0.0f)
                 p.bentNormal = screen->bentNormals[i];
             }
+            if (reflections)
+              p.screenReflection = reflections->reflection[static_cast<std::size_t>(y) * width + x];
             c = shadeSplitSum(p, -ray.direction, bake, bakeOptions, o);
             if (!scene.lights.empty()) {
               // The layer below the sheen is scaled as for the environment.

@@ -47,6 +47,15 @@ class SceneRenderer {
   // asked or not) as the device computed it: per pixel the visibility and the bent normal in
   // world space (zero where no surface is), for comparing with screenSpaceAmbientOcclusion.
   ScreenOcclusion screenOcclusion(const Camera& camera, const RenderOptions& options);
+  // The screen-space reflections of a frame (options.screenReflections, on whether asked or not)
+  // as the device computed them, with the inputs its pass read: for running the CPU's
+  // shared::screenSpaceReflection over the same buffers.
+  struct Reflections {
+    ScreenReflections reflections;  // premultiplied radiance, the share of the lobe
+    ViewBuffers viewBuffers;        // as rasterized: z 0 (and normal 0) where no surface is
+    Image litFrame;                 // the frame's first pass, without reflections
+  };
+  Reflections screenReflections(const Camera& camera, const RenderOptions& options);
   // Replaces the environment (the bake's maps and SH9) and the scene's lights, as when the time
   // of day changes: `lights` must be as many as the scene's (the sun's new direction, color and
   // illuminance; an IES light keeps its profile). Waits for the device to be idle.
@@ -77,6 +86,10 @@ struct WindowOptions {
   float compensation = 0.0f;   // stops subtracted from EV100
   ToneMap toneMap = ToneMap::Aces;
   float skyboxLod = 0.0f;
+  // Bloom of the live image: the light this many stops above the average luminance the
+  // exposure is set for spreads, as applyBloom (ibl/render/bloom.hpp) computes it, on the device
+  // (bloomOnDevice); none: off.
+  std::optional<float> bloom;
   int frames = 0;  // stop after this many frames (0: when the window is closed)
   std::string title = "ibl view";
   // Called with the current view rendered offscreen (linear radiance), its EV100 and tone
@@ -94,6 +107,11 @@ struct WindowStats {
   std::string device;
   int samples = 0;  // MSAA samples per pixel the device allowed
 };
+
+// The window's bloom run offscreen: `linear` (radiance) uploaded, bloomed by the device's passes
+// (shaders/view/bloom_*.comp) as the window blooms its frames, and read back; what applyBloom
+// (ibl/render/bloom.hpp) computes on the CPU, to float rounding.
+Image bloomOnDevice(Context& context, const Image& linear, float ev100, float compensation);
 
 // Opens a GLFW window and runs the interactive viewer until it is closed (Esc, Q) or after
 // `frames` frames: left drag orbits, the wheel zooms, +/- change the exposure, [ and ] the

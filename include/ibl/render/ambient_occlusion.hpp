@@ -10,7 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibl/render/camera.hpp"
-#include "ibl/render/scene.hpp"
+#include "ibl/render/view_buffers.hpp"
 #include "ibl/shared/ambient_occlusion.h"
 
 namespace ibl {
@@ -28,17 +28,6 @@ struct ScreenAmbientOcclusionSettings {
 // The shared code's parameters for a scene of bounding diagonal `sceneSize` (the default radius).
 shared::AmbientOcclusionParameters ambientOcclusionParameters(
     const ScreenAmbientOcclusionSettings& settings, float sceneSize);
-
-// The camera's projection from its view space (the camera's frame, z forward) to pixels.
-shared::ScreenProjection screenProjection(const Camera& camera);
-
-// A camera's view of the scene at the pixel centers: positions (z <= 0 where no surface is) and
-// unit shading normals, in the camera's view space, row-major.
-struct ViewBuffers {
-  int width = 0, height = 0;
-  std::vector<glm::vec3> positions, normals;
-};
-ViewBuffers renderViewBuffers(const Scene& scene, const Camera& camera);
 
 // Per pixel: the open share of the hemisphere and the bent normal (world space).
 struct ScreenOcclusion {

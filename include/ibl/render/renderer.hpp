@@ -9,6 +9,7 @@
 #include "ibl/render/ambient_occlusion.hpp"
 #include "ibl/render/camera.hpp"
 #include "ibl/render/scene.hpp"
+#include "ibl/render/screen_space_reflections.hpp"
 #include "ibl/render/shadows.hpp"
 #include "ibl/shared/split_sum.h"
 
@@ -74,6 +75,11 @@ struct RenderOptions {
   ScreenAmbientOcclusionSettings screenAmbientOcclusion;
   // Split sum: that occlusion per pixel, computed beforehand (renderScene fills it in).
   const ScreenOcclusion* screenOcclusion = nullptr;
+  // Split sum: screen-space reflections (screen_space_reflections.hpp), computed by renderScene
+  // from a first frame without them, composed before the probes and the distant environment.
+  ScreenReflectionSettings screenReflections;
+  // Split sum: those reflections per pixel, computed beforehand (renderScene fills them in).
+  const ScreenReflections* screenReflection = nullptr;
   bool environmentLight = true;       // false (--env none): the scene's lights alone
   bool backgroundEnvironment = true;  // else backgroundColor
   glm::vec3 backgroundColor{0.0f};
@@ -118,6 +124,9 @@ struct SurfacePoint {
   float roughness;  // perceptual
   float occlusion = 1.0f;
   glm::vec3 bentNormal{0.0f};  // world, unit: the irradiance's direction (0: the normal)
+  // The screen-space reflection: premultiplied radiance and the share of the specular lobe it
+  // holds (0: the probes and the environment take all).
+  glm::vec4 screenReflection{0.0f};
   bool occlusionTexture =
       false;  // the occlusion comes from the material (else --ao may compute it)
   glm::vec3 emissive{0.0f};

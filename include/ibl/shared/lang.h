@@ -45,6 +45,7 @@ using glm::abs;
 using glm::acos;
 using glm::asin;
 using glm::atan;
+using glm::ceil;
 using glm::clamp;
 using glm::cos;
 using glm::cross;
