@@ -22,7 +22,9 @@ layout(push_constant) uniform Material {
                       // 32 sheen color, 64 sheen roughness
   uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
   int shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
-  int readsReflection;  // the scene pass: 1 composes the screen-space reflection (binding 19)
+  int scenePass;  // 0 the frame's only scene pass; with screen-space reflections 1 the lit frame
+                  // (no area light drawn over the surfaces), 2 the pass that composes them
+                  // (binding 19): ScenePass in src/gpu/scene_renderer.hpp
 } material;
 
 // A uniform number in [0, 1) per pixel and surface depth: BLEND's stochastic threshold (hashed

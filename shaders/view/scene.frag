@@ -27,16 +27,18 @@ void main() {
     if (dot(ao.yzw, surface.normal) > 0.0) bentNormal = ao.yzw;
   }
   // The screen-space reflection (view/ssr.frag), in the second pass of a frame that has them.
-  vec4 reflection = material.readsReflection != 0
+  vec4 reflection = material.scenePass == 2
                         ? texelFetch(screenReflection, ivec2(gl_FragCoord.xy), 0)
                         : vec4(0.0);
   vec3 color = shadeSplitSum(surface.position, gl_FragCoord.xy, surface.normal, surface.view,
                              surface.material, surface.sheen, bentNormal, reflection);
-  // An area light between the camera and the surface is what the pixel sees.
+  // An area light between the camera and the surface is what the pixel sees; not in the lit
+  // frame of the screen-space reflections, whose rays meet the surfaces of the view buffers.
   Ray center = primaryRay(gl_FragCoord.xy);
   vec3 emitted;
   bool isSurface;
-  if (nearestEmitter(center, gl_FragCoord.xy,
+  if (material.scenePass != 1 &&
+      nearestEmitter(center, gl_FragCoord.xy,
                      dot(surface.position - center.origin, center.direction), emitted, isSurface))
     color = emitted;
   outColor = vec4(color, 1.0);

@@ -462,14 +462,14 @@ void SceneRenderer::Impl::prepareShadowTarget(int size) {
   shadowFramebuffer = createFramebuffer(device, shadowPass, {&view, 1}, size, size);
 }
 
-void SceneRenderer::Impl::drawMeshes(VkCommandBuffer cmd, int layer, bool readsReflection) {
+void SceneRenderer::Impl::drawMeshes(VkCommandBuffer cmd, int layer, ScenePass pass) {
   for (const DrawMesh& m : meshes) {
     const auto mi =
         static_cast<std::size_t>(std::clamp(m.material, 0, static_cast<int>(materials.size()) - 1));
     MaterialConstants mc = materials[mi];
     mc.sphere = m.sphere;
     mc.shadowLayer = layer;
-    mc.readsReflection = readsReflection ? 1 : 0;
+    mc.scenePass = pass;
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout, 1, 1,
                             &materialSets[mi], 0, nullptr);
     vkCmdPushConstants(cmd, pipelineLayout, kMaterialStages, 0, sizeof(mc), &mc);
@@ -1418,15 +1418,15 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                       0, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     // The lit frame (without reflections), the reflections traced through it, then the frame.
-    recordScenePass(cmd, r.litFramebuffer, meshPipeline, false);
+    recordScenePass(cmd, r.litFramebuffer, meshPipeline, kLitFramePass);
     recordScreenPass(cmd, r.pass, r.framebuffer, r.pipeline);
     recordScreenPass(cmd, r.pass, r.resolveFramebuffer, r.resolvePipeline);
   }
-  recordScenePass(cmd, t.framebuffer, meshPipeline, reflected);
+  recordScenePass(cmd, t.framebuffer, meshPipeline, reflected ? kReflectedPass : kOnlyScenePass);
 }
 
 void SceneRenderer::Impl::recordScenePass(VkCommandBuffer cmd, VkFramebuffer framebuffer,
-                                          VkPipeline meshPipeline, bool readsReflection) {
+                                          VkPipeline meshPipeline, ScenePass pass) {
   const Targets& t = *targets;
   std::array<VkClearValue, 3> clears{};
   clears[1].depthStencil = {1.0f, 0};
@@ -1447,7 +1447,7 @@ void SceneRenderer::Impl::recordScenePass(VkCommandBuffer cmd, VkFramebuffer fra
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t.skyboxPipeline);
   vkCmdDraw(cmd, 3, 1, 0, 0);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshPipeline);
-  drawMeshes(cmd, 0, readsReflection);
+  drawMeshes(cmd, 0, pass);
   vkCmdEndRenderPass(cmd);
 }
 

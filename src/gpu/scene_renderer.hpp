@@ -31,14 +31,18 @@ struct MaterialConstants {
   glm::vec4 alpha;            // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff
   glm::vec4 sheen;            // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
-  std::uint32_t texCoordMask;    // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
-  std::int32_t shadowLayer;      // the shadow maps' pass: the layer drawn (view/shadow.vert)
-  std::int32_t readsReflection;  // the scene pass: 1 composes the screen-space reflection
+  std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
+  std::int32_t shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
+  std::int32_t scenePass;      // the scene pass's part: ScenePass
 };
+// Which of a frame's scene passes draws (view/material.glsl): the only one; with screen-space
+// reflections, the lit frame (the surfaces without the area lights in front of them: what the
+// view buffers hold, so that no reflection meets a light) or the pass that composes them.
+enum ScenePass : std::int32_t { kOnlyScenePass = 0, kLitFramePass = 1, kReflectedPass = 2 };
 static_assert(offsetof(MaterialConstants, shadowLayer) == 104,
               "view/shadow.vert reads the layer at offset 104");
-static_assert(offsetof(MaterialConstants, readsReflection) == 108,
-              "view/material.glsl reads the reflection's switch at offset 108");
+static_assert(offsetof(MaterialConstants, scenePass) == 108,
+              "view/material.glsl reads the scene pass's part at offset 108");
 
 struct SceneRenderer::Impl {
   Context& context;
@@ -214,12 +218,11 @@ struct SceneRenderer::Impl {
   // leaving it readable by the scene pass: GTAO, the reflections.
   void recordScreenPass(VkCommandBuffer cmd, VkRenderPass pass, VkFramebuffer framebuffer,
                         VkPipeline pipeline);
-  // Records the scene's pass (skybox and meshes) into `framebuffer`, the meshes composing the
-  // screen-space reflection if `readsReflection`.
+  // Records the scene's pass (skybox and meshes) into `framebuffer` as part `pass` of the frame.
   void recordScenePass(VkCommandBuffer cmd, VkFramebuffer framebuffer, VkPipeline meshPipeline,
-                       bool readsReflection);
+                       ScenePass pass);
   // Binds and draws every mesh with its material (set 1, push constants) and `layer`.
-  void drawMeshes(VkCommandBuffer cmd, int layer, bool readsReflection = false);
+  void drawMeshes(VkCommandBuffer cmd, int layer, ScenePass pass = kOnlyScenePass);
   // Builds the light clusters for this camera unless they are current, and uploads them
   // (waiting for the device to be idle first).
   void prepareClusters(const Camera& camera);

@@ -200,11 +200,15 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
     withOcclusion.screenOcclusion = &occlusion;
     return renderScene(scene, camera, bake, bakeOptions, withOcclusion, progress);
   }
-  if (o.mode == RenderMode::SplitSum && o.screenReflections.enabled && !o.screenReflection) {
+  if (o.mode == RenderMode::SplitSum && o.screenReflections.enabled && !o.screenReflection &&
+      o.only != ShadingTerms::Diffuse && o.only != ShadingTerms::Sheen) {
     // The lit frame whose radiance the reflections' hits take (each surface's emission once),
     // then the frame with them.
     RenderOptions lit = o;
     lit.screenReflections.enabled = false;
+    // The surfaces, not the area lights in front of them: the view buffers hold the surfaces, and
+    // a light's reflection is its own shading's.
+    lit.cameraSeesEmitters = false;
     const RenderResult first = renderScene(scene, camera, bake, bakeOptions, lit, [&](float f) {
       if (progress) progress(0.5f * f);
     });

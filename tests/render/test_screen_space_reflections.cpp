@@ -150,7 +150,17 @@ TEST(ScreenSpaceReflections, MirrorFloorShowsWhatTheTracedReflectionMeets) {
   const Camera camera = floorView();
   const RenderResult with = renderFloor(0.02f, true);
   const RenderResult without = renderFloor(0.02f, false);
-  int onScreen = 0, matched = 0, sky = 0, skyMatched = 0, withoutMatched = 0;
+  // The reflections themselves, over the frame without them (the lit frame renderScene takes):
+  // where the mirror ray meets the sky, no hit (the floor's own radiance is the sky's, so a
+  // false hit on the floor would not show in the frame).
+  const Scene scene = mirrorFloorScene(0.02f);
+  const auto [lo, hi] = scene.bounds();
+  ScreenReflectionSettings settings;
+  settings.quality = ReflectionQuality::High;
+  const ScreenReflections traced =
+      screenSpaceReflections(renderViewBuffers(scene, camera), without.color, camera,
+                             reflectionParameters(settings, glm::length(hi - lo)));
+  int onScreen = 0, matched = 0, sky = 0, skyMatched = 0, withoutMatched = 0, skyMissed = 0;
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
       const int target = mirrorTarget(camera, x, y);
@@ -168,12 +178,15 @@ TEST(ScreenSpaceReflections, MirrorFloorShowsWhatTheTracedReflectionMeets) {
         ++sky;
         const glm::vec3 d = glm::abs(c - glm::vec3(kSky));
         if (std::max({d.x, d.y, d.z}) <= 0.02f * kSky) ++skyMatched;
+        if (traced.reflection[static_cast<std::size_t>(y) * camera.width + x].w < 0.02f)
+          ++skyMissed;
       }
     }
   ASSERT_GT(onScreen, 400);  // the boxes' reflections cover a good part of the floor
   ASSERT_GT(sky, 2000);
   EXPECT_GE(matched, 0.95 * onScreen) << matched << " of " << onScreen;
   EXPECT_GE(skyMatched, 0.98 * sky) << skyMatched << " of " << sky;
+  EXPECT_GE(skyMissed, 0.98 * sky) << skyMissed << " of " << sky;
   EXPECT_EQ(withoutMatched, 0);  // the probes alone never show the boxes
 }
 

@@ -244,7 +244,8 @@ IBL_FN vec4 resolveScreenReflection(IBL_SSR_BUFFER ScreenProjection s, ivec2 pix
   vec4 own = ssrTraced(IBL_SSR_ARG pixel);
   float roughness = ssrRoughness(IBL_SSR_ARG pixel);
   vec3 p = ssrViewPosition(IBL_SSR_ARG pixel);
-  if (p.z <= 0.0f || roughness < kReflectionReuseRoughness) return own;
+  if (p.z <= 0.0f || roughness < kReflectionReuseRoughness || roughnessFade(roughness, r) <= 0.0f)
+    return own;
   vec3 n = ssrViewNormal(IBL_SSR_ARG pixel);
   float alpha = alphaFromRoughness(roughness);
   float a2 = alpha * alpha;
