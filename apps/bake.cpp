@@ -55,6 +55,7 @@ struct BakeCliOptions {
   int previewSize = 96;
   bool force = false;
   bool extractSun = false;
+  EnvScaleOptions envScale;  // --env-intensity, --env-illuminance
   std::string device = "cpu";
   bool listDevices = false;
   std::set<std::string> given;  // the options on the command line (CLI11's count)
@@ -147,6 +148,7 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
   const std::string& name = source.name;
   LoadedEnvironment& loaded = source.loaded;
   requireLight(loaded.environment, name);
+  scaleSourceEnvironment(source, o.envScale, global);  // before anything else
   RangeLoss clampLoss;
   if (o.clamp > 0.0f) {
     clampLoss = clampEnvironment(loaded.environment, o.clamp);
@@ -188,6 +190,7 @@ void checkBeforeBaking(const BakeCliOptions& o, const std::vector<std::string>& 
   const BakeOptions options = bakeOptionsOf(o);
   const BakeOutputOptions output = outputOptionsOf(o);
   checkBakeOptions(options);
+  checkEnvScaleOptions(o.envScale);
   checkTargetsTakeTheOptions(o, options, output, global);
   if (o.extractSun)
     for (const std::string& input : inputs)
@@ -345,6 +348,7 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                   "Clamp the source's radiance to MAX before baking (the power removed is "
                   "reported and recorded in the manifest)")
       ->check(positiveNumber());
+  addEnvScaleOptions(cmd, opts->envScale);
   cmd->add_option("--format", opts->format, "KTX2 texel format of the cube maps")
       ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}))
       ->capture_default_str();

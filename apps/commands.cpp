@@ -13,6 +13,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/core/stats.hpp"
 #include "ibl/env/default_environment.hpp"
+#include "ibl/env/photometry.hpp"
 #include "ibl/env/sky.hpp"
 #include "ibl/env/sun_extraction.hpp"
 #include "ibl/gpu/compute.hpp"
@@ -203,6 +204,80 @@ SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOpti
                s.name, light.intensity, glm::degrees(light.angularDiameter), light.direction.x,
                light.direction.y, light.direction.z, sun->pixels);
   return s;
+}
+
+void addEnvScaleOptions(CLI::App* cmd, EnvScaleOptions& o) {
+  cmd->add_option("--env-intensity", o.intensity,
+                  "Multiply the environment (and the sun it brings) by K before anything else, "
+                  "e.g. to bring an HDRI in relative units to nits")
+      ->check(positiveNumber());
+  cmd->add_option("--env-illuminance", o.illuminance,
+                  "Scale the environment (and the sun it brings) so that it lights an upward "
+                  "horizontal surface with LUX lux, the sun included (e.g. 1000 overcast, "
+                  "100000 midday sun); recorded in the manifest")
+      ->check(positiveNumber());
+}
+
+void checkEnvScaleOptions(const EnvScaleOptions& o, const std::string& nothingToScale) {
+  if (o.intensity && o.illuminance)
+    failUsage("--env-illuminance",
+              fmt::format("contradicts --env-intensity {}: --env-illuminance {} sets the factor "
+                          "itself; pass one of them",
+                          formatNumber(*o.intensity), formatNumber(*o.illuminance)));
+  if (o.given() && !nothingToScale.empty())
+    failUsage(o.intensity ? "--env-intensity" : "--env-illuminance",
+              fmt::format("contradicts {}: there is no environment to scale", nothingToScale));
+}
+
+std::string EnvScale::recordJson() const {
+  if (option.empty()) return {};
+  nlohmann::ordered_json j;
+  j["option"] = option;
+  j["factor"] = factor;
+  if (option == "--env-illuminance") j["target_lux"] = targetLux;
+  j["measured_lux"] = measuredLux;
+  j["scaled_lux"] = measuredLux * factor;
+  return j.dump();
+}
+
+EnvScale envScaleFor(const EnvScaleOptions& o, double measuredLux, std::string_view name) {
+  EnvScale scale;
+  scale.measuredLux = measuredLux;
+  if (o.intensity) {
+    scale.option = "--env-intensity";
+    scale.factor = *o.intensity;
+  } else if (o.illuminance) {
+    scale.option = "--env-illuminance";
+    scale.targetLux = *o.illuminance;
+    scale.factor =
+        illuminanceScale(measuredLux, *o.illuminance, fmt::format("{}: --env-illuminance", name));
+  }
+  return scale;
+}
+
+EnvScale scaleSourceEnvironment(SourceEnvironment& s, const EnvScaleOptions& o,
+                                const GlobalOptions& global) {
+  if (!o.given()) return {};
+  Environment& env = s.loaded.environment;
+  const EnvScale scale = envScaleFor(o, horizontalIlluminance(env, s.lights), s.name);
+  scaleEnvironment(env, scale.factor, fmt::format("{}: {}", s.name, scale.option));
+  for (Light& light : s.lights) light.intensity *= static_cast<float>(scale.factor);
+  nlohmann::json records = s.manifestRecords.empty() ? nlohmann::json::object()
+                                                     : nlohmann::json::parse(s.manifestRecords);
+  if (records.contains("lights")) {
+    records["lights"] = nlohmann::json::array();
+    for (const Light& light : s.lights)
+      records["lights"].push_back(nlohmann::json::parse(sunLightJson(light)));
+  }
+  records["environment_scale"] = nlohmann::json::parse(scale.recordJson());
+  s.manifestRecords = records.dump();
+  if (!global.quiet)
+    fmt::print(stderr,
+               "ibl: note: {}: scaled by {:.6g} ({}: {:.6g} lx -> {:.6g} lx on an upward "
+               "surface{})\n",
+               s.name, scale.factor, scale.option, scale.measuredLux,
+               scale.measuredLux * scale.factor, s.lights.empty() ? "" : ", the sun included");
+  return scale;
 }
 
 }  // namespace ibl::cli

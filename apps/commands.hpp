@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands of the `ibl` executable: each registers its options and a callback.
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,6 +58,31 @@ std::unique_ptr<gpu::Context> openDevice(const std::string& choice);
 // SkyModel::panorama).
 Image skyImage(const SkyParameters& p, int width, int height, bool paintSun, gpu::Context* device);
 
+// --env-intensity K and --env-illuminance LUX: scaling an environment into physical units
+// (docs/cli.md#environments-in-physical-units). At most one of them.
+struct EnvScaleOptions {
+  std::optional<double> intensity;    // a factor, > 0
+  std::optional<double> illuminance;  // lux on an upward plane, the sun included, > 0
+  bool given() const { return intensity.has_value() || illuminance.has_value(); }
+};
+// Registers both options on `cmd`.
+void addEnvScaleOptions(CLI::App* cmd, EnvScaleOptions& o);
+// Usage errors: both options given; either with nothing to scale (`what`: "--env none").
+void checkEnvScaleOptions(const EnvScaleOptions& o, const std::string& nothingToScale = {});
+
+// What a scale did: the factor and, for the manifests, the option, the illuminance (lux) before
+// and after, and the target of --env-illuminance.
+struct EnvScale {
+  double factor = 1.0;
+  std::string option;              // "--env-intensity" or "--env-illuminance"; "" when not scaled
+  double measuredLux = 0.0;        // before scaling, the sun included
+  double targetLux = 0.0;          // --env-illuminance
+  std::string recordJson() const;  // {"option": ..., "factor": ..., ...}; "" when not scaled
+};
+// The factor of the options for an environment of horizontal illuminance `measuredLux`
+// (`name` for errors: "<name>: --env-illuminance: ..." when it is dark above the horizon).
+EnvScale envScaleFor(const EnvScaleOptions& o, double measuredLux, std::string_view name);
+
 // An environment named on the command line (a file, a sky description "sky:...", or the
 // bundled default when `input` is empty) with the lights it brings: the sky's sun, or the sun
 // --extract-sun took out of an HDRI. A sky is computed on `device` when one is given.
@@ -69,6 +95,11 @@ struct SourceEnvironment {
 SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOptions& options,
                                         bool extractSun, const GlobalOptions& global,
                                         gpu::Context* device = nullptr);
+// Scales a source environment and the suns it brings by --env-intensity / --env-illuminance
+// (nothing without them), before anything else is done with it; the manifest records (lights
+// and "environment_scale") follow. Prints a note with the factor unless quiet.
+EnvScale scaleSourceEnvironment(SourceEnvironment& source, const EnvScaleOptions& o,
+                                const GlobalOptions& global);
 
 void addConvertCommand(CLI::App& app, const GlobalOptions& global);
 void addInfoCommand(CLI::App& app, const GlobalOptions& global);

@@ -37,6 +37,7 @@ struct ConvertOptions {
   bool mips = false;
   bool extractSun = false;
   std::string sunJson;
+  EnvScaleOptions envScale;  // --env-intensity, --env-illuminance: the pixels written are scaled
 };
 
 // Converts `input` into `output`; returns the summary line.
@@ -72,7 +73,7 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
   // A plain image that is no environment layout (a rendered frame, a lookup table) is
   // converted as a 2D image when no layout is asked.
   const bool mayBeFlat = o.layout.empty() && !inLayout && !o.extractSun && !isSkySpec(input) &&
-                         input.find("{face}") == std::string::npos;
+                         !o.envScale.given() && input.find("{face}") == std::string::npos;
   SourceEnvironment source;
   if (mayBeFlat) {
     DecodedFile decoded = readImageFile(input, {o.layer});
@@ -90,6 +91,10 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
     warnAboutReplacedPixels(input, source.loaded.replaced, global);
   } else {
     source = loadSourceEnvironment(input, {inLayout, o.layer}, o.extractSun, global);
+  }
+  if (o.envScale.given()) {
+    requireLight(source.loaded.environment, source.name);
+    scaleSourceEnvironment(source, o.envScale, global);
   }
   std::vector<EncodedFile> files = encodeEnvironment(source.loaded.environment, e);
   if (!o.sunJson.empty()) {
@@ -110,6 +115,7 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
 
 void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
   if (o.inputs.empty() && o.list.empty()) throw CLI::RequiredError("an input (or --list FILE)");
+  checkEnvScaleOptions(o.envScale);
   if (o.extractSun)
     for (const std::string& input : o.inputs)
       if (isSkySpec(input))
@@ -188,6 +194,7 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
                   "Rotate the environment about +Y by DEG degrees (+X turns toward -Z)")
       ->check(finiteNumber())
       ->capture_default_str();
+  addEnvScaleOptions(cmd, opts->envScale);
   cmd->add_flag("--mips", opts->mips,
                 "Write the full mip chain of a cube map (one KTX2, or _m<level> files)");
   cmd->add_flag("--extract-sun", opts->extractSun,

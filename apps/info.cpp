@@ -14,6 +14,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/core/stats.hpp"
 #include "ibl/env/environment.hpp"
+#include "ibl/env/photometry.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/render/gltf.hpp"
@@ -326,7 +327,16 @@ void runInfo(const InfoOptions& o) {
   j["negative"] = stats.invalid.negative;
   glm::dvec3 integral(0.0);
   std::optional<glm::vec3> brightest;
+  double illuminance = 0.0;
+  LuminanceRange nits;
   if (env) {
+    // Photometry, the values taken as nits (cd/m^2): lux on an upward (+Y) surface, and the
+    // luminance over the directions.
+    illuminance = horizontalIlluminance(*env);
+    nits = luminanceRange(*env);
+    j["horizontal_illuminance"] = illuminance;
+    j["luminance"] = {
+        {"min", nits.min}, {"max", nits.max}, {"median", nits.median}, {"mean", nits.mean}};
     integral = radiantIntegral(*env);
     brightest = brightestDirection(*env);
     j["radiant_integral"] = {integral.x, integral.y, integral.z};
@@ -365,6 +375,12 @@ void runInfo(const InfoOptions& o) {
                  brightest->z);
     else
       fmt::print("brightest   none (no pixel has a positive luminance)\n");
+    fmt::print("illuminance {:.6g} lx on an upward (+Y) surface, the values taken as nits\n",
+               illuminance);
+    fmt::print(
+        "luminance   min {:.6g}, median {:.6g}, mean {:.6g}, max {:.6g} nits (Rec. 709 Y; "
+        "median and mean over the sphere's directions)\n",
+        nits.min, nits.median, nits.mean, nits.max);
   }
 }
 
@@ -374,7 +390,8 @@ void addInfoCommand(CLI::App& app, const GlobalOptions&) {
   auto opts = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand("info",
                                      "Describe an image file (format, layout, size, "
-                                     "value range, invalid pixels, radiant integral) or a glTF "
+                                     "value range, invalid pixels, radiant integral, horizontal "
+                                     "illuminance and luminance in nits) or a glTF "
                                      "scene (meshes, materials, textures, lights, cameras, "
                                      "bounds, names)");
   cmd->add_option("file", opts->file,

@@ -43,6 +43,7 @@ struct ProbeCliOptions {
   std::string grid, bounds, shard;
   std::string merge;
   CaptureOptions capture;
+  std::vector<std::string> exclude;  // glTF node or mesh names left out of the capture
   bool force = false;
 };
 
@@ -102,24 +103,23 @@ CaptureOutcome captureAndBake(const ProbeCliOptions& o, const Scene& scene, cons
   if (showProgress) fmt::print(stderr, "\r");
   const std::string unusable = unusableCaptureReason(CaptureSite{}, &capture);
   if (!unusable.empty()) return {capture.milliseconds, unusable};
-  Environment captured;
-  captured.layout = Layout::Cube;
-  captured.cube = capture.radiance;
   BakeOptions options;
   options.specular.size = o.capture.size;
-  const BakeResult bake = bakeEnvironment(captured, options);
+  const LocalProbe probe = bakeProbe(capture, p.placement, o.capture, options);
   BakeOutputOptions output;
   output.force = o.force;
   output.preview = false;
-  output.extraCubes = {{"visibility", &capture.visibility}};
+  output.extraCubes = {{"coverage_specular", &probe.coverageSpecular},
+                       {"coverage_irradiance", &probe.coverageIrradiance}};
   output.manifestRecords = fmt::format(
-      "{{\"probe\": {}}}", probeRecordJson(p.placement, o.capture, capture.milliseconds));
+      "{{\"probe\": {}{}}}", probeRecordJson(p.placement, o.capture, capture.milliseconds),
+      env.envScale.option.empty() ? "" : ", \"environment_scale\": " + env.envScale.recordJson());
   BakeSource source;
   source.path = "";
   source.format = "capture";
   source.layout = "cube";
   source.width = source.height = o.capture.size;
-  writeBakeOutputs(bake, options, output, source, dir);
+  writeBakeOutputs(probe.bake, options, output, source, dir);
   return {capture.milliseconds, {}};
 }
 
@@ -265,7 +265,8 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   checkSceneOptions(o.scene);
   const glm::vec3 rotation = parseVec3(o.rotation, "--rotation");
   refuseInputsInside(o.output, sceneInputFiles(o.scene));
-  Scene scene = loadScene(o.scene, global);
+  // Dynamic objects left out: engines capture the static scene alone.
+  Scene scene = withoutObjects(loadScene(o.scene, global), o.exclude, "--exclude");
   const auto [sceneLo, sceneHi] = scene.bounds();
   // The default proxy: the scene's bounds (a room's walls).
   std::optional<ProbeVolume> proxy;
@@ -390,6 +391,7 @@ void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
                   "'none': the scene's lights and emission alone");
   cmd->add_option("--lights", opts->scene.lightsFile, "Lights file (JSON) added to the scene's");
   cmd->add_option("--bake", opts->scene.bakeDir, "An existing bake of the distant environment");
+  addEnvScaleOptions(cmd, opts->scene.envScale);
   cmd->add_option("-o,--output", opts->output,
                   "Output directory: the probe's bake (--at), or one directory per probe and "
                   "probes.json (--grid)");
@@ -427,8 +429,28 @@ void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
                 "Keep the view-dependent specular of the captured surfaces (default: diffuse "
                 "and emission only, as Frostbite captures)");
   cmd->add_option("--seed", opts->capture.seed, "Random seed")->capture_default_str();
+  addMultipleScatteringOptions(cmd, opts->scene);
+  cmd->add_option("--diffuse", opts->scene.diffuse,
+                  "The captured surfaces' diffuse: disney (Frostbite renormalized) or lambert; "
+                  "render with the same (recorded in the manifest)")
+      ->check(CLI::IsMember({"disney", "lambert"}))
+      ->capture_default_str();
+  cmd->add_flag("--specular-micro-occlusion", opts->scene.specularMicroOcclusion,
+                "Schlick's f90 from F0 in the captured light's bounces, as `ibl render` has it "
+                "(recorded in the manifest)");
+  cmd->add_option("--exclude", opts->exclude,
+                  "Leave glTF nodes (with everything below them) or meshes out of the capture, "
+                  "as engines capture the static scene alone: NAME[,NAME...], repeatable; `ibl "
+                  "info` lists the names")
+      ->delimiter(',');
   cmd->add_flag("--force", opts->force, "Replace earlier probes' files in the output directory");
-  cmd->callback([opts, &global] { runProbe(*opts, global); });
+  cmd->callback([opts, &global] {
+    opts->capture.multipleScattering = multipleScatteringChoice(opts->scene);
+    opts->capture.diffuse =
+        opts->scene.diffuse == "lambert" ? DiffuseModel::Lambert : DiffuseModel::Disney;
+    opts->capture.specularMicroOcclusion = opts->scene.specularMicroOcclusion;
+    runProbe(*opts, global);
+  });
 }
 
 }  // namespace ibl::cli

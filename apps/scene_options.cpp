@@ -12,6 +12,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/default_environment.hpp"
+#include "ibl/env/photometry.hpp"
 #include "ibl/env/sky.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
@@ -19,6 +20,24 @@
 #include "ibl/render/gltf.hpp"
 
 namespace ibl::cli {
+
+void addMultipleScatteringOptions(CLI::App* cmd, SceneCliOptions& o) {
+  CLI::Option* choice =
+      cmd->add_option("--multiscatter", o.multiscatter,
+                      "Multiple scattering between microfacets: walk (the reference: Heitz et al. "
+                      "2016's random walk on the microsurface), scale (the reference: the GGX "
+                      "lobe scaled by the split sum's energy compensation) or off (single "
+                      "scattering in both modes); the split sum compensates for walk and scale")
+          ->check(CLI::IsMember({"walk", "scale", "off"}))
+          ->capture_default_str();
+  cmd->add_flag("--no-multiscatter", o.noMultiscatter, "The same as --multiscatter off")
+      ->excludes(choice);
+}
+
+MultipleScattering multipleScatteringChoice(const SceneCliOptions& o) {
+  if (o.noMultiscatter || o.multiscatter == "off") return MultipleScattering::Off;
+  return o.multiscatter == "scale" ? MultipleScattering::Scale : MultipleScattering::Walk;
+}
 
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("scene", o.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'")->required();
@@ -38,6 +57,7 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
       ->check(CLI::IsMember({"physical", "frostbite"}))
       ->capture_default_str();
   cmd->add_option("--bake", o.bakeDir, "Use an existing bake directory instead of baking --env");
+  addEnvScaleOptions(cmd, o.envScale);
   cmd->add_option("--camera", o.camera, "perspective or ortho")
       ->check(CLI::IsMember({"perspective", "ortho"}))
       ->capture_default_str();
@@ -67,9 +87,7 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "Isolate a term: diffuse, specular, or sheen (the KHR_materials_sheen layer "
                   "alone)")
       ->check(CLI::IsMember({"diffuse", "specular", "sheen"}));
-  cmd->add_flag("--multiscatter,!--no-multiscatter", o.multiscatter,
-                "Multiple scattering between microfacets as energy compensation, in both modes "
-                "(default on: the split sum and the reference compute the same material)");
+  addMultipleScatteringOptions(cmd, o);
   cmd->add_flag("--specular-micro-occlusion", o.specularMicroOcclusion,
                 "Both modes: Schlick's f90 from F0, saturate(50 dot(F0, 0.33)), darkening the "
                 "grazing reflection of materials whose F0 is below any real one's (0.02); off by "
@@ -77,6 +95,9 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--probes", o.probes,
                   "Split sum: local light probes (directories written by `ibl probe`: one probe, "
                   "or a grid with probes.json), composed before the distant environment");
+  cmd->add_flag("--force", o.force,
+                "Use --probes captured with another shading (--diffuse, --multiscatter, "
+                "--specular-micro-occlusion) than this one's: a warning instead of an error");
   cmd->add_flag("--no-parallax", o.noParallax,
                 "Split sum: read the probes without parallax correction");
   cmd->add_flag("--no-distance-roughness", o.noDistanceRoughness,
@@ -228,6 +249,7 @@ void checkSceneOptions(const SceneCliOptions& o) {
                                    "one of them",
                                    o.bakeDir));
   if (!o.env.empty() && isSkySpec(o.env)) parseSkySpec(o.env);
+  checkEnvScaleOptions(o.envScale, environmentIsNone(o) ? "--env none" : "");
   parseSize(o.size);
   if (o.scene == "sphere" || o.scene == "grid") parseVec3(o.baseColor, "--base-color");
   if (o.strict && (o.scene == "sphere" || o.scene == "grid"))
@@ -285,6 +307,24 @@ LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, boo
     if (m.contains("lights"))
       out.lights = parseLights(nlohmann::json({{"lights", m["lights"]}}).dump(), manifest.string(),
                                o.bakeDir);
+    if (o.envScale.given()) {
+      // The bake's radiance scaled as the environment would have been: its source cube (level
+      // 0) and sun give the illuminance --env-illuminance measures.
+      Environment source;
+      source.layout = Layout::Cube;
+      source.cube.levels.push_back(out.bake.source.levels.at(0));
+      out.envScale = envScaleFor(o.envScale, horizontalIlluminance(source, out.lights), o.bakeDir);
+      scaleBake(out.bake, out.envScale.factor,
+                fmt::format("{}: {}", o.bakeDir, out.envScale.option));
+      for (Light& light : out.lights) light.intensity *= static_cast<float>(out.envScale.factor);
+      if (!global.quiet)
+        fmt::print(stderr,
+                   "ibl: note: {}: the bake's radiance scaled by {:.6g} ({}: {:.6g} lx -> {:.6g} "
+                   "lx on an upward surface{})\n",
+                   o.bakeDir, out.envScale.factor, out.envScale.option, out.envScale.measuredLux,
+                   out.envScale.measuredLux * out.envScale.factor,
+                   out.lights.empty() ? "" : ", the sun included");
+    }
     return out;
   }
   if (environmentIsNone(o)) {
@@ -297,8 +337,9 @@ LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, boo
     out.bake = bakeEnvironment(black, out.options);
     return out;
   }
-  const SourceEnvironment env = loadSourceEnvironment(o.env, {}, false, global);
+  SourceEnvironment env = loadSourceEnvironment(o.env, {}, false, global);
   requireLight(env.loaded.environment, env.name);
+  out.envScale = scaleSourceEnvironment(env, o.envScale, global);
   out.lights = env.lights;
   out.options.dfgSamples = 256;
   out.bake = bakeEnvironment(env.loaded.environment, out.options);
@@ -392,7 +433,7 @@ RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) 
            : o.only == "specular" ? ShadingTerms::Specular
            : o.only == "sheen"    ? ShadingTerms::Sheen
                                   : ShadingTerms::Both;
-  r.multipleScattering = o.multiscatter;
+  r.multipleScattering = multipleScatteringChoice(o);
   r.specularMicroOcclusion = o.specularMicroOcclusion;
   r.parallaxCorrection = !o.noParallax;
   r.distanceRoughness = !o.noDistanceRoughness;

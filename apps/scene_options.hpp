@@ -24,6 +24,7 @@ struct SceneCliOptions {
   std::string lightsFile;
   std::string spotLumens = "physical";
   std::string bakeDir;
+  EnvScaleOptions envScale;  // --env-intensity, --env-illuminance: of --env, or of --bake's data
   std::string camera = "perspective";
   float fov = 40.0f;
   std::optional<float> orthoWidth;  // default: fits the scene
@@ -35,13 +36,15 @@ struct SceneCliOptions {
   float roughness = 0.5f;
   std::string diffuse = "disney";
   std::string only;
-  bool multiscatter = true;
+  std::string multiscatter = "walk";  // --multiscatter walk|scale|off
+  bool noMultiscatter = false;        // --no-multiscatter: an alias of --multiscatter off
   bool specularMicroOcclusion = false;
   bool noDominant = false;
   std::string irradiance = "cube";
   std::string areaLights = "ltc";
   std::string sheenVisibility;      // empty: the bake's (--bake), else charlie
   std::vector<std::string> probes;  // local probe directories (split sum)
+  bool force = false;  // use probes captured with another shading (a warning, not an error)
   bool noParallax = false;
   bool noDistanceRoughness = false;
   int aoRays = 0;
@@ -66,6 +69,10 @@ struct SceneCliOptions {
 
 // Registers the shared options on `cmd` (the scene positional argument included).
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o);
+// Registers --multiscatter walk|scale|off and its alias --no-multiscatter (addSceneOptions does;
+// `ibl probe` calls it alone) and reads the choice.
+void addMultipleScatteringOptions(CLI::App* cmd, SceneCliOptions& o);
+MultipleScattering multipleScatteringChoice(const SceneCliOptions& o);
 
 glm::vec3 parseVec3(const std::string& text, const char* option);
 // --size as (width, height), 1 to 16384 each.
@@ -81,6 +88,7 @@ struct LoadedBake {
   BakeResult bake;
   BakeOptions options;
   std::vector<Light> lights;  // the environment's sun (a sky's, or extracted), to add to the scene
+  EnvScale envScale;          // what --env-intensity / --env-illuminance did (factor 1: nothing)
 };
 // Whether --ssao (or its default) turns screen-space ambient occlusion on.
 bool screenAmbientOcclusionOn(const SceneCliOptions& o);
@@ -95,6 +103,9 @@ ShadowMode realTimeShadowMode(const SceneCliOptions& o);
 void checkSceneOptions(const SceneCliOptions& o);
 
 // The --bake directory, or a bake of --env (or the bundled environment) on the CPU.
+// --env-intensity / --env-illuminance scale --env before it is baked, or the --bake's radiance
+// (its source, specular, sheen and irradiance cubes and SH9; not the DFG tables) and its sun:
+// the same result, every stage of a bake being linear in the radiance.
 // `sheen`: the scene has KHR_materials_sheen materials, so the bake needs the sheen chain.
 // options.sheenVisibility is the sheen lobe's visibility the render must use: --sheen-visibility
 // (charlie when not given) for a bake made here; the bake's recorded one for --bake, which

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
+#include "ibl/env/photometry.hpp"
 #include "ibl/env/sky.hpp"
 #include "ibl/gpu/viewer.hpp"
 #include "ibl/render/bloom.hpp"
@@ -60,10 +61,17 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   std::optional<SkySpec> skySpec;
   if (sky) {
     skySpec = parseSkySpec(o.scene.env);
-    if (baked.lights.empty()) scene.lights.push_back(skySun(skySpec->parameters));
+    if (baked.lights.empty()) {
+      Light sun = skySun(skySpec->parameters);
+      sun.intensity *= static_cast<float>(baked.envScale.factor);
+      scene.lights.push_back(sun);
+    }
   }
   RenderOptions shading = shadingOptions(o.scene, baked);
   shading.spp = o.scene.spp > 0 ? o.scene.spp : 4;
+  checkProbeShading(probes, shading, o.scene.force, [&](const std::string& m) {
+    if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", m);
+  });
   if (shading.realTimeShadows == ShadowMode::Map)
     requireMemory(shadowMapBytes(scene.lights, shading.shadowSettings),
                   fmt::format("shadow maps of {} texels for {} lights", o.scene.shadowMapSize,
@@ -125,10 +133,16 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
       Environment env;
       env.equirect =
           skyImage(parameters, skySpec->width, skySpec->height, false, gpu ? &device : nullptr);
+      // --env-intensity / --env-illuminance: the factor found for the first sky, kept.
+      Light sun = skySun(parameters);
+      if (baked.envScale.factor != 1.0) {
+        scaleEnvironment(env, baked.envScale.factor, o.scene.env);
+        sun.intensity *= static_cast<float>(baked.envScale.factor);
+      }
       change.options = baked.options;
       change.bake = bakeEnvironment(env, change.options, {}, gpu ? &device : nullptr);
       change.lights = ownLights;
-      change.lights.push_back(skySun(parameters));
+      change.lights.push_back(sun);
       change.label = fmt::format("sun at {:.0f} degrees, {:.0f} lx, baked on {}", elevation,
                                  change.lights.back().intensity,
                                  gpu ? device.device().name : std::string("the CPU"));

@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
                              LightType::Disk,  LightType::Tube, LightType::Rect};
   const float roughnesses[] = {0.1f, 0.25f, 0.5f, 0.75f, 1.0f};
   RenderOptions options;
-  options.multipleScattering = false;
+  options.multipleScattering = MultipleScattering::Off;
   for (int metal = 0; metal < 2; ++metal) {
     Material m;
     m.baseColor = glm::vec3(metal ? 0.9f : 0.5f);

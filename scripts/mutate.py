@@ -125,6 +125,20 @@ MUTANTS = [
     ("SSR: no roughness fade",
      [("include/ibl/shared/screen_space_reflections.h",
        "float fade = roughnessFade(roughness, r);", "float fade = 1.0f;")]),
+    ("probes: the capture's alpha left out of the coverage",
+     [("include/ibl/shared/probes.h", "coverage + share * clamp(alpha, 0.0f, 1.0f)",
+       "coverage + share")]),
+    ("captures: metals left black",
+     [("src/render/path_tracer.cpp", "p.baseColor * (1.0f - p.metallic) + p.metallic * f0",
+       "p.baseColor * (1.0f - p.metallic) + 0.0f * f0")]),
+    ("emissive triangles: no MIS weight on the light sample",
+     [("src/render/path_tracer.cpp",
+       "visibility ? powerHeuristic(es.pdf, brdf.pdf(v, l)) / es.pdf : 1.0f / es.pdf",
+       "1.0f / es.pdf")]),
+    ("emissive triangles: the area density without the cosine at the light",
+     [("src/render/emissive_triangles.cpp",
+       "s.pdf = static_cast<float>(pTriangle) / tri.area * dist2 / cosLight;",
+       "s.pdf = static_cast<float>(pTriangle) / tri.area * dist2;")]),
 ]
 
 

@@ -136,32 +136,41 @@ ProbeVolume probeVolumeAt(int base) {
 }
 
 // The local probes' share of the lighting (lookupProbes in src/render/probe.cpp, with the GPU's
-// lookups): prefiltered and irradiance weighed by each probe's share; returns the coverage.
-float localProbes(vec3 position, vec3 r, vec3 d, float roughness, int terms,
-                  out vec3 prefiltered, out vec3 irradiance) {
+// lookups): prefiltered and irradiance weighed by each probe's share, premultiplied by the
+// capture's coverage (the maps' alpha); returns the coverage reached by the specular (x) and
+// the irradiance (y).
+vec2 localProbes(vec3 position, vec3 r, vec3 d, float roughness, int terms,
+                 out vec3 prefiltered, out vec3 irradiance) {
   prefiltered = vec3(0.0);
   irradiance = vec3(0.0);
-  float coverage = 0.0;
+  vec2 coverage = vec2(0.0);
+  bool wantSpecular = terms != 1, wantDiffuse = terms != 2;
   int flags = int(frame.probes.z);
-  for (int i = 0; i < int(frame.probes.x) && coverage < 1.0; ++i) {
+  for (int i = 0; i < int(frame.probes.x); ++i) {
+    if ((!wantSpecular || coverage.x >= 1.0) && (!wantDiffuse || coverage.y >= 1.0)) break;
     int base = 11 * i;
     ProbeVolume influence = probeVolumeAt(base + 6);
     float weight = influenceWeight(influence, probeData[base + 7].w, position);
-    float share = probeShare(weight, coverage);
-    if (share <= 0.0) continue;
-    coverage = min(coverage + share, 1.0);
+    float share = probeShare(weight, coverage.x);
+    float diffuseShare = probeShare(weight, coverage.y);
+    if (share <= 0.0 && diffuseShare <= 0.0) continue;
     ParallaxLookup look;
     look.direction = r;
     look.roughness = roughness;
     if (probeData[base].w > 0.5 && (flags & 1) != 0)
       look = parallaxCorrectedLookup(probeVolumeAt(base + 1), probeData[base].xyz, position, r,
                                      roughness, (flags & 2) != 0);
-    if (terms != 1) {
+    if (wantSpecular && share > 0.0) {
       float lod = specularLodForRoughness(look.roughness, frame.probes.y, (flags & 4) != 0);
-      prefiltered += share * textureLod(probeSpecularMaps, vec4(look.direction, float(i)), lod).rgb;
+      vec4 s = textureLod(probeSpecularMaps, vec4(look.direction, float(i)), lod);
+      prefiltered += share * s.rgb;
+      coverage.x = coverageAfterProbe(coverage.x, share, s.a);
     }
-    if (terms != 2)
-      irradiance += share * textureLod(probeIrradianceMaps, vec4(d, float(i)), 0.0).rgb;
+    if (wantDiffuse && diffuseShare > 0.0) {
+      vec4 e = textureLod(probeIrradianceMaps, vec4(d, float(i)), 0.0);
+      irradiance += diffuseShare * e.rgb;
+      coverage.y = coverageAfterProbe(coverage.y, diffuseShare, e.a);
+    }
   }
   return coverage;
 }
@@ -213,17 +222,18 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
     }
   }
   // Local probes first, the distant environment for the rest.
-  float distant = 1.0;
+  vec2 distants = vec2(1.0);
   if (frame.probes.x > 0.0)
-    distant = 1.0 - localProbes(position, look.specularDirection, look.diffuseDirection,
-                                m.roughness, s.terms, prefiltered, irradiance);
+    distants = vec2(1.0) - localProbes(position, look.specularDirection, look.diffuseDirection,
+                                       m.roughness, s.terms, prefiltered, irradiance);
+  float distant = distants.x;
   bool environment = frame.lods.w >= 0.5 && distant > 0.0;
   if (environment && s.terms != 1) {
     float lod = specularLodForRoughness(m.roughness, frame.lods.x, frame.lods.y > 0.5);
     prefiltered += distant * textureLod(specularMap, look.specularDirection, lod).rgb;
   }
-  if (environment && s.terms != 2)
-    irradiance += distant * (frame.models.y == 0
+  if (frame.lods.w >= 0.5 && distants.y > 0.0 && s.terms != 2)
+    irradiance += distants.y * (frame.models.y == 0
                                  ? textureLod(irradianceMap, look.diffuseDirection, 0.0).rgb
                                  : irradianceSh9OverPi(look.diffuseDirection));
   SplitSumSwitches composed = s;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <set>
 #include <system_error>
@@ -721,6 +722,44 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   return writeAll(plan.files, outDir, out.force, out.progress);
 }
 
+CubeMap readBakedCube(const fs::path& path) {
+  const DecodedFile d = readImageFile(path);
+  if (d.levels[0].size() != kFaceCount) fail(path.string(), "is not a cube map");
+  CubeMap c;
+  for (const auto& level : d.levels) {
+    c.levels.emplace_back();
+    for (int f = 0; f < kFaceCount; ++f) c.levels.back()[f] = level[f];
+  }
+  return c;
+}
+
+void scaleBake(BakeResult& r, double factor, std::string_view name) {
+  std::vector<CubeMap*> cubes = {&r.source, &r.specular, &r.irradiance};
+  for (std::optional<CubeMap>* c :
+       {&r.specularF0Zero, &r.specularF0One, &r.sheen, &r.filamentSpecular, &r.babylonSpecular})
+    if (c->has_value()) cubes.push_back(&**c);
+  if (!(factor > 0.0) || !std::isfinite(factor))
+    fail(name, fmt::format("cannot scale by {}: the factor must be positive and finite", factor));
+  // Checked on every map before any is changed: all or nothing.
+  float largest = 0.0f;
+  for (const CubeMap* c : cubes)
+    for (const auto& level : c->levels)
+      for (const Image& face : level)
+        for (const glm::vec3& p : face.pixels)
+          largest =
+              std::max(largest, std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))));
+  if (static_cast<double>(largest) * factor > std::numeric_limits<float>::max())
+    fail(name, fmt::format("scaled by {:g}, its largest value {:g} would exceed the range of a "
+                           "float (3.4e38)",
+                           factor, largest));
+  const float k = static_cast<float>(factor);
+  for (CubeMap* c : cubes)
+    for (auto& level : c->levels)
+      for (Image& face : level)
+        for (glm::vec3& p : face.pixels) p *= k;
+  for (glm::vec3& coefficient : r.sh) coefficient *= k;
+}
+
 BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
   const fs::path manifestPath = dir / "manifest.json";
   const Json manifest = readJsonFile(manifestPath);
@@ -739,16 +778,7 @@ BakeResult loadBake(const fs::path& dir, BakeOptions* options) {
     }
   }
   BakeResult r;
-  const auto cube = [&](const std::string& file) {
-    const DecodedFile d = readImageFile(dir / file);
-    if (d.levels[0].size() != kFaceCount) fail((dir / file).string(), "is not a cube map");
-    CubeMap c;
-    for (const auto& level : d.levels) {
-      c.levels.emplace_back();
-      for (int f = 0; f < kFaceCount; ++f) c.levels.back()[f] = level[f];
-    }
-    return c;
-  };
+  const auto cube = [&](const std::string& file) { return readBakedCube(dir / file); };
   // Every file the manifest lists must be there, and each KTX2 file hold what it says.
   const auto checkAgainstManifest = [&](const Json& o) {
     std::vector<std::string> paths;

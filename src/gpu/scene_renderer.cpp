@@ -69,12 +69,22 @@ std::vector<std::uint8_t> bytesOfFloats(std::span<const float> v) {
 // Cube maps of one size and level count as RGBA32F texels in upload order (level by level,
 // cube by cube, face by face): one cube, or (array) a cube map array.
 std::unique_ptr<DeviceImage> uploadCubes(Context& context, const std::vector<const CubeMap*>& cubes,
-                                         bool array) {
+                                         bool array,
+                                         const std::vector<const CubeMap*>& alphas = {}) {
   std::vector<float> texels;
   for (int m = 0; m < cubes[0]->levelCount(); ++m)
-    for (const CubeMap* cube : cubes)
-      for (const Image& face : cube->levels[m])
-        for (const glm::vec3& p : face.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
+    for (std::size_t c = 0; c < cubes.size(); ++c) {
+      // Alpha: the red channel of the matching cube (a probe's coverage), else 1.
+      const CubeMap* alpha = c < alphas.size() ? alphas[c] : nullptr;
+      for (int f = 0; f < kFaceCount; ++f) {
+        const Image& face = cubes[c]->levels[static_cast<std::size_t>(m)][f];
+        for (std::size_t i = 0; i < face.pixels.size(); ++i) {
+          const glm::vec3& p = face.pixels[i];
+          const float a = alpha ? alpha->levels[static_cast<std::size_t>(m)][f].pixels[i].x : 1.0f;
+          texels.insert(texels.end(), {p.x, p.y, p.z, a});
+        }
+      }
+    }
   DeviceImage::Description d;
   d.width = d.height = static_cast<std::uint32_t>(cubes[0]->size());
   d.levels = static_cast<std::uint32_t>(cubes[0]->levelCount());
@@ -253,6 +263,9 @@ void SceneRenderer::Impl::uploadProbes(const std::vector<LocalProbe>& probes,
                                        const BakeResult& bake) {
   // Without probes the environment's cubes stand in (the shader reads none of them).
   std::vector<const CubeMap*> specularCubes{&bake.specular}, irradianceCubes{&bake.irradiance};
+  // The probes' coverage as the alpha of their maps (null: a probe from before it was written,
+  // covering all).
+  std::vector<const CubeMap*> specularAlphas, irradianceAlphas;
   std::vector<glm::vec4> data(kProbeVec4s, glm::vec4(0.0f));
   if (!probes.empty()) {
     if (!context.impl().imageCubeArray)
@@ -275,6 +288,9 @@ void SceneRenderer::Impl::uploadProbes(const std::vector<LocalProbe>& probes,
                          first.bake.specular.size(), first.bake.specular.levelCount()));
       specularCubes.push_back(&p.bake.specular);
       irradianceCubes.push_back(&p.bake.irradiance);
+      const bool covered = !p.coverageSpecular.levels.empty();
+      specularAlphas.push_back(covered ? &p.coverageSpecular : nullptr);
+      irradianceAlphas.push_back(covered ? &p.coverageIrradiance : nullptr);
       const ProbePlacement& pl = p.placement;
       const auto volume = [&](const ProbeVolume& v) {
         data.push_back(glm::vec4(v.center, static_cast<float>(v.shape)));
@@ -290,8 +306,8 @@ void SceneRenderer::Impl::uploadProbes(const std::vector<LocalProbe>& probes,
     probeMaxLod = static_cast<float>(first.bake.specular.levelCount() - 1);
     probeFrostbiteMapping = first.options.specular.mapping == RoughnessMapping::Frostbite;
   }
-  probeSpecular = uploadCubes(context, specularCubes, true);
-  probeIrradiance = uploadCubes(context, irradianceCubes, true);
+  probeSpecular = uploadCubes(context, specularCubes, true, specularAlphas);
+  probeIrradiance = uploadCubes(context, irradianceCubes, true, irradianceAlphas);
   probesBuffer =
       std::make_unique<Buffer>(context, data.size() * sizeof(glm::vec4), BufferMemory::Host);
   std::memcpy(probesBuffer->mapped(), data.data(), data.size() * sizeof(glm::vec4));

@@ -1268,6 +1268,7 @@ class GltfDocument {
         else
           mesh = data->mesh;
         mesh.material = prims[p].material >= 0 ? prims[p].material : defaultMaterial;
+        mesh.names = namesOf(instance.node);
         placeInWorld(mesh, instance.world,
                      scene.materials[static_cast<std::size_t>(mesh.material)].normalTexture);
         checkFinite(mesh, m, p, instance.node);
@@ -1280,6 +1281,19 @@ class GltfDocument {
     for (const Instance& i : lightInstances_) scene.lights.push_back(lightOf(i));
     if (scene.meshes.empty()) fail(path_, "no triangle meshes to render");
     return scene;
+  }
+
+  // What a mesh instance of `node` answers to: the glTF mesh's name, the node's and its
+  // ancestors' (unnamed ones left out).
+  std::vector<std::string> namesOf(int node) const {
+    std::vector<std::string> names;
+    const std::string& mesh =
+        model_.meshes[static_cast<std::size_t>(nodes()[static_cast<std::size_t>(node)].mesh)].name;
+    if (!mesh.empty()) names.push_back(mesh);
+    for (int at = node; at >= 0; at = parents_[static_cast<std::size_t>(at)])
+      if (!nodes()[static_cast<std::size_t>(at)].name.empty())
+        names.push_back(nodes()[static_cast<std::size_t>(at)].name);
+    return names;
   }
 
   GltfSummary describe() {

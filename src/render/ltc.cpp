@@ -13,9 +13,10 @@
 namespace ibl {
 namespace {
 
-#include "ltc_table.inc"  // kLtcTableSize, kLtcTable: written by tools/ltc_fit.cpp
+#include "ltc_table.inc"  // kLtcTableSize, kLtcTable, kLtcNormTable: by tools/ltc_fit.cpp
 
 static_assert(sizeof(kLtcTable) == sizeof(float) * 4 * kLtcTableSize * kLtcTableSize);
+static_assert(sizeof(kLtcNormTable) == sizeof(kLtcTable));
 
 // The smallest alpha the shading uses (lights.h clamps alpha the same way).
 constexpr float kMinAlpha = 1e-3f;
@@ -68,17 +69,37 @@ GgxLobe makeLobe(float alpha, float cosTheta) {
   return lobe;
 }
 
-// The lobe's mean direction's angle from the normal, in the plane of v.
-float meanDirectionAngle(const GgxLobe& lobe) {
-  constexpr int n = 64;
-  glm::dvec3 sum(0.0);
+// Heitz et al. 2016's averaged terms of the lobe (their fitting code's computeAvgTerms, written
+// anew), by importance sampling the lobe with n^2 stratified directions: the norm, the integral of
+// rho cos over the hemisphere (no Fresnel; the LTC's magnitude); the Fresnel term, the same
+// integral weighted by Schlick's (1 - v.h)^5 (so that the lobe with Schlick's Fresnel integrates to
+// F0 (norm - fresnel) + f90 fresnel, as their shader scales the LTC); and the mean direction, the
+// integral of rho cos l over the norm (x, z: the lobe is symmetric about the xz plane).
+LtcNorm lobeAverages(const GgxLobe& lobe, int n) {
+  double norm = 0.0, fresnel = 0.0;
+  glm::dvec3 mean(0.0);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const glm::vec3 l = lobe.sampleDirection(stratified(i, j, n));
       const float p = lobe.pdf(l);
-      if (p > 0.0f) sum += glm::dvec3(l) * static_cast<double>(lobe.value(l) / p);
+      if (p <= 0.0f) continue;
+      const double w = lobe.value(l) / p;
+      const double vh = std::max(0.0f, glm::dot(lobe.v, glm::normalize(lobe.v + l)));
+      norm += w;
+      fresnel += w * std::pow(1.0 - vh, 5.0);
+      mean += w * glm::dvec3(l);
     }
-  return static_cast<float>(std::atan2(sum.x, sum.z));
+  const double count = static_cast<double>(n) * n;
+  LtcNorm a;
+  a.norm = static_cast<float>(norm / count);
+  a.fresnel = static_cast<float>(fresnel / count);
+  a.meanDirection = norm > 0.0 ? glm::vec2(mean.x / norm, mean.z / norm) : glm::vec2(0.0f, 1.0f);
+  return a;
+}
+
+// The lobe's mean direction's angle from the normal, in the plane of v.
+float meanDirectionAngle(const LtcNorm& a) {
+  return std::atan2(a.meanDirection.x, a.meanDirection.y);
 }
 
 // M (rows) and M^-1 (as ltc.h stores it) from the parameters (m11, m22, m13, m31), around the
@@ -184,19 +205,36 @@ const LtcTable& ltcGgxTable() {
   static const LtcTable table{
       kLtcTableSize,
       std::span<const glm::vec4>(reinterpret_cast<const glm::vec4*>(kLtcTable),
+                                 static_cast<std::size_t>(kLtcTableSize) * kLtcTableSize),
+      std::span<const glm::vec4>(reinterpret_cast<const glm::vec4*>(kLtcNormTable),
                                  static_cast<std::size_t>(kLtcTableSize) * kLtcTableSize)};
   return table;
 }
 
-glm::vec4 ltcTableLookup(float roughness, float NoV) {
-  const LtcTable& t = ltcGgxTable();
-  const glm::vec2 p = shared::ltcTablePosition(roughness, NoV, static_cast<float>(t.size));
-  const int x0 = std::min(static_cast<int>(p.x), t.size - 2);
-  const int y0 = std::min(static_cast<int>(p.y), t.size - 2);
+namespace {
+glm::vec4 lookup(std::span<const glm::vec4> entries, int size, float roughness, float NoV) {
+  const glm::vec2 p = shared::ltcTablePosition(roughness, NoV, static_cast<float>(size));
+  const int x0 = std::min(static_cast<int>(p.x), size - 2);
+  const int y0 = std::min(static_cast<int>(p.y), size - 2);
   const float fx = p.x - static_cast<float>(x0), fy = p.y - static_cast<float>(y0);
-  const auto at = [&](int i, int j) { return t.entries[static_cast<std::size_t>(j) * t.size + i]; };
+  const auto at = [&](int i, int j) { return entries[static_cast<std::size_t>(j) * size + i]; };
   return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
                   glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+}
+}  // namespace
+
+glm::vec4 ltcTableLookup(float roughness, float NoV) {
+  const LtcTable& t = ltcGgxTable();
+  return lookup(t.entries, t.size, roughness, NoV);
+}
+
+glm::vec4 ltcNormLookup(float roughness, float NoV) {
+  const LtcTable& t = ltcGgxTable();
+  return lookup(t.norms, t.size, roughness, NoV);
+}
+
+LtcNorm ltcLobeAverages(float alpha, float cosTheta, int samples) {
+  return lobeAverages(makeLobe(alpha, cosTheta), samples);
 }
 
 float ltcColumnAlpha(int column, int size) {
@@ -220,32 +258,51 @@ float ltcFitError(glm::vec4 entry, float alpha, float cosTheta, int samples) {
   return static_cast<float>(ltcDistance(lobe, m, samples, 1));
 }
 
-LtcFit fitLtc(float alpha, float cosTheta, glm::vec4 start) {
+LtcFit fitLtc(float alpha, float cosTheta, glm::vec4 start, bool isotropic,
+              const LtcFitOptions& options) {
   const GgxLobe lobe = makeLobe(alpha, cosTheta);
-  const float phi = meanDirectionAngle(lobe);
-  const auto error = [&](glm::vec4 p) { return ltcDistance(lobe, ltcMatrices(p, phi), 24, 3); };
+  const LtcNorm averages = lobeAverages(lobe, 128);
+  // Seen along the normal the lobe is round about it (Heitz et al.'s fit at theta = 0): one
+  // parameter, m11 = m22, m13 = m31 = 0, no rotation.
+  const float phi = isotropic ? 0.0f : meanDirectionAngle(averages);
+  const auto expand = [&](glm::vec4 p) { return isotropic ? glm::vec4(p.x, p.x, 0.0f, 0.0f) : p; };
+  const auto error = [&](glm::vec4 p) {
+    return ltcDistance(lobe, ltcMatrices(expand(p), phi), options.samples, options.exponent);
+  };
   glm::vec4 step;
   for (int i = 0; i < 4; ++i) step[i] = 0.1f * std::max(std::abs(start[i]), alpha);
+  if (isotropic) step = glm::vec4(step.x, 0.0f, 0.0f, 0.0f);
   // Two rounds: the second restarts the simplex at the first's minimum.
   glm::vec4 p = minimizeNelderMead(error, start, step, 400);
   p = minimizeNelderMead(error, p, 0.5f * step, 300);
   LtcFit fit;
-  fit.parameters = p;
-  fit.entry = ltcMatrices(p, phi).entry;
+  fit.parameters = expand(p);
+  fit.entry = ltcMatrices(fit.parameters, phi).entry;
+  fit.norm = averages;
   fit.error = ltcFitError(fit.entry, alpha, cosTheta, 64);
   return fit;
 }
 
-std::vector<LtcFit> fitLtcTable(int size, const std::function<void(float)>& progress) {
+std::vector<LtcFit> fitLtcTable(int size, const std::function<void(float)>& progress,
+                                const LtcFitOptions& options) {
   std::vector<LtcFit> table(static_cast<std::size_t>(size) * size);
+  // Heitz et al.'s initialization: the row at n.v = 1 first, isotropic, from the roughest column
+  // (the cosine itself, m11 = m22 = 1) toward the smoothest, each fit from its rougher neighbour;
+  // then each column (in parallel) from n.v = 1 toward grazing, each row from the previous one.
+  glm::vec4 start(1.0f, 1.0f, 0.0f, 0.0f);
+  for (int column = size - 1; column >= 0; --column) {
+    const LtcFit fit = fitLtc(ltcColumnAlpha(column, size), 1.0f, start, true, options);
+    table[static_cast<std::size_t>(column)] = fit;
+    start = fit.parameters;
+  }
   std::atomic<int> done{0};
   parallelFor(0, size, [&](int column) {
     const float alpha = ltcColumnAlpha(column, size);
-    glm::vec4 start(alpha, alpha, 0.0f, 0.0f);
-    for (int row = 0; row < size; ++row) {
-      const LtcFit fit = fitLtc(alpha, ltcRowCosTheta(row, size), start);
+    glm::vec4 previous = table[static_cast<std::size_t>(column)].parameters;
+    for (int row = 1; row < size; ++row) {
+      const LtcFit fit = fitLtc(alpha, ltcRowCosTheta(row, size), previous, false, options);
       table[static_cast<std::size_t>(row) * size + column] = fit;
-      start = fit.parameters;
+      previous = fit.parameters;
     }
     const int finished = ++done;
     if (progress) progress(static_cast<float>(finished) / static_cast<float>(size));

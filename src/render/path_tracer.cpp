@@ -1,6 +1,7 @@
 #include "path_tracer.hpp"
 
 #include <numbers>
+#include <optional>
 
 #include "ibl/bake/dfg.hpp"
 #include "ibl/bake/prefilter.hpp"
@@ -8,6 +9,7 @@
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/sampling.hpp"
 #include "ibl/shared/split_sum.h"
+#include "microfacet_walk.hpp"
 
 namespace ibl {
 
@@ -85,6 +87,10 @@ struct Brdf {
   DiffuseModel diffuseModel;
   ShadingTerms only;
   glm::vec3 multipleScattering;  // the specular lobe's scale for the bounces between microfacets
+  // MultipleScattering::Walk: the specular lobe is Heitz et al. 2016's random walk on the
+  // microsurface (microfacet_walk.hpp), its single scattering the analytic GGX term below.
+  bool walk = false;
+  MicrofacetWalk microsurface{1.0f, glm::vec3(1.0f), 1.0f};
   // KHR_materials_sheen: f = f_sheen + f_below min(1 - s E(n.v), 1 - s E(n.l)), s =
   // max(sheenColor), f_sheen = sheenColor D_charlie V (the specification's layering), V the
   // visibility of RenderOptions::sheenVisibility.
@@ -108,9 +114,15 @@ struct Brdf {
     // returned by the split sum's own compensation (Fdez-Aguera 2019, as Filament does): the
     // lobe is scaled by 1 + F0 (1 / E(n.v) - 1). With F0 = 1 it
     // reflects everything (a white furnace); both render modes compute the same material.
-    if (o.multipleScattering && only != ShadingTerms::Diffuse) {
+    // MultipleScattering::Walk computes the bounces instead: nearly the same energy (within 5 %
+    // for F0 = 0.9), in another shape (docs/render.md, "Multiple scattering in the reference").
+    if (o.multipleScattering == MultipleScattering::Scale && only != ShadingTerms::Diffuse) {
       const float e = directionalAlbedo(std::max(v.z, 1e-4f), p.roughness);
       b.multipleScattering = shared::multipleScatteringCompensation(b.f0, glm::vec2(e, 0.0f));
+    }
+    if (o.multipleScattering == MultipleScattering::Walk && only != ShadingTerms::Diffuse) {
+      b.walk = true;
+      b.microsurface = MicrofacetWalk(b.alpha, b.f0, b.f90);
     }
     if (p.sheenColor != glm::vec3(0.0f)) {
       // The split sum's sheen prefilter stops at kMinSheenRoughness: the same material here.
@@ -134,16 +146,26 @@ struct Brdf {
                                                               std::max(c, 1e-4f), sheenRoughness));
   }
 
-  // f(v, l) (n.l), with n = +Z of the local frame.
-  glm::vec3 evaluate(glm::vec3 v, glm::vec3 l) const {
+  // The view as the walk takes it: above the horizon (shading normals can put v below it; the
+  // analytic terms clamp n.v to 1e-4 alike).
+  static glm::vec3 walkView(glm::vec3 v) {
+    return v.z >= 1e-4f ? v : glm::normalize(glm::vec3(v.x, v.y, 1e-4f));
+  }
+
+  // f(v, l) (n.l), with n = +Z of the local frame. With the walk, an unbiased estimate (rng:
+  // the walk's numbers; unused otherwise); withSpecular = false leaves the specular lobe out.
+  glm::vec3 evaluate(glm::vec3 v, glm::vec3 l, Random& rng, bool withSpecular = true) const {
     const float NoV = std::max(v.z, 1e-4f), NoL = l.z;
     if (NoL <= 0.0f) return glm::vec3(0.0f);
     const glm::vec3 h = glm::normalize(v + l);
     glm::vec3 result(0.0f);
-    if (specularLobe()) {
+    if (specularLobe() && withSpecular) {
       const float VoH = std::max(glm::dot(v, h), 0.0f);
       result += ggxDistribution(h.z, alpha) * smithGgxCorrelatedVisibility(NoV, NoL, alpha) *
                 fresnelSchlick(f0, f90, VoH) * multipleScattering;
+      // The walk's orders 2 and up (f cos, hence the division): its order 1 has the
+      // expectation of the term above, which is exact.
+      if (walk) result += microsurface.evaluate(walkView(v), l, rng, 2) / NoL;
     }
     if (diffuseLobe()) {
       const float fd = diffuseModel == DiffuseModel::Disney
@@ -190,15 +212,52 @@ struct Brdf {
     return pSheen * l.z / kPi + (1.0f - pSheen) * p;
   }
 
-  glm::vec3 sample(glm::vec3 v, glm::vec2 xi, float choose) const {
+  // A direction l and its weight f(v, l) (n.l) / p(l).
+  struct Sample {
+    glm::vec3 direction;
+    glm::vec3 weight;
+  };
+  Sample sample(glm::vec3 v, Random& rng) const {
+    const glm::vec2 xi = rng.uniform2();
+    float choose = rng.uniform();
     const float pSheen = sheenProbability();
-    if (choose < pSheen) return sampleCosineHemisphere(xi);
-    choose = (choose - pSheen) / (1.0f - pSheen);
-    if (choose < specularProbability()) {
-      const glm::vec3 h = sampleGgxVisibleNormal(v, xi, alpha);
-      return 2.0f * glm::dot(v, h) * h - v;
+    if (walk) {
+      // The walk's directions have no pdf to evaluate: one lobe is estimated at a time, the
+      // specular by the walk's sample (weight: its f cos / p, the Fresnel of its bounces, times
+      // the sheen layer's scaling) over the probability of choosing it, the others (sheen and
+      // diffuse, both cosine-distributed) by f cos / p over the probability of the rest. Each
+      // lobe's estimate is unbiased, so their sum is; pdf() (single scattering for the
+      // specular) serves the MIS weights alone, as an approximation: the light's weight and
+      // this sample's, computed from the same pdf() at the same l, still sum to 1, which is
+      // all an unbiased MIS estimator needs (Veach 1997, section 9.2.2); a pdf away from the
+      // walk's true one costs variance, not bias.
+      const float specular = (1.0f - pSheen) * specularProbability();
+      if (choose < specular) {
+        const MicrofacetWalk::Sample s = microsurface.sample(walkView(v), rng);
+        glm::vec3 weight = s.weight / specular;
+        if (hasSheen()) weight *= std::min(sheenScaleV, albedoScaling(s.wo.z));
+        return {s.wo, weight};
+      }
+      const glm::vec3 l = sampleCosineHemisphere(xi);
+      const float p = (1.0f - specular) * l.z / kPi;
+      if (!(p > 0.0f)) return {l, glm::vec3(0.0f)};
+      return {l, evaluate(v, l, rng, false) / p};
     }
-    return sampleCosineHemisphere(xi);
+    glm::vec3 l;
+    if (choose < pSheen) {
+      l = sampleCosineHemisphere(xi);
+    } else {
+      choose = (choose - pSheen) / (1.0f - pSheen);
+      if (choose < specularProbability()) {
+        const glm::vec3 h = sampleGgxVisibleNormal(v, xi, alpha);
+        l = 2.0f * glm::dot(v, h) * h - v;
+      } else {
+        l = sampleCosineHemisphere(xi);
+      }
+    }
+    const float p = pdf(v, l);
+    if (!(p > 0.0f)) return {l, glm::vec3(0.0f)};
+    return {l, evaluate(v, l, rng) / p};
   }
 };
 
@@ -247,6 +306,16 @@ void preparePathTracer() {
   directionalAlbedoTable();
 }
 
+// Lagarde & de Rousiers 2014, 4.9.1.2: a probe capture keeps the diffuse light of the surfaces it
+// sees, so a metal (no diffuse lobe) would be black; it is seen as a diffuse surface whose albedo
+// is its F0 instead.
+static SurfacePoint metalAsDiffuse(SurfacePoint p) {
+  const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), p.baseColor, p.metallic);
+  p.baseColor = p.baseColor * (1.0f - p.metallic) + p.metallic * f0;
+  p.metallic = 0.0f;
+  return p;
+}
+
 glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position, glm::vec3 view,
                     Random& rng) {
   const RenderOptions& o = s.options;
@@ -256,12 +325,16 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
   const bool visibility = o.shadows || o.bounces > 0;
   glm::vec3 sum(0.0f), throughput(1.0f);
   for (int depth = 0;; ++depth) {
-    sum += throughput * p.emissive;
+    // The emission of the first surface; further ones are counted where the BRDF's sample meets
+    // them, weighed against the emitters' sampling.
+    if (depth == 0) sum += throughput * p.emissive;
     const glm::mat3 frame = tangentFrame(p.normal);
     const glm::mat3 toLocal = glm::transpose(frame);
     const glm::vec3 v = toLocal * view;
     // A probe capture leaves out the view-dependent specular of the surfaces the camera sees.
-    const ShadingTerms only = depth == 0 && !o.cameraSeesSpecular ? ShadingTerms::Diffuse : o.only;
+    const bool captured = depth == 0 && !o.cameraSeesSpecular;
+    const ShadingTerms only = captured ? ShadingTerms::Diffuse : o.only;
+    if (captured && o.captureMetalsAsDiffuse) p = metalAsDiffuse(p);
     const Brdf brdf = Brdf::of(p, v, only, o);
     const glm::vec3 origin = position + p.normal * 1e-4f * std::max(1.0f, glm::length(position));
     const auto unoccluded = [&](glm::vec3 w, float distance) {
@@ -278,7 +351,19 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
       const glm::vec3 l = toLocal * ls.direction;
       if (l.z <= 0.0f || !unoccluded(ls.direction, ls.distance)) continue;
       const float weight = ls.delta ? 1.0f : powerHeuristic(ls.pdf, brdf.pdf(v, l)) / ls.pdf;
-      sum += throughput * brdf.evaluate(v, l) * ls.radiance * weight;
+      sum += throughput * brdf.evaluate(v, l, rng) * ls.radiance * weight;
+    }
+    // One point on the emissive triangles (by power); without visibility the BRDF's samples are
+    // not traced, so this sample takes all the weight.
+    if (!s.emitters.empty()) {
+      const EmitterSample es = s.emitters.sample(origin, glm::vec3(rng.uniform(), rng.uniform2()));
+      const glm::vec3 l = toLocal * es.direction;
+      if (es.pdf > 0.0f && es.radiance != glm::vec3(0.0f) && l.z > 0.0f &&
+          unoccluded(es.direction, es.distance)) {
+        const float weight =
+            visibility ? powerHeuristic(es.pdf, brdf.pdf(v, l)) / es.pdf : 1.0f / es.pdf;
+        sum += throughput * brdf.evaluate(v, l, rng) * es.radiance * weight;
+      }
     }
     if (o.environmentLight) {
       const glm::vec3 w = s.environment.sample(rng.uniform2());
@@ -286,16 +371,19 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
       const float pe = s.environment.pdf(w);
       if (l.z > 0.0f && pe > 0.0f && nearestLight(lights, origin, w).index < 0 &&
           unoccluded(w, INFINITY))
-        sum += throughput * brdf.evaluate(v, l) * s.environment.radiance(w) *
+        sum += throughput * brdf.evaluate(v, l, rng) * s.environment.radiance(w) *
                (powerHeuristic(pe, brdf.pdf(v, l)) / pe);
     }
     // The BRDF's sample: it ends on a light or the environment (weighed against their
     // sampling), or goes on from the surface it meets.
-    const glm::vec3 l = brdf.sample(v, rng.uniform2(), rng.uniform());
+    const Brdf::Sample bs = brdf.sample(v, rng);
+    const glm::vec3 l = bs.direction;
     const float pb = brdf.pdf(v, l);
-    if (!(pb > 0.0f)) break;
+    if (!(pb > 0.0f) || bs.weight == glm::vec3(0.0f)) break;
     const glm::vec3 w = frame * l;
-    const glm::vec3 f = brdf.evaluate(v, l);
+    // f such that f / pb is the sample's weight: f cos / p of the sampled lobe (with the
+    // microfacet walk an estimate of it, pb the MIS weights' approximate pdf; Brdf::sample).
+    const glm::vec3 f = bs.weight * pb;
     const Ray ray{origin, w};
     const RayTracer::Hit hit = visibility ? s.tracer.intersect(ray) : RayTracer::Hit{};
     const NearestLight seen = nearestLight(lights, origin, w);
@@ -312,6 +400,16 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
                (powerHeuristic(pb, s.environment.pdf(w)) / pb);
       break;
     }
+    // An emissive surface met: its emission, weighed against the sampling of the emitters.
+    const bool sphere = s.tracer.isSphere(hit.geometry);
+    const Material& met = s.scene.materials[static_cast<std::size_t>(
+        sphere ? s.scene.spheres[hit.primitive].material : s.scene.meshes[hit.geometry].material)];
+    std::optional<SurfacePoint> next;
+    if (met.emissive != glm::vec3(0.0f)) {
+      next = surfaceAt(s.scene, s.tracer, hit, ray);
+      const float pe = sphere ? 0.0f : s.emitters.pdf(w, hit.t, hit.geometry, hit.primitive);
+      sum += throughput * f * next->emissive * (powerHeuristic(pb, pe) / pb);
+    }
     if (depth >= o.bounces) break;
     throughput *= f / pb;
     // Russian roulette after two bounces: go on with the probability of the throughput.
@@ -320,7 +418,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
       if (!(rng.uniform() < q)) break;
       throughput /= q;
     }
-    p = surfaceAt(s.scene, s.tracer, hit, ray);
+    p = next ? *next : surfaceAt(s.scene, s.tracer, hit, ray);
     position = ray.origin + hit.t * ray.direction;
     view = -w;
   }

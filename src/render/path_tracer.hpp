@@ -13,6 +13,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "emissive_triangles.hpp"
 #include "ibl/core/image.hpp"
 #include "ibl/env/cubemap.hpp"
 #include "ibl/math/color.hpp"
@@ -102,6 +103,7 @@ struct PathTracerScene {
   const RayTracer& tracer;
   const EnvironmentSampler& environment;
   const RenderOptions& options;
+  const EmissiveTriangles& emitters;  // the scene's emissive triangles, sampled as lights
 };
 
 // Computes what tracePath reads once per process (the multiple-scattering table). Call it
@@ -110,8 +112,9 @@ struct PathTracerScene {
 void preparePathTracer();
 
 // The radiance that surface point `p` at `position` sends toward unit direction `view` (its
-// emission included): direct light from every light, the environment and (up to
-// options.bounces) the light other surfaces reflect. Unbiased but for the environment's texels.
+// emission included): direct light from every light, the emissive triangles and the
+// environment, and (up to options.bounces) the light other surfaces reflect. Unbiased but for the
+// environment's texels.
 glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position, glm::vec3 view,
                     Random& rng);
 

@@ -24,6 +24,18 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
+const char* multipleScatteringName(MultipleScattering m) {
+  switch (m) {
+    case MultipleScattering::Off:
+      return "off";
+    case MultipleScattering::Scale:
+      return "scale";
+    case MultipleScattering::Walk:
+      break;
+  }
+  return "walk";
+}
+
 Json vec3Json(glm::vec3 v) {
   return Json::array({v.x, v.y, v.z});
 }
@@ -121,6 +133,13 @@ ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResu
   o.spp = options.spp;
   o.bounces = options.bounces;
   o.cameraSeesSpecular = options.specular;
+  o.diffuse = options.diffuse;
+  o.specularMicroOcclusion = options.specularMicroOcclusion;
+  o.captureMetalsAsDiffuse = options.metalsAsDiffuse;
+  // Premultiplied: a ray that leaves the scene brings nothing; its share is the coverage's.
+  o.backgroundEnvironment = false;
+  o.backgroundColor = glm::vec3(0.0f);
+  o.multipleScattering = options.multipleScattering;
   o.cameraSeesEmitters = false;
   o.seed = options.seed;
   o.sheenVisibility = bakeOptions.sheenVisibility;  // the sheen of the bake it lights with
@@ -128,13 +147,13 @@ ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResu
       renderRays(scene, kFaceCount * n, n, faceRays, bake, bakeOptions, o, progress);
   ProbeCapture c;
   c.radiance = CubeMap(n, 1);
-  c.visibility = CubeMap(n, 1);
+  c.coverage = CubeMap(n, 1);
   for (int f = 0; f < kFaceCount; ++f)
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x) {
         c.radiance.face(0, f).at(x, y) = strip.color.at(f * n + x, y);
         const float covered = strip.alpha[static_cast<std::size_t>(y) * kFaceCount * n + f * n + x];
-        c.visibility.face(0, f).at(x, y) = glm::vec3(1.0f - covered);
+        c.coverage.face(0, f).at(x, y) = glm::vec3(covered);
       }
   c.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -167,9 +186,13 @@ std::string unusableCaptureReason(const CaptureSite& site, const ProbeCapture* c
         "(the nearest {:.3g} m away)",
         100.0f * site.backFaceShare, site.nearestHit);
   if (capture) {
-    float brightest = 0.0f;
+    float brightest = 0.0f, covered = 0.0f;
     for (const auto& face : capture->radiance.levels[0])
       for (const glm::vec3& p : face.pixels) brightest = std::max({brightest, p.x, p.y, p.z});
+    for (const auto& face : capture->coverage.levels[0])
+      for (const glm::vec3& p : face.pixels) covered = std::max(covered, p.x);
+    if (!(covered > 0.0f))
+      return "in the open: it sees none of the scene, only the distant environment";
     if (!(brightest > 0.0f)) return "no light reaches it: every texel of its capture is black";
   }
   return {};
@@ -182,9 +205,15 @@ std::string probeRecordJson(const ProbePlacement& p, const CaptureOptions& captu
   j["proxy"] = p.hasProxy ? volumeJson(p.proxy, p.rotationDegrees) : Json(nullptr);
   j["influence"] = volumeJson(p.influence, p.rotationDegrees);
   j["fade"] = p.fade;
-  j["capture"] = {{"size", capture.size},       {"spp", capture.spp},
-                  {"bounces", capture.bounces}, {"specular", capture.specular},
-                  {"seed", capture.seed},       {"milliseconds", std::round(captureMilliseconds)}};
+  j["capture"] = {{"size", capture.size},
+                  {"spp", capture.spp},
+                  {"bounces", capture.bounces},
+                  {"specular", capture.specular},
+                  {"seed", capture.seed},
+                  {"milliseconds", std::round(captureMilliseconds)},
+                  {"diffuse", capture.diffuse == DiffuseModel::Lambert ? "lambert" : "disney"},
+                  {"multiscatter", multipleScatteringName(capture.multipleScattering)},
+                  {"specular_micro_occlusion", capture.specularMicroOcclusion}};
   j["conventions"] = {
       {"lookup",
        "parallax-corrected along the proxy (Lagarde & Zanuttini 2012), blended back "
@@ -193,13 +222,38 @@ std::string probeRecordJson(const ProbePlacement& p, const CaptureOptions& captu
       {"composition",
        "smallest influence first, share = saturate(weight - coverage), then the "
        "distant environment (Frostbite 4.9.5)"},
-      {"visibility", "visibility.ktx2: the share of each texel that sees the distant environment"}};
+      {"coverage",
+       "the radiance is premultiplied (what the scene's surfaces send; the distant environment "
+       "seen directly left out); coverage_specular.ktx2 and coverage_irradiance.ktx2 hold the "
+       "share of each texel that meets the scene, filtered as the specular chain and the "
+       "irradiance: the alpha of each lookup (Frostbite 4.9.5)"}};
   return j.dump();
 }
 
-ProbePlacement parseProbeRecord(const std::string& text, const std::string& name) {
+ProbePlacement parseProbeRecord(const std::string& text, const std::string& name,
+                                CaptureOptions* capture) {
   try {
     const Json j = Json::parse(text);
+    if (capture) {
+      // Records from before the shading was written were captured with the defaults.
+      *capture = CaptureOptions{};
+      capture->multipleScattering = MultipleScattering::Scale;
+      if (j.contains("capture")) {
+        const Json& c = j.at("capture");
+        const std::string diffuse = c.value("diffuse", "disney");
+        if (diffuse != "disney" && diffuse != "lambert")
+          throw std::runtime_error(fmt::format("unknown diffuse model '{}'", diffuse));
+        capture->diffuse = diffuse == "lambert" ? DiffuseModel::Lambert : DiffuseModel::Disney;
+        const std::string ms = c.value("multiscatter", "scale");
+        if (ms == "off")
+          capture->multipleScattering = MultipleScattering::Off;
+        else if (ms == "walk")
+          capture->multipleScattering = MultipleScattering::Walk;
+        else if (ms != "scale")
+          throw std::runtime_error(fmt::format("unknown multiple scattering '{}'", ms));
+        capture->specularMicroOcclusion = c.value("specular_micro_occlusion", false);
+      }
+    }
     ProbePlacement p;
     p.position = vec3Of(j.at("position"));
     if (!j.at("proxy").is_null()) {
@@ -217,6 +271,57 @@ ProbePlacement parseProbeRecord(const std::string& text, const std::string& name
   }
 }
 
+std::string captureShadingMismatch(const CaptureOptions& c, const RenderOptions& r) {
+  std::string out;
+  const auto add = [&](std::string_view what, std::string_view captured, std::string_view here) {
+    if (captured == here) return;
+    out += fmt::format("{}{}: {} in the capture, {} here", out.empty() ? "" : "; ", what, captured,
+                       here);
+  };
+  const auto diffuseName = [](DiffuseModel m) {
+    return m == DiffuseModel::Lambert ? "lambert" : "disney";
+  };
+  add("diffuse", diffuseName(c.diffuse), diffuseName(r.diffuse));
+  const auto onOff = [](bool on) { return on ? "on" : "off"; };
+  add("multiple scattering", onOff(c.multipleScattering != MultipleScattering::Off),
+      onOff(r.multipleScattering != MultipleScattering::Off));
+  add("specular micro-occlusion", onOff(c.specularMicroOcclusion), onOff(r.specularMicroOcclusion));
+  return out;
+}
+
+void checkProbeShading(const std::vector<LocalProbe>& probes, const RenderOptions& render,
+                       bool force, const std::function<void(const std::string&)>& warn) {
+  for (const LocalProbe& p : probes) {
+    const std::string mismatch = captureShadingMismatch(p.capture, render);
+    if (mismatch.empty()) continue;
+    const std::string message = fmt::format(
+        "{}: captured with another shading ({}): capture it again with the same "
+        "options{}",
+        p.path, mismatch, force ? "" : ", or give --force to use it anyway");
+    if (!force) throw Error(message);
+    if (warn) warn(message);
+  }
+}
+
+LocalProbe bakeProbe(const ProbeCapture& capture, const ProbePlacement& placement,
+                     const CaptureOptions& captureOptions, const BakeOptions& options) {
+  const auto bakeCube = [&](const CubeMap& cube) {
+    Environment e;
+    e.layout = Layout::Cube;
+    e.cube = cube;
+    return bakeEnvironment(e, options);
+  };
+  LocalProbe probe;
+  probe.placement = placement;
+  probe.capture = captureOptions;
+  probe.options = options;
+  probe.bake = bakeCube(capture.radiance);
+  BakeResult coverage = bakeCube(capture.coverage);
+  probe.coverageSpecular = std::move(coverage.specular);
+  probe.coverageIrradiance = std::move(coverage.irradiance);
+  return probe;
+}
+
 namespace {
 
 LocalProbe loadProbe(const fs::path& dir) {
@@ -229,8 +334,20 @@ LocalProbe loadProbe(const fs::path& dir) {
          "has no probe record: a bake of a distant environment, not a probe "
          "(bake probes with `ibl probe`)");
   LocalProbe probe;
-  probe.placement = parseProbeRecord(manifest["probe"].dump(), manifestPath.string());
+  probe.placement =
+      parseProbeRecord(manifest["probe"].dump(), manifestPath.string(), &probe.capture);
   probe.bake = loadBake(dir, &probe.options);
+  // Probes from before the coverage was written hold the distant environment in their radiance:
+  // coverage 1 everywhere, as they were composed then.
+  if (fs::is_regular_file(dir / "coverage_specular.ktx2")) {
+    probe.coverageSpecular = readBakedCube(dir / "coverage_specular.ktx2");
+    probe.coverageIrradiance = readBakedCube(dir / "coverage_irradiance.ktx2");
+    if (probe.coverageSpecular.levelCount() != probe.bake.specular.levelCount() ||
+        probe.coverageSpecular.size() != probe.bake.specular.size() ||
+        probe.coverageIrradiance.size() != probe.bake.irradiance.size())
+      fail((dir / "coverage_specular.ktx2").string(),
+           "does not match the probe's specular chain and irradiance in size and levels");
+  }
   probe.path = dir.string();
   return probe;
 }
@@ -267,26 +384,40 @@ ProbeLighting lookupProbes(const std::vector<LocalProbe>& probes, glm::vec3 posi
                            glm::vec3 reflection, glm::vec3 diffuseDirection, float roughness,
                            const RenderOptions& o) {
   ProbeLighting result;
+  const bool wantSpecular = o.only != ShadingTerms::Diffuse;
+  const bool wantDiffuse = o.only != ShadingTerms::Specular;
   for (const LocalProbe& probe : probes) {
-    if (result.coverage >= 1.0f) break;
+    if ((!wantSpecular || result.coverage >= 1.0f) &&
+        (!wantDiffuse || result.diffuseCoverage >= 1.0f))
+      break;
     const ProbePlacement& pl = probe.placement;
     const float weight = shared::influenceWeight(pl.influence, pl.fade, position);
     const float share = shared::probeShare(weight, result.coverage);
-    if (share <= 0.0f) continue;
-    result.coverage = std::min(result.coverage + share, 1.0f);
+    const float diffuseShare = shared::probeShare(weight, result.diffuseCoverage);
+    if (share <= 0.0f && diffuseShare <= 0.0f) continue;
+    const bool covered = !probe.coverageSpecular.levels.empty();
     shared::ParallaxLookup look;
     look.direction = reflection;
     look.roughness = roughness;
     if (pl.hasProxy && o.parallaxCorrection)
       look = shared::parallaxCorrectedLookup(pl.proxy, pl.position, position, reflection, roughness,
                                              o.distanceRoughness);
-    if (o.only != ShadingTerms::Diffuse) {
+    if (wantSpecular && share > 0.0f) {
       const float lod = specularLodForRoughness(look.roughness, probe.bake.specular.levelCount(),
                                                 probe.options.specular.mapping);
       result.prefiltered += share * sampleTrilinear(probe.bake.specular, lod, look.direction);
+      const float alpha =
+          covered ? sampleTrilinear(probe.coverageSpecular, lod, look.direction).x : 1.0f;
+      result.coverage = shared::coverageAfterProbe(result.coverage, share, alpha);
     }
-    if (o.only != ShadingTerms::Specular)
-      result.irradiance += share * sampleBilinear(probe.bake.irradiance, 0, diffuseDirection);
+    if (wantDiffuse && diffuseShare > 0.0f) {
+      result.irradiance +=
+          diffuseShare * sampleBilinear(probe.bake.irradiance, 0, diffuseDirection);
+      const float alpha =
+          covered ? sampleBilinear(probe.coverageIrradiance, 0, diffuseDirection).x : 1.0f;
+      result.diffuseCoverage =
+          shared::coverageAfterProbe(result.diffuseCoverage, diffuseShare, alpha);
+    }
   }
   return result;
 }

@@ -51,7 +51,7 @@ float ambientOcclusion(const RayTracer& tracer, const SurfacePoint& p, int rays,
 shared::SplitSumSwitches splitSumSwitches(const RenderOptions& o) {
   shared::SplitSumSwitches s;
   s.terms = o.only == ShadingTerms::Diffuse ? 1 : (o.only == ShadingTerms::Specular ? 2 : 0);
-  s.multipleScattering = o.multipleScattering;
+  s.multipleScattering = o.multipleScattering != MultipleScattering::Off;
   s.dominantDirections = o.dominantDirections;
   s.specularOcclusion = o.specularOcclusion;
   s.disneyDiffuse = o.diffuse == DiffuseModel::Disney;
@@ -73,23 +73,24 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   const glm::vec3 dfg = sampleDfgLut(bake.dfg, look.NoV, p.roughness);
   glm::vec3 prefiltered(0.0f), irradiance(0.0f);
   // Local probes first (smallest influence first), the distant environment for the rest.
-  float distant = 1.0f;
+  float distant = 1.0f, distantDiffuse = 1.0f;
   if (o.probes && !o.probes->empty()) {
     const ProbeLighting local = lookupProbes(*o.probes, p.position, look.specularDirection,
                                              look.diffuseDirection, p.roughness, o);
     prefiltered = local.prefiltered;
     irradiance = local.irradiance;
     distant = 1.0f - local.coverage;
+    distantDiffuse = 1.0f - local.diffuseCoverage;
   }
   if (o.environmentLight && distant > 0.0f && o.only != ShadingTerms::Diffuse) {
     const float lod = specularLodForRoughness(p.roughness, bake.specular.levelCount(),
                                               bakeOptions.specular.mapping);
     prefiltered += distant * sampleTrilinear(bake.specular, lod, look.specularDirection);
   }
-  if (o.environmentLight && distant > 0.0f && o.only != ShadingTerms::Specular)
-    irradiance += distant * (o.irradiance == IrradianceSource::Cube
-                                 ? sampleBilinear(bake.irradiance, 0, look.diffuseDirection)
-                                 : irradianceSh9(bake.sh, look.diffuseDirection) / kPi);
+  if (o.environmentLight && distantDiffuse > 0.0f && o.only != ShadingTerms::Specular)
+    irradiance += distantDiffuse * (o.irradiance == IrradianceSource::Cube
+                                        ? sampleBilinear(bake.irradiance, 0, look.diffuseDirection)
+                                        : irradianceSh9(bake.sh, look.diffuseDirection) / kPi);
   shared::SplitSumMaterial m;
   m.baseColor = p.baseColor;
   m.metallic = p.metallic;
@@ -240,7 +241,8 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   const RayTracer tracer(scene);
   const EnvironmentSampler env(bake.source.levels[0]);
   if (o.mode == RenderMode::Reference) preparePathTracer();
-  const PathTracerScene pathScene{scene, tracer, env, o};
+  const EmissiveTriangles emitters(scene, tracer);
+  const PathTracerScene pathScene{scene, tracer, env, o, emitters};
   const auto [lo, hi] = scene.bounds();
   // The lights' shadows in the split sum: maps (built here over the whole scene unless given),
   // or rays.

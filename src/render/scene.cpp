@@ -8,8 +8,10 @@
 #include <limits>
 #include <numbers>
 
+#include <fmt/format.h>
 #include <glm/geometric.hpp>
 
+#include "ibl/core/error.hpp"
 #include "ibl/math/color.hpp"
 
 namespace ibl {
@@ -69,6 +71,29 @@ std::pair<glm::vec3, glm::vec3> Scene::bounds() const {
   }
   if (lo.x > hi.x) return {glm::vec3(-1.0f), glm::vec3(1.0f)};
   return {lo, hi};
+}
+
+Scene withoutObjects(const Scene& scene, const std::vector<std::string>& names,
+                     const std::string& option) {
+  if (names.empty()) return scene;
+  Scene out = scene;
+  out.meshes.clear();
+  std::vector<bool> used(names.size(), false);
+  for (const Mesh& m : scene.meshes) {
+    bool excluded = false;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (std::find(m.names.begin(), m.names.end(), names[i]) != m.names.end())
+        excluded = used[i] = true;
+    if (!excluded) out.meshes.push_back(m);
+  }
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (!used[i])
+      failUsage(option, fmt::format("no node or mesh of the scene is named '{}' (`ibl info` on the "
+                                    "glTF file lists them)",
+                                    names[i]));
+  if (out.meshes.empty() && out.spheres.empty())
+    failUsage(option, "leaves nothing of the scene to capture");
+  return out;
 }
 
 Mesh tessellateSphere(const Sphere& sphere, int segments) {

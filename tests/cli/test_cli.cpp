@@ -449,10 +449,38 @@ TEST(Cli, ProbeCapturesBakesAndRendersAndRejectsBadInput) {
                     " --at 0,0,0.2 --proxy box:-7,-2,-1,7,2,1 --size 16 --spp 4 -o " + quote(out));
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(out / "specular.ktx2"));
-  EXPECT_TRUE(std::filesystem::exists(out / "visibility.ktx2"));
+  EXPECT_TRUE(std::filesystem::exists(out / "coverage_specular.ktx2"));
+  EXPECT_TRUE(std::filesystem::exists(out / "coverage_irradiance.ktx2"));
   r = runIbl("render grid --env none --probes " + quote(out) + " --size 32x16 -o " +
              quote(dir.path() / "r.png"));
   ASSERT_EQ(r.status, 0) << r.output;
+  // The manifest records the capture's shading; a render of another shading refuses the probe,
+  // or with --force warns and renders.
+  const nlohmann::json record =
+      nlohmann::json::parse(std::ifstream(out / "manifest.json")).at("probe").at("capture");
+  EXPECT_EQ(record.at("diffuse"), "disney");
+  EXPECT_EQ(record.at("multiscatter"), "walk");
+  EXPECT_EQ(record.at("specular_micro_occlusion"), false);
+  r = runIbl("render grid --env none --diffuse lambert --probes " + quote(out) +
+             " --size 32x16 -o " + quote(dir.path() / "lambert.png"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("captured with another shading (diffuse: disney in the capture, "
+                          "lambert here)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "lambert.png"));
+  r = runIbl("render grid --env none --diffuse lambert --force --probes " + quote(out) +
+             " --size 32x16 -o " + quote(dir.path() / "lambert.png"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("warning"), std::string::npos) << r.output;
+  // --exclude: a name the scene lacks (the built-in grid has none) is a usage error.
+  r = runIbl("probe grid" + lit + " --at 0,0,0.2 --size 8 --spp 1 --exclude chair -o " +
+             quote(dir.path() / "excluded"));
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--exclude: no node or mesh of the scene is named 'chair'"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "excluded"));
   // A grid in two shards, merged.
   const auto grid = dir.path() / "grid";
   for (const char* shard : {"0/2", "1/2"}) {

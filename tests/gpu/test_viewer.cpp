@@ -721,7 +721,7 @@ TEST(Viewer, ShadingSwitchesMatchTheCpu) {
   variants[1].only = ShadingTerms::Specular;
   variants[2].irradiance = IrradianceSource::Sh;
   variants[3].diffuse = DiffuseModel::Lambert;
-  variants[4].multipleScattering = false;
+  variants[4].multipleScattering = MultipleScattering::Off;
   variants[4].dominantDirections = false;
   variants[5].backgroundEnvironment = false;
   variants[5].backgroundColor = glm::vec3(0.25f, 0.5f, 1.0f);

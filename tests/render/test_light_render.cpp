@@ -247,7 +247,7 @@ TEST(LightRender, ApproximationsStayWithinTheirMeasuredError) {
                           {LightType::Tube, {0.25, 0.35, 0.55, 0.42}, {0.19, 0.29, 0.21, 0.35}},
                           {LightType::Rect, {0.18, 0.27, 0.55, 0.53}, {0.05, 0.10, 0.10, 0.08}}};
   RenderOptions options;
-  options.multipleScattering = false;  // the reference has none
+  options.multipleScattering = MultipleScattering::Off;  // the reference has none
   for (const Bound& b : bounds)
     for (bool metal : {false, true})
       for (float roughness : {0.25f, 0.75f, 1.0f}) {

@@ -12,6 +12,7 @@
 
 #include "ibl/core/stats.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/render/gltf.hpp"
 #include "ibl/render/probe.hpp"
 #include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
@@ -502,4 +503,187 @@ TEST(Probes, GltfRoomThroughTheCommands) {
   // about as far from the reference at this size (its noise, and the metal sphere's reflection
   // of the ceiling's bright spot above the lamp); tests above measure the per-pixel error.
   EXPECT_LT(probedGap, 0.5 * plainGap);
+}
+
+namespace {
+
+// A floor of `material` 100 m wide at y = 0, under the sky.
+Scene floorScene(const Material& material) {
+  Scene scene;
+  scene.materials.push_back(material);
+  addQuad(scene, glm::vec3(-50.0f, 0.0f, -50.0f), glm::vec3(100.0f, 0.0f, 0.0f),
+          glm::vec3(0.0f, 0.0f, 100.0f), 0, glm::vec3(0.0f, 1.0f, 0.0f));
+  return scene;
+}
+
+// The face whose center looks along `axis`.
+int faceAlong(glm::vec3 axis) {
+  for (int f = 0; f < kFaceCount; ++f)
+    if (glm::dot(glm::normalize(faceToDirection(f, 0.0f, 0.0f)), axis) > 0.99f) return f;
+  return -1;
+}
+
+glm::vec3 faceCenter(const CubeMap& cube, int face) {
+  const int n = cube.size();
+  glm::vec3 sum(0.0f);
+  for (int y = n / 2 - 1; y <= n / 2; ++y)
+    for (int x = n / 2 - 1; x <= n / 2; ++x) sum += 0.25f * cube.face(0, face).at(x, y);
+  return sum;
+}
+
+}  // namespace
+
+TEST(Probes, CaptureSeesAMetalAsADiffuseSurfaceOfAlbedoF0) {
+  // A metal floor under a sky of radiance 1: its irradiance is pi, so a diffuse surface of
+  // albedo F0 (Frostbite 4.9.1.2's rule for captures) sends F0, where the capture's diffuse alone
+  // would see black. The sky itself is not in the capture (premultiplied), and the coverage says
+  // which texels the floor fills.
+  Material metal;
+  metal.baseColor = glm::vec3(0.9f, 0.6f, 0.3f);
+  metal.metallic = 1.0f;
+  metal.roughness = 0.2f;
+  const Scene scene = floorScene(metal);
+  const Bake env = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
+  CaptureOptions capture;
+  capture.size = 8;
+  capture.spp = 256;
+  capture.bounces = 0;
+  capture.diffuse = DiffuseModel::Lambert;
+  const ProbeCapture c =
+      captureProbe(scene, glm::vec3(0.0f, 0.5f, 0.0f), env.result, env.options, capture);
+  const int down = faceAlong(glm::vec3(0.0f, -1.0f, 0.0f)), up = faceAlong(glm::vec3(0, 1, 0));
+  ASSERT_GE(down, 0);
+  ASSERT_GE(up, 0);
+  const glm::vec3 floor = faceCenter(c.radiance, down);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(floor[k] / metal.baseColor[k], 1.0f, 0.03f) << k;
+  EXPECT_NEAR(faceCenter(c.coverage, down).x, 1.0f, 1e-6f);
+  EXPECT_NEAR(faceCenter(c.coverage, up).x, 0.0f, 1e-6f);
+  EXPECT_EQ(faceCenter(c.radiance, up), glm::vec3(0.0f));
+}
+
+TEST(Probes, TheDistantEnvironmentFillsWhatACaptureDoesNotCover) {
+  // A probe over a grey floor (albedo 0.5) under a sky of radiance 1 sees the sky above and
+  // the floor below. A mirror facing up must reflect the sky (what the probe leaves uncovered,
+  // filled by the distant environment: the same as without the probe), one facing down the floor
+  // (0.5 of the sky's value, where the distant environment alone would give the sky's 1).
+  const Scene scene = floorScene(diffuse(glm::vec3(0.5f)));
+  const Bake env = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
+  CaptureOptions capture;
+  capture.size = 16;
+  capture.spp = 64;
+  capture.bounces = 0;
+  capture.diffuse = DiffuseModel::Lambert;
+  ProbePlacement placement;
+  placement.position = glm::vec3(0.0f, 1.0f, 0.0f);
+  placement.influence = sphereVolume(placement.position, 40.0f);
+  const std::vector<LocalProbe> probes = {
+      captureAndBakeProbe(scene, env.result, env.options, placement, capture)};
+  RenderOptions o;
+  o.diffuse = DiffuseModel::Lambert;
+  SurfacePoint p;
+  p.position = glm::vec3(0.0f, 1.2f, 0.0f);
+  p.baseColor = glm::vec3(1.0f);
+  p.metallic = 1.0f;
+  p.roughness = 0.0f;
+  for (const float facing : {1.0f, -1.0f}) {
+    p.normal = glm::vec3(0.0f, facing, 0.0f);
+    o.probes = nullptr;
+    const glm::vec3 alone = shadeSplitSum(p, p.normal, env.result, env.options, o);
+    o.probes = &probes;
+    const glm::vec3 probed = shadeSplitSum(p, p.normal, env.result, env.options, o);
+    const float expected = facing > 0.0f ? 1.0f : 0.5f;
+    EXPECT_NEAR(luminance(probed) / luminance(alone), expected, 0.03f)
+        << (facing > 0.0f ? "facing the sky" : "facing the floor");
+  }
+  // The diffuse: a white Lambertian surface facing up sees the sky's irradiance, whole.
+  p.metallic = 0.0f;
+  p.roughness = 1.0f;
+  p.normal = glm::vec3(0.0f, 1.0f, 0.0f);
+  o.only = ShadingTerms::Diffuse;
+  o.probes = nullptr;
+  const glm::vec3 alone = shadeSplitSum(p, p.normal, env.result, env.options, o);
+  o.probes = &probes;
+  EXPECT_NEAR(luminance(shadeSplitSum(p, p.normal, env.result, env.options, o)) / luminance(alone),
+              1.0f, 0.03f);
+}
+
+TEST(Probes, ACaptureShadingOtherThanTheRendersIsRefused) {
+  CaptureOptions capture;  // Disney, multiple scattering walked, no micro-occlusion
+  RenderOptions render;
+  render.multipleScattering = MultipleScattering::Scale;  // the same material as the walk
+  EXPECT_EQ(captureShadingMismatch(capture, render), "");
+  render.diffuse = DiffuseModel::Lambert;
+  render.multipleScattering = MultipleScattering::Off;
+  const std::string mismatch = captureShadingMismatch(capture, render);
+  EXPECT_NE(mismatch.find("diffuse: disney in the capture, lambert here"), std::string::npos)
+      << mismatch;
+  EXPECT_NE(mismatch.find("multiple scattering: on in the capture, off here"), std::string::npos)
+      << mismatch;
+  render.diffuse = DiffuseModel::Disney;
+  render.multipleScattering = MultipleScattering::Walk;
+  render.specularMicroOcclusion = true;
+  EXPECT_NE(captureShadingMismatch(capture, render).find("specular micro-occlusion"),
+            std::string::npos);
+  LocalProbe probe;
+  probe.capture = capture;
+  probe.path = "room/probe";
+  const std::vector<LocalProbe> probes = {probe};
+  try {
+    checkProbeShading(probes, render, false, {});
+    ADD_FAILURE() << "a probe of another shading was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("room/probe: captured with another shading", 0), 0u)
+        << e.what();
+  }
+  int warnings = 0;
+  checkProbeShading(probes, render, true, [&](const std::string&) { ++warnings; });
+  EXPECT_EQ(warnings, 1);
+  // A record without the shading (probes from before it was written) reads as the defaults
+  // they were captured with.
+  CaptureOptions read;
+  parseProbeRecord(R"({"position": [0, 1, 0], "proxy": null, "influence": {"shape": "sphere", )"
+                   R"("center": [0, 1, 0], "radius": 2}, "fade": 0.5, "capture": {"size": 32}})",
+                   "old.json", &read);
+  EXPECT_EQ(read.diffuse, DiffuseModel::Disney);
+  EXPECT_EQ(read.multipleScattering, MultipleScattering::Scale);
+  EXPECT_FALSE(read.specularMicroOcclusion);
+  // And a record written now reads back as written.
+  capture.diffuse = DiffuseModel::Lambert;
+  capture.multipleScattering = MultipleScattering::Off;
+  capture.specularMicroOcclusion = true;
+  parseProbeRecord(probeRecordJson(placementAt(glm::vec3(0.0f), sphereVolume(glm::vec3(0.0f), 1),
+                                               sphereVolume(glm::vec3(0.0f), 1), 0.1f),
+                                   capture, 10.0),
+                   "new.json", &read);
+  EXPECT_EQ(read.diffuse, DiffuseModel::Lambert);
+  EXPECT_EQ(read.multipleScattering, MultipleScattering::Off);
+  EXPECT_TRUE(read.specularMicroOcclusion);
+}
+
+TEST(Probes, ExcludedNodesAndMeshesLeaveTheCapture) {
+  // Two meshes written as glTF; the second's node is put under a parent "Furniture" and named
+  // "Chair", its mesh "ChairMesh": any of the three names leaves it out, with what is below.
+  const TempDir dir;
+  Scene scene = floorScene(diffuse(glm::vec3(0.5f)));
+  addQuad(scene, glm::vec3(0.0f, 0.5f, 0.0f), glm::vec3(0.5f, 0.0f, 0.0f),
+          glm::vec3(0.0f, 0.0f, 0.5f), 0, glm::vec3(0.0f, 1.0f, 0.0f));
+  const auto path = dir.path() / "room.gltf";
+  writeSceneAsGltf(scene, path);
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(path));
+  j["nodes"][0]["name"] = "Floor";
+  j["nodes"][1]["name"] = "Chair";
+  j["meshes"][1]["name"] = "ChairMesh";
+  j["nodes"].push_back({{"name", "Furniture"}, {"children", {1}}});
+  j["scenes"][0]["nodes"] = {0, 2};
+  std::ofstream(path) << j.dump();
+  const Scene loaded = loadGltf(path.string());
+  ASSERT_EQ(loaded.meshes.size(), 2u);
+  EXPECT_EQ(loaded.meshes[1].names, (std::vector<std::string>{"ChairMesh", "Chair", "Furniture"}));
+  for (const char* name : {"Furniture", "Chair", "ChairMesh"}) {
+    const Scene left = withoutObjects(loaded, {name}, "--exclude");
+    ASSERT_EQ(left.meshes.size(), 1u) << name;
+    EXPECT_EQ(left.meshes[0].names, std::vector<std::string>{"Floor"}) << name;
+  }
+  EXPECT_THROW(withoutObjects(loaded, {"Chair", "Table"}, "--exclude"), UsageError);
+  EXPECT_THROW(withoutObjects(loaded, {"Floor", "Furniture"}, "--exclude"), UsageError);
 }

@@ -62,12 +62,12 @@ TEST(Render, WhiteFurnace) {
     o.mode = RenderMode::Reference;
     o.spp = 65536;  // 1 % noise at 16384
     const RenderResult ref = renderScene(s, cam, b.result, b.options, o);
-    o.multipleScattering = false;
+    o.multipleScattering = MultipleScattering::Off;
     const RenderResult refSingle = renderScene(s, cam, b.result, b.options, o);
     o.mode = RenderMode::SplitSum;
     o.spp = 1;
     const RenderResult single = renderScene(s, cam, b.result, b.options, o);
-    o.multipleScattering = true;
+    o.multipleScattering = MultipleScattering::Scale;
     const RenderResult compensated = renderScene(s, cam, b.result, b.options, o);
     for (int x : {4, 6}) {  // the center (n.v = 1) and a pixel off to the side
       const float d = (x + 0.5f) / n * 2.0f - 1.0f;
@@ -94,7 +94,7 @@ TEST(Render, SpecularMicroOcclusionDarkensTheGrazingReflection) {
   const Scene s = sphere(glm::vec3(f0), 1.0f, r);
   for (bool micro : {false, true}) {
     RenderOptions o;
-    o.multipleScattering = false;
+    o.multipleScattering = MultipleScattering::Off;
     o.specularMicroOcclusion = micro;
     o.spp = 1;
     const RenderResult split = renderScene(s, cam, b.result, b.options, o);
@@ -152,7 +152,7 @@ TEST(Render, SplitSumNearReferenceOnSmoothEnvironments) {
   for (float r : {0.3f, 0.7f}) {
     const Scene s = sphere(glm::vec3(0.9f, 0.6f, 0.3f), 0.5f, r);
     RenderOptions o;
-    o.multipleScattering = false;  // the reference is single scattering
+    o.multipleScattering = MultipleScattering::Off;  // the reference is single scattering
     const ImageComparison c = splitSumAgainstReference(s, cam, b, o);
     RecordProperty("mean_relative_error_r" + std::to_string(r),
                    std::to_string(c.overall.meanRelativeError));

@@ -2,7 +2,6 @@
 // A local probe captured in a scene and baked in memory, as `ibl probe` does on disk (a small
 // DFG table: the tests using it look at the cube maps).
 #include "ibl/bake/bake.hpp"
-#include "ibl/env/environment.hpp"
 #include "ibl/render/probe.hpp"
 
 namespace ibl::test {
@@ -13,15 +12,10 @@ inline LocalProbe captureAndBakeProbe(const Scene& scene, const BakeResult& env,
                                       const ProbePlacement& placement,
                                       const CaptureOptions& capture) {
   const ProbeCapture c = captureProbe(scene, placement.position, env, envOptions, capture);
-  Environment captured;
-  captured.layout = Layout::Cube;
-  captured.cube = c.radiance;
-  LocalProbe p;
-  p.options.specular.size = capture.size;
-  p.options.dfgSamples = 64;
-  p.bake = bakeEnvironment(captured, p.options);
-  p.placement = placement;
-  return p;
+  BakeOptions options;
+  options.specular.size = capture.size;
+  options.dfgSamples = 64;
+  return bakeProbe(c, placement, capture, options);
 }
 
 // A placement whose proxy is also its influence, without a fade.

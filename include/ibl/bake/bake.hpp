@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ibl/bake/prefilter.hpp"
@@ -126,9 +127,19 @@ void checkBakeOutputDirectory(const std::filesystem::path& outDir, bool force);
 std::uint64_t estimateBakeMemoryBytes(const BakeOptions& options, const BakeOutputOptions& output);
 std::uint64_t estimateBakeOutputBytes(const BakeOptions& options, const BakeOutputOptions& output);
 
+// Multiplies the radiance a bake holds by `factor` (> 0 and finite), as if the environment had
+// been scaled before baking: every stage is linear in the radiance, so the source, specular
+// (and its Fresnel-weighted pair, Filament's and Babylon's chains), sheen and irradiance cubes
+// and the SH9 coefficients are scaled; the DFG and sheen tables, which hold no radiance, are
+// not. Throws Error("<name>: ...") if a value would leave the range of a float.
+void scaleBake(BakeResult& bake, double factor, std::string_view name = "bake");
+
 // Reads a bake written by writeBakeOutputs back (specular, irradiance, source, DFG, SH9, the
 // sheen pair, and the roughness mapping and sheen visibility from its manifest), for rendering
 // without baking again.
 BakeResult loadBake(const std::filesystem::path& dir, BakeOptions* options);
+// A cube map file of a bake (KTX2, every level), e.g. a probe's coverage; throws, naming the
+// file, when it is not a cube map.
+CubeMap readBakedCube(const std::filesystem::path& path);
 
 }  // namespace ibl

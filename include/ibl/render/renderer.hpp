@@ -25,6 +25,14 @@ enum class IrradianceSource { Cube, Sh };
 // The real-time approximation of sphere, disk, tube and rect lights: Frostbite's (illuminance
 // formulas and a representative point) or linearly transformed cosines (ltc.hpp).
 enum class AreaLightModel { Frostbite, Ltc };
+// Multiple scattering between microfacets, the same choice for both modes' material:
+//   Off: single-scattering GGX alone (both modes);
+//   Scale: the reference scales the single-scattering lobe by 1 + F0 (1 / E(n.v) - 1)
+//     (Fdez-Aguera 2019), the split sum's own energy compensation;
+//   Walk: the reference's lobe is Heitz et al. 2016's random walk on the microsurface (its
+//     multiple scattering exactly, src/render/microfacet_walk.hpp); the split sum keeps its
+//     compensation as with Scale.
+enum class MultipleScattering { Off, Scale, Walk };
 
 struct RenderOptions {
   RenderMode mode = RenderMode::SplitSum;
@@ -32,7 +40,9 @@ struct RenderOptions {
   ShadingTerms only = ShadingTerms::Both;
   int spp = 4;                  // samples per pixel (reference: the maximum)
   float noiseThreshold = 0.0f;  // reference: stop a pixel when its relative standard error is below
-  bool multipleScattering = true;  // energy compensation (both modes: the same material)
+  // Both modes (the split sum compensates for Scale and Walk alike); the commands' default is
+  // Walk.
+  MultipleScattering multipleScattering = MultipleScattering::Scale;
   bool dominantDirections = true;  // split sum: Frostbite's dominant directions
   bool specularOcclusion = true;   // split sum: from the occlusion texture
   // Both modes: f90 = saturate(50 dot(F0, 0.33)) in the Fresnel (shared::fresnelF90), for the
@@ -57,6 +67,10 @@ struct RenderOptions {
   // Reference: the camera sees the surfaces' specular reflection (a probe capture leaves it
   // out: it depends on the view, Frostbite section 4.9.3).
   bool cameraSeesSpecular = true;
+  // Reference, with cameraSeesSpecular false (a probe capture): the surfaces the camera sees
+  // shade a metal as a diffuse surface of albedo F0 (Frostbite 4.9.1.2); false leaves metals
+  // black, for measuring the rule.
+  bool captureMetalsAsDiffuse = true;
   // The camera sees the area lights and the sun (a probe capture does not: the split sum adds
   // the lights' own reflections analytically).
   bool cameraSeesEmitters = true;

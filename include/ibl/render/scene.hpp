@@ -81,6 +81,9 @@ struct Mesh {
   std::vector<glm::vec2> uvs1;      // TEXCOORD_1 (empty: none)
   std::vector<std::uint32_t> indices;
   int material = 0;
+  // The names it answers to (--exclude): its glTF mesh's, its node's and that node's ancestors'
+  // (unnamed ones left out).
+  std::vector<std::string> names;
 };
 
 struct Sphere {
@@ -107,6 +110,12 @@ struct Scene {
   // Axis-aligned bounds of everything.
   std::pair<glm::vec3, glm::vec3> bounds() const;
 };
+
+// The scene without the meshes that answer to any of `names` (Mesh::names: a glTF mesh, or a
+// node and everything below it), as a probe capture leaves out dynamic objects. Throws, naming
+// `option`, when a name matches no mesh.
+Scene withoutObjects(const Scene& scene, const std::vector<std::string>& names,
+                     const std::string& option);
 
 // One sphere of radius 1 at the origin.
 Scene makeSphereScene(const Material& material);

@@ -108,6 +108,15 @@ IBL_FN float probeShare(float weight, float coverage) {
   return clamp(weight - coverage, 0.0f, 1.0f);
 }
 
+// The coverage after a probe took `share` of a lookup whose capture covers `alpha` of it (the
+// capture's coverage filtered like the lookup: 1 where the probe saw the scene, 0 where it saw
+// the distant environment). Its color was premultiplied by that alpha; what it leaves uncovered
+// goes to the next probe, or to the distant environment seen from the shaded point (Frostbite
+// 4.9.5's listing, which weighs a local probe by its alpha).
+IBL_FN float coverageAfterProbe(float coverage, float share, float alpha) {
+  return min(coverage + share * clamp(alpha, 0.0f, 1.0f), 1.0f);
+}
+
 IBL_END
 
 #endif
