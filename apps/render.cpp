@@ -52,9 +52,11 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   // --shadows: the reference's visibility (given bare or as ray), the split sum's mode.
   r.shadows = o.scene.shadows && (o.scene.shadows->empty() || *o.scene.shadows == "ray");
   r.bounces = o.bounces;
-  checkProbeShading(probes, r, o.scene.force, [&](const std::string& m) {
-    if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", m);
-  });
+  // The reference reads no probe: only the split sum must match their shading.
+  if (o.mode != "reference")
+    checkProbeShading(probes, r, o.scene.force, [&](const std::string& m) {
+      if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", m);
+    });
   r.probes = &probes;
   r.seed = o.seed;
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);

@@ -354,12 +354,17 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
       sum += throughput * brdf.evaluate(v, l, rng) * ls.radiance * weight;
     }
     // One point on the emissive triangles (by power); without visibility the BRDF's samples are
-    // not traced, so this sample takes all the weight.
+    // not traced, so this sample takes all the weight. An analytic light in front hides it, as it
+    // stops the BRDF's samples.
     if (!s.emitters.empty()) {
       const EmitterSample es = s.emitters.sample(origin, glm::vec3(rng.uniform(), rng.uniform2()));
       const glm::vec3 l = toLocal * es.direction;
+      const auto lightInFront = [&] {
+        const NearestLight nl = nearestLight(lights, origin, es.direction);
+        return nl.index >= 0 && nl.hit.distance < es.distance;
+      };
       if (es.pdf > 0.0f && es.radiance != glm::vec3(0.0f) && l.z > 0.0f &&
-          unoccluded(es.direction, es.distance)) {
+          unoccluded(es.direction, es.distance) && !lightInFront()) {
         const float weight =
             visibility ? powerHeuristic(es.pdf, brdf.pdf(v, l)) / es.pdf : 1.0f / es.pdf;
         sum += throughput * brdf.evaluate(v, l, rng) * es.radiance * weight;

@@ -559,6 +559,15 @@ TEST(Probes, CaptureSeesAMetalAsADiffuseSurfaceOfAlbedoF0) {
   EXPECT_NEAR(faceCenter(c.coverage, down).x, 1.0f, 1e-6f);
   EXPECT_NEAR(faceCenter(c.coverage, up).x, 0.0f, 1e-6f);
   EXPECT_EQ(faceCenter(c.radiance, up), glm::vec3(0.0f));
+  // Half metallic: the diffuse albedo (1 - m) base plus the metal's share of F0,
+  // m mix(0.04, base, m) = 0.75 base + 0.01 (a plain dielectric would be the base color).
+  Material half = metal;
+  half.metallic = 0.5f;
+  const ProbeCapture h =
+      captureProbe(floorScene(half), glm::vec3(0.0f, 0.5f, 0.0f), env.result, env.options, capture);
+  const glm::vec3 seen = faceCenter(h.radiance, down);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(seen[k] / (0.75f * half.baseColor[k] + 0.01f), 1.0f, 0.03f) << k;
 }
 
 TEST(Probes, TheDistantEnvironmentFillsWhatACaptureDoesNotCover) {
@@ -605,6 +614,15 @@ TEST(Probes, TheDistantEnvironmentFillsWhatACaptureDoesNotCover) {
   o.probes = &probes;
   EXPECT_NEAR(luminance(shadeSplitSum(p, p.normal, env.result, env.options, o)) / luminance(alone),
               1.0f, 0.03f);
+  // Facing sideways it sees half sky, half floor: E / pi = 0.5 + 0.5 x 0.5 = 0.75 of the sky
+  // alone, half through the probe (premultiplied, its irradiance coverage 0.5) and half through
+  // the distant environment (premultiplied twice: 0.625; share x alpha^2 into the coverage: 1).
+  p.normal = glm::vec3(1.0f, 0.0f, 0.0f);
+  o.probes = nullptr;
+  const glm::vec3 side = shadeSplitSum(p, p.normal, env.result, env.options, o);
+  o.probes = &probes;
+  EXPECT_NEAR(luminance(shadeSplitSum(p, p.normal, env.result, env.options, o)) / luminance(side),
+              0.75f, 0.02f);
 }
 
 TEST(Probes, ACaptureShadingOtherThanTheRendersIsRefused) {
