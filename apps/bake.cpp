@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@ namespace {
 struct BakeCliOptions {
   std::vector<std::string> inputs;  // none: the bundled default
   std::string list;                 // --list FILE: more inputs
+  std::string shard;                // --shard K/N: the batch's inputs i with i mod N == K
   std::string output;
   std::string inputLayout;
   std::string layer;
@@ -44,7 +46,7 @@ struct BakeCliOptions {
   int irradianceSize = 32;
   int dfgSize = 128;
   int dfgSamples = 512;
-  bool shWindow = false;
+  std::string shWindow = "off";
   float rotate = 0.0f;
   float clamp = 0.0f;  // 0: no limit
   std::string format = "rgba16f";
@@ -83,7 +85,9 @@ BakeOptions bakeOptionsOf(const BakeCliOptions& o) {
   options.irradianceSize = o.irradianceSize;
   options.dfgSize = o.dfgSize;
   options.dfgSamples = o.dfgSamples;
-  options.shWindow = o.shWindow;
+  options.shWindow = o.shWindow == "lanczos" ? ShWindow::Lanczos
+                     : o.shWindow == "cmgen" ? ShWindow::Cmgen
+                                             : ShWindow::Off;
   options.rotateDegrees = o.rotate;
   return options;
 }
@@ -242,9 +246,28 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
       o.inputs.size() > 1 || !o.list.empty() ||
       (o.inputs.size() == 1 && o.inputs[0].find_first_of("*?[") != std::string::npos &&
        !std::filesystem::exists(o.inputs[0]));
-  const std::vector<std::string> inputs =
+  std::optional<Shard> shard;
+  if (!o.shard.empty()) {
+    shard = parseShard(o.shard);
+    if (!batch) failUsage("--shard", "splits a batch: it needs --list FILE or several inputs");
+  }
+  std::vector<std::string> inputs =
       batch ? expandInputs(o.inputs, o.list)
             : std::vector<std::string>{o.inputs.empty() ? std::string() : o.inputs[0]};
+  if (shard) {
+    // The whole batch is expanded and checked for colliding names first, so that every shard
+    // agrees on the indices (the inputs on the command line, then the list's lines, in order).
+    std::vector<std::string> mine;
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+      if (shard->owns(i)) mine.push_back(inputs[i]);
+    if (mine.empty()) {
+      if (!global.quiet)
+        fmt::print(stderr, "ibl: note: --shard {}: none of the batch's {} inputs is this shard's\n",
+                   o.shard, inputs.size());
+      return;
+    }
+    inputs = std::move(mine);
+  }
   std::vector<std::string> outDirs;
   for (const std::string& input : inputs)
     outDirs.push_back(batch ? (std::filesystem::path(o.output) / batchName(input)).string()
@@ -280,6 +303,9 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                   "each is baked into OUTDIR/<name>/");
   cmd->add_option("--list", opts->list,
                   "Also bake the files this text file lists, one per line (a batch)");
+  cmd->add_option("--shard", opts->shard,
+                  "Bake the K-th of N disjoint parts of a batch (K/N, K from 0): the inputs whose "
+                  "index in the batch (the command line's, then the list's) is K modulo N");
   cmd->add_option("-o,--output", opts->output,
                   "Output directory (required); of a batch: the parent of one directory per "
                   "input");
@@ -339,8 +365,14 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--dfg-samples", opts->dfgSamples, "Integration points per DFG texel")
       ->check(numberIn(1, 1 << 20))
       ->capture_default_str();
-  cmd->add_flag("--sh-window", opts->shWindow,
-                "Window the SH9 coefficients (Lanczos) against ringing");
+  cmd->add_option("--sh-window", opts->shWindow,
+                  "Window the SH9 coefficients against ringing: lanczos (what --sh-window alone "
+                  "gives: the sigma factors 1, 0.827, 0.414), cmgen (Filament cmgen's default "
+                  "--sh-window=auto: the widest sinc^4 window whose irradiance stays >= 0) or off "
+                  "(the default: exact)")
+      ->expected(0, 1)
+      ->default_str("lanczos")
+      ->check(CLI::IsMember({"off", "lanczos", "cmgen"}));
   cmd->add_option("--rotate", opts->rotate, "Rotate the environment about +Y by DEG degrees")
       ->check(finiteNumber())
       ->capture_default_str();

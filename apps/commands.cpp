@@ -84,6 +84,15 @@ std::vector<float> parseNumbers(const std::string& text, std::size_t count, cons
   return v;
 }
 
+Shard parseShard(const std::string& text) {
+  int k = 0, n = 0;
+  char slash = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &k, &slash, &n, &extra) != 3 || slash != '/' || n < 1 ||
+      k < 0 || k >= n)
+    failUsage("--shard", fmt::format("'{}': expected K/N with 0 <= K < N", text));
+  return {k, n};
+}
+
 std::string formatNumber(double value) {
   if (value == std::floor(value) && std::abs(value) < 1e15)
     return fmt::format("{}", static_cast<long long>(value));

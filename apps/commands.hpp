@@ -46,6 +46,17 @@ CLI::Validator powerOfTwo(int lo, int hi);
 // ("'nan' is not finite", "'x' is not a number", "expected 3 comma-separated numbers").
 std::vector<float> parseNumbers(const std::string& text, std::size_t count, const char* option);
 
+// --shard K/N (`ibl probe --grid`, `ibl bake` batches): the K-th of N disjoint parts of a list,
+// K from 0; an item of index i belongs to the shard i mod N. A usage error naming --shard unless
+// 0 <= K < N. The same rule in every command, so one scheduler's array (Slurm's
+// $SLURM_ARRAY_TASK_ID, Kubernetes's $JOB_COMPLETION_INDEX) shards them all alike.
+struct Shard {
+  int k = 0;
+  int n = 1;
+  bool owns(std::size_t index) const { return static_cast<int>(index % n) == k; }
+};
+Shard parseShard(const std::string& text);
+
 // A number for messages: 4096, 0.25, 1e+20 (no 309-digit doubles, no trailing zeros).
 std::string formatNumber(double value);
 

@@ -20,7 +20,6 @@
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/io/file_io.hpp"
-#include "ibl/io/json_file.hpp"
 #include "ibl/render/probe.hpp"
 #include "preflight.hpp"
 #include "scene_options.hpp"
@@ -162,17 +161,6 @@ std::vector<PlannedProbe> planGrid(const ProbeCliOptions& o, const ProbeVolume* 
   return probes;
 }
 
-// --shard K/N: the probes whose index is K modulo N (neighbours land on different machines,
-// so every shard takes about as long).
-std::pair<int, int> parseShard(const std::string& text) {
-  int k = 0, n = 0;
-  char slash = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &k, &slash, &n, &extra) != 3 || slash != '/' || n < 1 ||
-      k < 0 || k >= n)
-    failUsage("--shard", fmt::format("'{}': expected K/N with 0 <= K < N", text));
-  return {k, n};
-}
-
 std::string shardListName(int k, int n) {
   return fmt::format("probes.shard-{}-of-{}.json", k, n);
 }
@@ -196,6 +184,54 @@ Json gridListJson(const ProbeCliOptions& o, const std::vector<PlannedProbe>& pro
           {"probes", list}};
 }
 
+// What a merge lacks: the probes no shard list names (their directories, at most a dozen) and,
+// when the lists present are all of one N, the shards K/N that wrote none, to run again.
+std::string missingProbesMessage(const Json& grid, const std::set<int>& seen,
+                                 const std::vector<fs::path>& parts) {
+  const int nx = grid[0].get<int>(), ny = grid[1].get<int>(), nz = grid[2].get<int>();
+  const int total = nx * ny * nz;
+  std::vector<int> missing;
+  for (int l = 0; l < total; ++l)
+    if (!seen.count(l)) missing.push_back(l);
+  std::string names;
+  for (std::size_t i = 0; i < missing.size() && i < 12; ++i)
+    names += fmt::format("{}probe_{}_{}_{}", i ? ", " : "", missing[i] % nx, missing[i] / nx % ny,
+                         missing[i] / (nx * ny));
+  if (missing.size() > 12) names += fmt::format(" and {} more", missing.size() - 12);
+  // The shard lists' K and N, from their names.
+  std::set<int> ns, ks;
+  for (const fs::path& part : parts) {
+    int k = 0, n = 0;
+    char tail[8] = {};
+    if (std::sscanf(part.filename().string().c_str(), "probes.shard-%d-of-%d%7s", &k, &n, tail) ==
+            3 &&
+        std::string(tail) == ".json") {
+      ns.insert(n);
+      ks.insert(k);
+    }
+  }
+  std::string shards;
+  if (ns.size() == 1) {
+    const int n = *ns.begin();
+    std::vector<int> absent;
+    for (int k = 0; k < n; ++k)
+      if (!ks.count(k)) absent.push_back(k);
+    std::string list;
+    for (std::size_t i = 0; i < absent.size() && i < 12; ++i)
+      list += fmt::format("{}{}/{}", i ? ", " : "", absent[i], n);
+    if (absent.size() > 12) list += fmt::format(" and {} more", absent.size() - 12);
+    if (absent.size() == 1)
+      shards =
+          fmt::format(" (owed by shard {}, which wrote no {})", list, shardListName(absent[0], n));
+    else if (!absent.empty())
+      shards = fmt::format(" (owed by shards {}, which wrote no lists)", list);
+  }
+  return fmt::format(
+      "the shards hold {} of the grid's {} probes; missing: {}{}; run the missing "
+      "shards again (with the same options), then merge",
+      seen.size(), total, names, shards);
+}
+
 // --merge OUTDIR: the shards' lists into probes.json, once every probe of the grid is there.
 void mergeShards(const std::string& dir, const GlobalOptions& global) {
   std::vector<fs::path> parts;
@@ -208,7 +244,15 @@ void mergeShards(const std::string& dir, const GlobalOptions& global) {
   std::set<int> seen;
   int total = -1;
   for (const fs::path& part : parts) {
-    const Json j = readJsonFile(part);
+    // Read in order (readJsonFile's map sorts the keys): probes.json is then the same bytes as
+    // the one a grid captured in one process writes.
+    const std::vector<std::uint8_t> bytes = readFileBytes(part);
+    Json j;
+    try {
+      j = Json::parse(bytes.begin(), bytes.end());
+    } catch (const nlohmann::json::exception& e) {
+      fail(part.string(), fmt::format("not valid JSON: {}", e.what()));
+    }
     try {
       const int count =
           j.at("grid")[0].get<int>() * j.at("grid")[1].get<int>() * j.at("grid")[2].get<int>();
@@ -233,9 +277,7 @@ void mergeShards(const std::string& dir, const GlobalOptions& global) {
     }
   }
   if (static_cast<int>(seen.size()) != total)
-    fail(dir, fmt::format("the shards hold {} of the grid's {} probes; run the missing shards "
-                          "first",
-                          seen.size(), total));
+    fail(dir, missingProbesMessage(merged.at("grid"), seen, parts));
   std::sort(merged["probes"].begin(), merged["probes"].end(),
             [](const Json& a, const Json& b) { return a["linear"] < b["linear"]; });
   const std::string text = merged.dump(2) + "\n";
@@ -307,10 +349,11 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   std::vector<PlannedProbe> mine;
   std::string listName = "probes.json";
   if (!o.shard.empty()) {
-    const auto [k, n] = parseShard(o.shard);
+    // Neighbours land on different machines, so every shard takes about as long.
+    const Shard shard = parseShard(o.shard);
     for (const PlannedProbe& p : probes)
-      if (p.linear % n == k) mine.push_back(p);
-    listName = shardListName(k, n);
+      if (shard.owns(static_cast<std::size_t>(p.linear))) mine.push_back(p);
+    listName = shardListName(shard.k, shard.n);
   } else {
     mine = probes;
   }

@@ -133,19 +133,29 @@ void reportEnvironment(const std::string& name) {
   fmt::print("\n");
 
   const ibl::Sh9 sh = ibl::projectSh9(source, 0);
-  for (bool windowed : {false, true}) {
-    const ibl::Sh9 coefficients = windowed ? ibl::windowSh9(sh) : sh;
+  for (const ibl::ShWindow window :
+       {ibl::ShWindow::Off, ibl::ShWindow::Lanczos, ibl::ShWindow::Cmgen}) {
+    std::array<float, 3> factors{};
+    const ibl::Sh9 coefficients = ibl::windowSh9(sh, window, &factors);
     std::array<ibl::Image, 6> fromSh;
+    float lowest = 1e30f;  // the smallest channel of the SH irradiance over the cube's texels
     for (int f = 0; f < 6; ++f) {
       fromSh[f] = ibl::Image(32, 32);
       for (int y = 0; y < 32; ++y)
-        for (int x = 0; x < 32; ++x)
-          fromSh[f].at(x, y) = ibl::irradianceSh9(coefficients, ibl::texelDirection(f, x, y, 32)) /
-                               std::numbers::pi_v<float>;
+        for (int x = 0; x < 32; ++x) {
+          const glm::vec3 e = ibl::irradianceSh9(coefficients, ibl::texelDirection(f, x, y, 32)) /
+                              std::numbers::pi_v<float>;
+          fromSh[f].at(x, y) = e;
+          lowest = std::min({lowest, e.x, e.y, e.z});
+        }
     }
-    fmt::print("  SH9 irradiance{} vs exact irradiance cube              {:7.3f} %\n",
-               windowed ? " (windowed)" : "           ",
-               100.0 * imageDifference(fromSh, irradiance.levels[0]));
+    const char* label = window == ibl::ShWindow::Off       ? "exact  "
+                        : window == ibl::ShWindow::Lanczos ? "lanczos"
+                                                           : "cmgen  ";
+    fmt::print(
+        "  SH9 irradiance, window {} ({:.3f}, {:.3f}) vs exact cube {:7.3f} %, lowest {:+.4f}\n",
+        label, factors[1], factors[2], 100.0 * imageDifference(fromSh, irradiance.levels[0]),
+        lowest);
   }
 }
 

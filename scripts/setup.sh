@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs every Debian package that building, testing and benchmarking ibl needs.
-# Idempotent: run it as often as you like (root, or sudo available).
+# Installs every Debian package that building, testing and benchmarking ibl needs, and the npm
+# packages of the engine tests (tests/engines/package-lock.json: the engines and the browser
+# driver, pinned; Debian's chromium is the browser). Idempotent: run it as often as you like
+# (root, or sudo available).
 set -euo pipefail
 
 packages=(
@@ -14,7 +16,13 @@ packages=(
   xvfb xauth
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3
+  # the engine targets rendered by the engines in a headless browser (scripts/engines.sh)
+  chromium
+  # probe grids and batch bakes as array jobs on a single-node Slurm cluster (scripts/cluster.sh)
+  slurm-wlm munge
 )
+# Node.js and npm for the engine tests: the machine's own if it has them, else Debian's.
+command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -29,4 +37,15 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 else
   echo "setup: all packages present" >&2
+fi
+
+# The engine tests' npm packages, exactly as locked; again only when the lock file changed.
+engines="$(dirname "$0")/../tests/engines"
+lock_hash="$(sha256sum "$engines/package-lock.json" | cut -d' ' -f1)"
+if [ "$(cat "$engines/node_modules/.ibl-lock-hash" 2>/dev/null)" != "$lock_hash" ]; then
+  echo "setup: installing the engine tests' npm packages (tests/engines/package-lock.json)" >&2
+  npm ci --prefix "$engines" --ignore-scripts --no-audit --no-fund --loglevel=error >/dev/null
+  echo "$lock_hash" >"$engines/node_modules/.ibl-lock-hash"
+else
+  echo "setup: engine tests' npm packages present" >&2
 fi

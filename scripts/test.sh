@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Sets up the machine and runs every check CI runs:
 #   1. release build with warnings as errors, and the whole test suite;
-#   2. clang-format check;
-#   3. libFuzzer on every reader for a bounded time (IBL_FUZZ_SECONDS each, default 4);
-#   4. the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer;
-#   5. the test suite again under ThreadSanitizer.
+#   2. the engine targets rendered by Filament, Babylon.js, three.js and the glTF Sample Viewer in
+#      headless Chromium against `ibl render` (scripts/engines.sh, docs/targets.md);
+#   3. probe grids and batch bakes as Slurm array jobs on a cluster started for the test
+#      (scripts/cluster.sh, docs/cluster.md; as root);
+#   4. clang-format check;
+#   5. libFuzzer on every reader for a bounded time (IBL_FUZZ_SECONDS each, default 4);
+#   6. the test suite again under AddressSanitizer + UndefinedBehaviorSanitizer;
+#   7. the test suite again under ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="$(nproc)"
@@ -18,6 +22,12 @@ phase "release build and tests"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DIBL_WERROR=ON >/dev/null
 ninja -C build
 ctest --test-dir build --output-on-failure -j "$jobs"
+
+phase "engines in the browser"
+bash scripts/engines.sh
+
+phase "Slurm array jobs"
+bash scripts/cluster.sh
 
 phase "clang-format"
 git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format --dry-run --Werror

@@ -232,7 +232,7 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
           const int level = levelOfSize(r.source, 64);
           const Sh9 sh =
               device ? gpu::projectSh9(*device, r.source, level) : projectSh9(r.source, level);
-          return o.shWindow ? windowSh9(sh) : sh;
+          return windowSh9(sh, o.shWindow, &r.shWindowFactors);
         });
       },
       [&] {
@@ -274,6 +274,29 @@ void shortenFloats(Json& j) {
 
 Json vec3Json(glm::vec3 v) {
   return Json::array({v.x, v.y, v.z});
+}
+
+const char* shWindowName(ShWindow w) {
+  switch (w) {
+    case ShWindow::Lanczos:
+      return "lanczos";
+    case ShWindow::Cmgen:
+      return "cmgen";
+    case ShWindow::Off:
+      break;
+  }
+  return "off";
+}
+
+// The manifest's words for the SH window and the band factors it applied.
+std::string shWindowText(ShWindow w, const std::array<float, 3>& f) {
+  if (w == ShWindow::Off) return "no";
+  const std::string factors = fmt::format("({:.3g}, {:.3g}, {:.3g})", f[0], f[1], f[2]);
+  return w == ShWindow::Lanczos
+             ? "Lanczos sigma factors " + factors
+             : "cmgen's auto window, sinc(pi l / w)^4 with the widest w whose irradiance stays "
+               ">= 0: factors " +
+                   factors;
 }
 
 Json conventionsJson(const BakeOptions& o, const BakeResult& r) {
@@ -338,7 +361,7 @@ Json conventionsJson(const BakeOptions& o, const BakeResult& r) {
       {"irradiance",
        "E(n) = sum A_l L_lm Y_lm(n), A = (pi, 2 pi / 3, pi / 4); divide by pi for the "
        "irradiance cube's units"},
-      {"windowed", o.shWindow ? "Lanczos sigma factors (1, 0.827, 0.414)" : "no"}};
+      {"windowed", shWindowText(o.shWindow, r.shWindowFactors)}};
   c["color"] = {{"primaries", "Rec.709 / sRGB"}, {"encoding", "linear"}};
   return c;
 }
@@ -468,7 +491,9 @@ void addSh(OutputPlan& plan, const BakeResult& r, const BakeOptions& o) {
   for (const auto& c : r.sh) coefficients.push_back(vec3Json(c));
   Json sh = {{"generator", fmt::format("ibl {}", kVersion)},
              {"coefficients", coefficients},
-             {"windowed", o.shWindow}};
+             {"windowed", o.shWindow != ShWindow::Off},
+             {"window", shWindowName(o.shWindow)},
+             {"band_factors", r.shWindowFactors}};
   shortenFloats(sh);
   plan.addText("sh.json", sh.dump(2) + "\n");
   plan.outputs.push_back({{"role", "sh"},
@@ -476,7 +501,8 @@ void addSh(OutputPlan& plan, const BakeResult& r, const BakeOptions& o) {
                           {"format", "json"},
                           {"size", {9, 1}},
                           {"coefficients", coefficients},
-                          {"windowed", o.shWindow}});
+                          {"windowed", o.shWindow != ShWindow::Off},
+                          {"window", shWindowName(o.shWindow)}});
 }
 
 constexpr int kSourcePreviewFaceSize = 256;

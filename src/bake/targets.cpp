@@ -223,7 +223,7 @@ void addFilament(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
   CubeMap level64;
   level64.levels = {r.source.levels[levelOfSize(r.source, 64)]};
   const Sh9 radiance = projectSh9(permuteCubeAxes(level64, m));
-  const Sh9 sh = filamentIrradianceSh(o.shWindow ? windowSh9(radiance) : radiance);
+  const Sh9 sh = filamentIrradianceSh(windowSh9(radiance, o.shWindow));
   std::string metadata;
   for (const glm::vec3& c : sh) metadata += fmt::format("{:g} {:g} {:g}\n", c.x, c.y, c.z);
 
@@ -383,7 +383,7 @@ void addBabylon(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
   level64.levels = {r.source.levels[levelOfSize(r.source, 64)]};
   const Sh9 radiance = projectSh9(permuteCubeAxes(level64, m));
   env->polynomial =
-      babylonSphericalPolynomial(filamentIrradianceSh(o.shWindow ? windowSh9(radiance) : radiance));
+      babylonSphericalPolynomial(filamentIrradianceSh(windowSh9(radiance, o.shWindow)));
   const std::string path = dir + name + ".env";
   Json polynomial;
   const char* keys[9] = {"x", "y", "z", "xx", "yy", "zz", "yz", "zx", "xy"};

@@ -2,6 +2,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include <fmt/format.h>
@@ -123,6 +124,46 @@ TEST(Cli, BakeDefaultEnvironment) {
   const auto bytes = readFileBytes(dir / "out" / "manifest.json");
   const auto m = nlohmann::json::parse(bytes.begin(), bytes.end());
   EXPECT_EQ(m["source"]["path"], "(bundled default: sunset.exr)");
+}
+
+TEST(Cli, ShWindowIsRecordedAndAppliedToEveryTarget) {
+  // --sh-window cmgen on park (whose exact SH9 irradiance dips below zero): sh.json names the
+  // window and its band factors, the coefficients are the exact ones times those factors, and
+  // Filament's sh.txt changes with them; --sh-window alone is Lanczos.
+  TempDir dir;
+  const std::string base = "bake " + quote(hdriPath("park")) +
+                           " --size 32 --dfg-size 16 --dfg-samples 16 --no-preview "
+                           "--target ibl,filament -o ";
+  ASSERT_EQ(runIbl(base + quote(dir / "exact")).status, 0);
+  CliRun r = runIbl(base + quote(dir / "cmgen") + " --sh-window cmgen");
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl(base + quote(dir / "lanczos") + " --sh-window");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto json = [&](const std::string& sub) {
+    const auto bytes = readFileBytes(dir / sub / "sh.json");
+    return nlohmann::json::parse(bytes.begin(), bytes.end());
+  };
+  const auto exact = json("exact"), cmgen = json("cmgen"), lanczos = json("lanczos");
+  EXPECT_EQ(exact["window"], "off");
+  EXPECT_EQ(cmgen["window"], "cmgen");
+  EXPECT_EQ(lanczos["window"], "lanczos");
+  EXPECT_NEAR(lanczos["band_factors"][2].get<double>(), 0.4135, 1e-3);
+  const double f1 = cmgen["band_factors"][1], f2 = cmgen["band_factors"][2];
+  EXPECT_LT(f2, 0.99);  // park rings: cmgen's window is narrower than its widest
+  EXPECT_LT(f2, f1);
+  for (int k = 0; k < 9; ++k) {
+    const double factor = k == 0 ? 1.0 : k < 4 ? f1 : f2;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(cmgen["coefficients"][k][c].get<double>(),
+                  exact["coefficients"][k][c].get<double>() * factor,
+                  1e-3 * std::abs(exact["coefficients"][0][c].get<double>()))
+          << k;
+  }
+  const auto shText = [&](const std::string& sub) {
+    const auto bytes = readFileBytes(dir / sub / "filament" / "sh.txt");
+    return std::string(bytes.begin(), bytes.end());
+  };
+  EXPECT_NE(shText("exact"), shText("cmgen"));
 }
 
 TEST(Cli, BakeFailsCleanly) {
@@ -372,6 +413,46 @@ TEST(Cli, BatchesBakeAndConvertEveryGoodInput) {
   EXPECT_NE(r.output.find("several inputs need {name} in the output"), std::string::npos);
 }
 
+// `bake --shard K/N` bakes the batch's inputs whose index (the command line's inputs, then the
+// list's lines) is K modulo N; the shards of a batch together write exactly what the batch
+// writes in one process, byte for byte (the manifests included: they hold no time).
+TEST(Cli, BatchShardsTogetherBakeTheBatchByteForByte) {
+  TempDir dir;
+  for (const char* name : {"park", "night", "studio"})
+    std::filesystem::copy_file(hdriPath(name), dir / (std::string(name) + ".exr"));
+  std::ofstream(dir / "list.txt") << (dir / "park.exr").string() << "\n"
+                                  << (dir / "studio.exr").string() << "\n";
+  // night is index 0 (the command line first), park 1, studio 2.
+  const std::string batch = quote(dir / "night.exr") + " --list " + quote(dir / "list.txt") +
+                            " --size 8 --dfg-size 8 --dfg-samples 16 --preview-size 8 -q";
+  CliRun r = runIbl("bake " + batch + " -o " + quote(dir / "whole"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  r = runIbl("bake " + batch + " --shard 0/2 -o " + quote(dir / "sharded"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::set<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "sharded"))
+    names.insert(e.path().filename().string());
+  EXPECT_EQ(names, (std::set<std::string>{"night", "studio"}));
+  r = runIbl("bake " + batch + " --shard 1/2 -o " + quote(dir / "sharded"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto filesUnder = [](const std::filesystem::path& root) {
+    std::set<std::string> files;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(root))
+      if (e.is_regular_file()) files.insert(e.path().lexically_relative(root).string());
+    return files;
+  };
+  const std::set<std::string> whole = filesUnder(dir / "whole");
+  EXPECT_EQ(filesUnder(dir / "sharded"), whole);
+  EXPECT_EQ(whole.size(), 27u);  // 9 files for each of 3 inputs
+  EXPECT_TRUE(whole.count("park/manifest.json"));
+  for (const std::string& f : whole)
+    EXPECT_EQ(readFileBytes(dir / "sharded" / f), readFileBytes(dir / "whole" / f)) << f;
+  // A shard with no input of its own has nothing to do, and says so.
+  r = runIbl("bake " + batch + " --shard 3/4 -o " + quote(dir / "none"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "none"));
+}
+
 // `ibl info` reads what `ibl convert` reads: six {face} files, and crosses whose padding (here
 // a huge value) is not part of the environment's statistics.
 TEST(Cli, InfoReadsFacesAndIgnoresCrossPadding) {
@@ -488,6 +569,15 @@ TEST(Cli, ProbeCapturesBakesAndRendersAndRejectsBadInput) {
                " --grid 2,1,1 --bounds -3,-1,-0.5,3,1,0.5 --size 8 --spp 2 --shard " +
                std::string(shard) + " -o " + quote(grid));
     ASSERT_EQ(r.status, 0) << r.output;
+    if (std::string(shard) == "0/2") {  // half the grid: the merge names what shard 1 owes
+      r = runIbl("probe --merge " + quote(grid));
+      EXPECT_EQ(r.status, 1) << r.output;
+      EXPECT_NE(r.output.find("the shards hold 1 of the grid's 2 probes; missing: probe_1_0_0 "
+                              "(owed by shard 1/2, which wrote no probes.shard-1-of-2.json)"),
+                std::string::npos)
+          << r.output;
+      EXPECT_FALSE(std::filesystem::exists(grid / "probes.json"));
+    }
   }
   r = runIbl("probe --merge " + quote(grid));
   ASSERT_EQ(r.status, 0) << r.output;

@@ -163,6 +163,10 @@ TEST(Usage, Bake) {
       "bake", "--size 16",
       {
           {"--list", "--list nosuch.txt -o out", 1, "nosuch.txt: cannot read the list"},
+          {"--shard", "park.exr --shard 0/2 -o out", 2, "--shard: splits a batch: it needs"},
+          {"--shard", "park.exr sky:elevation=30 --shard 2/2 -o out", 2,
+           "--shard: '2/2': expected K/N with 0 <= K < N"},
+          {"--shard", "park.exr sky:elevation=30 --shard 1 -o out", 2, "--shard: '1'"},
           {"--output", "", 2, "--output: an output directory is required"},
           {"--sheen-visibility", "-o out --sheen-visibility neubelt", 2,
            "--sheen-visibility: chooses the visibility of the sheen table, which only --sheen"},

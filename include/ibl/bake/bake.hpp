@@ -26,7 +26,7 @@ struct BakeOptions {
   int irradianceSize = 32;
   int dfgSize = 128;
   int dfgSamples = 512;
-  bool shWindow = false;  // Lanczos-window the SH9 coefficients (deringing)
+  ShWindow shWindow = ShWindow::Off;  // the SH9 coefficients' window against ringing
   float rotateDegrees = 0.0f;
   // Also prefilter the environment with the Charlie sheen lobe (the same levels and roughness
   // mapping as the specular chain) and integrate the sheen table (manifest roles sheen and
@@ -55,6 +55,8 @@ struct BakeResult {
   std::optional<CubeMap> babylonSpecular;   // Babylon's chain (to 1^2, its mapping), our axes
   std::map<std::string, double> timingsMs;  // per stage
   std::string device = "cpu";               // "cpu", or the Vulkan device's name
+  // The SH window's factor per band, as applied to sh (1, 1, 1 without a window).
+  std::array<float, 3> shWindowFactors = {1.0f, 1.0f, 1.0f};
 };
 
 namespace gpu {

@@ -36,4 +36,32 @@ glm::vec3 irradianceSh9(const Sh9& sh, glm::vec3 n);
 // ringing of bright lights (Sloan 2008, "Stupid Spherical Harmonics Tricks").
 Sh9 windowSh9(const Sh9& sh);
 
+// How the SH9 coefficients are windowed against ringing (`ibl bake --sh-window`).
+enum class ShWindow {
+  Off,      // exact projection (the default)
+  Lanczos,  // windowSh9: the fixed sigma factors
+  Cmgen,    // Filament cmgen's default, --sh-window=auto: cmgenShCutoff and cmgenShWindow
+};
+
+// A lower bound of the irradiance E(n) = sum A_l L_lm Y_lm(n) over every direction n, from the
+// irradiance coefficients e_lm = A_l L_lm of one channel (Sloan 2017, "Deringing Spherical
+// Harmonics", section 3: the band-1 direction turned onto z, the |m| = 2 part at its minimum
+// over the azimuth, then the zonal and |m| = 1 parts minimized along z by Newton's method from
+// z = -1/sqrt 2), evaluated as Filament's cmgen does (CubemapSH::windowSH, shmin).
+float irradianceLowerBound(const std::array<float, 9>& e);
+
+// The band factors of cmgen's window with cutoff w (in bands): 1 for l = 0, 0 for l >= w, else
+// (sin x / x)^4 with x = pi l / w (a sinc applied four times).
+float cmgenBandWindow(int l, float w);
+
+// cmgen's --sh-window=auto cutoff: per channel, the largest w in [3, 13] found by bisection to
+// 0.1 bands (at most 16 halvings, the upper end starting at the previous channels' result) for
+// which irradianceLowerBound of the windowed coefficients is >= 0; the smallest over R, G, B.
+// `radiance`: the radiance coefficients L_lm.
+float cmgenShCutoff(const Sh9& radiance);
+
+// The coefficients windowed as `window` says; `factors`, if given, receives the factor of each
+// band (1, 1, 1 when off).
+Sh9 windowSh9(const Sh9& radiance, ShWindow window, std::array<float, 3>* factors = nullptr);
+
 }  // namespace ibl

@@ -1,0 +1,114 @@
+// three.js as a peer (set=own): the .hdr panorama through three's own pipeline only:
+// HDRLoader -> PMREMGenerator.fromEquirectangular -> MeshStandardMaterial.envMap.
+//
+// Conventions (three r187, node_modules/three):
+//   - src/renderers/shaders/ShaderChunk/common.glsl.js, equirectUv(dir):
+//       u = atan(dir.z, dir.x) / (2 pi) + 0.5,  v = asin(dir.y) / pi + 0.5
+//     with the HDRLoader's texture flipY = true (examples/jsm/loaders/HDRLoader.js), so texture
+//     v = 1 is the file's first row. In file rows (row 0 at the top) that is
+//     u = 0.5 + atan2(z, x)/(2 pi), row v' = 1 - v = acos(y)/pi: ibl's equirect convention
+//     (docs/conventions.md) exactly. PMREMGenerator renders the panorama into a cube render
+//     target through equirectUv (src/extras/PMREMGenerator.js, _getEquirectMaterial) and the
+//     material samples it with the world-space reflection (envmap_physical_pars_fragment:
+//     textureLod(envMap, envMapRotation * reflectVec, ...)); for a render-target cube no x flip
+//     is applied (WebGLMaterials.js applies flipEnvMap only to non-render-target cube textures).
+//     World: right-handed, +Y up, the camera looks down its -Z: the same as ibl's. So no
+//     rotation is applied here (envMapRotation stays identity).
+//
+// Contract (tests/engines/run.mjs): ?set=own&hdr=URL&roughness=R&metallic=M&base=R,G,B&size=N
+// &scale=K&view=front|side; draws into <canvas id="c">, then window.iblDone = {ok, notes|error}.
+
+import * as THREE from 'three';
+import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
+
+function fail(message) {
+  throw new Error(message);
+}
+
+function parseParams() {
+  const q = new URLSearchParams(location.search);
+  const num = (name, def) => {
+    const s = q.get(name);
+    if (s === null || s === '') return def;
+    const v = Number(s);
+    if (!Number.isFinite(v)) fail(`parameter ${name}=${s} is not a number`);
+    return v;
+  };
+  const base = (q.get('base') ?? '1,1,1').split(',').map(Number);
+  if (base.length !== 3 || !base.every(Number.isFinite)) fail(`parameter base=${q.get('base')} is not R,G,B`);
+  const p = {
+    set: q.get('set') ?? 'own',
+    hdr: q.get('hdr'),
+    roughness: num('roughness', 0.5),
+    metallic: num('metallic', 0),
+    base,
+    size: Math.round(num('size', 256)),
+    scale: num('scale', 1),
+    view: q.get('view') ?? 'front',
+  };
+  if (p.set !== 'own') fail(`set=${p.set}: three.js takes no prefiltered set; this page is set=own (its own PMREM of the .hdr)`);
+  if (!p.hdr) fail('missing parameter hdr');
+  if (p.view !== 'front' && p.view !== 'side') fail(`view=${p.view}: front or side`);
+  if (!(p.size >= 1 && p.size <= 4096)) fail(`size=${p.size} out of range`);
+  return p;
+}
+
+const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => resolve()));
+
+async function main() {
+  const p = parseParams();
+  const canvas = document.getElementById('c');
+
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, alpha: false, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(1);
+  renderer.setSize(p.size, p.size, true);
+  renderer.toneMapping = THREE.NoToneMapping;
+  renderer.toneMappingExposure = 1;
+  renderer.outputColorSpace = THREE.SRGBColorSpace;
+  renderer.setClearColor(0x000000, 1);
+
+  const hdr = await new HDRLoader().loadAsync(p.hdr);
+  hdr.mapping = THREE.EquirectangularReflectionMapping;
+  const pmrem = new THREE.PMREMGenerator(renderer);
+  const envTarget = pmrem.fromEquirectangular(hdr);
+  const envMap = envTarget.texture;
+
+  const scene = new THREE.Scene();
+  scene.background = null;
+  const material = new THREE.MeshStandardMaterial({
+    color: new THREE.Color().setRGB(p.base[0], p.base[1], p.base[2], THREE.LinearSRGBColorSpace),
+    metalness: p.metallic,
+    roughness: p.roughness,
+    envMap,
+    envMapIntensity: p.scale,
+  });
+  scene.add(new THREE.Mesh(new THREE.SphereGeometry(1, 512, 256), material));
+
+  const camera = new THREE.OrthographicCamera(-1.1, 1.1, 1.1, -1.1, 0.1, 100);
+  if (p.view === 'side') camera.position.set(10, 0, 0);
+  else camera.position.set(0, 0, 10);
+  camera.up.set(0, 1, 0);
+  camera.lookAt(0, 0, 0);
+  camera.updateMatrixWorld();
+
+  renderer.render(scene, camera);
+  const err = renderer.getContext().getError();
+  if (err !== 0) fail(`WebGL error 0x${err.toString(16)}`);
+  await nextFrame();
+  renderer.render(scene, camera);
+  await nextFrame();
+  await nextFrame();
+
+  const levels = envMap.mipmaps ? envMap.mipmaps.length : 0;
+  return [
+    `three ${THREE.REVISION}: HDRLoader (${hdr.image.width}x${hdr.image.height}, ${hdr.type === THREE.FloatType ? 'float' : 'half'}) -> PMREMGenerator.fromEquirectangular`,
+    `PMREM cube ${envTarget.width}^2, ${levels} levels (roughness(lod) = 1 - sqrt(1 - lod/maxLod))`,
+    'MeshStandardMaterial, envMapIntensity ' + p.scale + ', envMapRotation identity (three equirect u,v = ibl\'s)',
+    'NoToneMapping, SRGBColorSpace output',
+  ].join('; ');
+}
+
+main().then(
+  (notes) => { window.iblDone = { ok: true, notes }; },
+  (e) => { window.iblDone = { ok: false, error: String(e && e.stack ? e.stack : e) }; },
+);
