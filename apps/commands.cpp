@@ -1,6 +1,7 @@
 #include "commands.hpp"
 
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -85,10 +86,15 @@ std::vector<float> parseNumbers(const std::string& text, std::size_t count, cons
 }
 
 Shard parseShard(const std::string& text) {
-  int k = 0, n = 0;
-  char slash = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &k, &slash, &n, &extra) != 3 || slash != '/' || n < 1 ||
-      k < 0 || k >= n)
+  // K, a slash, N: digits only (from_chars takes no '+' or spaces, and reports overflow).
+  const char* const end = text.data() + text.size();
+  int k = -1, n = 0;
+  const auto first = std::from_chars(text.data(), end, k);
+  const bool ok = first.ec == std::errc() && first.ptr != end && *first.ptr == '/' && [&] {
+    const auto second = std::from_chars(first.ptr + 1, end, n);
+    return second.ec == std::errc() && second.ptr == end;
+  }();
+  if (!ok || n < 1 || k < 0 || k >= n)
     failUsage("--shard", fmt::format("'{}': expected K/N with 0 <= K < N", text));
   return {k, n};
 }

@@ -8,7 +8,9 @@
 #      the probes that task owed; resubmitting that task alone completes the same grid.
 # Ends with `cluster: N passed, M failed` and exits non-zero on a failure. Needs root (the
 # daemons run as root), the Debian packages slurm-wlm and munge, and a built ibl
-# (IBL_BUILD, default build/). IBL_CLUSTER_KEEP=1 keeps the scratch folder.
+# (IBL_BUILD, default build/). IBL_CLUSTER_KEEP=1 keeps the scratch folder. Every sbatch --wait
+# and ibl run is bounded (IBL_CLUSTER_STEP_TIMEOUT, default 300 s) and so is the whole phase
+# (IBL_CLUSTER_TIMEOUT, default 540 s); SIGINT and SIGTERM exit 130 and 143 after the cleanup.
 set -uo pipefail
 
 repo="$(cd "$(dirname "$0")/.." && pwd)"
@@ -16,12 +18,14 @@ build="$(cd "${IBL_BUILD:-$repo/build}" && pwd)"
 start=$SECONDS
 passed=0
 failed=0
+step_timeout=${IBL_CLUSTER_STEP_TIMEOUT:-300}
+phase_timeout=${IBL_CLUSTER_TIMEOUT:-540}
 
 if [ "$(id -u)" -ne 0 ]; then
   echo "cluster: needs root (slurmd and slurmctld run as root here)" >&2
   exit 1
 fi
-for tool in munged slurmctld slurmd sbatch sinfo scancel; do
+for tool in munged slurmctld slurmd sbatch sinfo squeue scancel scontrol timeout; do
   command -v "$tool" >/dev/null || { echo "cluster: $tool is missing (apt-get install slurm-wlm munge)" >&2; exit 1; }
 done
 [ -x "$build/ibl" ] || { echo "cluster: $build/ibl is missing: build first" >&2; exit 1; }
@@ -33,14 +37,43 @@ mkdir -p "$scratch/munge" "$scratch/state" "$scratch/spool" "$scratch/logs" "$sc
 chmod 755 "$scratch/munge"
 
 daemons=()  # pids, in start order
+step=        # the pid of the bounded step running now (see bounded)
+watchdog=
 stop_cluster() {
   local status=$?
   trap - EXIT INT TERM
+  cd /  # from here on, a process whose cwd is under $scratch is a leftover of a job
+  [ -n "$watchdog" ] && kill -TERM "$watchdog" 2>/dev/null
+  [ -n "$step" ] && kill -TERM -- "-$step" 2>/dev/null  # timeout leads its own process group
+  local i pid pids=() d left
   if [ -f "$scratch/slurm.conf" ] && ((${#daemons[@]} > 1)); then
     # Jobs first (their steps are not children of slurmd), then the daemons, last started first.
-    SLURM_CONF="$scratch/slurm.conf" timeout 10 scancel --quiet --user=root 2>/dev/null || true
+    # scancel only asks: wait (10 s at most) until the queue is empty, then kill what is left of
+    # the jobs: the processes slurmd still tracks and any other whose cwd is in the scratch folder.
+    export SLURM_CONF="$scratch/slurm.conf"
+    timeout 10 scancel --quiet --user=root 2>/dev/null || true
+    for _ in $(seq 20); do
+      [ -z "$(timeout 5 squeue -h 2>/dev/null)" ] && break
+      sleep 0.5
+    done
+    pids=($(timeout 5 scontrol listpids 2>/dev/null | awk 'NR > 1 && $1 ~ /^[0-9]+$/ { print $1 }'))
   fi
-  local i pid
+  for d in /proc/[0-9]*; do
+    [[ "$(readlink "$d/cwd" 2>/dev/null)" == "$scratch"/* ]] && pids+=("${d#/proc/}")
+  done
+  left=()
+  for pid in "${pids[@]}"; do
+    [[ $pid == "$$" || " ${daemons[*]} " == *" $pid "* ]] && continue
+    kill -TERM "$pid" 2>/dev/null && left+=("$pid")
+  done
+  if ((${#left[@]})); then
+    echo "cluster: killing leftover job processes: ${left[*]}" >&2
+    for _ in $(seq 20); do
+      kill -0 "${left[@]}" 2>/dev/null || break
+      sleep 0.1
+    done
+    kill -KILL "${left[@]}" 2>/dev/null || true
+  fi
   for ((i = ${#daemons[@]} - 1; i >= 0; i--)); do
     pid=${daemons[i]}
     kill -TERM "$pid" 2>/dev/null || continue
@@ -55,8 +88,24 @@ stop_cluster() {
   fi
   exit "$status"
 }
+interrupted() {  # interrupted SIGNAL STATUS
+  echo "cluster: stopped by $1" >&2
+  echo "cluster: $passed passed, $((failed + 1)) failed"
+  exit "$2"
+}
 trap stop_cluster EXIT
-trap 'exit 130' INT TERM
+trap 'interrupted SIGINT 130' INT
+trap 'interrupted SIGTERM 143' TERM
+# The whole phase is bounded: past $phase_timeout s, the watchdog stops it as SIGTERM would.
+(
+  trap 'kill "$sleeper" 2>/dev/null; exit 0' TERM
+  sleep "$phase_timeout" &
+  sleeper=$!
+  wait "$sleeper"
+  echo "cluster: the phase ran past $phase_timeout s (IBL_CLUSTER_TIMEOUT): stopping it" >&2
+  kill -TERM $$
+) &
+watchdog=$!
 
 print_logs() {
   local f
@@ -71,6 +120,21 @@ die() {
   print_logs
   echo "cluster: $passed passed, $((failed + 1)) failed"
   exit 1
+}
+# bounded COMMAND...: runs COMMAND under timeout ($step_timeout s, then SIGKILL 10 s later), in
+# the background so that a SIGINT or SIGTERM to this script is handled at once (bash runs a trap
+# only once the foreground command returns) and the cleanup can kill it.
+bounded() {
+  local status
+  timeout --kill-after=10 "$step_timeout" "$@" &
+  step=$!
+  wait "$step"
+  status=$?
+  step=
+  if [ "$status" = 124 ] || [ "$status" = 137 ]; then
+    echo "cluster: timed out after $step_timeout s (IBL_CLUSTER_STEP_TIMEOUT): $*" >&2
+  fi
+  return "$status"
 }
 
 # Two free ports on 127.0.0.1 (nothing answers a connection to them).
@@ -125,8 +189,10 @@ MailProg=/bin/true
 SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
 ReturnToService=2
-# sbatch --wait polls every 2 s while MinJobAge is under 5 s (every 10 s and more otherwise).
-MinJobAge=4
+# sbatch --wait polls the job 2, 10 and 42 s after the submission, then every 32 s, and reads its
+# exit status then; a job record purged before that poll (MinJobAge after the job ends) makes
+# sbatch print "no longer found" and exit 0, whatever the job's status. 30 s leaves margin.
+MinJobAge=30
 $node State=UNKNOWN
 PartitionName=debug Nodes=localhost Default=YES MaxTime=INFINITE State=UP
 EOF
@@ -187,19 +253,20 @@ same_tree() {
 cd "$scratch/work"
 ln -s "$repo/data" data
 export PATH="$build:$PATH"
-array=(sbatch --wait --cpus-per-task=1 --output="$scratch/logs/%x-%A_%a.out")
+array=(bounded sbatch --wait --cpus-per-task=1 --output="$scratch/logs/%x-%A_%a.out")
 scene=data/scenes/room.gltf
 probe_options=(--grid 2,1,2 --bounds -2,0.5,-2,2,2.5,2 --size 16 --spp 8)
 ls data/hdri/*.exr >hdris.txt
 bake_options=(--size 16 --dfg-size 16 --dfg-samples 64 --preview-size 8)
 
-ibl probe "$scene" "${probe_options[@]}" -o one-grid -q || die "the one-process grid failed"
-ibl bake --list hdris.txt "${bake_options[@]}" -o one-batch -q || die "the one-process batch failed"
+bounded ibl probe "$scene" "${probe_options[@]}" -o one-grid -q || die "the one-process grid failed"
+bounded ibl bake --list hdris.txt "${bake_options[@]}" -o one-batch -q ||
+  die "the one-process batch failed"
 
 # 1. A probe grid in 4 array tasks, merged.
 check "probe grid: 4 array tasks succeed" \
   "${array[@]}" --array=0-3 "$repo/deploy/slurm/probe-grid.sh" 4 "$scene" grid "${probe_options[@]}"
-check "probe grid: the shards merge" ibl probe --merge grid
+check "probe grid: the shards merge" bounded ibl probe --merge grid
 check "probe grid: merged grid equals the one-process grid" same_tree one-grid grid
 
 # 2. A batch of bakes in 4 array tasks.
@@ -208,14 +275,16 @@ check "bake batch: 4 array tasks succeed" \
 check "bake batch: equals the one-process batch" same_tree one-batch batch
 
 # 3. Task 2 fails; the merge names what it owed; task 2 alone again.
-failing_array_fails() {
-  ! IBL_FAIL_TASK=2 "${array[@]}" --array=0-3 "$repo/deploy/slurm/probe-grid.sh" 4 "$scene" \
-    retry "${probe_options[@]}"
+failing_array_fails() {  # with a failure status, not a timeout's
+  local status=0
+  IBL_FAIL_TASK=2 "${array[@]}" --array=0-3 "$repo/deploy/slurm/probe-grid.sh" 4 "$scene" \
+    retry "${probe_options[@]}" || status=$?
+  [ "$status" != 0 ] && [ "$status" != 124 ] && [ "$status" != 137 ]
 }
 check "failure: the array job with task 2 failing fails" failing_array_fails
 merge_names_the_missing_probes() {
   local output
-  output="$(ibl probe --merge retry 2>&1)" && { echo "cluster: the merge succeeded" >&2; return 1; }
+  output="$(bounded ibl probe --merge retry 2>&1)" && { echo "cluster: the merge succeeded" >&2; return 1; }
   echo "cluster: the merge says: $output" >&2
   # Of the 2x1x2 grid, the probe of linear index 2 (i, j, k = 0, 0, 1) is shard 2's.
   [[ $output == *"missing: probe_0_0_1 "* && $output == *"shard 2/4"* ]] && [ ! -e retry/probes.json ]
@@ -223,8 +292,25 @@ merge_names_the_missing_probes() {
 check "failure: the merge fails naming the missing probe and shard" merge_names_the_missing_probes
 check "failure: task 2 resubmitted alone succeeds" \
   "${array[@]}" --array=2 "$repo/deploy/slurm/probe-grid.sh" 4 "$scene" retry "${probe_options[@]}"
-check "failure: the merge completes" ibl probe --merge retry
+check "failure: the merge completes" bounded ibl probe --merge retry
 check "failure: the completed grid equals the one-process grid" same_tree one-grid retry
+
+# 4. The Kubernetes manifest (documented, not run here) parses, when PyYAML is there.
+manifest="$repo/deploy/kubernetes/probe-grid-job.yaml"
+manifest_parses() {
+  python3 - "$manifest" <<'PY'
+import sys, yaml
+docs = [d for d in yaml.safe_load_all(open(sys.argv[1])) if d is not None]
+kinds = [d.get("kind") for d in docs]
+print("cluster: %s: %s" % (sys.argv[1], ", ".join(map(str, kinds))), file=sys.stderr)
+sys.exit(0 if docs and all(kinds) else 1)
+PY
+}
+if command -v python3 >/dev/null && python3 -c 'import yaml' 2>/dev/null; then
+  check "kubernetes: the Indexed Job manifest parses" manifest_parses
+else
+  echo "cluster: skip kubernetes: the manifest parses (no python3 with yaml: apt-get install python3-yaml)" >&2
+fi
 
 echo "cluster: phase took $((SECONDS - start)) s" >&2
 echo "cluster: $passed passed, $failed failed"

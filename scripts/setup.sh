@@ -15,13 +15,14 @@ packages=(
   # the viewer's window in tests, on a virtual X display
   xvfb xauth
   # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev python3
+  libgtest-dev libgmock-dev libbenchmark-dev python3 python3-yaml
   # the engine targets rendered by the engines in a headless browser (scripts/engines.sh)
   chromium
   # probe grids and batch bakes as array jobs on a single-node Slurm cluster (scripts/cluster.sh)
   slurm-wlm munge
 )
-# Node.js and npm for the engine tests: the machine's own if it has them, else Debian's.
+# Node.js and npm for the engine tests: the machine's own if it has them, else Debian's (checked
+# for version 20 below).
 command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
@@ -40,6 +41,12 @@ else
 fi
 
 # The engine tests' npm packages, exactly as locked; again only when the lock file changed.
+# playwright-core (the browser driver) needs Node.js 20 or newer.
+node_major="$(node -p 'process.versions.node.split(".")[0]')"
+if ((node_major < 20)); then
+  echo "setup: the engine tests need Node.js >= 20 (playwright-core); this machine has $(node --version)" >&2
+  exit 1
+fi
 engines="$(dirname "$0")/../tests/engines"
 lock_hash="$(sha256sum "$engines/package-lock.json" | cut -d' ' -f1)"
 if [ "$(cat "$engines/node_modules/.ibl-lock-hash" 2>/dev/null)" != "$lock_hash" ]; then

@@ -8,7 +8,9 @@
 # per line, relative to the job's working directory), the batch's output directory (on a file
 # system every node sees: each input is baked into OUTDIR/<name>/), then any options of
 # `ibl bake` (the same for every task). Task K bakes the inputs whose index in the list is K
-# modulo N (`ibl bake --shard K/N`), with as many threads as the task has CPUs.
+# modulo N (`ibl bake --shard K/N`), with as many threads as the task has CPUs. A task
+# resubmitted alone needs `--force` among the options: the inputs it baked before it failed left
+# non-empty OUTDIR/<name>/ directories, which a bake refuses to overwrite without it.
 #
 # Environment: IBL, the command to run (default: ibl on the PATH).
 # Test hook: IBL_FAIL_TASK=K makes task K exit with status 1 before running ibl.

@@ -210,9 +210,8 @@ Json roughnessJson(const CubeMap& cube, RoughnessMapping mapping, float minimum 
 }
 
 // Filament: <name>_ibl.ktx, <name>_skybox.ktx (KTX1, R11F_G11F_B10F, cmgen's axes), sh.txt.
-void addFilament(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
-                 const BakeOutputOptions& out, const std::string& dir, const std::string& name,
-                 bool panorama) {
+void addFilament(OutputPlan& plan, const BakeResult& r, const BakeOutputOptions& out,
+                 const std::string& dir, const std::string& name, bool panorama) {
   const glm::mat3 m = filamentOrientation(panorama);
   auto ibl = std::make_shared<CubeMap>(permuteCubeAxes(*r.filamentSpecular, m));
   auto skybox = std::make_shared<CubeMap>();
@@ -223,7 +222,7 @@ void addFilament(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
   CubeMap level64;
   level64.levels = {r.source.levels[levelOfSize(r.source, 64)]};
   const Sh9 radiance = projectSh9(permuteCubeAxes(level64, m));
-  const Sh9 sh = filamentIrradianceSh(windowSh9(radiance, o.shWindow));
+  const Sh9 sh = filamentIrradianceSh(windowSh9(radiance, r.shWindowFactors));
   std::string metadata;
   for (const glm::vec3& c : sh) metadata += fmt::format("{:g} {:g} {:g}\n", c.x, c.y, c.z);
 
@@ -371,9 +370,8 @@ void addDds(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
 
 // Babylon.js: <name>.env (RGBD PNG faces of the full chain at Babylon's roughness per level, its
 // axes, the irradiance as its spherical polynomial).
-void addBabylon(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
-                const BakeOutputOptions& out, const std::string& dir, const std::string& name,
-                bool panorama) {
+void addBabylon(OutputPlan& plan, const BakeResult& r, const BakeOutputOptions& out,
+                const std::string& dir, const std::string& name, bool panorama) {
   const glm::mat3 m = babylonOrientation(panorama);
   auto env = std::make_shared<BabylonEnvironment>();
   const CubeMap chain = permuteCubeAxes(*r.babylonSpecular, m);
@@ -383,7 +381,7 @@ void addBabylon(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
   level64.levels = {r.source.levels[levelOfSize(r.source, 64)]};
   const Sh9 radiance = projectSh9(permuteCubeAxes(level64, m));
   env->polynomial =
-      babylonSphericalPolynomial(filamentIrradianceSh(windowSh9(radiance, o.shWindow)));
+      babylonSphericalPolynomial(filamentIrradianceSh(windowSh9(radiance, r.shWindowFactors)));
   const std::string path = dir + name + ".env";
   Json polynomial;
   const char* keys[9] = {"x", "y", "z", "xx", "yy", "zz", "yz", "zx", "xy"};
@@ -421,7 +419,7 @@ void addTargetOutputs(OutputPlan& plan, const BakeResult& r, const BakeOptions& 
     const std::string dir = alone ? std::string() : std::string(targetName(t)) + "/";
     switch (t) {
       case EngineTarget::Filament:
-        addFilament(plan, r, o, out, dir, outDirName, panoramaSource);
+        addFilament(plan, r, out, dir, outDirName, panoramaSource);
         break;
       case EngineTarget::GltfSampleViewer:
         addGltfSampleViewer(plan, r, o, out, dir);
@@ -430,7 +428,7 @@ void addTargetOutputs(OutputPlan& plan, const BakeResult& r, const BakeOptions& 
         addDds(plan, r, o, out, dir);
         break;
       case EngineTarget::Babylon:
-        addBabylon(plan, r, o, out, dir, outDirName, panoramaSource);
+        addBabylon(plan, r, out, dir, outDirName, panoramaSource);
         break;
       case EngineTarget::Ibl:
         break;

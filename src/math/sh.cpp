@@ -74,8 +74,9 @@ float irradianceLowerBound(const std::array<float, 9>& e) {
   // The basis' constants (Y00, Y1m, the xy/yz/xz terms, 3z^2 - 1, x^2 - y^2).
   constexpr float k0 = 0.282095f, k1 = 0.488603f, kCross = 1.092548f, kZonal = 0.315392f,
                   kSquare = 0.546274f;
-  // Turn the band-1 direction onto +z: rows of `toFrame` are the new x, y and z axes. The bound
-  // does not depend on the turn about z, so any x, y completing the frame will do.
+  // Turn the band-1 direction onto +z. The bound does not depend on the turn about z, so any x, y
+  // completing the frame will do. (cmgen takes x = z x (0, 1, 0), a NaN where the band-1
+  // direction is +-Y or zero, and so its widest window there; we compute the bound.)
   const glm::vec3 linear(e[3], e[1], e[2]);
   const float linearLength = glm::length(linear);
   glm::mat3 axes(1.0f);  // columns: the new axes in world coordinates
@@ -127,7 +128,7 @@ float irradianceLowerBound(const std::array<float, 9>& e) {
     z -= step;
     if (!(std::abs(z) <= 1.0f && std::abs(step) > 1e-5f)) break;
   }
-  if (!(std::abs(z) <= 1.0f)) minimum = std::min(f(1.0f), f(-1.0f));
+  if (std::abs(z) > 1.0f) minimum = std::min(f(1.0f), f(-1.0f));  // as cmgen: not for a NaN
   return minimum;
 }
 
@@ -167,9 +168,13 @@ Sh9 windowSh9(const Sh9& radiance, ShWindow window, std::array<float, 3>* factor
     const float w = cmgenShCutoff(radiance);
     for (int l = 0; l < 3; ++l) band[l] = cmgenBandWindow(l, w);
   }
-  Sh9 out = radiance;
-  for (int k = 0; k < 9; ++k) out[k] *= band[shBand(k)];
   if (factors) *factors = band;
+  return windowSh9(radiance, band);
+}
+
+Sh9 windowSh9(const Sh9& sh, const std::array<float, 3>& bandFactors) {
+  Sh9 out = sh;
+  for (int k = 0; k < 9; ++k) out[k] *= bandFactors[shBand(k)];
   return out;
 }
 

@@ -28,6 +28,11 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import zlib from 'node:zlib';
 
+if (+process.versions.node.split('.')[0] < 20) {
+  console.error(`run.mjs: Node ${process.versions.node} is too old: playwright-core needs Node >= 20`);
+  process.exit(1);
+}
+
 const here = path.dirname(fileURLToPath(import.meta.url));
 const repo = path.resolve(here, '..', '..');
 const t0 = Date.now();
@@ -74,24 +79,31 @@ const ENGINES = [
 ];
 
 // Thresholds, from what was measured (MEASURED: the engine with ibl's files against
-// `ibl render --mode split-sum`, and against the engine's own pipeline, per engine and case):
-// a check fails above SLACK times the measured value (at least the floor). An engine or case
-// not measured yet gets DEFAULT_SS (vs split sum) and DEFAULT_OWN (vs own). OWN_MARGIN: ibl's
-// files against the reference may be worse than the engine's own pipeline by this much
-// (absolute, in the metric's units) per case.
+// `ibl render --mode split-sum`, against the engine's own pipeline, and the engine's own
+// pipeline against `ibl render --mode reference`, per engine and case): a check fails above
+// SLACK times the measured value (at least the floor). An engine or case not measured yet gets
+// DEFAULT_SS (vs split sum), DEFAULT_OWN (vs own) and DEFAULT_REF (own pipeline vs reference).
+// OWN_MARGIN: ibl's files against the reference may be worse than the engine's own pipeline by
+// this much (absolute, in the metric's units) per case.
 const SLACK = 1.75;
-const FLOOR_SS = 0.02, FLOOR_OWN = 0.01;
-const DEFAULT_SS = 0.12, DEFAULT_OWN = 0.05;
+const FLOOR_SS = 0.02, FLOOR_OWN = 0.01, FLOOR_REF = 0.02;
+const DEFAULT_SS = 0.12, DEFAULT_OWN = 0.05, DEFAULT_REF = 0.12;
 const OWN_MARGIN = 0.01;
 const MEASURED = {
-  // engine: { case: [vs split sum, vs own pipeline] }, measured 2026-12-03 (docs/targets.md)
+  // engine: { case: [vs split sum, vs own pipeline, own pipeline vs reference] }, measured
+  // 2026-12-03 (docs/targets.md)
   filament: {
     'metal r=0': [0.068], 'metal r=0.25': [0.034], 'metal r=0.5': [0.043], 'metal r=0.75': [0.044], 'metal r=1': [0.008],
     'dielectric r=0': [0.054], 'dielectric r=0.25': [0.052], 'dielectric r=0.5': [0.043], 'dielectric r=0.75': [0.030], 'dielectric r=1': [0.020],
   },
   babylon: {
-    'metal r=0': [0.122], 'metal r=0.25': [0.071, 0.014], 'metal r=0.5': [0.056, 0.008], 'metal r=0.75': [0.059], 'metal r=1': [0.027, 0.004],
-    'dielectric r=0': [0.053], 'dielectric r=0.25': [0.044, 0.005], 'dielectric r=0.5': [0.034, 0.004], 'dielectric r=0.75': [0.034], 'dielectric r=1': [0.036, 0.004],
+    'metal r=0': [0.122], 'metal r=0.25': [0.071, 0.014, 0.085], 'metal r=0.5': [0.056, 0.008, 0.096], 'metal r=0.75': [0.059], 'metal r=1': [0.027, 0.004, 0.088],
+    'dielectric r=0': [0.053], 'dielectric r=0.25': [0.044, 0.005, 0.061], 'dielectric r=0.5': [0.034, 0.004, 0.055], 'dielectric r=0.75': [0.034], 'dielectric r=1': [0.036, 0.004, 0.053],
+  },
+  // Its own HDRLoader + PMREMGenerator only (three.js reads no prefiltered files).
+  three: {
+    'metal r=0': [null, null, 0.021], 'metal r=0.25': [null, null, 0.045], 'metal r=0.5': [null, null, 0.086], 'metal r=0.75': [null, null, 0.130], 'metal r=1': [null, null, 0.074],
+    'dielectric r=0': [null, null, 0.069], 'dielectric r=0.25': [null, null, 0.068], 'dielectric r=0.5': [null, null, 0.060], 'dielectric r=0.75': [null, null, 0.054], 'dielectric r=1': [null, null, 0.047],
   },
   // Against the split sum with --no-dominant (ENGINES' ss). Metal r = 1 is the viewer's
   // multiple-scattering term (Fdez-Aguera's) against ibl's: 0.75-0.95 of ibl's brightness
@@ -101,11 +113,16 @@ const MEASURED = {
     'dielectric r=0': [0.064], 'dielectric r=0.25': [0.060], 'dielectric r=0.5': [0.046], 'dielectric r=0.75': [0.030], 'dielectric r=1': [0.018],
   },
 };
-function threshold(engine, key, which) {
-  const m = MEASURED[engine]?.[key]?.[which === 'ss' ? 0 : 1];
-  if (m === undefined || m === null) return which === 'ss' ? DEFAULT_SS : DEFAULT_OWN;
-  return Math.max(which === 'ss' ? FLOOR_SS : FLOOR_OWN, +(SLACK * m).toFixed(3));
+function threshold(engine, key, which) {  // which: 'ss', 'own' or 'ref'
+  const k = { ss: 0, own: 1, ref: 2 }[which];
+  const m = MEASURED[engine]?.[key]?.[k];
+  if (m === undefined || m === null) return [DEFAULT_SS, DEFAULT_OWN, DEFAULT_REF][k];
+  return Math.max([FLOOR_SS, FLOOR_OWN, FLOOR_REF][k], +(SLACK * m).toFixed(3));
 }
+// Time limits: the whole run (IBL_ENGINES_TIMEOUT_S), one `ibl` command, one page's wait.
+const RUN_TIMEOUT_S = +(process.env.IBL_ENGINES_TIMEOUT_S || 900);
+const IBL_TIMEOUT_S = 300;
+const PAGE_TIMEOUT_S = 90;
 
 // ---------------------------------------------------------------------------------------------
 // Arguments
@@ -131,6 +148,13 @@ if (!opt.ibl) {
   console.error('run.mjs: --ibl PATH is required');
   process.exit(2);
 }
+if (opt.only) {
+  const unknown = opt.only.filter((n) => !ENGINES.some((e) => e.name === n));
+  if (unknown.length) {
+    console.error(`run.mjs: --only: unknown engine ${unknown.join(', ')} (known: ${ENGINES.map((e) => e.name).join(', ')})`);
+    process.exit(1);
+  }
+}
 const W = opt.work;
 fs.mkdirSync(W, { recursive: true });
 
@@ -138,11 +162,29 @@ function log(...m) {
   console.log(`[${((Date.now() - t0) / 1000).toFixed(1).padStart(5)} s]`, ...m);
 }
 
+// What the run is doing (printed if the deadline passes), and what to close on the way out.
+let doing = 'starting';
+let context = null, server = null, userData = null, timedOut = false;
+const halt = () => new Promise(() => {});  // after the deadline: wait for the exit below, print nothing more
+process.on('exit', () => { if (userData) fs.rmSync(userData, { recursive: true, force: true }); });
+setTimeout(async () => {
+  timedOut = true;
+  console.error(`run.mjs: timed out after ${RUN_TIMEOUT_S} s (IBL_ENGINES_TIMEOUT_S) while ${doing}`);
+  console.log('engines: timed out');
+  const closing = Promise.allSettled([context?.close(), server && new Promise((r) => server.close(r))]);
+  await Promise.race([closing, new Promise((r) => setTimeout(r, 10000))]);
+  process.exit(1);
+}, RUN_TIMEOUT_S * 1000).unref();
+
 // ---------------------------------------------------------------------------------------------
 // ibl
 
 function ibl(argv, { quiet = true } = {}) {
-  const r = spawnSync(opt.ibl, argv, { cwd: repo, encoding: 'utf8' });
+  if (Date.now() - t0 > RUN_TIMEOUT_S * 1000) throw new Error(`timed out after ${RUN_TIMEOUT_S} s (IBL_ENGINES_TIMEOUT_S) before ibl ${argv.join(' ')}`);
+  doing = `running ibl ${argv.join(' ')}`;
+  const r = spawnSync(opt.ibl, argv, { cwd: repo, encoding: 'utf8', timeout: IBL_TIMEOUT_S * 1000, killSignal: 'SIGKILL' });
+  if (r.error?.code === 'ETIMEDOUT') throw new Error(`ibl ${argv.join(' ')}: timed out after ${IBL_TIMEOUT_S} s (killed)`);
+  if (r.error) throw new Error(`ibl ${argv.join(' ')}: ${r.error.message}`);
   if (r.status !== 0) {
     throw new Error(`ibl ${argv.join(' ')}: exit ${r.status ?? r.signal}\n${r.stdout}${r.stderr}`);
   }
@@ -252,9 +294,10 @@ for (const m of METALLIC) for (const r of ROUGHNESS) cases.push({ r, m, key: `${
 
 const engines = ENGINES.filter((e) => (!opt.only || opt.only.includes(e.name)));
 const present = [];
+let missingPages = 0;
 for (const e of engines) {
   if (fs.existsSync(path.join(here, 'pages', e.page))) present.push(e);
-  else console.warn(`warning: tests/engines/pages/${e.page} does not exist yet: ${e.name} skipped`);
+  else { console.error(`FAILED tests/engines/pages/${e.page} does not exist: ${e.name} not checked`); missingPages++; }
 }
 
 const vec = (v) => v.map((x) => +x.toFixed(6)).join(',');
@@ -314,13 +357,13 @@ const MIME = {
   '.bin': 'application/octet-stream', '.map': 'application/json', '.txt': 'text/plain', '.css': 'text/css',
 };
 const roots = { '/engines/': here, '/work/': W };
-const server = http.createServer((req, res) => {
+server = http.createServer((req, res) => {
   const u = new URL(req.url, 'http://x');
   const p = decodeURIComponent(u.pathname);
   for (const [prefix, root] of Object.entries(roots)) {
     if (!p.startsWith(prefix)) continue;
     const f = path.resolve(root, '.' + p.slice(prefix.length - 1));
-    if (!f.startsWith(root)) break;
+    if (!f.startsWith(root + path.sep)) break;
     fs.readFile(f, (err, data) => {
       if (err) { res.writeHead(404); res.end('not found'); return; }
       res.writeHead(200, { 'Content-Type': MIME[path.extname(f)] || 'application/octet-stream', 'Cache-Control': 'no-store' });
@@ -336,11 +379,24 @@ const origin = `http://127.0.0.1:${server.address().port}`;
 // ---------------------------------------------------------------------------------------------
 // Browser
 
-const { chromium } = await import(path.join(here, 'node_modules', 'playwright-core', 'index.mjs'));
-const { PNG } = (await import(path.join(here, 'node_modules', 'pngjs', 'lib', 'png.js'))).default;
-const userData = fs.mkdtempSync(path.join(os.tmpdir(), 'ibl-engines-'));
-const context = await chromium.launchPersistentContext(userData, {
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+function fatal(msg) {
+  console.error(`run.mjs: ${msg}`);
+  server.close();
+  process.exit(1);
+}
+let chromium, PNG;
+try {
+  ({ chromium } = await import(path.join(here, 'node_modules', 'playwright-core', 'index.mjs')));
+  ({ PNG } = (await import(path.join(here, 'node_modules', 'pngjs', 'lib', 'png.js'))).default);
+} catch (err) {
+  fatal(`the npm packages in tests/engines/node_modules are missing or broken (run scripts/setup.sh): ${err.message.split('\n')[0]}`);
+}
+const chromiumPath = process.env.CHROMIUM || '/usr/bin/chromium';
+doing = `launching Chromium (${chromiumPath})`;
+userData = fs.mkdtempSync(path.join(os.tmpdir(), 'ibl-engines-'));
+try {
+context = await chromium.launchPersistentContext(userData, {
+  executablePath: chromiumPath,
   headless: true,
   args: ['--headless=new', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
     '--ignore-gpu-blocklist', '--disable-quic', '--no-first-run', '--disable-background-networking',
@@ -349,7 +405,18 @@ const context = await chromium.launchPersistentContext(userData, {
   viewport: { width: IMAGE + 32, height: IMAGE + 32 },
   deviceScaleFactor: 1,
 });
-let failures = 0, passes = 0;
+} catch (err) {
+  fatal(`cannot launch Chromium at ${chromiumPath} (CHROMIUM overrides it; run scripts/setup.sh): ${err.message.split('\n')[0]}`);
+}
+// Nothing leaves 127.0.0.1: any other request is aborted and fails the run.
+const offHost = [];
+await context.route('**/*', (route) => {
+  const u = new URL(route.request().url());
+  if (u.protocol === 'data:' || u.protocol === 'blob:' || u.hostname === '127.0.0.1') return route.continue();
+  offHost.push(u.href);
+  return route.abort('blockedbyclient');
+});
+let failures = missingPages, passes = 0;
 const results = [];
 const notes = {};
 try {
@@ -379,9 +446,10 @@ try {
     const consoleLines = [];
     page.on('console', (m) => consoleLines.push(`${m.type()}: ${m.text()}`));
     page.on('pageerror', (err) => consoleLines.push(`pageerror: ${err.message}`));
+    doing = `rendering ${e.name} set=${set} ${c.key}`;
     try {
-      await page.goto(`${origin}/engines/pages/${e.page}?${q}`);
-      const h = await page.waitForFunction(() => window.iblDone, null, { timeout: 120000 });
+      await page.goto(`${origin}/engines/pages/${e.page}?${q}`, { timeout: PAGE_TIMEOUT_S * 1000 });
+      const h = await page.waitForFunction(() => window.iblDone, null, { timeout: PAGE_TIMEOUT_S * 1000 });
       const done = await h.jsonValue();
       if (!done.ok) throw new Error(done.error);
       notes[`${e.name}/${set}`] = done.notes;
@@ -445,6 +513,7 @@ try {
         for (const set of sets) imgs[set] = linear(await capture(e, set, c, K));
       } catch (err) {
         // A page that fails is a failed check; the other engines and cases still run.
+        if (timedOut) await halt();
         console.error(`FAILED ${err.message}`);
         failures++;
         continue;
@@ -469,6 +538,10 @@ try {
       if (row.iblVsOwn !== undefined) {
         const t = threshold(e.name, c.key, 'own');
         row.checks.push({ what: `vs own pipeline <= ${t}`, ok: row.iblVsOwn <= t });
+      }
+      if (row.ownVsRef !== undefined) {
+        const t = threshold(e.name, c.key, 'ref');
+        row.checks.push({ what: `own pipeline vs reference <= ${t}`, ok: row.ownVsRef <= t });
       }
       if (row.iblVsRef !== undefined && row.ownVsRef !== undefined) {
         row.checks.push({ what: `vs reference <= own + ${OWN_MARGIN}`, ok: row.iblVsRef <= row.ownVsRef + OWN_MARGIN });
@@ -500,12 +573,23 @@ try {
 
   if (opt.docs) await writeDocs(results, shots);
 } catch (err) {
+  if (timedOut) await halt();
   console.error(String(err.stack || err));
   failures++;
 } finally {
+  doing = 'closing the browser';
   await context.close();
   server.close();
   fs.rmSync(userData, { recursive: true, force: true });
+}
+if (timedOut) await halt();
+for (const u of offHost) {
+  console.error(`FAILED a page requested ${u}, not on 127.0.0.1 (aborted)`);
+  failures++;
+}
+if (passes + failures === 0) {
+  console.error('FAILED no check ran');
+  failures++;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -64,4 +64,7 @@ float cmgenShCutoff(const Sh9& radiance);
 // band (1, 1, 1 when off).
 Sh9 windowSh9(const Sh9& radiance, ShWindow window, std::array<float, 3>* factors = nullptr);
 
+// The coefficients with band l multiplied by bandFactors[l] (a window chosen before).
+Sh9 windowSh9(const Sh9& sh, const std::array<float, 3>& bandFactors);
+
 }  // namespace ibl
