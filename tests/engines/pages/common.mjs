@@ -2,20 +2,40 @@
 // contract (tests/engines/run.mjs) and a UV sphere as a glTF binary (GLB) with one glTF
 // metallic-roughness material, for engines that take their materials from glTF (Filament's gltfio).
 
-export function params() {
+// The page's URL parameters, checked: an Error naming the parameter where one is missing or
+// malformed. `set`: the default set; `sets`: those the page renders.
+export function params({ set = 'ibl', sets = ['ibl', 'own'] } = {}) {
   const q = new URLSearchParams(location.search);
-  const num = (k, d) => (q.has(k) ? Number(q.get(k)) : d);
-  return {
-    set: q.get('set') || 'ibl',
-    bake: q.get('bake') || '/work/bake',
-    hdr: q.get('hdr') || '',
+  const bad = (message) => {
+    throw new Error(message);
+  };
+  const num = (name, def) => {
+    const s = q.get(name);
+    if (s === null || s === '') return def;
+    const v = Number(s);
+    if (!Number.isFinite(v)) bad(`parameter ${name}=${s} is not a number`);
+    return v;
+  };
+  const base = (q.get('base') ?? '1,1,1').split(',').map(Number);
+  if (base.length !== 3 || !base.every(Number.isFinite)) bad(`parameter base=${q.get('base')} is not R,G,B`);
+  const p = {
+    set: q.get('set') || set,
+    bake: q.get('bake'),
+    hdr: q.get('hdr'),
     roughness: num('roughness', 0.5),
     metallic: num('metallic', 0),
-    base: (q.get('base') || '1,1,1').split(',').map(Number),
-    size: num('size', 128),
+    base,
+    size: Math.round(num('size', 128)),
     scale: num('scale', 1),
     view: q.get('view') || 'front',
+    envRotation: num('envRotation', 0),
   };
+  if (!sets.includes(p.set)) bad(`set=${p.set}: this page renders set=${sets.join(' or ')}`);
+  if (p.set === 'ibl' && !p.bake) bad('missing parameter bake');
+  if (p.set === 'own' && !p.hdr) bad('missing parameter hdr');
+  if (p.view !== 'front' && p.view !== 'side') bad(`view=${p.view}: front or side`);
+  if (!(p.size >= 1 && p.size <= 4096)) bad(`size=${p.size} out of range`);
+  return p;
 }
 
 // Camera position of the contract's views: front on +Z, side on +X; both look at the origin, up +Y.

@@ -41,6 +41,7 @@
 // window.iblDone = {ok, notes|error}.
 
 import { read as readKtx2 } from '/engines/node_modules/ktx-parse/dist/index.mjs';
+import { params } from './common.mjs';
 
 const VIEWER_BUNDLE = '/engines/node_modules/@khronosgroup/gltf-viewer/dist/gltf-viewer.module.js';
 
@@ -49,40 +50,6 @@ const VK_FORMAT_R32G32B32A32_SFLOAT = 109;
 
 function fail(message) {
   throw new Error(message);
-}
-
-function parseParams() {
-  const q = new URLSearchParams(location.search);
-  const num = (name, def) => {
-    const s = q.get(name);
-    if (s === null || s === '') {
-      if (def === undefined) fail(`missing parameter ${name}`);
-      return def;
-    }
-    const v = Number(s);
-    if (!Number.isFinite(v)) fail(`parameter ${name}=${s} is not a number`);
-    return v;
-  };
-  const base = (q.get('base') ?? '1,1,1').split(',').map(Number);
-  if (base.length !== 3 || !base.every(Number.isFinite)) fail(`parameter base=${q.get('base')} is not R,G,B`);
-  const p = {
-    set: q.get('set') ?? 'ibl',
-    bake: q.get('bake'),
-    hdr: q.get('hdr'),
-    roughness: num('roughness', 0.5),
-    metallic: num('metallic', 0),
-    base,
-    size: Math.round(num('size', 256)),
-    scale: num('scale', 1),
-    view: q.get('view') ?? 'front',
-    envRotation: num('envRotation', 0),
-  };
-  if (p.set !== 'ibl' && p.set !== 'own') fail(`set=${p.set}: ibl or own`);
-  if (p.set === 'ibl' && !p.bake) fail('missing parameter bake');
-  if (p.set === 'own' && !p.hdr) fail('missing parameter hdr');
-  if (p.view !== 'front' && p.view !== 'side') fail(`view=${p.view}: front or side`);
-  if (!(p.size >= 1 && p.size <= 4096)) fail(`size=${p.size} out of range`);
-  return p;
 }
 
 async function fetchOk(url) {
@@ -402,7 +369,7 @@ async function viewerOwn(gl, p) {
 const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => resolve()));
 
 async function main() {
-  const p = parseParams();
+  const p = params();
   const canvas = document.getElementById('c');
   canvas.width = p.size;
   canvas.height = p.size;

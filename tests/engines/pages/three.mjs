@@ -20,43 +20,16 @@
 
 import * as THREE from 'three';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
+import { params } from './common.mjs';
 
 function fail(message) {
   throw new Error(message);
 }
 
-function parseParams() {
-  const q = new URLSearchParams(location.search);
-  const num = (name, def) => {
-    const s = q.get(name);
-    if (s === null || s === '') return def;
-    const v = Number(s);
-    if (!Number.isFinite(v)) fail(`parameter ${name}=${s} is not a number`);
-    return v;
-  };
-  const base = (q.get('base') ?? '1,1,1').split(',').map(Number);
-  if (base.length !== 3 || !base.every(Number.isFinite)) fail(`parameter base=${q.get('base')} is not R,G,B`);
-  const p = {
-    set: q.get('set') ?? 'own',
-    hdr: q.get('hdr'),
-    roughness: num('roughness', 0.5),
-    metallic: num('metallic', 0),
-    base,
-    size: Math.round(num('size', 256)),
-    scale: num('scale', 1),
-    view: q.get('view') ?? 'front',
-  };
-  if (p.set !== 'own') fail(`set=${p.set}: three.js takes no prefiltered set; this page is set=own (its own PMREM of the .hdr)`);
-  if (!p.hdr) fail('missing parameter hdr');
-  if (p.view !== 'front' && p.view !== 'side') fail(`view=${p.view}: front or side`);
-  if (!(p.size >= 1 && p.size <= 4096)) fail(`size=${p.size} out of range`);
-  return p;
-}
-
 const nextFrame = () => new Promise((resolve) => requestAnimationFrame(() => resolve()));
 
 async function main() {
-  const p = parseParams();
+  const p = params({ set: 'own', sets: ['own'] });
   const canvas = document.getElementById('c');
 
   const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, alpha: false, preserveDrawingBuffer: true });
