@@ -1,6 +1,7 @@
 #include "ibl/bake/bake.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cerrno>
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <set>
 #include <system_error>
@@ -150,6 +152,26 @@ std::uint64_t estimateBakeOutputBytes(const BakeOptions& o, const BakeOutputOpti
   return static_cast<std::uint64_t>(bytes);
 }
 
+namespace {
+
+// The DFG tables depend on their kind, size and sample count alone: each is integrated once per
+// process and copied into every later bake that asks for it (the viewer's time of day bakes again
+// for each sun position; a batch bakes many files).
+Image oncePerProcess(std::array<int, 3> key, const std::function<Image()>& integrate) {
+  static std::mutex mutex;
+  static std::map<std::array<int, 3>, Image> tables;
+  {
+    const std::lock_guard lock(mutex);
+    if (const auto it = tables.find(key); it != tables.end()) return it->second;
+  }
+  Image table = integrate();
+  const std::lock_guard lock(mutex);
+  tables.emplace(key, table);
+  return table;
+}
+
+}  // namespace
+
 BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const ProgressFn& progress,
                            gpu::Context* device) {
   checkBakeOptions(o);
@@ -241,15 +263,21 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
         if (progress) progress(dfgStage, 0.0);
         r.dfg = time("dfg", [&] {
           return device ? gpu::integrateDfgLut(*device, o.dfgSize, o.dfgSize, o.dfgSamples)
-                        : integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples, progress, dfgStage);
+                        : oncePerProcess({0, o.dfgSize, o.dfgSamples}, [&] {
+                            return integrateDfgLut(o.dfgSize, o.dfgSize, o.dfgSamples, progress,
+                                                   dfgStage);
+                          });
         });
         if (o.wantsSheen()) {
           const std::string sheenStage = fmt::format("sheen table {}x{} ({} samples per texel)",
                                                      o.dfgSize, o.dfgSize, 4 * o.dfgSamples);
           if (progress) progress(sheenStage, 0.0);
           r.sheenDfg = time("sheen_dfg", [&] {
-            return integrateSheenDfgLut(o.dfgSize, o.dfgSize, 4 * o.dfgSamples, o.sheenVisibility,
-                                        progress, sheenStage);
+            return oncePerProcess(
+                {1 + static_cast<int>(o.sheenVisibility), o.dfgSize, o.dfgSamples}, [&] {
+                  return integrateSheenDfgLut(o.dfgSize, o.dfgSize, 4 * o.dfgSamples,
+                                              o.sheenVisibility, progress, sheenStage);
+                });
           });
         }
       });

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <memory>
 #include <mutex>
 #include <numbers>
 #include <vector>
@@ -440,6 +442,31 @@ struct SkyModel::Tables {
   }
 };
 
+namespace {
+
+// What a model computes before its sun: the optical-depth table (the planet's alone) and the
+// multiple-scattering table (per unit solar irradiance, over every sun height: it depends on the
+// atmosphere and the ground's albedo). The last atmosphere's pair is kept for the next model of
+// the same atmosphere, so a new sun position (the viewer's time of day) costs only its own
+// tables.
+struct SunIndependentTables {
+  std::array<BandCoefficients, kSkyBands> bands{};
+  float albedo = -1.0f;
+  bool multipleScattering = false;
+  std::shared_ptr<const std::vector<glm::vec3>> depth;
+  std::shared_ptr<const std::vector<Spectrum>> multiple;
+
+  bool sameAtmosphere(const std::array<BandCoefficients, kSkyBands>& b, float a, bool ms) const {
+    return depth && albedo == a && multipleScattering == ms &&
+           std::memcmp(bands.data(), b.data(), sizeof(bands)) == 0;
+  }
+};
+
+std::mutex lastTablesMutex;
+SunIndependentTables lastTables;
+
+}  // namespace
+
 SkyModel::SkyModel(const SkyParameters& p) : params_(p), tables_(std::make_unique<Tables>()) {
   checkSkyParameters(p, "sky");
   Tables& t = *tables_;
@@ -447,8 +474,21 @@ SkyModel::SkyModel(const SkyParameters& p) : params_(p), tables_(std::make_uniqu
   t.top = solarIrradianceAtTop();
   t.observerRadius = t.shape.bottomRadius + std::max(p.altitude, 0.0f);
   t.sun = ibl::sunDirection(p.sunElevation, p.sunAzimuth);
-  t.buildDepth();
-  t.buildMultiple(p.groundAlbedo, p.multipleScattering);
+  {
+    const std::lock_guard lock(lastTablesMutex);
+    if (lastTables.sameAtmosphere(t.bands, p.groundAlbedo, p.multipleScattering)) {
+      t.depth = *lastTables.depth;
+      t.multiple = *lastTables.multiple;
+    }
+  }
+  if (t.depth.empty()) {
+    t.buildDepth();
+    t.buildMultiple(p.groundAlbedo, p.multipleScattering);
+    const std::lock_guard lock(lastTablesMutex);
+    lastTables = {t.bands, p.groundAlbedo, p.multipleScattering,
+                  std::make_shared<const std::vector<glm::vec3>>(t.depth),
+                  std::make_shared<const std::vector<Spectrum>>(t.multiple)};
+  }
   if (p.groundAlbedo > 0.0f) t.buildGroundSky();
   t.horizon = shared::horizonElevation(t.shape, t.observerRadius);
 }

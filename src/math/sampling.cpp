@@ -23,16 +23,6 @@ std::uint32_t laineKarrasPermutation(std::uint32_t x, std::uint32_t seed) {
   return x;
 }
 
-// A 32-bit hash (Wellons' lowbias32) to derive independent seeds.
-std::uint32_t hash32(std::uint32_t x) {
-  x ^= x >> 16u;
-  x *= 0x7feb352du;
-  x ^= x >> 15u;
-  x *= 0x846ca68bu;
-  x ^= x >> 16u;
-  return x;
-}
-
 // Dimension 1 of Sobol (primitive polynomial x + 1): direction numbers v_1 = 2^31,
 // v_k = v_(k-1) ^ (v_(k-1) >> 1) (the Pascal matrix), as bits from the top.
 std::uint32_t sobolDimension1(std::uint32_t index) {
@@ -47,6 +37,15 @@ float toUnit(std::uint32_t bits) {
 }
 
 }  // namespace
+
+std::uint32_t hash32(std::uint32_t x) {
+  x ^= x >> 16u;
+  x *= 0x7feb352du;
+  x ^= x >> 15u;
+  x *= 0x846ca68bu;
+  x ^= x >> 16u;
+  return x;
+}
 
 std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed) {
   return reverseBits(laineKarrasPermutation(reverseBits(x), seed));

@@ -74,13 +74,13 @@ glm::vec3 MicrofacetWalk::phase(glm::vec3 wi, glm::vec3 wo) const {
   return fresnel(WioH) * (ggxDistribution(h.z, alpha_) / (4.0f * projectedArea));
 }
 
-MicrofacetWalk::Sample MicrofacetWalk::sample(glm::vec3 wi, Random& rng) const {
+MicrofacetWalk::Sample MicrofacetWalk::sample(glm::vec3 wi, Sampler& sampler) const {
   Sample s;
   if (!(wi.z > 0.0f)) return s;
   glm::vec3 wr = -wi, energy(1.0f);
   float hr = kStartHeight;
   for (int order = 0;; ++order) {
-    hr = sampleWalkHeight(wr, hr, rng.uniform(), alpha_);
+    hr = sampleWalkHeight(wr, hr, sampler.uniform(), alpha_);
     if (hr == kLeaves) {
       // Every bounce is a mirror reflection of a visible normal sampled in proportion to the
       // phase function's own lobe: f cos / p is the product of their Fresnel factors.
@@ -93,7 +93,7 @@ MicrofacetWalk::Sample MicrofacetWalk::sample(glm::vec3 wi, Random& rng) const {
     const glm::vec3 w = -wr;
     // The visible normals from w, of either hemisphere (a ray going up meets the underside of
     // the microsurface's upper part), reflected.
-    const glm::vec3 m = sampleGgxVisibleNormal(w, rng.uniform2(), alpha_);
+    const glm::vec3 m = sampleGgxVisibleNormal(w, sampler.uniform2(), alpha_);
     const float WoM = glm::dot(w, m);
     energy *= fresnel(std::max(WoM, 0.0f));
     wr = 2.0f * WoM * m - w;
@@ -103,14 +103,14 @@ MicrofacetWalk::Sample MicrofacetWalk::sample(glm::vec3 wi, Random& rng) const {
   return s;
 }
 
-glm::vec3 MicrofacetWalk::evaluate(glm::vec3 wi, glm::vec3 wo, Random& rng, int minOrder,
+glm::vec3 MicrofacetWalk::evaluate(glm::vec3 wi, glm::vec3 wo, Sampler& sampler, int minOrder,
                                    int maxOrder) const {
   if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return glm::vec3(0.0f);
   maxOrder = std::min(maxOrder, kMaxOrder);
   glm::vec3 wr = -wi, energy(1.0f), sum(0.0f);
   float hr = kStartHeight;
   for (int order = 1; order <= maxOrder; ++order) {
-    hr = sampleWalkHeight(wr, hr, rng.uniform(), alpha_);
+    hr = sampleWalkHeight(wr, hr, sampler.uniform(), alpha_);
     if (hr == kLeaves) break;
     const glm::vec3 w = -wr;
     // Next-event estimation: the light wo scattered at this hit toward the outside, the phase
@@ -120,7 +120,7 @@ glm::vec3 MicrofacetWalk::evaluate(glm::vec3 wi, glm::vec3 wo, Random& rng, int 
       if (finite(term)) sum += term;
     }
     if (order == maxOrder) break;
-    const glm::vec3 m = sampleGgxVisibleNormal(w, rng.uniform2(), alpha_);
+    const glm::vec3 m = sampleGgxVisibleNormal(w, sampler.uniform2(), alpha_);
     const float WoM = glm::dot(w, m);
     energy *= fresnel(std::max(WoM, 0.0f));
     wr = 2.0f * WoM * m - w;

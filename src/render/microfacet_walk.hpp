@@ -60,14 +60,14 @@ class MicrofacetWalk {
   // A direction the walk leaves along, from wi (wi.z > 0; Heitz et al. 2016's sampling
   // procedure): at each hit a visible normal (Heitz 2018, valid for wi of either hemisphere),
   // reflected.
-  Sample sample(glm::vec3 wi, Random& rng) const;
+  Sample sample(glm::vec3 wi, Sampler& sampler) const;
 
   // An unbiased estimate of f(wi, wo) cos(wo) summed over the scattering orders minOrder to
   // maxOrder (Heitz et al. 2016, the stochastic evaluation of their section 5): one walk from wi
   // with next-event estimation toward wo at each hit, the phase function times the shadowing
   // G1(wo, h) at the hit's height, times the Fresnel of the bounces before. Order 1 alone has
   // the expectation of single-scattering GGX, D G2 F / (4 wi.z) (G2 height-correlated).
-  glm::vec3 evaluate(glm::vec3 wi, glm::vec3 wo, Random& rng, int minOrder = 1,
+  glm::vec3 evaluate(glm::vec3 wi, glm::vec3 wo, Sampler& sampler, int minOrder = 1,
                      int maxOrder = kMaxOrder) const;
 
  private:

@@ -152,9 +152,9 @@ struct Brdf {
     return v.z >= 1e-4f ? v : glm::normalize(glm::vec3(v.x, v.y, 1e-4f));
   }
 
-  // f(v, l) (n.l), with n = +Z of the local frame. With the walk, an unbiased estimate (rng:
+  // f(v, l) (n.l), with n = +Z of the local frame. With the walk, an unbiased estimate (sampler:
   // the walk's numbers; unused otherwise); withSpecular = false leaves the specular lobe out.
-  glm::vec3 evaluate(glm::vec3 v, glm::vec3 l, Random& rng, bool withSpecular = true) const {
+  glm::vec3 evaluate(glm::vec3 v, glm::vec3 l, Sampler& sampler, bool withSpecular = true) const {
     const float NoV = std::max(v.z, 1e-4f), NoL = l.z;
     if (NoL <= 0.0f) return glm::vec3(0.0f);
     const glm::vec3 h = glm::normalize(v + l);
@@ -165,7 +165,7 @@ struct Brdf {
                 fresnelSchlick(f0, f90, VoH) * multipleScattering;
       // The walk's orders 2 and up (f cos, hence the division): its order 1 has the
       // expectation of the term above, which is exact.
-      if (walk) result += microsurface.evaluate(walkView(v), l, rng, 2) / NoL;
+      if (walk) result += microsurface.evaluate(walkView(v), l, sampler, 2) / NoL;
     }
     if (diffuseLobe()) {
       const float fd = diffuseModel == DiffuseModel::Disney
@@ -217,9 +217,9 @@ struct Brdf {
     glm::vec3 direction;
     glm::vec3 weight;
   };
-  Sample sample(glm::vec3 v, Random& rng) const {
-    const glm::vec2 xi = rng.uniform2();
-    float choose = rng.uniform();
+  Sample sample(glm::vec3 v, Sampler& sampler) const {
+    const glm::vec2 xi = sampler.uniform2();
+    float choose = sampler.uniform();
     const float pSheen = sheenProbability();
     if (walk) {
       // The walk's directions have no pdf to evaluate: one lobe is estimated at a time, the
@@ -233,7 +233,7 @@ struct Brdf {
       // walk's true one costs variance, not bias.
       const float specular = (1.0f - pSheen) * specularProbability();
       if (choose < specular) {
-        const MicrofacetWalk::Sample s = microsurface.sample(walkView(v), rng);
+        const MicrofacetWalk::Sample s = microsurface.sample(walkView(v), sampler);
         glm::vec3 weight = s.weight / specular;
         if (hasSheen()) weight *= std::min(sheenScaleV, albedoScaling(s.wo.z));
         return {s.wo, weight};
@@ -241,7 +241,7 @@ struct Brdf {
       const glm::vec3 l = sampleCosineHemisphere(xi);
       const float p = (1.0f - specular) * l.z / kPi;
       if (!(p > 0.0f)) return {l, glm::vec3(0.0f)};
-      return {l, evaluate(v, l, rng, false) / p};
+      return {l, evaluate(v, l, sampler, false) / p};
     }
     glm::vec3 l;
     if (choose < pSheen) {
@@ -257,7 +257,7 @@ struct Brdf {
     }
     const float p = pdf(v, l);
     if (!(p > 0.0f)) return {l, glm::vec3(0.0f)};
-    return {l, evaluate(v, l, rng) / p};
+    return {l, evaluate(v, l, sampler) / p};
   }
 };
 
@@ -281,24 +281,33 @@ NearestLight nearestLight(const std::vector<Light>& lights, glm::vec3 p, glm::ve
 
 EnvironmentSampler::EnvironmentSampler(const std::array<Image, kFaceCount>& level)
     : level_(level), n_(level[0].width) {
-  const std::size_t count = static_cast<std::size_t>(kFaceCount) * n_ * n_;
-  cdf_.resize(count);
+  const std::size_t n = static_cast<std::size_t>(n_), rows = kFaceCount * n;
   double mean = 0.0;
   for (int f = 0; f < kFaceCount; ++f)
     for (const auto& p : level[f].pixels) mean += luminance(p);
-  mean /= static_cast<double>(count);
-  double total = 0.0;
-  std::size_t i = 0;
+  mean /= static_cast<double>(rows * n);
   const std::vector<double> omega = faceTexelSolidAngles(n_);
-  for (int f = 0; f < kFaceCount; ++f)
-    for (int y = 0; y < n_; ++y)
-      for (int x = 0; x < n_; ++x, ++i) {
-        // A floor keeps every texel reachable, for MIS and for colors of low luminance.
-        total += (luminance(level[f].at(x, y)) + 1e-3 * mean + 1e-12) *
-                 omega[static_cast<std::size_t>(y) * n_ + x];
-        cdf_[i] = total;
-      }
-  for (auto& c : cdf_) c /= total;
+  rowCdf_.resize(rows);
+  columnCdf_.resize(rows * n);
+  double total = 0.0;
+  for (std::size_t row = 0; row < rows; ++row) {
+    const Image& face = level[row / n];
+    const int y = static_cast<int>(row % n);
+    double* column = columnCdf_.data() + row * n;
+    double sum = 0.0;
+    for (std::size_t x = 0; x < n; ++x) {
+      // A floor keeps every texel reachable, for MIS and for colors of low luminance.
+      sum += (luminance(face.at(static_cast<int>(x), y)) + 1e-3 * mean + 1e-12) *
+             omega[static_cast<std::size_t>(y) * n + x];
+      column[x] = sum;
+    }
+    for (std::size_t x = 0; x < n; ++x) column[x] /= sum;
+    column[n - 1] = 1.0;
+    total += sum;
+    rowCdf_[row] = total;
+  }
+  for (auto& c : rowCdf_) c /= total;
+  rowCdf_.back() = 1.0;
   texelArea_ = 4.0f / static_cast<float>(n_ * n_);
 }
 
@@ -317,7 +326,7 @@ static SurfacePoint metalAsDiffuse(SurfacePoint p) {
 }
 
 glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position, glm::vec3 view,
-                    Random& rng) {
+                    Sampler& sampler) {
   const RenderOptions& o = s.options;
   const std::vector<Light>& lights = s.scene.lights;
   // Beyond direct light the path needs to know what the scene hides; --shadows asks for it
@@ -346,18 +355,18 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     // Next-event estimation: one sample of each light (punctual lights exactly) and one of the
     // environment where no light hides it, each weighed against the BRDF's sampling.
     for (const Light& light : lights) {
-      const LightSample ls = sampleLight(light, origin, rng.uniform2());
+      const LightSample ls = sampleLight(light, origin, sampler.uniform2());
       if (!(ls.delta || ls.pdf > 0.0f) || ls.radiance == glm::vec3(0.0f)) continue;
       const glm::vec3 l = toLocal * ls.direction;
       if (l.z <= 0.0f || !unoccluded(ls.direction, ls.distance)) continue;
       const float weight = ls.delta ? 1.0f : powerHeuristic(ls.pdf, brdf.pdf(v, l)) / ls.pdf;
-      sum += throughput * brdf.evaluate(v, l, rng) * ls.radiance * weight;
+      sum += throughput * brdf.evaluate(v, l, sampler) * ls.radiance * weight;
     }
     // One point on the emissive triangles (by power); without visibility the BRDF's samples are
     // not traced, so this sample takes all the weight. An analytic light in front hides it, as it
     // stops the BRDF's samples.
     if (!s.emitters.empty()) {
-      const EmitterSample es = s.emitters.sample(origin, glm::vec3(rng.uniform(), rng.uniform2()));
+      const EmitterSample es = s.emitters.sample(origin, glm::vec3(sampler.uniform(), sampler.uniform2()));
       const glm::vec3 l = toLocal * es.direction;
       const auto lightInFront = [&] {
         const NearestLight nl = nearestLight(lights, origin, es.direction);
@@ -367,21 +376,21 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
           unoccluded(es.direction, es.distance) && !lightInFront()) {
         const float weight =
             visibility ? powerHeuristic(es.pdf, brdf.pdf(v, l)) / es.pdf : 1.0f / es.pdf;
-        sum += throughput * brdf.evaluate(v, l, rng) * es.radiance * weight;
+        sum += throughput * brdf.evaluate(v, l, sampler) * es.radiance * weight;
       }
     }
     if (o.environmentLight) {
-      const glm::vec3 w = s.environment.sample(rng.uniform2());
+      const glm::vec3 w = s.environment.sample(sampler.uniform2());
       const glm::vec3 l = toLocal * w;
       const float pe = s.environment.pdf(w);
       if (l.z > 0.0f && pe > 0.0f && nearestLight(lights, origin, w).index < 0 &&
           unoccluded(w, INFINITY))
-        sum += throughput * brdf.evaluate(v, l, rng) * s.environment.radiance(w) *
+        sum += throughput * brdf.evaluate(v, l, sampler) * s.environment.radiance(w) *
                (powerHeuristic(pe, brdf.pdf(v, l)) / pe);
     }
     // The BRDF's sample: it ends on a light or the environment (weighed against their
     // sampling), or goes on from the surface it meets.
-    const Brdf::Sample bs = brdf.sample(v, rng);
+    const Brdf::Sample bs = brdf.sample(v, sampler);
     const glm::vec3 l = bs.direction;
     const float pb = brdf.pdf(v, l);
     if (!(pb > 0.0f) || bs.weight == glm::vec3(0.0f)) break;
@@ -420,7 +429,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     // Russian roulette after two bounces: go on with the probability of the throughput.
     if (depth >= 1) {
       const float q = std::min(maxComponent(throughput), 0.95f);
-      if (!(rng.uniform() < q)) break;
+      if (!(sampler.uniform() < q)) break;
       throughput /= q;
     }
     p = next ? *next : surfaceAt(s.scene, s.tracer, hit, ray);

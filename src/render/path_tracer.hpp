@@ -20,34 +20,18 @@
 #include "ibl/render/light_sampling.hpp"
 #include "ibl/render/renderer.hpp"
 #include "ray_tracer.hpp"
+#include "sampler.hpp"
 
 namespace ibl {
-
-// PCG32 (O'Neill 2014): small, fast, and one stream per pixel makes renders reproducible.
-class Random {
- public:
-  Random(std::uint64_t seed, std::uint64_t stream) : inc_((stream << 1u) | 1u) {
-    next();
-    state_ += seed;
-    next();
-  }
-  float uniform() { return static_cast<float>(next() >> 8) * (1.0f / 16777216.0f); }
-  glm::vec2 uniform2() { return {uniform(), uniform()}; }
-
- private:
-  std::uint32_t next() {
-    const std::uint64_t old = state_;
-    state_ = old * 6364136223846793005ull + inc_;
-    const auto xorshifted = static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
-    const auto rot = static_cast<std::uint32_t>(old >> 59u);
-    return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
-  }
-  std::uint64_t state_ = 0, inc_;
-};
 
 // The environment of the reference: a cube level taken as constant over each texel, sampled
 // in proportion to luminance x solid angle (a texel, then a point uniform on its face-plane
 // square), so that pdf(w) = p_texel / (A_texel rho(w)) with rho = (1 + sc^2 + tc^2)^(-3/2).
+// The texel is drawn as pbrt-v4's PiecewiseConstant2D draws (Pharr et al., 4th ed., section
+// A.5.3): a row of the six faces from the first number (the rows' marginal), then a texel of
+// the row from the second (its conditional), each by inverting a short CDF; what is left of
+// each number places the point in the texel. Nearby numbers give nearby directions, which keeps
+// the low-discrepancy numbers' stratification, and the searches run over 6n and n entries.
 class EnvironmentSampler {
  public:
   explicit EnvironmentSampler(const std::array<Image, kFaceCount>& level);
@@ -59,27 +43,23 @@ class EnvironmentSampler {
 
   float pdf(glm::vec3 dir) const {
     const auto [face, x, y] = texelOf(dir);
-    const std::size_t i = (static_cast<std::size_t>(face) * n_ + y) * n_ + x;
-    const double p = cdf_[i] - (i > 0 ? cdf_[i - 1] : 0.0);
+    const std::size_t row = static_cast<std::size_t>(face) * n_ + y;
     const FacePoint fp = directionToFace(dir);
     const float sc = 2.0f * fp.s - 1.0f, tc = 2.0f * fp.t - 1.0f;
     const float invRho = std::pow(1.0f + sc * sc + tc * tc, 1.5f);
-    return static_cast<float>(p) * invRho / texelArea_;
+    return static_cast<float>(intervalOf(rowCdf_.data(), row) *
+                              intervalOf(columnCdf_.data() + row * n_, x)) *
+           invRho / texelArea_;
   }
 
   glm::vec3 sample(glm::vec2 xi) const {
-    const auto it = std::lower_bound(cdf_.begin(), cdf_.end(), static_cast<double>(xi.x));
-    const auto i = static_cast<std::size_t>(
-        std::min<std::ptrdiff_t>(it - cdf_.begin(), static_cast<std::ptrdiff_t>(cdf_.size()) - 1));
-    const double lo = i > 0 ? cdf_[i - 1] : 0.0;
-    // Reuse the position of xi.x within the texel's interval as the first coordinate.
-    const float u =
-        static_cast<float>(std::clamp((xi.x - lo) / std::max(cdf_[i] - lo, 1e-30), 0.0, 1.0));
-    const int face = static_cast<int>(i / (static_cast<std::size_t>(n_) * n_));
-    const int y = static_cast<int>(i / n_ % n_), x = static_cast<int>(i % n_);
+    const auto [row, v] = invert(rowCdf_.data(), rowCdf_.size(), xi.x);
+    const auto [x, u] = invert(columnCdf_.data() + row * n_, static_cast<std::size_t>(n_), xi.y);
+    const int face = static_cast<int>(row / static_cast<std::size_t>(n_));
+    const int y = static_cast<int>(row % static_cast<std::size_t>(n_));
     const float inv = 2.0f / static_cast<float>(n_);
     return glm::normalize(faceToDirection(face, (static_cast<float>(x) + u) * inv - 1.0f,
-                                          (static_cast<float>(y) + xi.y) * inv - 1.0f));
+                                          (static_cast<float>(y) + v) * inv - 1.0f));
   }
 
  private:
@@ -91,9 +71,27 @@ class EnvironmentSampler {
     return {p.face, std::clamp(static_cast<int>(p.s * static_cast<float>(n_)), 0, n_ - 1),
             std::clamp(static_cast<int>(p.t * static_cast<float>(n_)), 0, n_ - 1)};
   }
+  // The probability of entry i of a CDF (cdf[i] is the sum of entries 0..i, the last 1).
+  static double intervalOf(const double* cdf, std::size_t i) {
+    return cdf[i] - (i > 0 ? cdf[i - 1] : 0.0);
+  }
+  // The entry whose interval holds x, and where in it x lies, in [0, 1].
+  struct Inverted {
+    std::size_t index;
+    float within;
+  };
+  static Inverted invert(const double* cdf, std::size_t count, float x) {
+    const std::size_t i = std::min(
+        static_cast<std::size_t>(std::upper_bound(cdf, cdf + count, static_cast<double>(x)) - cdf),
+        count - 1);
+    const double lo = i > 0 ? cdf[i - 1] : 0.0;
+    return {i, static_cast<float>(
+                   std::clamp((x - lo) / std::max(cdf[i] - lo, 1e-300), 0.0, 1.0))};
+  }
   const std::array<Image, kFaceCount>& level_;
   int n_;
-  std::vector<double> cdf_;
+  std::vector<double> rowCdf_;     // over the 6n rows (face-major)
+  std::vector<double> columnCdf_;  // per row, over its n texels
   float texelArea_;
 };
 
@@ -116,7 +114,7 @@ void preparePathTracer();
 // environment, and (up to options.bounces) the light other surfaces reflect. Unbiased but for the
 // environment's texels.
 glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position, glm::vec3 view,
-                    Random& rng);
+                    Sampler& sampler);
 
 // The nearest light the ray from p along w meets (lights do not hide one another beyond that):
 // its index, or -1.

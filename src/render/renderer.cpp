@@ -35,12 +35,12 @@ constexpr float kPi = std::numbers::pi_v<float>;
 // Ambient occlusion: the cosine-weighted share of `rays` hemisphere rays from p that meet
 // nothing within `distance` (the visibility the split sum's AO stands for).
 float ambientOcclusion(const RayTracer& tracer, const SurfacePoint& p, int rays, float distance,
-                       Random& rng) {
+                       Sampler& sampler) {
   const glm::mat3 frame = tangentFrame(p.normal);
   const glm::vec3 origin = p.position + p.normal * 1e-4f * std::max(1.0f, glm::length(p.position));
   int open = 0;
   for (int i = 0; i < rays; ++i) {
-    const glm::vec3 w = frame * sampleCosineHemisphere(rng.uniform2());
+    const glm::vec3 w = frame * sampleCosineHemisphere(sampler.uniform2());
     if (!tracer.occluded(origin, w, distance)) ++open;
   }
   return static_cast<float>(open) / static_cast<float>(rays);
@@ -279,19 +279,16 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
     std::uint64_t rowSamples = 0;
     std::vector<float> visibility(shadowed ? scene.lights.size() : 0);  // per light, reused
     for (int x = 0; x < width; ++x) {
-      Random rng(o.seed, static_cast<std::uint64_t>(y) * width + x);
+      Sampler sampler(o.seed, static_cast<std::uint64_t>(y) * width + x);
       glm::dvec3 sum(0.0);
       double lumSum = 0.0, lumSq = 0.0;
       int covered = 0, taken = 0;
       for (int s = 0; s < spp; ++s) {
-        // Positions in the pixel from a scrambled Sobol sequence, decorrelated per pixel: any
-        // prefix is spread over the whole pixel (for early stops and any spp); one sample is
-        // the pixel center.
-        const std::uint32_t pixel = static_cast<std::uint32_t>(y * width + x);
-        const glm::vec2 j =
-            spp == 1 ? glm::vec2(0.5f)
-                     : sobolOwen2D(static_cast<std::uint32_t>(s),
-                                   pixel ^ static_cast<std::uint32_t>(o.seed * 0x9e3779b9u));
+        // Every number of the sample from the pixel's low-discrepancy sampler, the position in
+        // the pixel first: any prefix is spread over the pixel (for early stops and any spp);
+        // one sample is the pixel center.
+        sampler.startSample(static_cast<std::uint32_t>(s));
+        const glm::vec2 j = spp == 1 ? glm::vec2(0.5f) : sampler.uniform2();
         const float jx = j.x, jy = j.y;
         const Ray ray = generateRay({static_cast<float>(x) + jx, static_cast<float>(y) + jy});
         const RayTracer::Hit hit = tracer.intersect(ray);
@@ -312,7 +309,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
           const glm::vec3 position = p.position;
           if (o.mode == RenderMode::SplitSum) {
             if (o.aoRays > 0 && !p.occlusionTexture)
-              p.occlusion = ambientOcclusion(tracer, p, o.aoRays, aoDistance, rng);
+              p.occlusion = ambientOcclusion(tracer, p, o.aoRays, aoDistance, sampler);
             if (screen) {
               // Lagarde & de Rousiers 2014, 4.10.3: the smaller of the material's and the screen's.
               const std::size_t i = static_cast<std::size_t>(y) * width + x;
@@ -341,7 +338,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                   visibility[i] =
                       o.realTimeShadows == ShadowMode::Ray
                           ? rayTracedVisibility(tracer, scene.lights[i], position, p.normal,
-                                                o.shadowSettings.raySamples, rng)
+                                                o.shadowSettings.raySamples, sampler)
                           : shared::shadowVisibility(shadowView, maps->casters[i], position,
                                                      p.normal);
               }
@@ -349,7 +346,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                                        scaling, visibility);
             }
           } else {
-            c = tracePath(pathScene, p, position, -ray.direction, rng);
+            c = tracePath(pathScene, p, position, -ray.direction, sampler);
           }
         }
         sum += glm::dvec3(c);

@@ -7,13 +7,13 @@
 namespace ibl {
 
 class RayTracer;
-class Random;
+class Sampler;
 
 // The share of the light's irradiance at p (normal n) that arrives unoccluded, estimated from
 // `samples` stratified samples of the light (sampleLight; one for punctual lights), each traced
 // to the sampled point (the sun: to infinity) and weighed by radiance x cosine / density.
 // 1 when no sample reaches p.
 float rayTracedVisibility(const RayTracer& tracer, const Light& light, glm::vec3 p, glm::vec3 n,
-                          int samples, Random& rng);
+                          int samples, Sampler& sampler);
 
 }  // namespace ibl

@@ -343,7 +343,7 @@ ShadowMaps ShadowMapBuilder::build(const std::vector<Light>& lights, const Camer
 }
 
 float rayTracedVisibility(const RayTracer& tracer, const Light& light, glm::vec3 p, glm::vec3 n,
-                          int samples, Random& rng) {
+                          int samples, Sampler& sampler) {
   const int count = light.isPunctual() ? 1 : std::max(1, samples);
   const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<float>(count))));
   // Each sample weighs what it brings to a diffuse surface: its radiance times the cosine over
@@ -353,7 +353,7 @@ float rayTracedVisibility(const RayTracer& tracer, const Light& light, glm::vec3
   const float scale = 1e-4f * std::max(1.0f, glm::length(p));
   for (int i = 0; i < count; ++i) {
     // Stratified over a side x side grid (the rest uniform).
-    glm::vec2 xi = rng.uniform2();
+    glm::vec2 xi = sampler.uniform2();
     if (i < side * side)
       xi = (glm::vec2(static_cast<float>(i % side), static_cast<float>(i / side)) + xi) /
            static_cast<float>(side);

@@ -600,3 +600,26 @@ TEST(Sky, AgreesWithThePathTracedReference) {
               e.model, e.reference, 100.0 * (e.model / e.reference - 1.0));
   EXPECT_NEAR(e.model / e.reference, 1.0, 0.10);
 }
+
+// A model reuses the tables that do not depend on the sun from the last model of the same
+// atmosphere (the viewer's time of day): its sky is the same, bit for bit, as one built with no
+// model before it; a model of another atmosphere (another ground albedo, turbidity or ozone) does
+// not take them.
+TEST(Sky, ANewSunReusesOnlyTheSameAtmospheresTables) {
+  const auto skyOf = [](float elevation, float albedo, float turbidity) {
+    SkyParameters p;
+    p.sunElevation = elevation;
+    p.groundAlbedo = albedo;
+    p.turbidity = turbidity;
+    return SkyModel(p).panorama(64, 32, false).pixels;
+  };
+  // Each after a model of another atmosphere: built from nothing.
+  const auto freshDarkGround = skyOf(60.0f, 0.05f, 2.0f);
+  const auto fresh = skyOf(60.0f, 0.3f, 2.0f);
+  // After a model of the same atmosphere at another sun: its tables reused.
+  skyOf(10.0f, 0.3f, 2.0f);
+  EXPECT_EQ(skyOf(60.0f, 0.3f, 2.0f), fresh);
+  // Then another albedo: not reused.
+  EXPECT_EQ(skyOf(60.0f, 0.05f, 2.0f), freshDarkGround);
+  EXPECT_NE(fresh, freshDarkGround);
+}

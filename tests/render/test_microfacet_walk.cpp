@@ -61,12 +61,12 @@ glm::vec3 singleScattering(glm::vec3 wi, glm::vec3 wo, float alpha, glm::vec3 f0
 // normals and the cosine (independent of the walk's own sampling).
 Estimate walkAlbedo(const MicrofacetWalk& walk, glm::vec3 wi, float alpha, int n, int minOrder,
                     int maxOrder, std::uint64_t seed) {
-  Random rng(seed, 7);
+  Sampler sampler(seed, 7);
   Accumulator acc;
   for (int i = 0; i < n; ++i) {
-    const glm::vec2 xi = rng.uniform2();
+    const glm::vec2 xi = sampler.uniform2();
     glm::vec3 wo;
-    if (rng.uniform() < 0.5f) {
+    if (sampler.uniform() < 0.5f) {
       const glm::vec3 m = sampleGgxVisibleNormal(wi, xi, alpha);
       wo = 2.0f * glm::dot(wi, m) * m - wi;
     } else {
@@ -80,7 +80,7 @@ Estimate walkAlbedo(const MicrofacetWalk& walk, glm::vec3 wi, float alpha, int n
     const float pdf =
         0.5f * smithGgxMasking(wi.z, alpha) * ggxDistribution(h.z, alpha) / (4.0f * wi.z) +
         0.5f * wo.z / kPi;
-    acc.add(walk.evaluate(wi, wo, rng, minOrder, maxOrder) / pdf);
+    acc.add(walk.evaluate(wi, wo, sampler, minOrder, maxOrder) / pdf);
   }
   return acc.estimate();
 }
@@ -153,11 +153,11 @@ TEST(MicrofacetWalk, SingleScatteringIsAnalyticGgx) {
     const float alpha = alphaFromRoughness(r);
     const MicrofacetWalk walk(alpha, f0, 1.0f);
     const glm::vec3 wi = direction(0.6f, 0.0f);
-    Random rng(3, 1);
+    Sampler sampler(3, 1);
     for (const glm::vec3 wo : {direction(0.6f, kPi), direction(0.9f, 2.0f), direction(0.2f, 3.0f),
                                direction(0.4f, 0.5f)}) {
       Accumulator acc;
-      for (int i = 0; i < 100000; ++i) acc.add(walk.evaluate(wi, wo, rng, 1, 1));
+      for (int i = 0; i < 100000; ++i) acc.add(walk.evaluate(wi, wo, sampler, 1, 1));
       const Estimate e = acc.estimate();
       const glm::vec3 expected = singleScattering(wi, wo, alpha, f0, 1.0f);
       for (int c = 0; c < 3; ++c)
@@ -182,10 +182,10 @@ TEST(MicrofacetWalk, SampleAgreesWithEvaluate) {
     const MicrofacetWalk walk(alpha, f0, 1.0f);
     const glm::vec3 wi = direction(0.5f, 0.0f);
     std::vector<Accumulator> sampled(nz * nphi);
-    Random rng(5, 3);
+    Sampler sampler(5, 3);
     const int n = 400000;
     for (int i = 0; i < n; ++i) {
-      const MicrofacetWalk::Sample s = walk.sample(wi, rng);
+      const MicrofacetWalk::Sample s = walk.sample(wi, sampler);
       const int bz = std::min(static_cast<int>(s.wo.z * nz), nz - 1);
       const float phi = std::abs(std::atan2(s.wo.y, s.wo.x));
       const int bp = std::min(static_cast<int>(phi / kPi * nphi), nphi - 1);
@@ -199,11 +199,11 @@ TEST(MicrofacetWalk, SampleAgreesWithEvaluate) {
         const float solidAngle = 2.0f * (1.0f / nz) * (kPi / nphi);
         Accumulator evaluated;
         for (int i = 0; i < 20000; ++i) {
-          const glm::vec2 xi = rng.uniform2();
+          const glm::vec2 xi = sampler.uniform2();
           const float z = (static_cast<float>(bz) + xi.x) / nz;
           float phi = (static_cast<float>(bp) + xi.y) / nphi * kPi;
-          if (rng.uniform() < 0.5f) phi = -phi;
-          evaluated.add(walk.evaluate(wi, direction(z, phi), rng) * solidAngle);
+          if (sampler.uniform() < 0.5f) phi = -phi;
+          evaluated.add(walk.evaluate(wi, direction(z, phi), sampler) * solidAngle);
         }
         const Estimate a = sampled[static_cast<std::size_t>(bz * nphi + bp)].estimate();
         const Estimate b = evaluated.estimate();
@@ -222,15 +222,15 @@ TEST(MicrofacetWalk, IsReciprocal) {
   for (float r : {0.5f, 1.0f}) {
     const float alpha = alphaFromRoughness(r);
     const MicrofacetWalk walk(alpha, f0, 1.0f);
-    Random rng(9, 2);
+    Sampler sampler(9, 2);
     for (const auto& [a, b] : {std::pair{direction(0.9f, 0.0f), direction(0.3f, 2.5f)},
                                std::pair{direction(0.2f, 0.0f), direction(0.5f, 1.0f)},
                                std::pair{direction(0.7f, 0.0f), direction(0.15f, 3.1f)}}) {
       for (int minOrder : {1, 2}) {
         Accumulator ab, ba;
         for (int i = 0; i < 200000; ++i) {
-          ab.add(walk.evaluate(a, b, rng, minOrder) / b.z);
-          ba.add(walk.evaluate(b, a, rng, minOrder) / a.z);
+          ab.add(walk.evaluate(a, b, sampler, minOrder) / b.z);
+          ba.add(walk.evaluate(b, a, sampler, minOrder) / a.z);
         }
         const Estimate x = ab.estimate(), y = ba.estimate();
         for (int c = 0; c < 3; ++c)
@@ -270,11 +270,11 @@ TEST(MicrofacetWalk, EnergyNearTheScaledLobeInAnotherShape) {
   const float alpha = 1.0f;
   const MicrofacetWalk walk(alpha, glm::vec3(1.0f), 1.0f);
   const glm::vec3 wi = direction(0.5f, 0.0f);
-  Random rng(11, 4);
+  Sampler sampler(11, 4);
   double walkGrazing = 0.0, walkTotal = 0.0, scaleGrazing = 0.0, scaleTotal = 0.0;
   for (int i = 0; i < 400000; ++i) {
-    const glm::vec3 wo = sampleCosineHemisphere(rng.uniform2());
-    const double w = walk.evaluate(wi, wo, rng).x / wo.z,
+    const glm::vec3 wo = sampleCosineHemisphere(sampler.uniform2());
+    const double w = walk.evaluate(wi, wo, sampler).x / wo.z,
                  s = singleScattering(wi, wo, alpha, glm::vec3(1.0f), 1.0f).x / wo.z;
     walkTotal += w;
     scaleTotal += s;

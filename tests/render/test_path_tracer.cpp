@@ -3,9 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
 
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
+#include "../../src/render/path_tracer.hpp"
+#include "ibl/env/cubemap.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/render/renderer.hpp"
 #include "support/helpers.hpp"
@@ -298,4 +302,62 @@ TEST(PathTracer, EmissiveTrianglesLeaveNoPixelBlack) {
   int black = 0;
   for (const glm::vec3& p : r.color.pixels) black += luminance(p) <= 0.0f;
   EXPECT_EQ(black, 0) << "of " << r.color.pixels.size() << " pixels";
+}
+
+// The reference's environment sampling against its own density: pdf() integrates to 1 over the
+// sphere (a midpoint rule over 8 x 8 cells per texel, each cell's solid angle from the texel
+// corners' closed form, written here), and the share of samples that land in each texel is
+// that integral over the texel, for independent uniform numbers, within 5 standard errors.
+TEST(PathTracer, EnvironmentSamplesFollowTheirDensity) {
+  const int n = 8;
+  std::array<Image, kFaceCount> level;
+  for (int f = 0; f < kFaceCount; ++f) {
+    level[f] = Image(n, n);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x)  // a gradient, dark texels and one bright texel
+        level[f].at(x, y) = glm::vec3(0.1f * static_cast<float>(f + x) *
+                                      static_cast<float>((x + y) % 3 == 0 ? 0 : 1)) +
+                            glm::vec3(f == 2 && x == 5 && y == 1 ? 500.0f : 0.0f);
+  }
+  const EnvironmentSampler sampler(level);
+  // Solid angle of the face-plane square [a0, a1] x [b0, b1] at unit distance: the difference
+  // of atan(a b / sqrt(1 + a^2 + b^2)) over its corners.
+  const auto cornerTerm = [](double a, double b) {
+    return std::atan2(a * b, std::sqrt(1.0 + a * a + b * b));
+  };
+  const auto squareSolidAngle = [&](double a0, double a1, double b0, double b1) {
+    return cornerTerm(a1, b1) - cornerTerm(a0, b1) - cornerTerm(a1, b0) + cornerTerm(a0, b0);
+  };
+  const int sub = 8;
+  std::vector<double> expected(static_cast<std::size_t>(kFaceCount) * n * n, 0.0);
+  double total = 0.0;
+  for (int f = 0; f < kFaceCount; ++f)
+    for (int y = 0; y < n * sub; ++y)
+      for (int x = 0; x < n * sub; ++x) {
+        const double a0 = 2.0 * x / (n * sub) - 1.0, a1 = 2.0 * (x + 1) / (n * sub) - 1.0;
+        const double b0 = 2.0 * y / (n * sub) - 1.0, b1 = 2.0 * (y + 1) / (n * sub) - 1.0;
+        const glm::vec3 w = glm::normalize(faceToDirection(
+            f, static_cast<float>(0.5 * (a0 + a1)), static_cast<float>(0.5 * (b0 + b1))));
+        const double p = sampler.pdf(w) * squareSolidAngle(a0, a1, b0, b1);
+        expected[(static_cast<std::size_t>(f) * n + y / sub) * n + x / sub] += p;
+        total += p;
+      }
+  EXPECT_NEAR(total, 1.0, 2e-3);
+  std::vector<double> counts(expected.size(), 0.0);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const int samples = 1 << 20;
+  for (int i = 0; i < samples; ++i) {
+    const FacePoint p = directionToFace(sampler.sample({u(rng), u(rng)}));
+    const int x = std::clamp(static_cast<int>(p.s * n), 0, n - 1);
+    const int y = std::clamp(static_cast<int>(p.t * n), 0, n - 1);
+    counts[(static_cast<std::size_t>(p.face) * n + y) * n + x] += 1.0;
+  }
+  int checked = 0;
+  for (std::size_t t = 0; t < counts.size(); ++t) {
+    const double share = counts[t] / samples, p = expected[t];
+    EXPECT_NEAR(share, p, 5.0 * std::sqrt(p * (1.0 - p) / samples) + 2e-4 * p) << "texel " << t;
+    ++checked;
+  }
+  EXPECT_EQ(checked, kFaceCount * n * n);
 }

@@ -172,6 +172,50 @@ TEST(Render, ReferenceIsReproducibleAndConverges) {
   // Convergence on the model: AdaptiveStoppingMeetsTheNoiseThresholdOnTheModel.
 }
 
+// Every number the reference draws is low-discrepancy (src/render/sampler.hpp), not only the
+// pixel positions. A Lambertian sphere of albedo 1 under L(w) = 1 + 0.8 w.z reflects
+// 1 + (2/3) 0.8 n.z (the cosine-weighted hemisphere integral of w.z is 2 pi n.z / 3), averaged
+// here over each pixel's footprint by a 16 x 16 midpoint rule. At 256 samples per pixel,
+// independent random numbers leave a relative RMS error of 2.0 % over the interior pixels
+// (measured with hashed random points in place of the sampler's; 3.8 % at 64, 0.48 % at 4096);
+// scrambled Sobol in every dimension 0.32 % (0.99 % at 64, 0.048 % at 4096).
+TEST(Render, EveryDimensionOfTheReferenceIsLowDiscrepancy) {
+  const auto radiance = [](glm::vec3 d) { return glm::vec3(1.0f + 0.8f * d.z); };
+  const Baked b = bakeOf(radiance, 64);
+  const int n = 16;
+  const Camera cam = sphereCamera(n);
+  RenderOptions o;
+  o.mode = RenderMode::Reference;
+  o.diffuse = DiffuseModel::Lambert;
+  o.only = ShadingTerms::Diffuse;
+  o.spp = 256;
+  const RenderResult img = renderScene(sphere(glm::vec3(1.0f), 0.0f, 1.0f), cam, b.result,
+                                       b.options, o);
+  double sumSq = 0.0;
+  int count = 0;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      if (img.alpha[static_cast<std::size_t>(y) * n + x] < 1.0f) continue;
+      // The sphere seen orthographically over [-1, 1]^2: n.z = sqrt(1 - u^2 - v^2).
+      double exact = 0.0;
+      const int m = 16;
+      for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i) {
+          const double u = -1.0 + 2.0 * (x + (i + 0.5) / m) / n;
+          const double v = 1.0 - 2.0 * (y + (j + 0.5) / m) / n;
+          exact += 1.0 + (2.0 / 3.0) * 0.8 * std::sqrt(std::max(0.0, 1.0 - u * u - v * v));
+        }
+      exact /= m * m;
+      sumSq += std::pow(img.color.at(x, y).y / exact - 1.0, 2.0);
+      ++count;
+    }
+  ASSERT_GT(count, 100);
+  const double rms = std::sqrt(sumSq / count);
+  RecordProperty("relative_rms_error", std::to_string(rms));
+
+  EXPECT_LT(rms, 0.008);
+}
+
 TEST(Render, ShadowsDarkenTheReference) {
   // Two spheres side by side under a sky: with visibility, each hides part of the sky from
   // the other.
@@ -222,7 +266,8 @@ TEST(Render, PixelSamplesCoverThePixelAtAnyCount) {
 
 // Adaptive stopping stops each pixel of the model once its relative standard error is below
 // the threshold: two renders with different seeds then differ, relative to their mean, by about
-// sqrt(2) times the threshold on the model (not less: they stop; not more: they converge).
+// sqrt(2) times the threshold on the model or less (not more: they converge; not far less: they
+// stop).
 TEST(Render, AdaptiveStoppingMeetsTheNoiseThresholdOnTheModel) {
   const glm::vec3 sun = glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f));
   const Baked b = bakeOf(
@@ -252,7 +297,9 @@ TEST(Render, AdaptiveStoppingMeetsTheNoiseThresholdOnTheModel) {
   const double rms = std::sqrt(sumSq / count);
   RecordProperty("relative_rms_difference", std::to_string(rms));
   EXPECT_LT(rms, 2.0 * std::sqrt(2.0) * threshold);
-  EXPECT_GT(rms, 0.35 * std::sqrt(2.0) * threshold);
+  // The stop reads the samples' variance, which overstates the error of low-discrepancy numbers
+  // (src/render/sampler.hpp): the difference is below the threshold, by up to about 2x.
+  EXPECT_GT(rms, 0.25 * std::sqrt(2.0) * threshold);
   // Far fewer samples than the maximum were taken.
   EXPECT_LT(renders[0].samples, 0.2 * 16384.0 * n * n);
 }

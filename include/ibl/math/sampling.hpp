@@ -22,6 +22,9 @@ using shared::VisibleNormalFrame;
 using shared::visibleNormalFrame;
 using shared::visibleNormalFromDisk;
 
+// An avalanching 32-bit hash (Wellons' lowbias32), to derive independent seeds.
+std::uint32_t hash32(std::uint32_t x);
+
 // Nested uniform (Owen) scrambling of the bits of x, hash-based: Burley 2020, "Practical
 // Hash-based Owen Scrambling", JCGT 9(4), listing 2 (the Laine-Karras permutation between two
 // bit reversals). Different seeds give independent scramblings.
