@@ -46,7 +46,8 @@ class EnvironmentSampler {
     const std::size_t row = static_cast<std::size_t>(face) * n_ + y;
     const FacePoint fp = directionToFace(dir);
     const float sc = 2.0f * fp.s - 1.0f, tc = 2.0f * fp.t - 1.0f;
-    const float invRho = std::pow(1.0f + sc * sc + tc * tc, 1.5f);
+    const float q = 1.0f + sc * sc + tc * tc;
+    const float invRho = q * std::sqrt(q);  // q^(3/2)
     return static_cast<float>(intervalOf(rowCdf_.data(), row) *
                               intervalOf(columnCdf_.data() + row * n_, x)) *
            invRho / texelArea_;

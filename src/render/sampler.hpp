@@ -33,16 +33,29 @@ class Sampler {
   void startSample(std::uint32_t index) {
     index_ = index;
     dimension_ = 0;
+    spare_ = false;
   }
 
   // The next dimension pair, in [0, 1)^2.
-  glm::vec2 uniform2() { return sobolOwen2D(index_, hash32(key_ + 0x9e3779b9u * ++dimension_)); }
-  // The next dimension (the first of a pair), in [0, 1).
-  float uniform() { return uniform2().x; }
+  glm::vec2 uniform2() { return sobolOwen2D(index_, key_ + 0x9e3779b9u * ++dimension_); }
+  // The next dimension, in [0, 1): the first of a new pair, or the second of the pair the
+  // previous call opened.
+  float uniform() {
+    if (spare_) {
+      spare_ = false;
+      return second_;
+    }
+    const glm::vec2 pair = uniform2();
+    second_ = pair.y;
+    spare_ = true;
+    return pair.x;
+  }
 
  private:
   std::uint32_t key_;
   std::uint32_t index_ = 0, dimension_ = 0;
+  float second_ = 0.0f;  // the unused half of the last pair uniform() opened
+  bool spare_ = false;
 };
 
 }  // namespace ibl
