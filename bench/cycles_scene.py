@@ -50,6 +50,38 @@ The scene, and how it matches ibl's:
   `--background 0,0,0`; statistics should use the pixels the sphere covers fully.
 - Pixel filter. Box, 1 pixel wide: uniform positions in the pixel, as ibl's.
 - Output. Linear RGBA float EXR (view transform Standard; EXR output is not tone mapped).
+
+`--scene room` renders a glTF scene lit by an ibl lights file instead (bench/cycles.sh's room:
+data/scenes/room.gltf and data/scenes/room_lights.json, `ibl render --env none`):
+
+    blender -b --factory-startup -P bench/cycles_scene.py -- --scene room --gltf ROOM.gltf \
+        --lights LIGHTS.json --look-from X,Y,Z --look-at X,Y,Z -o OUT.exr [--bounces B ...]
+
+- Geometry and materials. Blender's bundled glTF importer (+Y up to +Z up, as above); any
+  KHR_lights_punctual lights it brings are deleted (ibl cannot leave a glTF's lights out, so
+  bench/cycles.sh gives both renderers a copy of the glTF without them). `--diffuse lambert`
+  (default; ibl `--diffuse lambert`): each dielectric material's Principled BSDF (metallic 0)
+  gets a black base color (its diffuse lobe off; with Specular Tint 0 its specular lobe, F0 0.04,
+  does not depend on the base color) plus a Diffuse BSDF of roughness 0 (Lambert) of the base
+  color: ibl's sum of Lambert and GGX, the diffuse not weighted by 1 - F either. Metals (metallic
+  1) keep the Principled BSDF (no diffuse lobe). `--diffuse principled` keeps the importer's
+  Principled BSDF (Burley's diffuse with retro-reflection, not ibl's renormalized Disney).
+  Distribution GGX (single scattering: ibl `--multiscatter off`). Left: Cycles 3.4's separable
+  Smith G1 G1 (ibl: height-correlated) and its dielectric Fresnel curve at IOR 1.5 (ibl: Schlick).
+- Lights. Each rect of the lights file becomes an area light (rectangle, size width x height,
+  emitting along the file's `direction`; one-sided like ibl's). Cycles 3.4 gives an area light of
+  P watts the radiance P / (4 A) (measured: a 2 m^2 light of 10 W seen by the camera is 1.25),
+  so P = 4 A L with L = lumens / (pi A) (ibl: nits, the renderer's units) or the nits given.
+  Color: `kelvin` as ibl's blackbodyColor (Planck against the Wyman-Sloan-Shirley CIE fit, 360 to
+  830 nm, to linear Rec.709, luminance 1), or `color`; Blender takes the color over its largest
+  component and the power times it. Visible to the camera (as ibl's emitters; with a transparent
+  film its pixels have alpha 0, so the statistics leave them out). Only rect lights are
+  converted; any other type is an error. Light threshold 0 (no probabilistic light
+  termination), no world light (ibl `--env none`).
+- Camera. ibl's --look-from/--look-at/--up +Y, vertical field of view --fov.
+- Light paths. max bounces B with diffuse and glossy B (ibl `--bounces B`: B bounces after the
+  first surface), transparent 0 (a path ends on a light it meets, as ibl's), no clamping, Filter
+  Glossy 0, no denoising or adaptive sampling, box filter 1 px.
 """
 
 import argparse
@@ -64,7 +96,15 @@ import bpy
 def parse_args():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     p = argparse.ArgumentParser(prog="cycles_scene.py", description=__doc__.split("\n")[0])
-    p.add_argument("--env", required=True, help="equirectangular environment (EXR/HDR)")
+    p.add_argument("--scene", choices=["sphere", "room"], default="sphere",
+                   help="sphere: ibl's built-in sphere under --env; room: --gltf lit by --lights")
+    p.add_argument("--env", help="equirectangular environment (EXR/HDR; --scene sphere)")
+    p.add_argument("--gltf", help="--scene room: the glTF file")
+    p.add_argument("--lights", help="--scene room: an ibl lights file (rect lights)")
+    p.add_argument("--look-from", default="0,1.5,10.0556", help="--scene room: ibl X,Y,Z")
+    p.add_argument("--look-at", default="0,1.5,0", help="--scene room: ibl X,Y,Z")
+    p.add_argument("--diffuse", choices=["lambert", "principled"], default="lambert",
+                   help="--scene room: Lambert diffuse (ibl --diffuse lambert) or Principled's")
     p.add_argument("-o", "--output", required=True, help="output EXR")
     p.add_argument("--size", default="256x256", help="WxH")
     p.add_argument("--spp", type=int, default=256)
@@ -72,7 +112,8 @@ def parse_args():
     p.add_argument("--roughness", type=float, default=0.5)
     p.add_argument("--fov", type=float, default=40.0, help="vertical field of view, degrees")
     p.add_argument("--threads", type=int, default=2)
-    p.add_argument("--bounces", type=int, default=1)
+    p.add_argument("--bounces", type=int, default=None,
+                   help="max bounces (default: 1 for the sphere, 4 for the room)")
     p.add_argument("--geometry", choices=["points", "mesh"], default="points")
     p.add_argument("--env-rotate-z", type=float, default=0.0,
                    help="degrees about Blender's +Z (ibl's +Y); 0 is ibl's convention")
@@ -81,7 +122,14 @@ def parse_args():
     p.add_argument("--clamp-negative", choices=["lookup", "texel", "off"], default="lookup",
                    help="negative radiance of the map to 0 (ibl zeroes texels): after the "
                    "bilinear lookup (default), in the texels, or not at all")
-    return p.parse_args(argv)
+    a = p.parse_args(argv)
+    if a.bounces is None:
+        a.bounces = 1 if a.scene == "sphere" else 4
+    if a.scene == "sphere" and not a.env:
+        p.error("--scene sphere needs --env")
+    if a.scene == "room" and not (a.gltf and a.lights):
+        p.error("--scene room needs --gltf and --lights")
+    return a
 
 
 def clear_scene():
@@ -237,7 +285,9 @@ def setup_render(a):
     c.blur_glossy = 0.0
     c.max_bounces = a.bounces
     c.glossy_bounces = a.bounces
-    c.diffuse_bounces = 0
+    c.diffuse_bounces = a.bounces if a.scene == "room" else 0
+    if a.scene == "room":
+        c.light_sampling_threshold = 0.0  # no probabilistic termination of light samples
     c.transmission_bounces = 0
     c.volume_bounces = 0
     c.transparent_max_bounces = 0
@@ -250,8 +300,177 @@ def setup_render(a):
     s.view_layers[0].use_pass_combined = True
 
 
+# --- The room: a glTF scene lit by an ibl lights file -------------------------------------------
+
+def ibl_point(text):
+    """An ibl point or vector "X,Y,Z" (+Y up) in Blender's axes (+Z up): (x, -z, y)."""
+    x, y, z = (float(v) for v in text.split(","))
+    return (x, -z, y)
+
+
+def blackbody_color(kelvin):
+    """ibl's blackbodyColor (src/math/color.cpp): linear Rec.709 of luminance 1."""
+    def lobe(lam, mu, s1, s2):
+        t = (lam - mu) / (s1 if lam < mu else s2)
+        return math.exp(-0.5 * t * t)
+    xyz = [0.0, 0.0, 0.0]
+    for nm in range(360, 831):
+        lam = float(nm)
+        planck = 1.0 / (lam ** 5 * math.expm1(1.438777e7 / (lam * kelvin)))
+        cmf = (1.056 * lobe(lam, 599.8, 37.9, 31.0) + 0.362 * lobe(lam, 442.0, 16.0, 26.7)
+               - 0.065 * lobe(lam, 501.1, 20.4, 26.2),
+               0.821 * lobe(lam, 568.8, 46.9, 40.5) + 0.286 * lobe(lam, 530.9, 16.3, 31.1),
+               1.217 * lobe(lam, 437.0, 11.8, 36.0) + 0.681 * lobe(lam, 459.0, 26.0, 13.8))
+        for i in range(3):
+            xyz[i] += planck * cmf[i]
+    x, y, z = (v / xyz[1] for v in xyz)
+    rgb = (3.2404542 * x - 1.5371385 * y - 0.4985314 * z,
+           -0.9692660 * x + 1.8760108 * y + 0.0415560 * z,
+           0.0556434 * x - 0.2040259 * y + 1.0572252 * z)
+    lum = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+    return tuple(c / lum for c in rgb)
+
+
+def import_room(path, diffuse):
+    import numpy  # the importer needs it (Debian: python3-numpy)
+    if "bool" not in numpy.__dict__:
+        numpy.bool = bool  # Blender 3.4's importer uses np.bool, gone since NumPy 1.24
+    bpy.ops.import_scene.gltf(filepath=path)
+    for o in list(bpy.data.objects):
+        if o.type in ("LIGHT", "CAMERA"):
+            print(f"cycles_room_removed: {o.type.lower()} {o.name}")
+            bpy.data.objects.remove(o, do_unlink=True)
+    for m in bpy.data.materials:
+        if not m.use_nodes:
+            continue
+        nt = m.node_tree
+        for node in list(nt.nodes):
+            if node.type != "BSDF_PRINCIPLED":
+                continue
+            node.distribution = "GGX"
+            node.inputs["Specular Tint"].default_value = 0.0
+            if diffuse != "lambert":
+                continue
+            metallic = node.inputs["Metallic"]
+            if metallic.is_linked or metallic.default_value not in (0.0, 1.0):
+                print(f"cycles_room_warning: {m.name}: metallic not 0 or 1, Principled's diffuse kept")
+                continue
+            if metallic.default_value == 1.0:
+                continue  # a metal: no diffuse lobe
+            base = node.inputs["Base Color"]
+            lam = nt.nodes.new("ShaderNodeBsdfDiffuse")
+            lam.inputs["Roughness"].default_value = 0.0  # Lambert
+            if base.is_linked:
+                nt.links.new(base.links[0].from_socket, lam.inputs["Color"])
+                nt.links.remove(base.links[0])
+            else:
+                lam.inputs["Color"].default_value = base.default_value
+            base.default_value = (0.0, 0.0, 0.0, 1.0)
+            out_links = list(node.outputs["BSDF"].links)
+            add = nt.nodes.new("ShaderNodeAddShader")
+            nt.links.new(node.outputs["BSDF"], add.inputs[0])
+            nt.links.new(lam.outputs["BSDF"], add.inputs[1])
+            for link in out_links:
+                to = link.to_socket
+                nt.links.remove(link)
+                nt.links.new(add.outputs["Shader"], to)
+            print(f"cycles_room_material: {m.name}: Lambert {tuple(round(c, 4) for c in lam.inputs['Color'].default_value[:3])}"
+                  f" + GGX (F0 0.04), roughness {node.inputs['Roughness'].default_value:.3f}")
+
+
+def add_rect_lights(path):
+    import json
+    from mathutils import Matrix, Vector
+    with open(path) as f:
+        lights = json.load(f)["lights"]
+    for k, l in enumerate(lights):
+        if l.get("type") != "rect":
+            sys.exit(f"cycles_scene.py: {path}: light {k}: only rect lights are converted")
+        w, h = float(l["width"]), float(l["height"])
+        area = w * h
+        unit = l.get("unit", "nit")
+        if unit == "lm":
+            radiance = float(l["intensity"]) / (area * math.pi)  # one-sided: L = phi / (A pi)
+        elif unit == "nit":
+            radiance = float(l["intensity"])
+        else:
+            sys.exit(f"cycles_scene.py: {path}: light {k}: unit {unit}")
+        color = blackbody_color(float(l["kelvin"])) if "kelvin" in l else tuple(l.get("color", (1, 1, 1)))
+        peak = max(color)
+        light = bpy.data.lights.new(f"rect{k}", "AREA")
+        light.shape = "RECTANGLE"
+        light.size, light.size_y = w, h
+        light.color = tuple(c / peak for c in color)
+        light.energy = 4.0 * area * radiance * peak  # Cycles 3.4: radiance P / (4 A)
+        if hasattr(light, "spread"):
+            light.spread = math.pi  # a Lambertian emitter
+        light.use_shadow = True
+        obj = bpy.data.objects.new(f"rect{k}", light)
+        bpy.context.scene.collection.objects.link(obj)
+        d = Vector(ibl_point(",".join(str(v) for v in l["direction"]))).normalized()
+        up = Vector(ibl_point(",".join(str(v) for v in l["up"])))
+        up = (up - up.dot(d) * d).normalized()
+        z = -d  # the area light emits along its local -Z
+        y = up  # size_y (height) along up
+        x = y.cross(z)  # size (width) along up x direction, up to its sign
+        rot = Matrix((x, y, z)).transposed()
+        obj.matrix_world = Matrix.Translation(Vector(ibl_point(",".join(str(v) for v in l["position"])))) @ rot.to_4x4()
+        for attr in ("visible_camera", "visible_diffuse", "visible_glossy", "visible_transmission"):
+            setattr(obj, attr, True)
+        print(f"cycles_room_light: rect {w} x {h} m, radiance {radiance:.3f} nit x color "
+              f"{tuple(round(c, 5) for c in color)}, Blender power {light.energy:.2f} W, "
+              f"color {tuple(round(c, 5) for c in light.color)}")
+
+
+def make_room_camera(look_from, look_at, fov_deg):
+    from mathutils import Vector
+    t = math.tan(0.5 * math.radians(fov_deg))
+    cam = bpy.data.cameras.new("camera")
+    cam.type = "PERSP"
+    cam.sensor_fit = "VERTICAL"
+    cam.sensor_height = 24.0
+    cam.lens = 0.5 * cam.sensor_height / t
+    cam.clip_start = 0.01
+    cam.clip_end = 1000.0
+    obj = bpy.data.objects.new("camera", cam)
+    bpy.context.scene.collection.objects.link(obj)
+    frm, at = Vector(ibl_point(look_from)), Vector(ibl_point(look_at))
+    obj.location = frm
+    # the camera looks along its -Z with its +Y up; ibl's up is +Y (Blender +Z)
+    obj.rotation_euler = (at - frm).to_track_quat("-Z", "Y").to_euler()
+    bpy.context.scene.camera = obj
+
+
+def make_black_world():
+    w = bpy.data.worlds.new("none")
+    bpy.context.scene.world = w
+    w.use_nodes = True
+    w.node_tree.nodes["Background"].inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    w.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
+    w.cycles.sampling_method = "NONE"
+
+
+def main_room(a):
+    clear_scene()
+    s = bpy.context.scene
+    s.render.engine = "CYCLES"
+    import_room(a.gltf, a.diffuse)
+    add_rect_lights(a.lights)
+    make_room_camera(a.look_from, a.look_at, a.fov)
+    make_black_world()
+    setup_render(a)
+    t0 = time.perf_counter()
+    bpy.ops.render.render(write_still=False)
+    seconds = time.perf_counter() - t0
+    bpy.data.images["Render Result"].save_render(filepath=bpy.path.abspath(a.output), scene=s)
+    print(f"cycles_render_seconds: {seconds:.4f}")
+
+
 def main():
     a = parse_args()
+    if a.scene == "room":
+        main_room(a)
+        return
     clear_scene()
     s = bpy.context.scene
     s.render.engine = "CYCLES"

@@ -7,7 +7,9 @@ Blender's Python reads the EXR files (no numpy needed); run it as
     blender -b --factory-startup -P bench/noise_stats.py -- compare X.exr Y.exr [Z.exr ...]
 
 Statistics are over the pixels the sphere covers fully in every image (alpha > 0.999), on the
-luminance Y = 0.2126 R + 0.7152 G + 0.0722 B.
+luminance Y = 0.2126 R + 0.7152 G + 0.0722 B. `--region NAME` names those pixels in the output
+(default "sphere"; bench/cycles.sh's room passes "room": there the pixels of the rect light,
+alpha 0 in Cycles, are left out).
 
 `noise`: for each renderer, two renders with different seeds a and b give per pixel the noise
 of one render, |a - b| / sqrt(2), relative to the pixel's mean m = (a + b) / 2; the table shows
@@ -73,6 +75,7 @@ def noise(args):
     cyc = take("--blender", 2)
     ibl_s = [float(v) for v in take("--ibl-seconds", 2)]
     cyc_s = [float(v) for v in take("--blender-seconds", 2)]
+    region = take("--region", 1)[0] if "--region" in args else "sphere"
     data, mask = load_all(ibl + cyc)
     (w, h) = data[0][0]
     ya, yb, yc, yd = (d[1] for d in data)
@@ -81,7 +84,7 @@ def noise(args):
         rms, med, rel = two_seed(a, b, mask)
         t = 0.5 * (secs[0] + secs[1])
         rows.append((name, rms, med, t, 1.0 / (rms * rms * t), rel))
-    print(f"{w}x{h}, {spp} spp, {len(mask)} sphere pixels (alpha > 0.999 in all four images)")
+    print(f"{w}x{h}, {spp} spp, {len(mask)} {region} pixels (alpha > 0.999 in all four images)")
     print(f"{'renderer':<9} {'spp':>6} {'seconds':>8} {'rel RMS':>9} {'median':>9} {'1/(noise^2 s)':>14}")
     for name, rms, med, t, eff, _ in rows:
         print(f"{name:<9} {spp:>6} {t:>8.3f} {rms:>9.5f} {med:>9.5f} {eff:>14.1f}")
@@ -101,7 +104,7 @@ def noise(args):
         si = sum(data[0][3][c][i] + data[1][3][c][i] for i in mask)
         sc = sum(data[2][3][c][i] + data[3][3][c][i] for i in mask)
         chans.append(si / sc)
-    print(f"mean radiance ibl/cycles over the sphere: {ratio:.4f} "
+    print(f"mean radiance ibl/cycles over the {region}: {ratio:.4f} "
           f"(R {chans[0]:.4f}, G {chans[1]:.4f}, B {chans[2]:.4f})")
     diff = [abs(x - y) / y for x, y in zip(mi, mc) if y > 0]
     floor = [math.sqrt(2.0 / math.pi) * math.sqrt(0.5 * (ri * ri + rc * rc))

@@ -366,7 +366,8 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     // not traced, so this sample takes all the weight. An analytic light in front hides it, as it
     // stops the BRDF's samples.
     if (!s.emitters.empty()) {
-      const EmitterSample es = s.emitters.sample(origin, glm::vec3(sampler.uniform(), sampler.uniform2()));
+      const EmitterSample es =
+          s.emitters.sample(origin, glm::vec3(sampler.uniform(), sampler.uniform2()));
       const glm::vec3 l = toLocal * es.direction;
       const auto lightInFront = [&] {
         const NearestLight nl = nearestLight(lights, origin, es.direction);

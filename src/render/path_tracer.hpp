@@ -86,8 +86,7 @@ class EnvironmentSampler {
         static_cast<std::size_t>(std::upper_bound(cdf, cdf + count, static_cast<double>(x)) - cdf),
         count - 1);
     const double lo = i > 0 ? cdf[i - 1] : 0.0;
-    return {i, static_cast<float>(
-                   std::clamp((x - lo) / std::max(cdf[i] - lo, 1e-300), 0.0, 1.0))};
+    return {i, static_cast<float>(std::clamp((x - lo) / std::max(cdf[i] - lo, 1e-300), 0.0, 1.0))};
   }
   const std::array<Image, kFaceCount>& level_;
   int n_;

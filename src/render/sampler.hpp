@@ -25,9 +25,10 @@ class Sampler {
  public:
   // `seed` is the render's, `stream` the pixel's (or any other independent stream).
   Sampler(std::uint64_t seed, std::uint64_t stream)
-      : key_(hash32(static_cast<std::uint32_t>(seed) ^ hash32(static_cast<std::uint32_t>(seed >> 32u)) ^
-                 hash32(static_cast<std::uint32_t>(stream) + 0x632be5abu) ^
-                 hash32(static_cast<std::uint32_t>(stream >> 32u) + 0x85157af5u))) {}
+      : key_(hash32(static_cast<std::uint32_t>(seed) ^
+                    hash32(static_cast<std::uint32_t>(seed >> 32u)) ^
+                    hash32(static_cast<std::uint32_t>(stream) + 0x632be5abu) ^
+                    hash32(static_cast<std::uint32_t>(stream >> 32u) + 0x85157af5u))) {}
 
   // Starts the sample of index `index` at the first dimension.
   void startSample(std::uint32_t index) {

@@ -336,8 +336,8 @@ TEST(PathTracer, EnvironmentSamplesFollowTheirDensity) {
       for (int x = 0; x < n * sub; ++x) {
         const double a0 = 2.0 * x / (n * sub) - 1.0, a1 = 2.0 * (x + 1) / (n * sub) - 1.0;
         const double b0 = 2.0 * y / (n * sub) - 1.0, b1 = 2.0 * (y + 1) / (n * sub) - 1.0;
-        const glm::vec3 w = glm::normalize(faceToDirection(
-            f, static_cast<float>(0.5 * (a0 + a1)), static_cast<float>(0.5 * (b0 + b1))));
+        const glm::vec3 w = glm::normalize(faceToDirection(f, static_cast<float>(0.5 * (a0 + a1)),
+                                                           static_cast<float>(0.5 * (b0 + b1))));
         const double p = sampler.pdf(w) * squareSolidAngle(a0, a1, b0, b1);
         expected[(static_cast<std::size_t>(f) * n + y / sub) * n + x / sub] += p;
         total += p;
