@@ -268,6 +268,7 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
                                                    dfgStage);
                           });
         });
+        if (progress) progress(dfgStage, 1.0);  // also when the table was integrated before
         if (o.wantsSheen()) {
           const std::string sheenStage = fmt::format("sheen table {}x{} ({} samples per texel)",
                                                      o.dfgSize, o.dfgSize, 4 * o.dfgSamples);
@@ -279,6 +280,7 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
                                               o.sheenVisibility, progress, sheenStage);
                 });
           });
+          if (progress) progress(sheenStage, 1.0);
         }
       });
   r.timingsMs["total"] =

@@ -7,7 +7,7 @@ namespace ibl {
 
 namespace {
 
-std::uint32_t reverseBits(std::uint32_t x) {
+constexpr std::uint32_t reverseBits(std::uint32_t x) {
   x = (x << 16u) | (x >> 16u);
   x = ((x & 0x00FF00FFu) << 8u) | ((x & 0xFF00FF00u) >> 8u);
   x = ((x & 0x0F0F0F0Fu) << 4u) | ((x & 0xF0F0F0F0u) >> 4u);
@@ -32,7 +32,7 @@ std::uint32_t laineKarrasPermutation(std::uint32_t x, std::uint32_t seed) {
 // 256-entry tables. The tables hold the numbers bit-reversed, as the Owen scramble reads them.
 struct SobolDimension1Tables {
   std::array<std::array<std::uint32_t, 256>, 4> reversed{};
-  SobolDimension1Tables() {
+  constexpr SobolDimension1Tables() {
     std::array<std::uint32_t, 32> v{};
     v[0] = 1u << 31u;
     for (std::size_t k = 1; k < v.size(); ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1u);
@@ -42,7 +42,8 @@ struct SobolDimension1Tables {
           if (x & (1u << bit)) reversed[b][x] ^= reverseBits(v[8 * b + bit]);
   }
 };
-const SobolDimension1Tables kSobolDimension1;
+// Built by the compiler: no static-initialization order to depend on.
+constexpr SobolDimension1Tables kSobolDimension1;
 
 // reverseBits(point `index` of Sobol's dimension 1).
 std::uint32_t sobolDimension1Reversed(std::uint32_t index) {

@@ -165,7 +165,12 @@ struct Brdf {
                 fresnelSchlick(f0, f90, VoH) * multipleScattering;
       // The walk's orders 2 and up (f cos, hence the division): its order 1 has the
       // expectation of the term above, which is exact.
-      if (walk) result += microsurface.evaluate(walkView(v), l, sampler, 2) / NoL;
+      if (walk) {
+        // The walk draws as many numbers as it takes bounces: from a stream of its own, so
+        // that the path's later numbers keep their dimensions.
+        Sampler walkNumbers = sampler.branch();
+        result += microsurface.evaluate(walkView(v), l, walkNumbers, 2) / NoL;
+      }
     }
     if (diffuseLobe()) {
       const float fd = diffuseModel == DiffuseModel::Disney
@@ -233,7 +238,8 @@ struct Brdf {
       // walk's true one costs variance, not bias.
       const float specular = (1.0f - pSheen) * specularProbability();
       if (choose < specular) {
-        const MicrofacetWalk::Sample s = microsurface.sample(walkView(v), sampler);
+        Sampler walkNumbers = sampler.branch();  // as in evaluate()
+        const MicrofacetWalk::Sample s = microsurface.sample(walkView(v), walkNumbers);
         glm::vec3 weight = s.weight / specular;
         if (hasSheen()) weight *= std::min(sheenScaleV, albedoScaling(s.wo.z));
         return {s.wo, weight};
@@ -366,8 +372,10 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     // not traced, so this sample takes all the weight. An analytic light in front hides it, as it
     // stops the BRDF's samples.
     if (!s.emitters.empty()) {
-      const EmitterSample es =
-          s.emitters.sample(origin, glm::vec3(sampler.uniform(), sampler.uniform2()));
+      // In this order on every compiler: the draws' order is their dimensions'.
+      const float pick = sampler.uniform();
+      const glm::vec2 point = sampler.uniform2();
+      const EmitterSample es = s.emitters.sample(origin, glm::vec3(pick, point));
       const glm::vec3 l = toLocal * es.direction;
       const auto lightInFront = [&] {
         const NearestLight nl = nearestLight(lights, origin, es.direction);

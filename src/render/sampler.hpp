@@ -38,7 +38,19 @@ class Sampler {
   }
 
   // The next dimension pair, in [0, 1)^2.
-  glm::vec2 uniform2() { return sobolOwen2D(index_, key_ + 0x9e3779b9u * ++dimension_); }
+  glm::vec2 uniform2() { return sobolOwen2D(index_, hash32(key_ + 0x9e3779b9u * ++dimension_)); }
+  // A sampler of its own for a computation that draws a varying count of numbers (the
+  // microfacet walk: as many as its bounces), at the same sample index and keyed by where this
+  // sampler stands, which it does not advance: this sampler's later draws keep their dimensions,
+  // and the branch's first draws are low-discrepancy over the pixel's samples too.
+  Sampler branch() const {
+    Sampler b = *this;
+    b.key_ = hash32(key_ ^ hash32(2u * dimension_ + (spare_ ? 1u : 0u) + 0x5bd1e995u));
+    b.dimension_ = 0;
+    b.spare_ = false;
+    return b;
+  }
+
   // The next dimension, in [0, 1): the first of a new pair, or the second of the pair the
   // previous call opened.
   float uniform() {

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <glm/trigonometric.hpp>
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/equirect.hpp"
@@ -601,25 +603,46 @@ TEST(Sky, AgreesWithThePathTracedReference) {
   EXPECT_NEAR(e.model / e.reference, 1.0, 0.10);
 }
 
-// A model reuses the tables that do not depend on the sun from the last model of the same
-// atmosphere (the viewer's time of day): its sky is the same, bit for bit, as one built with no
-// model before it; a model of another atmosphere (another ground albedo, turbidity or ozone) does
-// not take them.
+// A model reuses the tables that do not depend on the sun when the model built before it had
+// the same atmosphere (the viewer's time of day): its sky is the same, bit for bit, as one built
+// with no model before it; a model of another atmosphere (another ground albedo, turbidity, ozone
+// or multiple scattering off) does not take them.
 TEST(Sky, ANewSunReusesOnlyTheSameAtmospheresTables) {
-  const auto skyOf = [](float elevation, float albedo, float turbidity) {
+  const auto skyOf = [](float elevation, float albedo, float turbidity, float ozone = 300.0f,
+                        bool multiple = true) {
     SkyParameters p;
     p.sunElevation = elevation;
     p.groundAlbedo = albedo;
     p.turbidity = turbidity;
-    return SkyModel(p).panorama(64, 32, false).pixels;
+    p.ozone = ozone;
+    p.multipleScattering = multiple;
+    const SkyModel sky(p);
+    std::vector<float> radiance;  // 20 bands toward 12 directions, horizon to zenith
+    for (int i = 0; i < 12; ++i) {
+      const float e = glm::radians(90.0f * static_cast<float>(i) / 11.0f);
+      const Spectrum l =
+          sky.radiance({std::cos(e) * std::cos(1.7f * static_cast<float>(i)), std::sin(e),
+                        std::cos(e) * std::sin(1.7f * static_cast<float>(i))});
+      radiance.insert(radiance.end(), l.begin(), l.end());
+    }
+    return radiance;
   };
   // Each after a model of another atmosphere: built from nothing.
-  const auto freshDarkGround = skyOf(60.0f, 0.05f, 2.0f);
+  const auto darkGround = skyOf(60.0f, 0.05f, 2.0f);
+  const auto hazy = skyOf(60.0f, 0.3f, 4.0f);
+  const auto thinOzone = skyOf(60.0f, 0.3f, 2.0f, 150.0f);
+  const auto single = skyOf(60.0f, 0.3f, 2.0f, 300.0f, false);
   const auto fresh = skyOf(60.0f, 0.3f, 2.0f);
   // After a model of the same atmosphere at another sun: its tables reused.
   skyOf(10.0f, 0.3f, 2.0f);
   EXPECT_EQ(skyOf(60.0f, 0.3f, 2.0f), fresh);
-  // Then another albedo: not reused.
-  EXPECT_EQ(skyOf(60.0f, 0.05f, 2.0f), freshDarkGround);
-  EXPECT_NE(fresh, freshDarkGround);
+  // After it, each other atmosphere: not reused.
+  for (const auto& [sky, other] : {std::pair{skyOf(60.0f, 0.05f, 2.0f), darkGround},
+                                   {skyOf(60.0f, 0.3f, 4.0f), hazy},
+                                   {skyOf(60.0f, 0.3f, 2.0f, 150.0f), thinOzone},
+                                   {skyOf(60.0f, 0.3f, 2.0f, 300.0f, false), single}}) {
+    EXPECT_EQ(sky, other);
+    EXPECT_NE(sky, fresh);
+    skyOf(30.0f, 0.3f, 2.0f);  // the first atmosphere's tables kept again
+  }
 }
