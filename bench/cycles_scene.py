@@ -232,9 +232,8 @@ def make_world(env, rotate_z, mirror, clamp_negative):
     w.cycles.sampling_method = "AUTOMATIC"  # background importance map (Cycles' default)
 
 
-def make_camera(fov_deg):
-    t = math.tan(0.5 * math.radians(fov_deg))
-    distance = 1.1 * (1.0 / t) + 1.0  # ibl's framing of the bounds [-1, 1]^3 (apps/scene_options.cpp)
+def new_camera(t):
+    """A perspective camera of vertical half-angle tangent t, linked to the scene."""
     cam = bpy.data.cameras.new("camera")
     cam.type = "PERSP"
     cam.sensor_fit = "VERTICAL"
@@ -244,6 +243,13 @@ def make_camera(fov_deg):
     cam.clip_end = 1000.0
     obj = bpy.data.objects.new("camera", cam)
     bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def make_camera(fov_deg):
+    t = math.tan(0.5 * math.radians(fov_deg))
+    distance = 1.1 * (1.0 / t) + 1.0  # ibl's framing of the bounds [-1, 1]^3 (apps/scene_options.cpp)
+    obj = new_camera(t)
     obj.location = (0.0, -distance, 0.0)           # ibl (0, 0, d)
     obj.rotation_euler = (math.radians(90.0), 0.0, 0.0)  # looks along +Y (ibl -Z), up +Z (ibl +Y)
     bpy.context.scene.camera = obj
@@ -425,15 +431,7 @@ def add_rect_lights(path):
 def make_room_camera(look_from, look_at, fov_deg):
     from mathutils import Vector
     t = math.tan(0.5 * math.radians(fov_deg))
-    cam = bpy.data.cameras.new("camera")
-    cam.type = "PERSP"
-    cam.sensor_fit = "VERTICAL"
-    cam.sensor_height = 24.0
-    cam.lens = 0.5 * cam.sensor_height / t
-    cam.clip_start = 0.01
-    cam.clip_end = 1000.0
-    obj = bpy.data.objects.new("camera", cam)
-    bpy.context.scene.collection.objects.link(obj)
+    obj = new_camera(t)
     frm, at = Vector(ibl_point(look_from)), Vector(ibl_point(look_at))
     obj.location = frm
     # the camera looks along its -Z with its +Y up; ibl's up is +Y (Blender +Z)

@@ -1,5 +1,6 @@
 #include <numbers>
 #include <set>
+#include <tuple>
 
 #include <tbb/global_control.h>
 
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ibl/bake/bake.hpp"
+#include "ibl/bake/dfg.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 #include "support/helpers.hpp"
@@ -109,4 +111,29 @@ TEST(Bake, WritesEveryOutputAndAManifest) {
   int entries = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++entries;
   EXPECT_EQ(entries, 1);
+}
+
+// The DFG and sheen tables are integrated once per process and kept: a later bake in the same
+// process that asks for another size, sample count or sheen visibility gets its own table, the
+// one integrateDfgLut / integrateSheenDfgLut give.
+TEST(Bake, TablesKeptPerProcessAreThoseOfEachBakesSettings) {
+  const Environment env =
+      equirectEnvironment(equirectFromFunction(32, [](glm::vec3) { return glm::vec3(1.0f); }));
+  BakeOptions o;
+  o.specular.size = 8;
+  o.irradianceSize = 4;
+  o.sheen = true;
+  for (const auto& [size, samples, visibility] :
+       {std::tuple{16, 32, SheenVisibility::Charlie}, std::tuple{8, 32, SheenVisibility::Charlie},
+        std::tuple{8, 64, SheenVisibility::Charlie}, std::tuple{8, 64, SheenVisibility::Neubelt},
+        std::tuple{16, 32, SheenVisibility::Charlie}}) {
+    o.dfgSize = size;
+    o.dfgSamples = samples;
+    o.sheenVisibility = visibility;
+    const BakeResult r = bakeEnvironment(env, o);
+    EXPECT_EQ(r.dfg.pixels, integrateDfgLut(size, size, samples).pixels) << size << " " << samples;
+    ASSERT_TRUE(r.sheenDfg);
+    EXPECT_EQ(r.sheenDfg->pixels, integrateSheenDfgLut(size, size, 4 * samples, visibility).pixels)
+        << size << " " << samples;
+  }
 }
