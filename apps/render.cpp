@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
+#include "ibl/gpu/path_tracer.hpp"
 #include "ibl/render/bloom.hpp"
 #include "ibl/render/probe.hpp"
 #include "preflight.hpp"
@@ -24,6 +25,7 @@ struct RenderCliOptions {
   int bounces = 4;
   bool exrExposed = false;
   unsigned seed = 1;
+  std::string device = "cpu";
 };
 
 void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
@@ -31,6 +33,10 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   checkSceneOptions(o.scene);
   if (o.mode == "reference" && o.scene.shadows && *o.scene.shadows == "map")
     failUsage("--shadows", "map is the split sum's; the reference traces rays (--shadows alone)");
+  if (o.device != "cpu" && o.mode != "reference")
+    failUsage("--device", "gpu and auto run the reference; the split sum on the GPU is `ibl view`");
+  if (o.device != "cpu" && o.noise > 0.0f)
+    failUsage("--noise", "adaptive stopping is the CPU reference's; use --device cpu");
   const auto [width, height] = parseSize(o.scene.size);
   refuseOverwritingInputs({o.output}, sceneInputFiles(o.scene));
   requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
@@ -60,9 +66,14 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   r.probes = &probes;
   r.seed = o.seed;
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
-  RenderResult result = renderScene(scene, camera, baked.bake, baked.options, r, [&](float f) {
+  const auto report = [&](float f) {
     if (showProgress) fmt::print(stderr, "\rrendering {:3.0f} %", 100.0f * f);
-  });
+  };
+  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
+  if (device && !global.quiet) fmt::print(stderr, "reference on {}\n", device->device().name);
+  RenderResult result =
+      device ? gpu::renderReference(*device, scene, camera, baked.bake, baked.options, r, report)
+             : renderScene(scene, camera, baked.bake, baked.options, r, report);
   if (showProgress) fmt::print(stderr, "\r");
   const float ev100 = chooseEv100(o.scene, result.color);
   if (const std::optional<float> bloom = bloomCompensation(o.scene, std::nullopt))
@@ -107,6 +118,11 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--exr-exposed", opts->exrExposed,
                 "Write the exposed, tone-mapped image to the EXR too");
   cmd->add_option("--seed", opts->seed, "Random seed of the reference")->capture_default_str();
+  cmd->add_option("--device", opts->device,
+                  "Reference: cpu, gpu (a Vulkan compute path tracer: the same paths and "
+                  "numbers), or auto (a real GPU if present)")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}))
+      ->capture_default_str();
   cmd->callback([opts, &global] { runRender(*opts, global); });
 }
 

@@ -10,7 +10,10 @@
 #include "ibl/core/error.hpp"
 #include "ibl/env/photometry.hpp"
 #include "ibl/env/sky.hpp"
+#include "ibl/gpu/path_tracer.hpp"
 #include "ibl/gpu/viewer.hpp"
+#include "ibl/io/file_io.hpp"
+#include "ibl/io/image_io.hpp"
 #include "ibl/render/bloom.hpp"
 #include "preflight.hpp"
 #include "scene_options.hpp"
@@ -28,7 +31,39 @@ struct ViewCliOptions {
   std::string screenshot;
   int frames = 0;
   float skyboxMip = 0.0f;
+  std::string reference;  // the view: reference, difference or split (empty: real time)
+  std::optional<int> referenceSpp;
 };
+
+// The reference's samples per pixel of a screenshot unless --reference-spp says otherwise.
+constexpr int kScreenshotReferenceSpp = 64;
+// The reference's samples per dispatch of a screenshot (a device may stop a long one).
+constexpr int kScreenshotReferenceBatch = 16;
+
+gpu::ViewMode viewMode(const std::string& name) {
+  return name == "reference"    ? gpu::ViewMode::Reference
+         : name == "difference" ? gpu::ViewMode::Difference
+         : name == "split"      ? gpu::ViewMode::Split
+                                : gpu::ViewMode::RealTime;
+}
+
+// A screenshot of `view`: the difference view's false colors as they are (a PNG as
+// `ibl compare --error-png` writes it; an EXR of the same values and the coverage), the others
+// bloomed when asked and written like `ibl render`'s images.
+void writeView(const std::string& path, RenderResult shown, gpu::ViewMode view, float ev100,
+               ToneMap curve, const SceneCliOptions& scene) {
+  if (view == gpu::ViewMode::Difference) {
+    checkRenderedImagePath(path);
+    if (fileFormatFromExtension(path) == FileFormat::Exr)
+      writeFileAtomic(path, encodeExr(shown.color, ExrPixelType::Float, &shown.alpha));
+    else
+      writeFileAtomic(path, encodePng(shown.color));
+    return;
+  }
+  if (const std::optional<float> bloom = bloomCompensation(scene, kViewBloom))
+    shown.color = applyBloom(shown.color, ev100, *bloom);
+  writeRenderedImage(path, shown, ev100, curve, false);
+}
 
 // ibl_view_001.png, 002, ...: the first name not taken in the working directory.
 std::string unusedScreenshotName() {
@@ -40,6 +75,8 @@ std::string unusedScreenshotName() {
 
 void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   if (!o.screenshot.empty()) checkRenderedImagePath(o.screenshot);
+  if (o.referenceSpp && o.reference.empty())
+    failUsage("--reference-spp", "needs --reference reference, difference or split");
   checkSceneOptions(o.scene);
   const auto [width, height] = parseSize(o.scene.size);
   if (o.scene.aoRays > 0) failUsage("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
@@ -78,6 +115,35 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
                               scene.lights.size()),
                   "use a smaller --shadow-map-size or --shadows none");
 
+  const gpu::ViewMode view = viewMode(o.reference);
+  if (!o.screenshot.empty() && view != gpu::ViewMode::RealTime) {
+    // The reference traced on the device, with the real-time frame it is compared with.
+    gpu::ContextOptions co;
+    co.graphics = true;
+    const auto context = gpu::Context::create(co);
+    gpu::PathTracer tracer(*context, scene, baked.bake, baked.options);
+    tracer.reset(camera, gpu::viewReferenceOptions(shading));
+    const int spp = o.referenceSpp.value_or(kScreenshotReferenceSpp);
+    while (tracer.samplesPerPixel() < spp)
+      tracer.accumulate(std::min(kScreenshotReferenceBatch, spp - tracer.samplesPerPixel()));
+    const RenderResult reference = tracer.result();
+    RenderResult realTime;
+    if (view != gpu::ViewMode::Reference) {
+      gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes);
+      realTime = renderer.render(camera, shading, o.skyboxMip);
+    }
+    // Exposed for the reference, as `ibl render --mode reference` exposes it.
+    const float ev100 = chooseEv100(o.scene, reference.color);
+    writeView(o.screenshot, gpu::composeView(view, realTime, reference), view,
+              ev100 - o.scene.compensation, toneCurve(o.scene), o.scene);
+    if (!global.quiet)
+      fmt::print(stderr,
+                 "screenshot {} ({}x{}, {}: {} samples per pixel, noise {:.2f} %, {:.1f} ms on "
+                 "{}, EV100 {:.2f})\n",
+                 o.screenshot, width, height, gpu::viewModeName(view), tracer.samplesPerPixel(),
+                 100.0f * tracer.noise(), reference.milliseconds, context->device().name, ev100);
+    return;
+  }
   if (!o.screenshot.empty()) {
     gpu::ContextOptions co;
     co.graphics = true;
@@ -109,12 +175,11 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   w.bloom = bloomCompensation(o.scene, kViewBloom);
   w.frames = o.frames;
   w.title = "ibl view " + o.scene.scene;
-  w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve) {
+  w.view = view;
+  w.referenceSpp = o.referenceSpp.value_or(0);
+  w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve, gpu::ViewMode shown) {
     const std::string path = unusedScreenshotName();
-    RenderResult shown = result;
-    if (const std::optional<float> bloom = bloomCompensation(o.scene, kViewBloom))
-      shown.color = applyBloom(result.color, ev100, *bloom);
-    writeRenderedImage(path, shown, ev100, curve, false);
+    writeView(path, result, shown, ev100, curve, o.scene);
     if (!global.quiet) fmt::print(stderr, "screenshot {}\n", path);
   };
   if (skySpec) {
@@ -156,6 +221,9 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
                  shading.spp, stats.device, stats.samples, stats.samples);
     fmt::print(stderr, "viewed {} frames, {:.2f} ms per frame on {}\n", stats.frames,
                stats.meanFrameMs, stats.device);
+    if (stats.referenceSpp > 0)
+      fmt::print(stderr, "reference at {} samples per pixel, noise {:.2f} % ({} view at the end)\n",
+                 stats.referenceSpp, 100.0f * stats.referenceNoise, gpu::viewModeName(stats.view));
   }
 }
 
@@ -176,6 +244,16 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_option("--frames", opts->frames, "Window: close after this many frames (0: never)")
       ->check(numberIn(0, 1 << 30));
+  cmd->add_option("--reference", opts->reference,
+                  "Show the path-traced reference (on the device): reference, difference (the "
+                  "real-time frame's relative error, as `ibl compare --error-png`) or split "
+                  "(left real time, right reference); the screenshot's picture, or the window's "
+                  "first view (M cycles)")
+      ->check(CLI::IsMember({"reference", "difference", "split"}));
+  cmd->add_option("--reference-spp", opts->referenceSpp,
+                  "With --reference: the reference's samples per pixel (screenshot: default 64; "
+                  "window: where it stops adding samples)")
+      ->check(numberIn(1, 1 << 20));
   cmd->footer(
       "Window controls:\n"
       "  left drag      orbit around the target      wheel   zoom\n"
@@ -183,6 +261,8 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
       "  [ / ]          skybox mip level down / up\n"
       "  D / S          toggle the diffuse / specular term\n"
       "  T              cycle the tone curve (ACES, filmic, none)\n"
+      "  M              cycle the view: real time, reference (path traced on the device,\n"
+      "                 refined while the view stands still), difference, split\n"
       "  P or F12       screenshot of the current view to ibl_view_NNN.png (working directory)\n"
       "  , / .          with --env sky:...: the sun 5 degrees lower / higher (the sky\n"
       "                 recomputed, and baked on the viewer's GPU)\n"

@@ -1,5 +1,6 @@
 // The interactive viewer: a GLFW window, a swapchain, the scene renderer, the bloom's compute
-// passes (gpu/bloom.hpp) and a tone-mapping pass.
+// passes (gpu/bloom.hpp) and a tone-mapping pass; the reference (gpu::PathTracer) and the views
+// that show it (ViewMode), uploaded into an image the same passes read.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -13,6 +14,8 @@
 #include "gpu/bloom.hpp"
 #include "gpu/scene_renderer.hpp"
 #include "ibl/core/error.hpp"
+#include "ibl/core/stats.hpp"
+#include "ibl/gpu/path_tracer.hpp"
 
 namespace ibl::gpu {
 
@@ -31,7 +34,8 @@ struct Interaction {
   Camera initial;
   float maxSkyboxLod = 0.0f;
   bool screenshotRequested = false;
-  int timeStep = 0;  // , or . pressed: the sun lower (-1) or higher (+1)
+  int timeStep = 0;                    // , or . pressed: the sun lower (-1) or higher (+1)
+  ViewMode view = ViewMode::RealTime;  // M cycles it
 
   void orbitFrom(const Camera& c) {
     target = c.at;
@@ -91,6 +95,9 @@ void onKey(GLFWwindow* window, int key, int, int action, int) {
       break;
     case GLFW_KEY_R:
       s.orbitFrom(s.initial);
+      break;
+    case GLFW_KEY_M:
+      if (action == GLFW_PRESS) s.view = static_cast<ViewMode>((static_cast<int>(s.view) + 1) % 4);
       break;
     case GLFW_KEY_COMMA:
       s.timeStep = -1;
@@ -160,6 +167,10 @@ struct WindowResources {
   VkSurfaceKHR surface = VK_NULL_HANDLE;
   std::unique_ptr<SceneRenderer> renderer;
   std::unique_ptr<DeviceBloom> bloom;  // with WindowOptions::bloom
+  std::unique_ptr<PathTracer> tracer;  // made when a view first shows the reference
+  // Outside the real-time view: the picture shown (composeView), uploaded from the host and
+  // read by the bloom and the tone-mapping pass in place of the scene renderer's output.
+  std::unique_ptr<DeviceImage> shown;
   Swapchain swapchain;
   VkRenderPass pass = VK_NULL_HANDLE;
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
@@ -177,6 +188,8 @@ struct WindowResources {
       VkDevice d = context->impl().device;
       vkDeviceWaitIdle(d);
       bloom.reset();
+      shown.reset();
+      tracer.reset();
       renderer.reset();
       swapchain.destroy();
       vkDestroyFence(d, done, nullptr);
@@ -327,7 +340,87 @@ void createTonemapPass(WindowResources& r, VkFormat format) {
   check(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &r.pool), "vkCreateDescriptorPool");
 }
 
+bool sameCamera(const Camera& a, const Camera& b) {
+  return a.perspective == b.perspective && a.yfovDegrees == b.yfovDegrees &&
+         a.orthoWidth == b.orthoWidth && a.from == b.from && a.at == b.at && a.up == b.up &&
+         a.width == b.width && a.height == b.height;
+}
+
+// Uploads `picture` into `image` (made, or made again, at its size: RGBA32F the bloom can copy
+// from), leaving it shader-readable. The device must not be reading the old image.
+void uploadPicture(Context& context, std::unique_ptr<DeviceImage>& image, const Image& picture) {
+  const auto w = static_cast<std::uint32_t>(picture.width),
+             h = static_cast<std::uint32_t>(picture.height);
+  if (!image || image->description().width != w || image->description().height != h) {
+    image.reset();
+    DeviceImage::Description d;
+    d.width = w;
+    d.height = h;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+              VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    image = std::make_unique<DeviceImage>(context, d);
+  }
+  std::vector<glm::vec4> texels(picture.pixels.size());
+  for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = glm::vec4(picture.pixels[i], 1.0f);
+  uploadImage(
+      context, *image,
+      {reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(glm::vec4)},
+      sizeof(glm::vec4));
+}
+
 }  // namespace
+
+const char* viewModeName(ViewMode mode) {
+  switch (mode) {
+    case ViewMode::RealTime:
+      return "real time";
+    case ViewMode::Reference:
+      return "reference";
+    case ViewMode::Difference:
+      return "difference";
+    case ViewMode::Split:
+      return "split";
+  }
+  return "?";
+}
+
+RenderResult composeView(ViewMode mode, const RenderResult& realTime,
+                         const RenderResult& reference) {
+  if (mode == ViewMode::RealTime) return realTime;
+  if (mode == ViewMode::Reference) return reference;
+  const Image& a = realTime.color;
+  const Image& b = reference.color;
+  if (a.width != b.width || a.height != b.height || realTime.alpha.size() != reference.alpha.size())
+    fail("view", fmt::format("the real-time frame is {}x{} but the reference {}x{}", a.width,
+                             a.height, b.width, b.height));
+  RenderResult out = reference;
+  if (mode == ViewMode::Difference) {
+    out.color = errorFalseColor(a, b, kViewDifferenceScale);
+    return out;
+  }
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width / 2; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * a.width + x;
+      out.color.pixels[i] = a.pixels[i];
+      if (i < out.alpha.size()) out.alpha[i] = realTime.alpha[i];
+    }
+  return out;
+}
+
+RenderOptions viewReferenceOptions(const RenderOptions& realTime) {
+  RenderOptions r = realTime;
+  r.mode = RenderMode::Reference;
+  r.bounces = 4;
+  r.seed = 1;
+  r.shadows = false;  // as `ibl render --mode reference` without --shadows (bounces trace them)
+  r.noiseThreshold = 0.0f;
+  r.aoRays = 0;
+  r.probes = nullptr;  // the reference reads none
+  r.shadowMaps = nullptr;
+  r.screenOcclusion = nullptr;
+  r.screenReflection = nullptr;
+  return r;
+}
 
 WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
                             const BakeOptions& bakeOptions, const WindowOptions& o,
@@ -369,6 +462,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   state.maxSkyboxLod = renderer.skyboxMaxLod;
   state.diffuse = o.render.only != ShadingTerms::Specular;
   state.specular = o.render.only != ShadingTerms::Diffuse;
+  state.view = o.view;
   const float ev100 =
       o.ev100
           ? *o.ev100
@@ -406,6 +500,28 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   auto last = Clock::now(), lastTitle = last;
   double windowMs = 0.0, totalMs = 0.0;
   int windowFrames = 0;
+  // The reference, and what it was started for (a change of any starts it over); the real-time
+  // frame the difference and split views compare it with, and what it was drawn for; the
+  // picture those views show (composeView), uploaded into r.shown when it changes.
+  const Scene* referenceScene = &scene;
+  const BakeResult* referenceBake = &bake;
+  const BakeOptions* referenceBakeOptions = &bakeOptions;
+  Scene changedScene;  // the scene with the lights of the last time-of-day change
+  std::optional<EnvironmentChange> environment;
+  int environmentGeneration = 0;
+  const RenderOptions referenceBase = o.reference ? *o.reference : viewReferenceOptions(o.render);
+  const int referenceCap = o.referenceSpp > 0 ? o.referenceSpp : 1 << 20;
+  struct Drawn {
+    Camera camera;
+    ShadingTerms terms = ShadingTerms::Both;
+    float skyboxLod = 0.0f;
+    int generation = -1;
+  };
+  Drawn traced, drawn;
+  RenderResult reference, realTime, picture;
+  bool pictureCurrent = false, referenceFailed = false;
+  ViewMode pictured = ViewMode::RealTime;
+  int batch = 1;  // samples per pixel added per frame: 1 to 16, sized to keep a frame interactive
   const auto recreate = [&] {
     vkDeviceWaitIdle(c.device);
     r.swapchain.destroy();
@@ -434,13 +550,6 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     const int width = static_cast<int>(extent.width), height = static_cast<int>(extent.height);
     renderer.prepare(width, height, samples);
     if (r.bloom) r.bloom->prepare(width, height);
-    // The tone-mapping pass reads the frame, or its bloom.
-    const VkDescriptorImageInfo hdrInfo{
-        r.sampler, r.bloom ? r.bloom->output().view() : renderer.output().view(),
-        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    const VkWriteDescriptorSet write = imageWrite(set, 0, &hdrInfo);
-    vkUpdateDescriptorSets(c.device, 1, &write, 0, nullptr);
-
     RenderOptions shading = o.render;
     shading.only = state.diffuse && state.specular ? ShadingTerms::Both
                    : state.diffuse                 ? ShadingTerms::Diffuse
@@ -451,34 +560,110 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
       if (change) {
         renderer.setEnvironment(change->bake, change->options, change->lights);
         state.maxSkyboxLod = renderer.skyboxMaxLod;
+        // The reference is traced again, by a tracer of the new environment and lights.
+        r.tracer.reset();
+        environment = std::move(*change);
+        changedScene = scene;
+        changedScene.lights = environment->lights;
+        referenceScene = &changedScene;
+        referenceBake = &environment->bake;
+        referenceBakeOptions = &environment->options;
+        ++environmentGeneration;
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        fmt::print(stderr, "ibl view: {}: new sky and bake in {:.0f} ms\n", change->label, ms);
-        glfwSetWindowTitle(r.window,
-                           fmt::format("{} - {} ({:.0f} ms)", o.title, change->label, ms).c_str());
+        fmt::print(stderr, "ibl view: {}: new sky and bake in {:.0f} ms\n", environment->label, ms);
+        glfwSetWindowTitle(
+            r.window, fmt::format("{} - {} ({:.0f} ms)", o.title, environment->label, ms).c_str());
         lastTitle = Clock::now();  // the frame-time title waits a moment
       }
     }
     state.timeStep = 0;
+
+    // Outside the real-time view: the reference (made on first use), started over when what it
+    // shows changed, a batch of samples further; the real-time frame when the view compares
+    // with it; the picture uploaded when it changed.
+    const Camera camera = state.camera(width, height);
+    if (referenceFailed) state.view = ViewMode::RealTime;
+    if (state.view != ViewMode::RealTime && !r.tracer) {
+      try {
+        r.tracer = std::make_unique<PathTracer>(*r.context, *referenceScene, *referenceBake,
+                                                *referenceBakeOptions);
+        traced.generation = -1;
+      } catch (const Error& e) {
+        // What the device reference cannot draw: said once, and the real-time view goes on.
+        fmt::print(stderr, "ibl view: no reference view: {}\n", e.what());
+        referenceFailed = true;
+        state.view = ViewMode::RealTime;
+      }
+    }
+    const ViewMode view = state.view;
+    if (view != ViewMode::RealTime) {
+      RenderOptions tracing = referenceBase;
+      tracing.only = shading.only;
+      if (traced.generation != environmentGeneration || !sameCamera(traced.camera, camera) ||
+          traced.terms != tracing.only) {
+        r.tracer->reset(camera, tracing);
+        traced = {camera, tracing.only, 0.0f, environmentGeneration};
+        batch = 1;
+      }
+      const int spp = r.tracer->samplesPerPixel();
+      if (spp < referenceCap) {  // reset() leaves none: a new reference always gets a batch
+        const auto start = Clock::now();
+        r.tracer->accumulate(std::min(batch, referenceCap - spp));
+        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        if (ms < 12.0 && batch < 16)
+          batch *= 2;
+        else if (ms > 40.0 && batch > 1)
+          batch /= 2;
+        reference = r.tracer->result();
+        pictureCurrent = false;
+      }
+      if (view != ViewMode::Reference &&
+          (drawn.generation != environmentGeneration || !sameCamera(drawn.camera, camera) ||
+           drawn.terms != shading.only || drawn.skyboxLod != state.skyboxLod)) {
+        realTime = r.renderer->render(camera, shading, state.skyboxLod);
+        drawn = {camera, shading.only, state.skyboxLod, environmentGeneration};
+        pictureCurrent = false;
+      }
+      if (!pictureCurrent || pictured != view) {
+        picture = composeView(view, realTime, reference);
+        uploadPicture(*r.context, r.shown, picture.color);
+        pictureCurrent = true;
+        pictured = view;
+      }
+    }
+
     if (state.screenshotRequested) {
       state.screenshotRequested = false;
       if (o.screenshot)
-        o.screenshot(r.renderer->render(state.camera(width, height), shading, state.skyboxLod),
-                     ev100 - state.compensation, state.toneMap);
+        o.screenshot(view == ViewMode::RealTime
+                         ? r.renderer->render(camera, shading, state.skyboxLod)
+                         : picture,
+                     ev100 - state.compensation, state.toneMap, view);
     }
+    // The difference view's colors are shown as they are: no bloom, exposure or tone curve.
+    const bool difference = view == ViewMode::Difference;
     const struct {
       float exposure;
       std::int32_t curve, encode;
-    } push{exposureFromEv100(ev100 - state.compensation),
-           state.toneMap == ToneMap::None   ? 0
-           : state.toneMap == ToneMap::Aces ? 1
-                                            : 2,
+    } push{difference ? 1.0f : exposureFromEv100(ev100 - state.compensation),
+           difference || state.toneMap == ToneMap::None ? 0
+           : state.toneMap == ToneMap::Aces             ? 1
+                                                        : 2,
            encodesSrgb(format.format) ? 0 : 1};
     check(vkResetCommandBuffer(r.cmd, 0), "vkResetCommandBuffer");
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(r.cmd, &begin), "vkBeginCommandBuffer");
-    renderer.record(r.cmd, state.camera(width, height), shading, state.skyboxLod);
-    if (r.bloom) r.bloom->record(r.cmd, renderer.output(), ev100 - state.compensation, *o.bloom);
+    if (view == ViewMode::RealTime) renderer.record(r.cmd, camera, shading, state.skyboxLod);
+    const DeviceImage& frame = view == ViewMode::RealTime ? renderer.output() : *r.shown;
+    const bool bloomed = r.bloom && !difference;
+    if (bloomed) r.bloom->record(r.cmd, frame, ev100 - state.compensation, *o.bloom);
+    // The tone-mapping pass reads the frame, or its bloom.
+    const VkDescriptorImageInfo hdrInfo{r.sampler,
+                                        bloomed ? r.bloom->output().view() : frame.view(),
+                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    const VkWriteDescriptorSet write = imageWrite(set, 0, &hdrInfo);
+    vkUpdateDescriptorSets(c.device, 1, &write, 0, nullptr);
     VkRenderPassBeginInfo passBegin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     passBegin.renderPass = r.pass;
     passBegin.framebuffer = r.swapchain.framebuffers[imageIndex];
@@ -528,11 +713,18 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     ++windowFrames;
     if (now - lastTitle > std::chrono::milliseconds(500) || stats.frames == 1) {
       const double mean = windowMs / windowFrames;
+      // Outside the real-time view: the view, the reference's samples per pixel and noise.
+      const std::string shown =
+          view == ViewMode::RealTime || !r.tracer
+              ? std::string()
+              : fmt::format(" - {}: {} spp, noise {:.2f} %", viewModeName(view),
+                            r.tracer->samplesPerPixel(), 100.0f * r.tracer->noise());
       glfwSetWindowTitle(
           r.window,
-          fmt::format("{} - {:.2f} ms/frame ({:.0f} fps) - EV100 {:.1f} - skybox mip {:.1f} - {} - "
-                      "{} - {}x MSAA - {}",
-                      o.title, mean, 1000.0 / mean, ev100 - state.compensation, state.skyboxLod,
+          fmt::format("{}{} - {:.2f} ms/frame ({:.0f} fps) - EV100 {:.1f} - skybox mip {:.1f} - "
+                      "{} - {} - {}x MSAA - {}",
+                      o.title, shown, mean, 1000.0 / mean, ev100 - state.compensation,
+                      state.skyboxLod,
                       shading.only == ShadingTerms::Both      ? "diffuse + specular"
                       : shading.only == ShadingTerms::Diffuse ? "diffuse only"
                                                               : "specular only",
@@ -544,6 +736,11 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     }
   }
   stats.meanFrameMs = stats.frames > 0 ? totalMs / stats.frames : 0.0;
+  stats.view = state.view;
+  if (r.tracer) {
+    stats.referenceSpp = r.tracer->samplesPerPixel();
+    stats.referenceNoise = r.tracer->noise();
+  }
   return stats;
 }
 

@@ -41,11 +41,18 @@ class EmissiveTriangles {
   // along unit w on triangle `primitive` of mesh `mesh` (0 when that triangle is not sampled).
   float pdf(glm::vec3 w, float t, unsigned mesh, unsigned primitive) const;
 
- private:
+  // What is sampled, for the GPU reference's copy: each triangle, its area and the cumulative
+  // probability up to and including it (the last 1), and per mesh and primitive the triangle's
+  // entry (-1: not sampled; a mesh without emitters has no entries).
   struct Triangle {
     unsigned mesh, primitive;
     float area;
   };
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const std::vector<double>& cumulative() const { return cdf_; }
+  const std::vector<std::vector<std::int32_t>>& entryOf() const { return indexOf_; }
+
+ private:
   const Scene& scene_;
   const RayTracer& tracer_;
   std::vector<Triangle> triangles_;

@@ -8,15 +8,12 @@
 #include "ibl/core/parallel.hpp"
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/sampling.hpp"
+#include "ibl/shared/path_brdf.h"
 #include "ibl/shared/split_sum.h"
-#include "microfacet_walk.hpp"
 
 namespace ibl {
 
 namespace {
-
-constexpr float kPi = std::numbers::pi_v<float>;
-constexpr float kMinAlpha = 1e-3f;  // GGX of alpha 0 is a delta; 1e-3 is a mirror in practice
 
 // E(n.v, r) = A + B, the share of a white furnace that a single-scattering GGX lobe with F0 = 1
 // reflects, bilinear between nodes that include the edges n.v = 0, 1 and r = 0, 1 (a DFG
@@ -59,219 +56,49 @@ const std::vector<float>& sheenAlbedoTable(SheenVisibility visibility) {
   return neubelt;
 }
 
-// Bilinear in one of the tables above at (n.v, r).
-float tableLookup(const std::vector<float>& table, float NoV, float roughness) {
-  const float x = std::clamp(NoV, 0.0f, 1.0f) * (kNodes - 1);
-  const float y = std::clamp(roughness, 0.0f, 1.0f) * (kNodes - 1);
-  const int i = std::min(static_cast<int>(x), kNodes - 2),
-            j = std::min(static_cast<int>(y), kNodes - 2);
-  const float fx = x - static_cast<float>(i), fy = y - static_cast<float>(j);
-  const auto at = [&](int a, int b) { return table[static_cast<std::size_t>(b) * kNodes + a]; };
-  return glm::mix(glm::mix(at(i, j), at(i + 1, j), fx),
-                  glm::mix(at(i, j + 1), at(i + 1, j + 1), fx), fy);
-}
-
-float directionalAlbedo(float NoV, float roughness) {
-  return tableLookup(directionalAlbedoTable(), NoV, roughness);
-}
-
 float maxComponent(glm::vec3 c) {
   return std::max(c.x, std::max(c.y, c.z));
 }
 
-// The material's BRDF pieces at one point.
+// The material at one point (ibl/shared/path_brdf.h, which the GPU reference evaluates too).
 struct Brdf {
-  glm::vec3 diffuseColor, f0;
-  float alpha, roughness;
-  float f90;  // Schlick's grazing reflectance (RenderOptions::specularMicroOcclusion)
-  DiffuseModel diffuseModel;
-  ShadingTerms only;
-  glm::vec3 multipleScattering;  // the specular lobe's scale for the bounces between microfacets
-  // MultipleScattering::Walk: the specular lobe is Heitz et al. 2016's random walk on the
-  // microsurface (microfacet_walk.hpp), its single scattering the analytic GGX term below.
-  bool walk = false;
-  MicrofacetWalk microsurface{1.0f, glm::vec3(1.0f), 1.0f};
-  // KHR_materials_sheen: f = f_sheen + f_below min(1 - s E(n.v), 1 - s E(n.l)), s =
-  // max(sheenColor), f_sheen = sheenColor D_charlie V (the specification's layering), V the
-  // visibility of RenderOptions::sheenVisibility.
-  glm::vec3 sheenColor{0.0f};
-  float sheenRoughness = 0.0f, sheenAlpha = 1.0f, sheenScaleV = 1.0f;
-  SheenVisibility sheenVisibility = SheenVisibility::Charlie;
-  bool hasSheen() const { return sheenColor != glm::vec3(0.0f); }
+  shared::PathBrdf b;
+  shared::AlbedoTables tables;
 
   // The material at p seen from local direction v; `only` selects lobes.
   static Brdf of(const SurfacePoint& p, glm::vec3 v, ShadingTerms only, const RenderOptions& o) {
-    Brdf b{p.baseColor * (1.0f - p.metallic),
-           glm::mix(glm::vec3(0.04f), p.baseColor, p.metallic),
-           std::max(alphaFromRoughness(p.roughness), kMinAlpha),
-           p.roughness,
-           1.0f,
-           o.diffuse,
-           only,
-           glm::vec3(1.0f)};
-    b.f90 = shared::fresnelF90(b.f0, o.specularMicroOcclusion);
-    // The energy the single-scattering lobe loses to further bounces between microfacets,
-    // returned by the split sum's own compensation (Fdez-Aguera 2019, as Filament does): the
-    // lobe is scaled by 1 + F0 (1 / E(n.v) - 1). With F0 = 1 it
-    // reflects everything (a white furnace); both render modes compute the same material.
-    // MultipleScattering::Walk computes the bounces instead: nearly the same energy (within 5 %
-    // for F0 = 0.9), in another shape (docs/render.md, "Multiple scattering in the reference").
-    if (o.multipleScattering == MultipleScattering::Scale && only != ShadingTerms::Diffuse) {
-      const float e = directionalAlbedo(std::max(v.z, 1e-4f), p.roughness);
-      b.multipleScattering = shared::multipleScatteringCompensation(b.f0, glm::vec2(e, 0.0f));
-    }
-    if (o.multipleScattering == MultipleScattering::Walk && only != ShadingTerms::Diffuse) {
-      b.walk = true;
-      b.microsurface = MicrofacetWalk(b.alpha, b.f0, b.f90);
-    }
-    if (p.sheenColor != glm::vec3(0.0f)) {
-      // The split sum's sheen prefilter stops at kMinSheenRoughness: the same material here.
-      b.sheenColor = p.sheenColor;
-      b.sheenVisibility = o.sheenVisibility;
-      b.sheenRoughness = std::max(p.sheenRoughness, kMinSheenRoughness);
-      b.sheenAlpha = alphaFromRoughness(b.sheenRoughness);
-      b.sheenScaleV = b.albedoScaling(v.z);
-    }
-    return b;
+    const shared::AlbedoTables tables = referenceAlbedoTables(o.sheenVisibility);
+    return {shared::pathBrdfOf(tables, p.baseColor, p.metallic, p.roughness, p.sheenColor,
+                               p.sheenRoughness, v, static_cast<int>(only), pathShading(o)),
+            tables};
   }
-
-  bool specularLobe() const { return only == ShadingTerms::Both || only == ShadingTerms::Specular; }
-  bool diffuseLobe() const { return only == ShadingTerms::Both || only == ShadingTerms::Diffuse; }
-  bool sheenLobe() const {
-    return hasSheen() && (only == ShadingTerms::Both || only == ShadingTerms::Sheen);
+  // f(v, l) (n.l), with n = +Z of the local frame (with the walk, an unbiased estimate drawn
+  // from a branch of the sampler, which it does not advance).
+  glm::vec3 evaluate(glm::vec3 v, glm::vec3 l, const Sampler& sampler) const {
+    return shared::evaluatePathBrdf(tables, b, v, l, sampler, true);
   }
-  // 1 - max(sheenColor) E(c, sheen roughness).
-  float albedoScaling(float c) const {
-    return shared::sheenAlbedoScaling(sheenColor, tableLookup(sheenAlbedoTable(sheenVisibility),
-                                                              std::max(c, 1e-4f), sheenRoughness));
-  }
-
-  // The view as the walk takes it: above the horizon (shading normals can put v below it; the
-  // analytic terms clamp n.v to 1e-4 alike).
-  static glm::vec3 walkView(glm::vec3 v) {
-    return v.z >= 1e-4f ? v : glm::normalize(glm::vec3(v.x, v.y, 1e-4f));
-  }
-
-  // f(v, l) (n.l), with n = +Z of the local frame. With the walk, an unbiased estimate (sampler:
-  // the walk's numbers; unused otherwise); withSpecular = false leaves the specular lobe out.
-  glm::vec3 evaluate(glm::vec3 v, glm::vec3 l, Sampler& sampler, bool withSpecular = true) const {
-    const float NoV = std::max(v.z, 1e-4f), NoL = l.z;
-    if (NoL <= 0.0f) return glm::vec3(0.0f);
-    const glm::vec3 h = glm::normalize(v + l);
-    glm::vec3 result(0.0f);
-    if (specularLobe() && withSpecular) {
-      const float VoH = std::max(glm::dot(v, h), 0.0f);
-      result += ggxDistribution(h.z, alpha) * smithGgxCorrelatedVisibility(NoV, NoL, alpha) *
-                fresnelSchlick(f0, f90, VoH) * multipleScattering;
-      // The walk's orders 2 and up (f cos, hence the division): its order 1 has the
-      // expectation of the term above, which is exact.
-      if (walk) {
-        // The walk draws as many numbers as it takes bounces: from a stream of its own, so
-        // that the path's later numbers keep their dimensions.
-        Sampler walkNumbers = sampler.branch();
-        result += microsurface.evaluate(walkView(v), l, walkNumbers, 2) / NoL;
-      }
-    }
-    if (diffuseLobe()) {
-      const float fd = diffuseModel == DiffuseModel::Disney
-                           ? disneyDiffuseRenormalized(NoV, NoL, glm::dot(l, h), roughness)
-                           : 1.0f;
-      result += diffuseColor * (fd / kPi);
-    }
-    if (hasSheen()) {
-      result *= std::min(sheenScaleV, albedoScaling(NoL));
-      if (sheenLobe())
-        result += sheenColor * (shared::charlieDistribution(h.z, sheenAlpha) *
-                                ibl::sheenVisibility(sheenVisibility, NoV, NoL, sheenAlpha));
-    }
-    return result * NoL;
-  }
-
-  // Probability of sampling the sheen lobe (cosine-distributed: the Charlie lobe is broad).
-  float sheenProbability() const {
-    if (!sheenLobe()) return 0.0f;
-    if (only == ShadingTerms::Sheen) return 1.0f;
-    return std::clamp(0.5f * maxComponent(sheenColor), 0.1f, 0.5f);
-  }
-
-  // Probability of picking the specular lobe when sampling the layer below.
-  float specularProbability() const {
-    if (!specularLobe()) return 0.0f;
-    if (!diffuseLobe()) return 1.0f;
-    const float s = luminance(f0) + 0.04f, d = luminance(diffuseColor);
-    if (d <= 0.0f) return 1.0f;  // a metal: no diffuse lobe to sample
-    return std::clamp(s / (s + d), 0.1f, 0.9f);
-  }
-
-  float pdf(glm::vec3 v, glm::vec3 l) const {
-    if (l.z <= 0.0f) return 0.0f;
-    const float pSheen = sheenProbability();
-    const float ps = specularProbability();
-    float p = (1.0f - ps) * l.z / kPi;
-    if (ps > 0.0f) {
-      const glm::vec3 h = glm::normalize(v + l);
-      const float NoV = std::max(v.z, 1e-4f);
-      // Visible normals, reflected: pdf(l) = G1(v) D(h) / (4 n.v).
-      p += ps * smithGgxMasking(NoV, alpha) * ggxDistribution(h.z, alpha) / (4.0f * NoV);
-    }
-    return pSheen * l.z / kPi + (1.0f - pSheen) * p;
-  }
-
-  // A direction l and its weight f(v, l) (n.l) / p(l).
-  struct Sample {
-    glm::vec3 direction;
-    glm::vec3 weight;
-  };
-  Sample sample(glm::vec3 v, Sampler& sampler) const {
-    const glm::vec2 xi = sampler.uniform2();
-    float choose = sampler.uniform();
-    const float pSheen = sheenProbability();
-    if (walk) {
-      // The walk's directions have no pdf to evaluate: one lobe is estimated at a time, the
-      // specular by the walk's sample (weight: its f cos / p, the Fresnel of its bounces, times
-      // the sheen layer's scaling) over the probability of choosing it, the others (sheen and
-      // diffuse, both cosine-distributed) by f cos / p over the probability of the rest. Each
-      // lobe's estimate is unbiased, so their sum is; pdf() (single scattering for the
-      // specular) serves the MIS weights alone, as an approximation: the light's weight and
-      // this sample's, computed from the same pdf() at the same l, still sum to 1, which is
-      // all an unbiased MIS estimator needs (Veach 1997, section 9.2.2); a pdf away from the
-      // walk's true one costs variance, not bias.
-      const float specular = (1.0f - pSheen) * specularProbability();
-      if (choose < specular) {
-        Sampler walkNumbers = sampler.branch();  // as in evaluate()
-        const MicrofacetWalk::Sample s = microsurface.sample(walkView(v), walkNumbers);
-        glm::vec3 weight = s.weight / specular;
-        if (hasSheen()) weight *= std::min(sheenScaleV, albedoScaling(s.wo.z));
-        return {s.wo, weight};
-      }
-      const glm::vec3 l = sampleCosineHemisphere(xi);
-      const float p = (1.0f - specular) * l.z / kPi;
-      if (!(p > 0.0f)) return {l, glm::vec3(0.0f)};
-      return {l, evaluate(v, l, sampler, false) / p};
-    }
-    glm::vec3 l;
-    if (choose < pSheen) {
-      l = sampleCosineHemisphere(xi);
-    } else {
-      choose = (choose - pSheen) / (1.0f - pSheen);
-      if (choose < specularProbability()) {
-        const glm::vec3 h = sampleGgxVisibleNormal(v, xi, alpha);
-        l = 2.0f * glm::dot(v, h) * h - v;
-      } else {
-        l = sampleCosineHemisphere(xi);
-      }
-    }
-    const float p = pdf(v, l);
-    if (!(p > 0.0f)) return {l, glm::vec3(0.0f)};
-    return {l, evaluate(v, l, sampler) / p};
+  float pdf(glm::vec3 v, glm::vec3 l) const { return shared::pathBrdfPdf(b, v, l); }
+  shared::PathBrdfSample sample(glm::vec3 v, Sampler& sampler) const {
+    return shared::samplePathBrdf(tables, b, v, sampler);
   }
 };
 
-float powerHeuristic(float a, float b) {
-  return a * a / (a * a + b * b);
-}
+using shared::powerHeuristic;
 
 }  // namespace
+
+shared::AlbedoTables referenceAlbedoTables(SheenVisibility visibility) {
+  return {directionalAlbedoTable().data(), sheenAlbedoTable(visibility).data()};
+}
+
+shared::PathShading pathShading(const RenderOptions& o) {
+  shared::PathShading s;
+  s.diffuseModel = o.diffuse == DiffuseModel::Disney ? 0 : 1;
+  s.multipleScattering = static_cast<int>(o.multipleScattering);
+  s.specularMicroOcclusion = o.specularMicroOcclusion;
+  s.sheenVisibility = static_cast<int>(o.sheenVisibility);
+  return s;
+}
 
 NearestLight nearestLight(const std::vector<Light>& lights, glm::vec3 p, glm::vec3 w) {
   NearestLight best;
@@ -399,7 +226,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     }
     // The BRDF's sample: it ends on a light or the environment (weighed against their
     // sampling), or goes on from the surface it meets.
-    const Brdf::Sample bs = brdf.sample(v, sampler);
+    const shared::PathBrdfSample bs = brdf.sample(v, sampler);
     const glm::vec3 l = bs.direction;
     const float pb = brdf.pdf(v, l);
     if (!(pb > 0.0f) || bs.weight == glm::vec3(0.0f)) break;

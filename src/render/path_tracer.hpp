@@ -19,6 +19,7 @@
 #include "ibl/math/color.hpp"
 #include "ibl/render/light_sampling.hpp"
 #include "ibl/render/renderer.hpp"
+#include "ibl/shared/path_brdf.h"
 #include "ray_tracer.hpp"
 #include "sampler.hpp"
 
@@ -52,6 +53,11 @@ class EnvironmentSampler {
                               intervalOf(columnCdf_.data() + row * n_, x)) *
            invRho / texelArea_;
   }
+
+  // The tables, for the GPU reference's copy: the rows' CDF (6n entries, face-major) and each
+  // row's CDF over its n texels, row after row; each ends at 1.
+  const std::vector<double>& rowCdf() const { return rowCdf_; }
+  const std::vector<double>& columnCdf() const { return columnCdf_; }
 
   glm::vec3 sample(glm::vec2 xi) const {
     const auto [row, v] = invert(rowCdf_.data(), rowCdf_.size(), xi.x);
@@ -103,6 +109,13 @@ struct PathTracerScene {
   const RenderOptions& options;
   const EmissiveTriangles& emitters;  // the scene's emissive triangles, sampled as lights
 };
+
+// The directional-albedo tables the reference's material reads (ibl/shared/path_brdf.h), for a
+// render of sheen visibility `visibility`: integrated once per process (call
+// preparePathTracer() first outside parallel work), alive until it ends.
+shared::AlbedoTables referenceAlbedoTables(SheenVisibility visibility);
+// The render's shading switches as the shared material reads them.
+shared::PathShading pathShading(const RenderOptions& o);
 
 // Computes what tracePath reads once per process (the multiple-scattering table). Call it
 // outside parallel work: a table built lazily inside a task could be re-entered by the same

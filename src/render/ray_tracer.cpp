@@ -1,7 +1,6 @@
 #include "ray_tracer.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
 
 #include <glm/geometric.hpp>
@@ -26,20 +25,6 @@ float alphaAt(const AlphaTest& a, unsigned primitive, float u, float v) {
   return alpha;
 }
 
-// A uniform number in [0, 1) from a ray and a triangle: the threshold of stochastic
-// transparency (each sample's ray differs, so BLEND averages to alpha over samples).
-float blendThreshold(const float (&ray)[6], unsigned primitive) {
-  std::uint32_t h = primitive * 0x9e3779b9u;
-  for (float f : ray) {
-    h ^= std::bit_cast<std::uint32_t>(f) + 0x7f4a7c15u + (h << 6) + (h >> 2);
-    h *= 0x85ebca6bu;
-    h ^= h >> 13;
-  }
-  h *= 0xc2b2ae35u;
-  h ^= h >> 16;
-  return static_cast<float>(h >> 8) * 0x1p-24f;
-}
-
 // Embree's filter for MASK and BLEND meshes, of intersections and of occlusion alike: a hit the
 // alpha does not cover is ignored, and the ray goes on.
 void alphaFilter(const RTCFilterFunctionNArguments* args) {
@@ -49,12 +34,14 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
     const unsigned primitive = RTCHitN_primID(args->hit, args->N, k);
     const float alpha =
         alphaAt(*a, primitive, RTCHitN_u(args->hit, args->N, k), RTCHitN_v(args->hit, args->N, k));
-    const float ray[6] = {
-        RTCRayN_org_x(args->ray, args->N, k), RTCRayN_org_y(args->ray, args->N, k),
-        RTCRayN_org_z(args->ray, args->N, k), RTCRayN_dir_x(args->ray, args->N, k),
-        RTCRayN_dir_y(args->ray, args->N, k), RTCRayN_dir_z(args->ray, args->N, k)};
+    const glm::vec3 origin(RTCRayN_org_x(args->ray, args->N, k),
+                           RTCRayN_org_y(args->ray, args->N, k),
+                           RTCRayN_org_z(args->ray, args->N, k));
+    const glm::vec3 dir(RTCRayN_dir_x(args->ray, args->N, k), RTCRayN_dir_y(args->ray, args->N, k),
+                        RTCRayN_dir_z(args->ray, args->N, k));
     if (!shared::alphaCovers(static_cast<int>(a->material->alphaMode), alpha,
-                             a->material->alphaCutoff, blendThreshold(ray, primitive)))
+                             a->material->alphaCutoff,
+                             shared::rayBlendThreshold(origin, dir, primitive)))
       args->valid[k] = 0;
   }
 }

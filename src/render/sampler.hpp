@@ -7,6 +7,7 @@
 #include <glm/vec2.hpp>
 
 #include "ibl/math/sampling.hpp"
+#include "ibl/shared/path_sampler.h"
 
 namespace ibl {
 
@@ -21,54 +22,36 @@ namespace ibl {
 //
 // Without startSample() the index stays 0 and each draw is an independent, uniformly
 // scrambled point: a plain random stream (what the walk's tests use).
-class Sampler {
+//
+// The state and the draws are ibl/shared/path_sampler.h's, which the GPU reference draws too:
+// the same seed, pixel and sample index give the same numbers on both.
+class Sampler : public shared::PathSampler {
  public:
   // `seed` is the render's, `stream` the pixel's (or any other independent stream).
   Sampler(std::uint64_t seed, std::uint64_t stream)
-      : key_(hash32(static_cast<std::uint32_t>(seed) ^
-                    hash32(static_cast<std::uint32_t>(seed >> 32u)) ^
-                    hash32(static_cast<std::uint32_t>(stream) + 0x632be5abu) ^
-                    hash32(static_cast<std::uint32_t>(stream >> 32u) + 0x85157af5u))) {}
+      : shared::PathSampler(shared::pathSamplerAt(
+            shared::pathSamplerKey(
+                static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32u),
+                static_cast<std::uint32_t>(stream), static_cast<std::uint32_t>(stream >> 32u)),
+            0u)) {}
 
   // Starts the sample of index `index` at the first dimension.
-  void startSample(std::uint32_t index) {
-    index_ = index;
-    dimension_ = 0;
-    spare_ = false;
-  }
+  void startSample(std::uint32_t i) { *this = Sampler(shared::pathSamplerAt(key, i)); }
 
   // The next dimension pair, in [0, 1)^2.
-  glm::vec2 uniform2() { return sobolOwen2D(index_, hash32(key_ + 0x9e3779b9u * ++dimension_)); }
+  glm::vec2 uniform2() { return shared::pathUniform2(*this); }
   // A sampler of its own for a computation that draws a varying count of numbers (the
   // microfacet walk: as many as its bounces), at the same sample index and keyed by where this
   // sampler stands, which it does not advance: this sampler's later draws keep their dimensions,
   // and the branch's first draws are low-discrepancy over the pixel's samples too.
-  Sampler branch() const {
-    Sampler b = *this;
-    b.key_ = hash32(key_ ^ hash32(2u * dimension_ + (spare_ ? 1u : 0u) + 0x5bd1e995u));
-    b.dimension_ = 0;
-    b.spare_ = false;
-    return b;
-  }
+  Sampler branch() const { return Sampler(shared::pathSamplerBranch(*this)); }
 
   // The next dimension, in [0, 1): the first of a new pair, or the second of the pair the
   // previous call opened.
-  float uniform() {
-    if (spare_) {
-      spare_ = false;
-      return second_;
-    }
-    const glm::vec2 pair = uniform2();
-    second_ = pair.y;
-    spare_ = true;
-    return pair.x;
-  }
+  float uniform() { return shared::pathUniform(*this); }
 
  private:
-  std::uint32_t key_;
-  std::uint32_t index_ = 0, dimension_ = 0;
-  float second_ = 0.0f;  // the unused half of the last pair uniform() opened
-  bool spare_ = false;
+  explicit Sampler(const shared::PathSampler& state) : shared::PathSampler(state) {}
 };
 
 }  // namespace ibl

@@ -13,37 +13,18 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/shared/material.h"
 
 namespace ibl {
-
-namespace {
-
-// Texel index i of a row or column of n, wrapped as glTF's samplers (OpenGL's rules).
-int wrapTexel(int i, int n, Wrap wrap) {
-  switch (wrap) {
-    case Wrap::ClampToEdge:
-      return std::clamp(i, 0, n - 1);
-    case Wrap::MirroredRepeat: {
-      const int period = 2 * n;
-      int m = i % period;
-      if (m < 0) m += period;
-      return m < n ? m : period - 1 - m;
-    }
-    case Wrap::Repeat:
-      break;
-  }
-  i %= n;
-  return i < 0 ? i + n : i;
-}
-
-}  // namespace
 
 glm::vec4 Texture::sample(glm::vec2 uv, bool srgb) const {
   if (empty()) return glm::vec4(1.0f);
   const auto at = [&](int x, int y) {
-    const std::uint8_t* t =
-        rgba->data() + 4 * (static_cast<std::size_t>(wrapTexel(y, height, sampler.wrapT)) * width +
-                            static_cast<std::size_t>(wrapTexel(x, width, sampler.wrapS)));
+    const std::uint8_t* t = rgba->data() + 4 * (static_cast<std::size_t>(shared::wrapTexel(
+                                                    y, height, static_cast<int>(sampler.wrapT))) *
+                                                    width +
+                                                static_cast<std::size_t>(shared::wrapTexel(
+                                                    x, width, static_cast<int>(sampler.wrapS))));
     return srgb ? glm::vec4(srgb8ToLinear(t[0]), srgb8ToLinear(t[1]), srgb8ToLinear(t[2]),
                             static_cast<float>(t[3]) / 255.0f)
                 : glm::vec4(t[0], t[1], t[2], t[3]) / 255.0f;

@@ -276,24 +276,37 @@ TEST(Usage, Render) {
                          "--shadow-rays: must be from 1"},
                         {"--exr-exposed", "-o out.exr --exr-exposed=maybe", 2, "--exr-exposed"},
                         {"--seed", "-o out.png --seed -1", 2, "--seed"},
+                        {"--device", "-o out.png --mode reference --device tpu", 2, "--device"},
+                        {"--device", "-o out.png --device gpu", 2,
+                         "--device: gpu and auto run the reference"},
+                        {"--noise", "-o out.png --mode reference --device gpu --noise 0.1", 2,
+                         "--noise: adaptive stopping is the CPU reference's"},
                     });
 }
 
 TEST(Usage, View) {
   // Every misuse is found before the Vulkan device is opened: no GPU needed.
-  expectMisuses("view", "sphere",
-                sceneMisusesWith("--screenshot out.png") +
-                    std::vector<Misuse>{
-                        {"--screenshot", "--screenshot out.jpg", 2, "output must be .exr"},
-                        {"--spp", "--screenshot out.png --spp 3", 2, "--spp"},
-                        {"--skybox-mip", "--screenshot out.png --skybox-mip -1", 2,
-                         "--skybox-mip: must be from 0 to 16, not -1"},
-                        {"--frames", "--frames -1", 2, "--frames: must be from 0"},
-                        {"--ao", "--screenshot out.png --ao 4", 2,
-                         "ray-cast ambient occlusion is `ibl render`'s alone"},
-                        {"--shadows", "--screenshot out.png --shadows ray", 2,
-                         "--shadows: ray is `ibl render`'s alone"},
-                    });
+  expectMisuses(
+      "view", "sphere",
+      sceneMisusesWith("--screenshot out.png") +
+          std::vector<Misuse>{
+              {"--screenshot", "--screenshot out.jpg", 2, "output must be .exr"},
+              {"--spp", "--screenshot out.png --spp 3", 2, "--spp"},
+              {"--skybox-mip", "--screenshot out.png --skybox-mip -1", 2,
+               "--skybox-mip: must be from 0 to 16, not -1"},
+              {"--frames", "--frames -1", 2, "--frames: must be from 0"},
+              {"--reference", "--screenshot out.png --reference full", 2, "--reference"},
+              {"--reference-spp", "--screenshot out.png --reference-spp 4", 2,
+               "--reference-spp: needs --reference"},
+              {"--reference-spp", "--screenshot out.png --reference reference --reference-spp 0", 2,
+               "--reference-spp: must be from 1 to 1048576, not 0"},
+              {"--reference-spp", "--screenshot out.png --reference split --reference-spp 2000000",
+               2, "--reference-spp: must be from 1 to 1048576, not 2000000"},
+              {"--ao", "--screenshot out.png --ao 4", 2,
+               "ray-cast ambient occlusion is `ibl render`'s alone"},
+              {"--shadows", "--screenshot out.png --shadows ray", 2,
+               "--shadows: ray is `ibl render`'s alone"},
+          });
 }
 
 TEST(Usage, Probe) {

@@ -79,6 +79,29 @@ struct EnvironmentChange {
   std::string label;          // for the title and the log: "sun at 35 degrees"
 };
 
+// What the window shows (M cycles through them): the real-time frame; the reference
+// (gpu::PathTracer, path_tracer.hpp) accumulating while the view stands still; the difference of
+// the two as `ibl compare --error-png` draws it (errorFalseColor of ibl/core/stats.hpp, the
+// real-time frame judged against the reference, at kViewDifferenceScale); the left half real time
+// and the right half the reference.
+enum class ViewMode { RealTime = 0, Reference = 1, Difference = 2, Split = 3 };
+// "real time", "reference", "difference", "split".
+const char* viewModeName(ViewMode mode);
+// The relative error the difference view shows as red (`ibl compare --error-scale`'s default).
+inline constexpr double kViewDifferenceScale = 0.1;
+
+// The picture of `mode` from a real-time frame and a reference of the same size: the real-time
+// frame itself; the reference; errorFalseColor(realTime, reference, kViewDifferenceScale) (values
+// in [0, 1] to be shown without exposure or tone curve; coverage the reference's); or the columns
+// x < width / 2 of the real-time frame and the others of the reference, coverage likewise.
+RenderResult composeView(ViewMode mode, const RenderResult& realTime,
+                         const RenderResult& reference);
+
+// The options of the reference the viewer compares with: the real-time switches of `realTime`
+// (terms, diffuse model, multiple scattering, background, environment light, ...) in
+// RenderMode::Reference with `ibl render --mode reference`'s defaults (4 bounces, seed 1).
+RenderOptions viewReferenceOptions(const RenderOptions& realTime);
+
 struct WindowOptions {
   Camera camera;               // the initial view; width and height: the window's size
   RenderOptions render;        // shading switches; spp: multisamples
@@ -93,19 +116,32 @@ struct WindowOptions {
   int frames = 0;  // stop after this many frames (0: when the window is closed)
   std::string title = "ibl view";
   // Called with the current view rendered offscreen (linear radiance), its EV100 and tone
-  // curve when the user presses P or F12; none: the keys do nothing.
-  std::function<void(const RenderResult&, float ev100, ToneMap)> screenshot;
+  // curve when the user presses P or F12; none: the keys do nothing. Outside the real-time view:
+  // the picture shown (composeView); ViewMode::Difference's colors are to be written as they are.
+  std::function<void(const RenderResult&, float ev100, ToneMap, ViewMode)> screenshot;
   // Time of day: called with -1 or +1 when the user presses , or . (the sun lower / higher), and
   // the viewer's device to bake on; returns the new environment, or nothing. The title and
   // stderr show how long the change took.
   std::function<std::optional<EnvironmentChange>(int step, Context& device)> timeOfDay;
+  // The view the window starts in (M cycles it). Reference, difference and split views trace the
+  // reference on the window's device (gpu::PathTracer, made when first shown) with
+  // `reference`'s options (none: viewReferenceOptions(render); D and S still switch its terms),
+  // a batch of samples per frame (1 to 16 per pixel, sized to keep a frame near 30 ms) for as long
+  // as the camera, the shading switches, the window's size and the environment stay the same;
+  // any change starts it over.
+  ViewMode view = ViewMode::RealTime;
+  std::optional<RenderOptions> reference;
+  int referenceSpp = 0;  // the reference stops adding samples at this many per pixel (0: 1 << 20)
 };
 
 struct WindowStats {
   int frames = 0;
   double meanFrameMs = 0.0;  // wall time per frame, presentation included
   std::string device;
-  int samples = 0;  // MSAA samples per pixel the device allowed
+  int samples = 0;                     // MSAA samples per pixel the device allowed
+  ViewMode view = ViewMode::RealTime;  // the view shown when the window closed
+  int referenceSpp = 0;                // the reference's samples per pixel then (0: none traced)
+  float referenceNoise = 0.0f;         // and its estimated relative noise (PathTracer::noise)
 };
 
 // The window's bloom run offscreen: `linear` (radiance) uploaded, bloomed by the device's passes
@@ -116,8 +152,10 @@ Image bloomOnDevice(Context& context, const Image& linear, float ev100, float co
 // Opens a GLFW window and runs the interactive viewer until it is closed (Esc, Q) or after
 // `frames` frames: left drag orbits, the wheel zooms, +/- change the exposure, [ and ] the
 // skybox's mip level, D and S toggle the diffuse and specular terms, P or F12 takes a
-// screenshot (options.screenshot), T cycles the tone curve,
-// R resets the view; the title shows the frame time. Throws Error("window: ...") without a
+// screenshot (options.screenshot), T cycles the tone curve, M cycles the view (real time,
+// reference, difference, split: ViewMode), R resets the view; the title shows the frame time,
+// and outside the real-time view the view's name, the reference's samples per pixel and its
+// estimated noise (PathTracer::noise, in percent). Throws Error("window: ...") without a
 // display.
 WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
                             const BakeOptions& bakeOptions, const WindowOptions& options,

@@ -7,6 +7,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "ibl/shared/path_sampler.h"
 #include "ibl/shared/sampling.h"
 
 namespace ibl {
@@ -22,18 +23,17 @@ using shared::VisibleNormalFrame;
 using shared::visibleNormalFrame;
 using shared::visibleNormalFromDisk;
 
-// An avalanching 32-bit hash (Wellons' lowbias32), to derive independent seeds.
-std::uint32_t hash32(std::uint32_t x);
-
-// Nested uniform (Owen) scrambling of the bits of x, hash-based: Burley 2020, "Practical
-// Hash-based Owen Scrambling", JCGT 9(4), listing 2 (the Laine-Karras permutation between two
-// bit reversals). Different seeds give independent scramblings.
-std::uint32_t owenScramble(std::uint32_t x, std::uint32_t seed);
-
-// Point `index` of the first two dimensions of the Sobol sequence (a (0,2)-sequence in base 2:
-// every prefix of 2^k points has one point in each of the 2^k elementary intervals of any
-// shape), shuffled and Owen-scrambled with `seed` (Burley 2020, section 4). In [0, 1)^2.
-// Any prefix is well distributed, and different seeds (pixels) are decorrelated.
-glm::vec2 sobolOwen2D(std::uint32_t index, std::uint32_t seed);
+// The reference's numbers (ibl/shared/path_sampler.h): an avalanching 32-bit hash (Wellons'
+// lowbias32), hash-based Owen scrambling (Burley 2020, "Practical Hash-based Owen Scrambling",
+// JCGT 9(4), listing 2: the Laine-Karras permutation between two bit reversals), and point
+// `index` of the first two dimensions of the Sobol sequence (a (0,2)-sequence in base 2: every
+// prefix of 2^k points has one point in each of the 2^k elementary intervals of any shape),
+// shuffled and Owen-scrambled with `seed` (section 4), in [0, 1)^2: any prefix is well
+// distributed, and different seeds (pixels) are decorrelated.
+using shared::hash32;
+using shared::owenScramble;
+inline glm::vec2 sobolOwen2D(std::uint32_t index, std::uint32_t seed) {
+  return shared::sobolOwenPair(index, seed);
+}
 
 }  // namespace ibl

@@ -6,6 +6,8 @@
 // functions, so one text serves both; what differs is settled here:
 //   - IBL_FN before every function: `inline` (and always inlined, for the vectorized loops) in
 //     C++, nothing in GLSL;
+//   - IBL_INOUT(T) for a parameter the function updates (T& in C++, inout T in GLSL), and
+//     IBL_FLOAT_BITS(x) for a float's bits as a uint (std::bit_cast, floatBitsToUint);
 //   - IBL_BEGIN / IBL_END around the definitions: namespace ibl::shared in C++ (the C++
 //     headers export what the library uses into namespace ibl), nothing in GLSL;
 //   - structs are built member by member (no constructors, no braces), arrays are avoided,
@@ -15,6 +17,7 @@
 #define IBL_SHARED_LANG_H
 
 #ifdef __cplusplus
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -31,6 +34,8 @@
 #define IBL_FN [[gnu::always_inline]] inline
 #define IBL_BEGIN namespace ibl::shared {
 #define IBL_END }
+#define IBL_INOUT(T) T&
+#define IBL_FLOAT_BITS(x) std::bit_cast<std::uint32_t>(x)
 
 namespace ibl::shared {
 using uint = std::uint32_t;
@@ -67,6 +72,8 @@ using glm::sqrt;
 #define IBL_FN
 #define IBL_BEGIN
 #define IBL_END
+#define IBL_INOUT(T) inout T
+#define IBL_FLOAT_BITS(x) floatBitsToUint(x)
 #endif
 
 IBL_BEGIN

@@ -41,6 +41,36 @@ IBL_FN bool alphaCovers(int mode, float alpha, float cutoff, float threshold) {
   return true;
 }
 
+// The reference's BLEND threshold: a uniform number in [0, 1) hashed from a ray (its origin and
+// direction, as traced) and the triangle it meets, so that each sample's ray decides anew and
+// BLEND averages to alpha over samples.
+IBL_FN float rayBlendThreshold(vec3 origin, vec3 dir, uint primitive) {
+  uint h = primitive * 0x9e3779b9u;
+  for (int i = 0; i < 6; ++i) {
+    float f = i < 3 ? origin[i] : dir[i - 3];
+    h ^= IBL_FLOAT_BITS(f) + 0x7f4a7c15u + (h << 6u) + (h >> 2u);
+    h *= 0x85ebca6bu;
+    h ^= h >> 13u;
+  }
+  h *= 0xc2b2ae35u;
+  h ^= h >> 16u;
+  return float(h >> 8u) * (1.0f / 16777216.0f);
+}
+
+// Texel index i of a row or column of n, wrapped as glTF's samplers (OpenGL's rules): wrap 0
+// REPEAT, 1 CLAMP_TO_EDGE, 2 MIRRORED_REPEAT (Wrap's values in ibl/render/scene.hpp).
+IBL_FN int wrapTexel(int i, int n, int wrap) {
+  if (wrap == 1) return clamp(i, 0, n - 1);
+  if (wrap == 2) {
+    int period = 2 * n;
+    int m = i % period;
+    if (m < 0) m += period;
+    return m < n ? m : period - 1 - m;
+  }
+  i %= n;
+  return i < 0 ? i + n : i;
+}
+
 IBL_END
 
 #endif

@@ -1,0 +1,294 @@
+// The reference's material, for the CPU path tracer (src/render/path_tracer.cpp) and the GPU's
+// (shaders/render/path_trace.comp): glTF's metallic-roughness BRDF (GGX with the height-correlated
+// Smith term and Schlick's Fresnel, a Disney or Lambert diffuse), its multiple scattering (the
+// split sum's compensation, or Heitz et al. 2016's walk: microfacet_walk.h), the
+// KHR_materials_sheen layer, and how a path samples it: the lobe chosen by its weight, visible
+// normals for GGX (Heitz 2018), cosines for the others, with the pdf that multiple importance
+// sampling weighs (Veach 1997, section 9.2). C++ and GLSL (see lang.h).
+#ifndef IBL_SHARED_PATH_BRDF_H
+#define IBL_SHARED_PATH_BRDF_H
+#include "ibl/shared/brdf.h"
+#include "ibl/shared/color.h"
+#include "ibl/shared/lang.h"
+#include "ibl/shared/microfacet_walk.h"
+#include "ibl/shared/path_sampler.h"
+#include "ibl/shared/sampling.h"
+#include "ibl/shared/split_sum.h"
+
+IBL_BEGIN
+
+// The lobes a path shades (ShadingTerms' values in ibl/render/renderer.hpp).
+const int kLobesAll = 0;
+const int kLobesDiffuse = 1;
+const int kLobesSpecular = 2;
+const int kLobesSheen = 3;
+// MultipleScattering's values (ibl/render/renderer.hpp).
+const int kMultipleScatteringOff = 0;
+const int kMultipleScatteringScale = 1;
+const int kMultipleScatteringWalk = 2;
+// GGX of alpha 0 is a delta; 1e-3 is a mirror in practice.
+const float kMinPathAlpha = 1e-3f;
+
+// The tables of directional albedo E(n.v, r) the material reads: the single-scattering GGX
+// lobe's with F0 = 1 (table 0) and the sheen lobe's with the render's visibility (table 1), each
+// kAlbedoTableNodes^2 nodes that include the edges n.v = 0, 1 and r = 0, 1, node (i, j) at
+// n.v = i / (nodes - 1), r = j / (nodes - 1) (src/render/path_tracer.cpp integrates them).
+const int kAlbedoTableNodes = 33;
+#ifdef __cplusplus
+struct AlbedoTables {
+  const float* ggx;
+  const float* sheen;
+};
+#define IBL_ALBEDO_TABLES const AlbedoTables &tables,
+#define IBL_ALBEDO_ARG tables,
+inline float albedoTableNode(IBL_ALBEDO_TABLES int table, int index) {
+  return table == 0 ? tables.ggx[index] : tables.sheen[index];
+}
+#else
+// The including shader defines float albedoTableNode(int table, int index).
+#define IBL_ALBEDO_TABLES
+#define IBL_ALBEDO_ARG
+#endif
+
+// Table `table` at (n.v, r), bilinear between its nodes.
+IBL_FN float albedoTableLookup(IBL_ALBEDO_TABLES int table, float NoV, float roughness) {
+  float x = clamp(NoV, 0.0f, 1.0f) * float(kAlbedoTableNodes - 1);
+  float y = clamp(roughness, 0.0f, 1.0f) * float(kAlbedoTableNodes - 1);
+  int i = min(int(x), kAlbedoTableNodes - 2), j = min(int(y), kAlbedoTableNodes - 2);
+  float fx = x - float(i), fy = y - float(j);
+  int n = kAlbedoTableNodes;
+  float a = albedoTableNode(IBL_ALBEDO_ARG table, j * n + i);
+  float b = albedoTableNode(IBL_ALBEDO_ARG table, j * n + i + 1);
+  float c = albedoTableNode(IBL_ALBEDO_ARG table, (j + 1) * n + i);
+  float d = albedoTableNode(IBL_ALBEDO_ARG table, (j + 1) * n + i + 1);
+  return mix(mix(a, b, fx), mix(c, d, fx), fy);
+}
+
+// How the render shades (RenderOptions' switches).
+struct PathShading {
+  int diffuseModel;             // 0 Disney, 1 Lambert (DiffuseModel)
+  int multipleScattering;       // kMultipleScattering...
+  bool specularMicroOcclusion;  // Schlick's f90 from F0 (fresnelF90)
+  int sheenVisibility;          // kSheenVisibilityCharlie or ...Neubelt
+};
+
+// The material's BRDF pieces at one point, seen from local direction v (n = +Z).
+struct PathBrdf {
+  vec3 diffuseColor;
+  vec3 f0;
+  float alpha;
+  float roughness;
+  float f90;
+  int diffuseModel;
+  int lobes;                // kLobes...
+  vec3 multipleScattering;  // the specular lobe's scale for the bounces between microfacets
+  bool walk;                // the specular's bounces by the microfacet walk instead
+  // KHR_materials_sheen: f = f_sheen + f_below min(1 - s E(n.v), 1 - s E(n.l)), s =
+  // max(sheenColor), f_sheen = sheenColor D_charlie V (the specification's layering).
+  vec3 sheenColor;
+  float sheenRoughness;
+  float sheenAlpha;
+  float sheenScaleV;
+  int sheenVisibility;
+};
+
+IBL_FN bool pathHasSheen(PathBrdf b) {
+  return b.sheenColor != vec3(0.0f);
+}
+IBL_FN bool pathSpecularLobe(PathBrdf b) {
+  return b.lobes == kLobesAll || b.lobes == kLobesSpecular;
+}
+IBL_FN bool pathDiffuseLobe(PathBrdf b) {
+  return b.lobes == kLobesAll || b.lobes == kLobesDiffuse;
+}
+IBL_FN bool pathSheenLobe(PathBrdf b) {
+  return pathHasSheen(b) && (b.lobes == kLobesAll || b.lobes == kLobesSheen);
+}
+
+// 1 - max(sheenColor) E(c, sheen roughness): what the sheen layer lets through toward c.
+IBL_FN float pathSheenScaling(IBL_ALBEDO_TABLES PathBrdf b, float c) {
+  return sheenAlbedoScaling(b.sheenColor,
+                            albedoTableLookup(IBL_ALBEDO_ARG 1, max(c, 1e-4f), b.sheenRoughness));
+}
+
+// The material of base color, metallic, roughness (perceptual) and sheen, seen from v.
+IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, float roughness,
+                           vec3 sheenColor, float sheenRoughness, vec3 v, int lobes,
+                           PathShading o) {
+  PathBrdf b;
+  b.diffuseColor = baseColor * (1.0f - metallic);
+  b.f0 = mix(vec3(0.04f), baseColor, metallic);
+  b.alpha = max(alphaFromRoughness(roughness), kMinPathAlpha);
+  b.roughness = roughness;
+  b.f90 = fresnelF90(b.f0, o.specularMicroOcclusion);
+  b.diffuseModel = o.diffuseModel;
+  b.lobes = lobes;
+  b.multipleScattering = vec3(1.0f);
+  b.walk = false;
+  // The energy the single-scattering lobe loses to further bounces between microfacets, returned
+  // by the split sum's own compensation (Fdez-Aguera 2019, as Filament does): the lobe is scaled
+  // by 1 + F0 (1 / E(n.v) - 1). With F0 = 1 it reflects everything (a white furnace); both render
+  // modes compute the same material. The walk computes the bounces instead: nearly the same
+  // energy (within 5 % for F0 = 0.9), in another shape (docs/render.md).
+  if (o.multipleScattering == kMultipleScatteringScale && lobes != kLobesDiffuse) {
+    float e = albedoTableLookup(IBL_ALBEDO_ARG 0, max(v.z, 1e-4f), roughness);
+    b.multipleScattering = multipleScatteringCompensation(b.f0, vec2(e, 0.0f));
+  }
+  if (o.multipleScattering == kMultipleScatteringWalk && lobes != kLobesDiffuse) b.walk = true;
+  b.sheenColor = sheenColor;
+  b.sheenVisibility = o.sheenVisibility;
+  // The split sum's sheen prefilter stops at kMinSheenRoughness: the same material here.
+  b.sheenRoughness = max(sheenRoughness, kMinSheenRoughness);
+  b.sheenAlpha = alphaFromRoughness(b.sheenRoughness);
+  b.sheenScaleV = 1.0f;
+  if (pathHasSheen(b)) b.sheenScaleV = pathSheenScaling(IBL_ALBEDO_ARG b, v.z);
+  return b;
+}
+
+IBL_FN Microsurface pathMicrosurface(PathBrdf b) {
+  Microsurface s;
+  s.alpha = b.alpha;
+  s.f0 = b.f0;
+  s.f90 = b.f90;
+  return s;
+}
+
+// The view as the walk takes it: above the horizon (shading normals can put v below it; the
+// analytic terms clamp n.v to 1e-4 alike).
+IBL_FN vec3 walkView(vec3 v) {
+  return v.z >= 1e-4f ? v : normalize(vec3(v.x, v.y, 1e-4f));
+}
+
+// f(v, l) (n.l). With the walk, an unbiased estimate, drawn from a branch of `numbers` (the
+// walk draws as many numbers as it takes bounces: from a stream of its own, so that the path's
+// later numbers keep their dimensions); withSpecular = false leaves the specular lobe out.
+IBL_FN vec3 evaluatePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v, vec3 l, PathSampler numbers,
+                             bool withSpecular) {
+  float NoV = max(v.z, 1e-4f), NoL = l.z;
+  if (NoL <= 0.0f) return vec3(0.0f);
+  vec3 h = normalize(v + l);
+  vec3 result = vec3(0.0f);
+  if (pathSpecularLobe(b) && withSpecular) {
+    float VoH = max(dot(v, h), 0.0f);
+    result += ggxDistribution(h.z, b.alpha) * smithGgxCorrelatedVisibility(NoV, NoL, b.alpha) *
+              fresnelSchlick(b.f0, b.f90, VoH) * b.multipleScattering;
+    // The walk's orders 2 and up (f cos, hence the division): its order 1 has the expectation
+    // of the term above, which is exact.
+    if (b.walk) {
+      PathSampler walkNumbers = pathSamplerBranch(numbers);
+      result += evaluateMicrofacetWalk(pathMicrosurface(b), walkView(v), l, walkNumbers, 2,
+                                       kWalkMaxOrder) /
+                NoL;
+    }
+  }
+  if (pathDiffuseLobe(b)) {
+    float fd =
+        b.diffuseModel == 0 ? disneyDiffuseRenormalized(NoV, NoL, dot(l, h), b.roughness) : 1.0f;
+    result += b.diffuseColor * (fd / kPi);
+  }
+  if (pathHasSheen(b)) {
+    result *= min(b.sheenScaleV, pathSheenScaling(IBL_ALBEDO_ARG b, NoL));
+    if (pathSheenLobe(b))
+      result += b.sheenColor * (charlieDistribution(h.z, b.sheenAlpha) *
+                                sheenVisibility(b.sheenVisibility, NoV, NoL, b.sheenAlpha));
+  }
+  return result * NoL;
+}
+
+// The probability of sampling the sheen lobe (cosine-distributed: the Charlie lobe is broad).
+IBL_FN float pathSheenProbability(PathBrdf b) {
+  if (!pathSheenLobe(b)) return 0.0f;
+  if (b.lobes == kLobesSheen) return 1.0f;
+  float m = max(b.sheenColor.x, max(b.sheenColor.y, b.sheenColor.z));
+  return clamp(0.5f * m, 0.1f, 0.5f);
+}
+
+// The probability of picking the specular lobe when sampling the layer below.
+IBL_FN float pathSpecularProbability(PathBrdf b) {
+  if (!pathSpecularLobe(b)) return 0.0f;
+  if (!pathDiffuseLobe(b)) return 1.0f;
+  float s = luminance(b.f0) + 0.04f, d = luminance(b.diffuseColor);
+  if (d <= 0.0f) return 1.0f;  // a metal: no diffuse lobe to sample
+  return clamp(s / (s + d), 0.1f, 0.9f);
+}
+
+// The density per solid angle of samplePathBrdf's direction l (single scattering for the
+// walk's specular: see samplePathBrdf).
+IBL_FN float pathBrdfPdf(PathBrdf b, vec3 v, vec3 l) {
+  if (l.z <= 0.0f) return 0.0f;
+  float pSheen = pathSheenProbability(b);
+  float ps = pathSpecularProbability(b);
+  float p = (1.0f - ps) * l.z / kPi;
+  if (ps > 0.0f) {
+    vec3 h = normalize(v + l);
+    float NoV = max(v.z, 1e-4f);
+    // Visible normals, reflected: pdf(l) = G1(v) D(h) / (4 n.v).
+    p += ps * smithGgxMasking(NoV, b.alpha) * ggxDistribution(h.z, b.alpha) / (4.0f * NoV);
+  }
+  return pSheen * l.z / kPi + (1.0f - pSheen) * p;
+}
+
+// A direction l and its weight f(v, l) (n.l) / p(l).
+struct PathBrdfSample {
+  vec3 direction;
+  vec3 weight;
+};
+
+IBL_FN PathBrdfSample samplePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v,
+                                     IBL_INOUT(PathSampler) numbers) {
+  vec2 xi = pathUniform2(numbers);
+  float choose = pathUniform(numbers);
+  float pSheen = pathSheenProbability(b);
+  PathBrdfSample s;
+  if (b.walk) {
+    // The walk's directions have no pdf to evaluate: one lobe is estimated at a time, the
+    // specular by the walk's sample (weight: its f cos / p, the Fresnel of its bounces, times the
+    // sheen layer's scaling) over the probability of choosing it, the others (sheen and diffuse,
+    // both cosine-distributed) by f cos / p over the probability of the rest. Each lobe's
+    // estimate is unbiased, so their sum is; pathBrdfPdf (single scattering for the specular)
+    // serves the MIS weights alone, as an approximation: the light's weight and this sample's,
+    // computed from the same pdf at the same l, still sum to 1, which is all an unbiased MIS
+    // estimator needs (Veach 1997, section 9.2.2); a pdf away from the walk's true one costs
+    // variance, not bias.
+    float specular = (1.0f - pSheen) * pathSpecularProbability(b);
+    if (choose < specular) {
+      PathSampler walkNumbers = pathSamplerBranch(numbers);  // as in evaluatePathBrdf
+      WalkSample w = sampleMicrofacetWalk(pathMicrosurface(b), walkView(v), walkNumbers);
+      s.direction = w.wo;
+      s.weight = w.weight / specular;
+      if (pathHasSheen(b))
+        s.weight *= min(b.sheenScaleV, pathSheenScaling(IBL_ALBEDO_ARG b, w.wo.z));
+      return s;
+    }
+    s.direction = sampleCosineHemisphere(xi);
+    float p = (1.0f - specular) * s.direction.z / kPi;
+    s.weight = p > 0.0f ? evaluatePathBrdf(IBL_ALBEDO_ARG b, v, s.direction, numbers, false) / p
+                        : vec3(0.0f);
+    return s;
+  }
+  if (choose < pSheen) {
+    s.direction = sampleCosineHemisphere(xi);
+  } else {
+    choose = (choose - pSheen) / (1.0f - pSheen);
+    if (choose < pathSpecularProbability(b)) {
+      vec3 h = sampleGgxVisibleNormal(v, xi, b.alpha);
+      s.direction = 2.0f * dot(v, h) * h - v;
+    } else {
+      s.direction = sampleCosineHemisphere(xi);
+    }
+  }
+  float p = pathBrdfPdf(b, v, s.direction);
+  s.weight =
+      p > 0.0f ? evaluatePathBrdf(IBL_ALBEDO_ARG b, v, s.direction, numbers, true) / p : vec3(0.0f);
+  return s;
+}
+
+// Veach 1997's power heuristic (section 9.2.4, beta = 2): the weight of a sample of density a
+// against another strategy's b.
+IBL_FN float powerHeuristic(float a, float b) {
+  return a * a / (a * a + b * b);
+}
+
+IBL_END
+
+#endif

@@ -1,0 +1,379 @@
+// The reference on the device: the host side of shaders/render/path_trace.comp. The scene, the
+// environment and the tables go up once into storage buffers; every accumulate() dispatches the
+// shader over the image for a batch of samples, which add to the per-pixel sums on the device.
+#include "ibl/gpu/path_tracer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+
+#include "gpu/buffers.hpp"
+#include "gpu/bvh.hpp"
+#include "ibl/core/error.hpp"
+#include "ibl/math/color.hpp"
+#include "render/emissive_triangles.hpp"
+#include "render/path_tracer.hpp"
+#include "render/ray_tracer.hpp"
+
+namespace ibl::gpu {
+
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+
+float bitsOf(std::uint32_t u) {
+  return std::bit_cast<float>(u);
+}
+glm::vec4 bitsOf(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+  return {bitsOf(a), bitsOf(b), bitsOf(c), bitsOf(d)};
+}
+
+// The shader's Parameters block (std430).
+struct Parameters {
+  glm::vec4 cameraPosition, cameraForward, cameraRight, cameraUp, background;
+  glm::uvec4 image, counts, offsets, offsets2;
+  glm::ivec4 shading, path;
+};
+enum Flag : int {
+  kFlagVisibility = 1,
+  kFlagEnvironmentLight = 2,
+  kFlagBackgroundEnvironment = 4,
+  kFlagCameraSeesEmitters = 8,
+  kFlagCameraSeesSpecular = 16,
+  kFlagCaptureMetalsAsDiffuse = 32,
+  kFlagPixelCenter = 64,
+};
+
+// A texture slot as the shader reads it: texture index x 2 + texCoord, or -1.
+float slotOf(const TextureRef& ref) {
+  return ref.index < 0 ? -1.0f : static_cast<float>(ref.index * 2 + (ref.texCoord == 1 ? 1 : 0));
+}
+
+}  // namespace
+
+struct PathTracer::Impl {
+  Context& context;
+  std::unique_ptr<Buffer> parametersBuffer, nodes, triangles, sceneData, words, texels, levels,
+      tables, accumulation;
+  Parameters parameters{};
+  std::vector<float> tableHost;  // what `tables` holds
+  int width = 0, height = 0, spp = 0;
+  double milliseconds = 0.0;
+
+  explicit Impl(Context& c) : context(c) {}
+};
+
+PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& bake,
+                       const BakeOptions& bakeOptions)
+    : impl_(std::make_unique<Impl>(context)) {
+  (void)bakeOptions;
+  Impl& r = *impl_;
+  for (const Light& l : scene.lights)
+    if (l.ies)
+      fail("render",
+           "the GPU reference does not read IES profiles yet; render this scene with "
+           "--device cpu");
+  if (bake.source.levels.empty()) fail("render", "the bake has no source cube");
+  preparePathTracer();
+
+  // The triangles' hierarchy.
+  const Bvh bvh = buildBvh(scene);
+  r.nodes = std::make_unique<Buffer>(Buffer::of(context, bvh.nodes));
+  std::vector<glm::vec4> triangleData = bvh.triangles;
+  if (triangleData.empty()) triangleData.assign(3, glm::vec4(0.0f));
+  r.triangles = std::make_unique<Buffer>(Buffer::of(context, triangleData));
+
+  // Meshes, vertices, materials, textures, lights, spheres, emitters; indices and texels.
+  std::vector<glm::vec4> data;
+  std::vector<std::uint32_t> wordData;
+  std::vector<glm::uvec2> meshStarts;  // first vertex, first index
+  std::uint32_t vertexCount = 0;
+  for (const Mesh& m : scene.meshes) {
+    meshStarts.push_back({vertexCount, static_cast<std::uint32_t>(wordData.size())});
+    for (std::uint32_t i : m.indices) wordData.push_back(i);
+    vertexCount += static_cast<std::uint32_t>(m.positions.size());
+  }
+  const RayTracer tracer(scene);
+  const EmissiveTriangles emitters(scene, tracer);
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const Mesh& m = scene.meshes[i];
+    const std::uint32_t flags =
+        (m.tangents.empty() ? 0u : 1u) | (m.uvs.empty() ? 0u : 2u) | (m.uvs1.empty() ? 0u : 4u);
+    data.push_back(
+        bitsOf(meshStarts[i].x, meshStarts[i].y, static_cast<std::uint32_t>(m.material), flags));
+  }
+  r.parameters.offsets.x = static_cast<std::uint32_t>(data.size());
+  for (const Mesh& m : scene.meshes)
+    for (std::size_t v = 0; v < m.positions.size(); ++v) {
+      const glm::vec2 uv0 = m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[v];
+      const glm::vec2 uv1 = m.uvs1.empty() ? glm::vec2(0.0f) : m.uvs1[v];
+      data.push_back(glm::vec4(m.positions[v], uv0.x));
+      data.push_back(glm::vec4(m.normals[v], uv0.y));
+      data.push_back(m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[v]);
+      data.push_back(glm::vec4(uv1, 0.0f, 0.0f));
+    }
+  r.parameters.offsets.y = static_cast<std::uint32_t>(data.size());
+  for (const Material& mat : scene.materials) {
+    data.push_back(glm::vec4(mat.baseColor, mat.baseColorAlpha));
+    data.push_back(glm::vec4(mat.emissive, mat.metallic));
+    data.push_back(glm::vec4(mat.sheenColor, mat.sheenRoughness));
+    data.push_back(glm::vec4(mat.roughness, mat.normalScale,
+                             static_cast<float>(static_cast<int>(mat.alphaMode)), mat.alphaCutoff));
+    data.push_back(glm::vec4(slotOf(mat.baseColorTexture), slotOf(mat.metallicRoughnessTexture),
+                             slotOf(mat.normalTexture), slotOf(mat.emissiveTexture)));
+    data.push_back(
+        glm::vec4(slotOf(mat.sheenColorTexture), slotOf(mat.sheenRoughnessTexture), 0.0f, 0.0f));
+  }
+  r.parameters.offsets.z = static_cast<std::uint32_t>(data.size());
+  r.parameters.offsets2.z = static_cast<std::uint32_t>(wordData.size());
+  std::uint32_t texelCount = 0;
+  for (const Texture& t : scene.textures) {
+    const std::uint32_t flags = static_cast<std::uint32_t>(t.sampler.wrapS) |
+                                (static_cast<std::uint32_t>(t.sampler.wrapT) << 2u) |
+                                (t.sampler.nearest ? 16u : 0u);
+    const bool empty = t.empty();
+    data.push_back(bitsOf(texelCount, empty ? 1u : static_cast<std::uint32_t>(t.width),
+                          empty ? 1u : static_cast<std::uint32_t>(t.height), flags));
+    if (empty) {
+      wordData.push_back(0xffffffffu);  // Texture::sample's white
+      ++texelCount;
+      continue;
+    }
+    const std::vector<std::uint8_t>& rgba = *t.rgba;
+    for (std::size_t i = 0; i + 3 < rgba.size(); i += 4)
+      wordData.push_back(static_cast<std::uint32_t>(rgba[i]) |
+                         (static_cast<std::uint32_t>(rgba[i + 1]) << 8u) |
+                         (static_cast<std::uint32_t>(rgba[i + 2]) << 16u) |
+                         (static_cast<std::uint32_t>(rgba[i + 3]) << 24u));
+    texelCount += static_cast<std::uint32_t>(rgba.size() / 4);
+  }
+  r.parameters.offsets.w = static_cast<std::uint32_t>(data.size());
+  for (const Light& light : scene.lights) {
+    const shared::ShadingLight l = shadingLightOf(light);
+    data.push_back(glm::vec4(l.position, static_cast<float>(l.type)));
+    data.push_back(glm::vec4(l.direction, l.radius));
+    data.push_back(glm::vec4(l.up, l.width));
+    data.push_back(glm::vec4(l.color, l.height));
+    data.push_back(glm::vec4(l.cosInner, l.cosOuter, l.invSquaredRange, 0.0f));
+  }
+  r.parameters.offsets2.x = static_cast<std::uint32_t>(data.size());
+  for (const Sphere& s : scene.spheres) {
+    data.push_back(glm::vec4(s.center, s.radius));
+    data.push_back(bitsOf(static_cast<std::uint32_t>(s.material), 0u, 0u, 0u));
+  }
+  r.parameters.offsets2.y = static_cast<std::uint32_t>(data.size());
+  const auto& cumulative = emitters.cumulative();
+  for (std::size_t i = 0; i < emitters.triangles().size(); ++i) {
+    const EmissiveTriangles::Triangle& t = emitters.triangles()[i];
+    data.push_back(
+        glm::vec4(bitsOf(t.mesh), bitsOf(t.primitive), t.area, static_cast<float>(cumulative[i])));
+  }
+  // Per mesh, where its primitives' emitter entries start (relative to this table), or none.
+  r.parameters.offsets2.w = static_cast<std::uint32_t>(wordData.size());
+  const auto& entryOf = emitters.entryOf();
+  std::vector<std::uint32_t> table(scene.meshes.size(), kNone);
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (m >= entryOf.size() || entryOf[m].empty()) continue;
+    table[m] = static_cast<std::uint32_t>(table.size());
+    for (std::int32_t e : entryOf[m])
+      table.push_back(e < 0 ? kNone : static_cast<std::uint32_t>(e));
+  }
+  wordData.insert(wordData.end(), table.begin(), table.end());
+  if (data.empty()) data.push_back(glm::vec4(0.0f));
+  if (wordData.empty()) wordData.push_back(0u);
+  r.sceneData = std::make_unique<Buffer>(Buffer::of(context, data));
+  r.words = std::make_unique<Buffer>(Buffer::of(context, wordData));
+  r.parameters.counts = {static_cast<std::uint32_t>(scene.lights.size()),
+                         static_cast<std::uint32_t>(scene.spheres.size()),
+                         static_cast<std::uint32_t>(emitters.triangles().size()), 0u};
+
+  // The environment: level 0 of the source cube, its sampling tables, the albedo tables.
+  const auto& level = bake.source.levels[0];
+  const int n = level[0].width;
+  r.parameters.counts.w = static_cast<std::uint32_t>(n);
+  std::vector<glm::vec4> envTexels;
+  envTexels.reserve(static_cast<std::size_t>(6) * n * n);
+  for (const Image& face : level)
+    for (const glm::vec3& p : face.pixels) envTexels.push_back(glm::vec4(p, 0.0f));
+  r.texels = std::make_unique<Buffer>(Buffer::of(context, envTexels));
+  r.levels = std::make_unique<Buffer>(
+      Buffer::of(context, std::vector<glm::uvec2>{{static_cast<std::uint32_t>(n), 0u}}));
+  const EnvironmentSampler environment(level);
+  std::vector<float> tableData;
+  for (double c : environment.rowCdf()) tableData.push_back(static_cast<float>(c));
+  for (double c : environment.columnCdf()) tableData.push_back(static_cast<float>(c));
+  // The albedo tables are those of the render's sheen visibility: both are uploaded by reset().
+  tableData.resize(tableData.size() + 2 * shared::kAlbedoTableNodes * shared::kAlbedoTableNodes);
+  r.tables = std::make_unique<Buffer>(Buffer::of(context, tableData));
+  r.tableHost = std::move(tableData);
+  r.parametersBuffer = std::make_unique<Buffer>(context, sizeof(Parameters));
+}
+
+PathTracer::~PathTracer() = default;
+
+void PathTracer::reset(const Camera& camera, const RenderOptions& o) {
+  Impl& r = *impl_;
+  if (camera.width < 1 || camera.height < 1)
+    fail("render", fmt::format("an image of {} x {} pixels is empty", camera.width, camera.height));
+  Parameters& p = r.parameters;
+  const CameraFrame f = camera.frame();
+  const float aspect = static_cast<float>(camera.width) / static_cast<float>(camera.height);
+  if (camera.perspective) {
+    const float t = std::tan(0.5f * glm::radians(camera.yfovDegrees));
+    p.cameraPosition = glm::vec4(camera.from, 1.0f);
+    p.cameraRight = glm::vec4(f.right * (aspect * t), 0.0f);
+    p.cameraUp = glm::vec4(f.up * t, 0.0f);
+  } else {
+    const float halfWidth = 0.5f * camera.orthoWidth, halfHeight = halfWidth / aspect;
+    p.cameraPosition = glm::vec4(camera.from, 0.0f);
+    p.cameraRight = glm::vec4(f.right * halfWidth, 0.0f);
+    p.cameraUp = glm::vec4(f.up * halfHeight, 0.0f);
+  }
+  p.cameraForward = glm::vec4(f.forward, 0.0f);
+  p.background = glm::vec4(o.backgroundColor, 0.0f);
+  p.image = {static_cast<std::uint32_t>(camera.width), static_cast<std::uint32_t>(camera.height),
+             0u, 0u};
+  const shared::PathShading s = pathShading(o);
+  p.shading = {s.diffuseModel, s.multipleScattering, s.specularMicroOcclusion ? 1 : 0,
+               s.sheenVisibility};
+  int flags = 0;
+  if (o.shadows || o.bounces > 0) flags |= kFlagVisibility;
+  if (o.environmentLight) flags |= kFlagEnvironmentLight;
+  if (o.backgroundEnvironment) flags |= kFlagBackgroundEnvironment;
+  if (o.cameraSeesEmitters) flags |= kFlagCameraSeesEmitters;
+  if (o.cameraSeesSpecular) flags |= kFlagCameraSeesSpecular;
+  if (o.captureMetalsAsDiffuse) flags |= kFlagCaptureMetalsAsDiffuse;
+  if (std::max(1, o.spp) == 1) flags |= kFlagPixelCenter;
+  p.path = {std::max(0, o.bounces), static_cast<int>(o.only), flags, static_cast<int>(o.seed)};
+  // The albedo tables of this render's sheen visibility, after the environment's.
+  const shared::AlbedoTables albedo = referenceAlbedoTables(o.sheenVisibility);
+  constexpr std::size_t kNodes = std::size_t{shared::kAlbedoTableNodes} * shared::kAlbedoTableNodes;
+  std::vector<float>& all = r.tableHost;
+  const std::size_t envFloats = all.size() - 2 * kNodes;
+  std::copy(albedo.ggx, albedo.ggx + kNodes, all.begin() + static_cast<std::ptrdiff_t>(envFloats));
+  std::copy(albedo.sheen, albedo.sheen + kNodes,
+            all.begin() + static_cast<std::ptrdiff_t>(envFloats + kNodes));
+  r.tables->upload(all.data(), all.size() * sizeof(float));
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  if (!r.accumulation || r.accumulation->size() != 2 * pixels * sizeof(glm::vec4))
+    r.accumulation = std::make_unique<Buffer>(r.context, 2 * pixels * sizeof(glm::vec4));
+  const std::vector<glm::vec4> zeros(2 * pixels, glm::vec4(0.0f));
+  r.accumulation->upload(zeros.data(), zeros.size() * sizeof(glm::vec4));
+  r.width = camera.width;
+  r.height = camera.height;
+  r.spp = 0;
+  r.milliseconds = 0.0;
+}
+
+void PathTracer::accumulate(int samples) {
+  Impl& r = *impl_;
+  if (r.width == 0) fail("render", "the GPU reference has no view: call reset() first");
+  if (samples < 1) return;
+  const auto start = std::chrono::steady_clock::now();
+  // At most kSamplesPerDispatch samples per invocation: on lavapipe (Mesa 22.3), one dispatch of
+  // 64 samples of deep paths in a closed room returned less light than four of 16 with the same
+  // numbers (GpuReference.RoomThroughAWindowEqualsTheCpu); short dispatches also keep a real GPU's
+  // watchdog away.
+  constexpr int kSamplesPerDispatch = 8;
+  for (int done = 0; done < samples;) {
+    const int n = std::min(kSamplesPerDispatch, samples - done);
+    r.parameters.image.z = static_cast<std::uint32_t>(r.spp + done);
+    r.parameters.image.w = static_cast<std::uint32_t>(n);
+    r.parametersBuffer->upload(&r.parameters, sizeof(Parameters));
+    dispatch(r.context, "path_trace",
+             {r.parametersBuffer.get(), r.nodes.get(), r.triangles.get(), r.sceneData.get(),
+              r.words.get(), r.texels.get(), r.levels.get(), r.tables.get(), r.accumulation.get()},
+             {}, groups(static_cast<std::size_t>(r.width), 8),
+             groups(static_cast<std::size_t>(r.height), 8));
+    done += n;
+  }
+  r.spp += samples;
+  r.milliseconds +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+int PathTracer::samplesPerPixel() const {
+  return impl_->spp;
+}
+
+RenderResult PathTracer::result() const {
+  const Impl& r = *impl_;
+  RenderResult out;
+  out.color = Image(std::max(r.width, 1), std::max(r.height, 1));
+  const std::size_t pixels = static_cast<std::size_t>(r.width) * r.height;
+  out.alpha.assign(pixels, 0.0f);
+  if (r.spp == 0 || pixels == 0) return out;
+  const auto sums = r.accumulation->read<glm::vec4>(2 * pixels);
+  const float inv = 1.0f / static_cast<float>(r.spp);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    out.color.pixels[i] = glm::vec3(sums[2 * i]) * inv;
+    out.alpha[i] = sums[2 * i].w * inv;
+  }
+  out.samples = static_cast<double>(r.spp) * static_cast<double>(pixels);
+  out.milliseconds = r.milliseconds;
+  return out;
+}
+
+std::vector<float> PathTracer::luminanceVariance() const {
+  const Impl& r = *impl_;
+  const std::size_t pixels = static_cast<std::size_t>(r.width) * r.height;
+  std::vector<float> variance(pixels, 0.0f);
+  if (r.spp < 2) return variance;
+  const auto sums = r.accumulation->read<glm::vec4>(2 * pixels);
+  const double n = r.spp;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const double mean = sums[2 * i + 1].x / n;
+    variance[i] =
+        static_cast<float>(std::max(0.0, (sums[2 * i + 1].y / n - mean * mean)) * n / (n - 1.0));
+  }
+  return variance;
+}
+
+float PathTracer::noise() const {
+  const Impl& r = *impl_;
+  if (r.spp < 2) return 0.0f;
+  const std::size_t pixels = static_cast<std::size_t>(r.width) * r.height;
+  const auto sums = r.accumulation->read<glm::vec4>(2 * pixels);
+  const double n = r.spp;
+  double varianceOfMeans = 0.0, luminanceSum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    if (!(sums[2 * i].w > 0.0f)) continue;
+    const double mean = sums[2 * i + 1].x / n;
+    varianceOfMeans += std::max(0.0, sums[2 * i + 1].y / n - mean * mean) / (n - 1.0);
+    luminanceSum += mean;
+    ++count;
+  }
+  if (count == 0 || !(luminanceSum > 0.0)) return 0.0f;
+  return static_cast<float>(std::sqrt(varianceOfMeans / static_cast<double>(count)) /
+                            (luminanceSum / static_cast<double>(count)));
+}
+
+RenderResult renderReference(Context& context, const Scene& scene, const Camera& camera,
+                             const BakeResult& bake, const BakeOptions& bakeOptions,
+                             const RenderOptions& options,
+                             const std::function<void(float)>& progress) {
+  PathTracer tracer(context, scene, bake, bakeOptions);
+  tracer.reset(camera, options);
+  const int spp = std::max(1, options.spp);
+  // Batches short enough for a device that watches its queue (a few hundred ms each on
+  // lavapipe at 512 x 512), long enough to keep it busy.
+  const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
+  const int batch = static_cast<int>(
+      std::clamp<std::size_t>((std::size_t{1} << 20u) / std::max<std::size_t>(pixels, 1), 1, 64));
+  for (int done = 0; done < spp;) {
+    const int n = std::min(batch, spp - done);
+    tracer.accumulate(n);
+    done += n;
+    if (progress) progress(static_cast<float>(done) / static_cast<float>(spp));
+  }
+  return tracer.result();
+}
+
+}  // namespace ibl::gpu
