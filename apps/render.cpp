@@ -33,9 +33,11 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   checkSceneOptions(o.scene);
   if (o.mode == "reference" && o.scene.shadows && *o.scene.shadows == "map")
     failUsage("--shadows", "map is the split sum's; the reference traces rays (--shadows alone)");
-  if (o.device != "cpu" && o.mode != "reference")
-    failUsage("--device", "gpu and auto run the reference; the split sum on the GPU is `ibl view`");
-  if (o.device != "cpu" && o.noise > 0.0f)
+  if (o.device == "gpu" && o.mode != "reference")
+    failUsage("--device",
+              "gpu runs the reference: add --mode reference (the split sum on the GPU "
+              "is `ibl view`)");
+  if (o.device == "gpu" && o.noise > 0.0f)
     failUsage("--noise", "adaptive stopping is the CPU reference's; use --device cpu");
   const auto [width, height] = parseSize(o.scene.size);
   refuseOverwritingInputs({o.output}, sceneInputFiles(o.scene));
@@ -69,7 +71,10 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   const auto report = [&](float f) {
     if (showProgress) fmt::print(stderr, "\rrendering {:3.0f} %", 100.0f * f);
   };
-  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
+  // auto picks a real GPU for the reference only, and not for --noise (the CPU's).
+  const std::unique_ptr<gpu::Context> device =
+      o.mode == "reference" && !(o.device == "auto" && o.noise > 0.0f) ? openDevice(o.device)
+                                                                       : nullptr;
   if (device && !global.quiet) fmt::print(stderr, "reference on {}\n", device->device().name);
   RenderResult result =
       device ? gpu::renderReference(*device, scene, camera, baked.bake, baked.options, r, report)

@@ -137,11 +137,12 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     writeView(o.screenshot, gpu::composeView(view, realTime, reference), view,
               ev100 - o.scene.compensation, toneCurve(o.scene), o.scene);
     if (!global.quiet)
-      fmt::print(stderr,
-                 "screenshot {} ({}x{}, {}: {} samples per pixel, noise {:.2f} %, {:.1f} ms on "
-                 "{}, EV100 {:.2f})\n",
-                 o.screenshot, width, height, gpu::viewModeName(view), tracer.samplesPerPixel(),
-                 100.0f * tracer.noise(), reference.milliseconds, context->device().name, ev100);
+      fmt::print(
+          stderr,
+          "screenshot {} ({}x{}, {}: {} samples per pixel, reference noise {:.2f} %, {:.1f} ms on "
+          "{}, EV100 {:.2f})\n",
+          o.screenshot, width, height, gpu::viewModeName(view), tracer.samplesPerPixel(),
+          100.0f * tracer.noise(), reference.milliseconds, context->device().name, ev100);
     return;
   }
   if (!o.screenshot.empty()) {
@@ -222,8 +223,10 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     fmt::print(stderr, "viewed {} frames, {:.2f} ms per frame on {}\n", stats.frames,
                stats.meanFrameMs, stats.device);
     if (stats.referenceSpp > 0)
-      fmt::print(stderr, "reference at {} samples per pixel, noise {:.2f} % ({} view at the end)\n",
-                 stats.referenceSpp, 100.0f * stats.referenceNoise, gpu::viewModeName(stats.view));
+      fmt::print(
+          stderr,
+          "reference at {} samples per pixel, reference noise {:.2f} % ({} view at the end)\n",
+          stats.referenceSpp, 100.0f * stats.referenceNoise, gpu::viewModeName(stats.view));
   }
 }
 

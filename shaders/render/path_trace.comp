@@ -45,7 +45,8 @@ layout(std430, binding = 5) readonly buffer EnvironmentTexels {
 layout(std430, binding = 6) readonly buffer EnvironmentLevels {
   uvec2 levels[];
 };
-// The environment's row CDF (6n), its rows' column CDFs (6n^2), then the albedo tables (2 x 33^2).
+// The environment's row CDF (6n), its rows' column CDFs (6n^2), the albedo tables (2 x 33^2),
+// then each IES light's intensity table (kIesRows x kIesColumns).
 layout(std430, binding = 7) readonly buffer Tables {
   float tables[];
 };
@@ -302,6 +303,22 @@ ShadingLight lightAt(uint i) {
   return l;
 }
 
+// An IES light's intensity toward w (leaving the light), candela x its scale, bilinear in its
+// table of 0.5-degree steps (appendIesTable in src/gpu/path_tracer.cpp).
+const int kIesRows = 361;
+const int kIesColumns = 721;
+float iesIntensity(ShadingLight l, float table, vec3 w) {
+  vec2 angles = iesAngles(iesNadir(l), w);  // vertical, horizontal
+  vec2 p = vec2(angles.y, angles.x) / 0.5;
+  ivec2 i = min(ivec2(p), ivec2(kIesColumns - 2, kIesRows - 2));
+  vec2 f = p - vec2(i);
+  int n = environmentSize();
+  int base = 6 * n + 6 * n * n + 2 * 33 * 33 + int(table) * kIesRows * kIesColumns;
+  int a = base + i.y * kIesColumns + i.x;
+  return mix(mix(tables[a], tables[a + 1], f.x),
+             mix(tables[a + kIesColumns], tables[a + kIesColumns + 1], f.x), f.y);
+}
+
 // The nearest light the ray meets (nearestLight in src/render/path_tracer.cpp): its index or -1.
 int nearestLight(vec3 p, vec3 w, out float distance, out vec3 radiance) {
   int best = -1;
@@ -485,6 +502,8 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
         distance = length(d);
         direction = d / distance;
         radiance = light.color * punctualLightIrradiance(light, origin);
+        float ies = sceneData[params.offsets.w + 5u * i + 4u].w;
+        if (ies >= 0.0) radiance *= iesIntensity(light, ies, -direction);
         pdf = 0.0;
       } else {
         AreaLightSample ls = sampleAreaLight(light, origin, xi);

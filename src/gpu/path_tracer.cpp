@@ -50,6 +50,20 @@ enum Flag : int {
   kFlagPixelCenter = 64,
 };
 
+// An IES light's intensity (candela x its scale) tabulated over (vertical, horizontal) angles at
+// kIesStep degrees, the shader's bilinear lookup standing in for IesProfile::intensity's
+// bicubic one (docs/render.md measures the difference).
+constexpr float kIesStep = 0.5f;
+constexpr int kIesRows = 361;     // 0 .. 180 degrees
+constexpr int kIesColumns = 721;  // 0 .. 360 degrees
+
+void appendIesTable(const Light& light, std::vector<float>& out) {
+  for (int row = 0; row < kIesRows; ++row)
+    for (int column = 0; column < kIesColumns; ++column)
+      out.push_back(light.iesScale * light.ies->intensity(kIesStep * static_cast<float>(row),
+                                                          kIesStep * static_cast<float>(column)));
+}
+
 // A texture slot as the shader reads it: texture index x 2 + texCoord, or -1.
 float slotOf(const TextureRef& ref) {
   return ref.index < 0 ? -1.0f : static_cast<float>(ref.index * 2 + (ref.texCoord == 1 ? 1 : 0));
@@ -63,8 +77,10 @@ struct PathTracer::Impl {
       tables, accumulation;
   Parameters parameters{};
   std::vector<float> tableHost;  // what `tables` holds
+  std::size_t iesFloats = 0;     // at its end: the IES lights' tables
   int width = 0, height = 0, spp = 0;
   double milliseconds = 0.0;
+  double compileMilliseconds = 0.0;
 
   explicit Impl(Context& c) : context(c) {}
 };
@@ -74,11 +90,6 @@ PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& b
     : impl_(std::make_unique<Impl>(context)) {
   (void)bakeOptions;
   Impl& r = *impl_;
-  for (const Light& l : scene.lights)
-    if (l.ies)
-      fail("render",
-           "the GPU reference does not read IES profiles yet; render this scene with "
-           "--device cpu");
   if (bake.source.levels.empty()) fail("render", "the bake has no source cube");
   preparePathTracer();
 
@@ -154,13 +165,19 @@ PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& b
     texelCount += static_cast<std::uint32_t>(rgba.size() / 4);
   }
   r.parameters.offsets.w = static_cast<std::uint32_t>(data.size());
+  std::vector<float> iesTables;
   for (const Light& light : scene.lights) {
     const shared::ShadingLight l = shadingLightOf(light);
+    float ies = -1.0f;  // the IES table's index, or none
+    if (light.ies && (light.type == LightType::Point || light.type == LightType::Spot)) {
+      ies = static_cast<float>(iesTables.size() / (kIesRows * kIesColumns));
+      appendIesTable(light, iesTables);
+    }
     data.push_back(glm::vec4(l.position, static_cast<float>(l.type)));
     data.push_back(glm::vec4(l.direction, l.radius));
     data.push_back(glm::vec4(l.up, l.width));
     data.push_back(glm::vec4(l.color, l.height));
-    data.push_back(glm::vec4(l.cosInner, l.cosOuter, l.invSquaredRange, 0.0f));
+    data.push_back(glm::vec4(l.cosInner, l.cosOuter, l.invSquaredRange, ies));
   }
   r.parameters.offsets2.x = static_cast<std::uint32_t>(data.size());
   for (const Sphere& s : scene.spheres) {
@@ -210,9 +227,27 @@ PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& b
   for (double c : environment.columnCdf()) tableData.push_back(static_cast<float>(c));
   // The albedo tables are those of the render's sheen visibility: both are uploaded by reset().
   tableData.resize(tableData.size() + 2 * shared::kAlbedoTableNodes * shared::kAlbedoTableNodes);
+  r.iesFloats = iesTables.size();
+  tableData.insert(tableData.end(), iesTables.begin(), iesTables.end());
   r.tables = std::make_unique<Buffer>(Buffer::of(context, tableData));
   r.tableHost = std::move(tableData);
   r.parametersBuffer = std::make_unique<Buffer>(context, sizeof(Parameters));
+  // The pipeline is compiled here, by an empty dispatch, so that the first batch's time is its
+  // own (a driver without a warm shader cache takes seconds: lavapipe about 40).
+  const auto start = std::chrono::steady_clock::now();
+  r.accumulation = std::make_unique<Buffer>(context, 2 * sizeof(glm::vec4));
+  r.parameters.image = {1u, 1u, 0u, 0u};
+  r.parametersBuffer->upload(&r.parameters, sizeof(Parameters));
+  dispatch(context, "path_trace",
+           {r.parametersBuffer.get(), r.nodes.get(), r.triangles.get(), r.sceneData.get(),
+            r.words.get(), r.texels.get(), r.levels.get(), r.tables.get(), r.accumulation.get()},
+           {}, 1, 1);
+  r.compileMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+double PathTracer::preparationMilliseconds() const {
+  return impl_->compileMilliseconds;
 }
 
 PathTracer::~PathTracer() = default;
@@ -249,13 +284,13 @@ void PathTracer::reset(const Camera& camera, const RenderOptions& o) {
   if (o.cameraSeesEmitters) flags |= kFlagCameraSeesEmitters;
   if (o.cameraSeesSpecular) flags |= kFlagCameraSeesSpecular;
   if (o.captureMetalsAsDiffuse) flags |= kFlagCaptureMetalsAsDiffuse;
-  if (std::max(1, o.spp) == 1) flags |= kFlagPixelCenter;
+  if (o.spp == 1) flags |= kFlagPixelCenter;
   p.path = {std::max(0, o.bounces), static_cast<int>(o.only), flags, static_cast<int>(o.seed)};
   // The albedo tables of this render's sheen visibility, after the environment's.
   const shared::AlbedoTables albedo = referenceAlbedoTables(o.sheenVisibility);
   constexpr std::size_t kNodes = std::size_t{shared::kAlbedoTableNodes} * shared::kAlbedoTableNodes;
   std::vector<float>& all = r.tableHost;
-  const std::size_t envFloats = all.size() - 2 * kNodes;
+  const std::size_t envFloats = all.size() - r.iesFloats - 2 * kNodes;
   std::copy(albedo.ggx, albedo.ggx + kNodes, all.begin() + static_cast<std::ptrdiff_t>(envFloats));
   std::copy(albedo.sheen, albedo.sheen + kNodes,
             all.begin() + static_cast<std::ptrdiff_t>(envFloats + kNodes));
@@ -276,13 +311,14 @@ void PathTracer::accumulate(int samples) {
   if (r.width == 0) fail("render", "the GPU reference has no view: call reset() first");
   if (samples < 1) return;
   const auto start = std::chrono::steady_clock::now();
-  // At most kSamplesPerDispatch samples per invocation: on lavapipe (Mesa 22.3), one dispatch of
-  // 64 samples of deep paths in a closed room returned less light than four of 16 with the same
-  // numbers (GpuReference.RoomThroughAWindowEqualsTheCpu); short dispatches also keep a real GPU's
-  // watchdog away.
-  constexpr int kSamplesPerDispatch = 8;
+  // Few samples per invocation. On a CPU device one: llvmpipe (Mesa 22.3, lavapipe) runs at most
+  // 65535 loop iterations per invocation in all, counted over every loop of the inlined shader
+  // (LP_MAX_TGSI_LOOP_ITERATIONS), and then leaves each loop after one iteration without a word:
+  // 64 samples of a closed room's deep paths in one invocation returned 13 % less light. On a
+  // GPU eight: short dispatches keep its watchdog away.
+  const int perDispatch = r.context.device().type == "cpu" ? 1 : 8;
   for (int done = 0; done < samples;) {
-    const int n = std::min(kSamplesPerDispatch, samples - done);
+    const int n = std::min(perDispatch, samples - done);
     r.parameters.image.z = static_cast<std::uint32_t>(r.spp + done);
     r.parameters.image.w = static_cast<std::uint32_t>(n);
     r.parametersBuffer->upload(&r.parameters, sizeof(Parameters));

@@ -412,6 +412,7 @@ RenderOptions viewReferenceOptions(const RenderOptions& realTime) {
   r.mode = RenderMode::Reference;
   r.bounces = 4;
   r.seed = 1;
+  r.spp = 0;  // progressive: the pixels' positions are jittered (1 would trace their centers)
   r.shadows = false;  // as `ibl render --mode reference` without --shadows (bounces trace them)
   r.noiseThreshold = 0.0f;
   r.aoRays = 0;
@@ -510,7 +511,8 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   std::optional<EnvironmentChange> environment;
   int environmentGeneration = 0;
   const RenderOptions referenceBase = o.reference ? *o.reference : viewReferenceOptions(o.render);
-  const int referenceCap = o.referenceSpp > 0 ? o.referenceSpp : 1 << 20;
+  // 2^16 by default: the device sums in float (the variance of the noise figure cancels beyond).
+  const int referenceCap = o.referenceSpp > 0 ? o.referenceSpp : 1 << 16;
   struct Drawn {
     Camera camera;
     ShadingTerms terms = ShadingTerms::Both;
@@ -717,7 +719,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
       const std::string shown =
           view == ViewMode::RealTime || !r.tracer
               ? std::string()
-              : fmt::format(" - {}: {} spp, noise {:.2f} %", viewModeName(view),
+              : fmt::format(" - {}: {} spp, reference noise {:.2f} %", viewModeName(view),
                             r.tracer->samplesPerPixel(), 100.0f * r.tracer->noise());
       glfwSetWindowTitle(
           r.window,

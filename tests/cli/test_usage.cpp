@@ -278,7 +278,7 @@ TEST(Usage, Render) {
                         {"--seed", "-o out.png --seed -1", 2, "--seed"},
                         {"--device", "-o out.png --mode reference --device tpu", 2, "--device"},
                         {"--device", "-o out.png --device gpu", 2,
-                         "--device: gpu and auto run the reference"},
+                         "--device: gpu runs the reference: add --mode reference"},
                         {"--noise", "-o out.png --mode reference --device gpu --noise 0.1", 2,
                          "--noise: adaptive stopping is the CPU reference's"},
                     });

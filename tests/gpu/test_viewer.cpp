@@ -677,23 +677,8 @@ TEST(Viewer, EmittersMatchTheCpu) {
 // against the CPU's interpolation over the photometric web, for a profile that varies with both
 // angles, on a point light (nadir -Y) and a tilted spot (nadir along its direction).
 TEST(Viewer, IesProfilesMatchTheCpu) {
-  std::string text =
-      "IESNA:LM-63-2002\n[TEST] viewer\nTILT=NONE\n1 -1 1 19 13 1 2 0 0 0\n1 1 100\n";
-  for (int v = 0; v <= 180; v += 10) text += fmt::format("{} ", v);
-  text += "\n";
-  for (int h = 0; h <= 360; h += 30) text += fmt::format("{} ", h);
-  text += "\n";
-  for (int h = 0; h <= 360; h += 30) {
-    for (int v = 0; v <= 180; v += 10) {
-      const double vr = glm::radians(static_cast<double>(v)),
-                   hr = glm::radians(static_cast<double>(h));
-      text += fmt::format("{:.3f} ", v > 120 ? 0.0
-                                             : 500.0 * std::pow(std::cos(0.7 * vr), 2) *
-                                                   (1.2 + 0.6 * std::cos(hr) + 0.5 * std::sin(hr)));
-    }
-    text += "\n";
-  }
-  const auto profile = std::make_shared<const IesProfile>(parseIes(text, "viewer.ies"));
+  const auto profile =
+      std::make_shared<const IesProfile>(parseIes(test::asymmetricIesText(), "viewer.ies"));
   Scene scene = makeSphereGrid(glm::vec3(0.8f, 0.6f, 0.4f));
   Light point = viewerTestLight(LightType::Point, {-3, 5, 3}, {0, -1, 0}, 1.0f, 1.0f);
   point.ies = profile;

@@ -4,6 +4,7 @@
 // the measured difference between the real-time shading and the reference.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -25,6 +26,30 @@ inline Mesh planeMesh(float halfSize, float height = 0.0f) {
   m.normals.assign(4, glm::vec3(0, 1, 0));
   m.indices = {0, 2, 1, 0, 3, 2};
   return m;
+}
+
+// An IES profile's text (LM-63-2002, type C, absolute photometry) that varies with both angles
+// (cos^2 of 0.7 x the vertical, dark above 120 degrees; asymmetric in the horizontal), so that a
+// horizontal angle read the wrong way round shows.
+inline std::string asymmetricIesText() {
+  std::string text =
+      "IESNA:LM-63-2002\n[TEST] asymmetric\nTILT=NONE\n1 -1 1 19 13 1 2 0 0 0\n1 1 100\n";
+  for (int v = 0; v <= 180; v += 10) text += std::to_string(v) + " ";
+  text += "\n";
+  for (int h = 0; h <= 360; h += 30) text += std::to_string(h) + " ";
+  text += "\n";
+  for (int h = 0; h <= 360; h += 30) {
+    for (int v = 0; v <= 180; v += 10) {
+      const double vr = glm::radians(static_cast<double>(v)),
+                   hr = glm::radians(static_cast<double>(h));
+      const double cd = v > 120 ? 0.0
+                                : 500.0 * std::pow(std::cos(0.7 * vr), 2) *
+                                      (1.2 + 0.6 * std::cos(hr) + 0.5 * std::sin(hr));
+      text += std::to_string(cd) + " ";
+    }
+    text += "\n";
+  }
+  return text;
 }
 
 // The bake of a black environment: the lights alone (what --env none does).

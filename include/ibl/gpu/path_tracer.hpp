@@ -34,7 +34,8 @@ class PathTracer {
   PathTracer& operator=(const PathTracer&) = delete;
 
   // Clears the accumulation and sets the view and the options (options.mode is taken as
-  // RenderMode::Reference; spp, noiseThreshold are the caller's business here).
+  // RenderMode::Reference; noiseThreshold is ignored; options.spp == 1 alone traces each pixel's
+  // center, as renderScene does for one sample: a progressive view passes 0).
   void reset(const Camera& camera, const RenderOptions& options);
   // Adds `samples` samples to every pixel: sample indices samplesPerPixel() .. + samples - 1 of
   // each pixel's low-discrepancy sequence, the numbers the CPU reference draws for the same
@@ -47,6 +48,8 @@ class PathTracer {
   RenderResult result() const;
   // Per pixel, the variance of one sample's luminance (for the noise of the mean: / spp).
   std::vector<float> luminanceVariance() const;
+  // How long the constructor waited for the driver to compile the shader (milliseconds).
+  double preparationMilliseconds() const;
   // The estimated relative noise of the mean image: sqrt(mean variance of the pixels' means) /
   // mean luminance, over the covered pixels (0 before the first sample).
   float noise() const;
