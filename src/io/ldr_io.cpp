@@ -41,11 +41,28 @@ Image decodeLdr(std::span<const std::uint8_t> bytes, std::string_view name, Deco
   // The image is allocated once the pixels have decoded: a header alone may claim 268 M pixels.
   Image img;
   if (sixteen) {
-    stbi_us* px = stbi_load_16_from_memory(data, len, &w, &h, &comp, 3);
+    // The file's own channels, expanded to RGB here: stb (2.27) converts a 16-bit PNM's channels
+    // with its 8-bit routine, into a buffer half the size it returns (a fuzzed PGM,
+    // tests/corpus/fuzz-ldr-32ecfd548d8f, read past it).
+    stbi_us* px = stbi_load_16_from_memory(data, len, &w, &h, &comp, 0);
     if (!px) fail(name, corruptPixels());
+    if (comp < 1 || comp > 4) {
+      stbi_image_free(px);
+      fail(name, fmt::format("corrupt image: {} channels", comp));
+    }
+    // stb 2.27 also leaves a 16-bit PNM's samples in the file's byte order, most significant
+    // byte first (Netpbm's rule), where its PNG reader returns native numbers: swapped here.
+    const bool pnm = len >= 2 && data[0] == 'P' && (data[1] == '5' || data[1] == '6');
     img = Image(w, h);
+    const auto channels = static_cast<std::size_t>(comp);
     for (std::size_t i = 0; i < img.pixels.size(); ++i)
-      for (int c = 0; c < 3; ++c) img.pixels[i][c] = srgbToLinear(px[3 * i + c] / 65535.0f);
+      for (int c = 0; c < 3; ++c) {
+        // Gray (and gray + alpha) to all three; RGB (and RGBA) as they are.
+        const std::size_t k = comp >= 3 ? static_cast<std::size_t>(c) : 0;
+        std::uint16_t v = px[channels * i + k];
+        if (pnm) v = static_cast<std::uint16_t>((v >> 8u) | (v << 8u));
+        img.pixels[i][c] = srgbToLinear(v / 65535.0f);
+      }
     stbi_image_free(px);
   } else {
     stbi_uc* px = stbi_load_from_memory(data, len, &w, &h, &comp, 3);

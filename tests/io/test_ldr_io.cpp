@@ -93,6 +93,22 @@ TEST(LdrIo, PngExposureScales) {
   EXPECT_NEAR(back.at(0, 0).x, 0.5f, 0.003f);
 }
 
+// A 16-bit gray PGM: its one channel goes to all three, each value through the sRGB curve (stb
+// converts such files' channels with its 8-bit routine when asked for RGB, into half the bytes:
+// the reader asks for the file's own channels).
+TEST(LdrIo, Pgm16GrayIsDecodedIntoAllThreeChannels) {
+  const std::string header = "P5\n3 1\n65535\n";
+  std::vector<std::uint8_t> bytes(header.begin(), header.end());
+  for (std::uint16_t v : {std::uint16_t{0}, std::uint16_t{20000}, std::uint16_t{65535}})
+    bytes.insert(bytes.end(), {static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)});
+  const Image img = decodeLdr(bytes, "gray16.pgm");
+  ASSERT_EQ(img.width, 3);
+  ASSERT_EQ(img.height, 1);
+  const float expected[3] = {0.0f, srgbToLinear(20000.0f / 65535.0f), 1.0f};
+  for (int x = 0; x < 3; ++x)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(img.at(x, 0)[c], expected[x], 1e-6f) << x << " " << c;
+}
+
 TEST(LdrIo, Png16IsDecodedWithTheExactCurve) {
   std::vector<std::uint16_t> rgb = {0, 32768, 65535, 1000, 20000, 50000};
   const Image img = decodeLdr(png16(2, 1, rgb), "t16.png");
