@@ -78,6 +78,7 @@ struct PathTracer::Impl {
   Parameters parameters{};
   std::vector<float> tableHost;  // what `tables` holds
   std::size_t iesFloats = 0;     // at its end: the IES lights' tables
+  int albedoVisibility = -1;     // the sheen visibility whose albedo tables `tables` holds
   int width = 0, height = 0, spp = 0;
   double milliseconds = 0.0;
   double compileMilliseconds = 0.0;
@@ -286,15 +287,20 @@ void PathTracer::reset(const Camera& camera, const RenderOptions& o) {
   if (o.captureMetalsAsDiffuse) flags |= kFlagCaptureMetalsAsDiffuse;
   if (o.spp == 1) flags |= kFlagPixelCenter;
   p.path = {std::max(0, o.bounces), static_cast<int>(o.only), flags, static_cast<int>(o.seed)};
-  // The albedo tables of this render's sheen visibility, after the environment's.
-  const shared::AlbedoTables albedo = referenceAlbedoTables(o.sheenVisibility);
-  constexpr std::size_t kNodes = std::size_t{shared::kAlbedoTableNodes} * shared::kAlbedoTableNodes;
-  std::vector<float>& all = r.tableHost;
-  const std::size_t envFloats = all.size() - r.iesFloats - 2 * kNodes;
-  std::copy(albedo.ggx, albedo.ggx + kNodes, all.begin() + static_cast<std::ptrdiff_t>(envFloats));
-  std::copy(albedo.sheen, albedo.sheen + kNodes,
-            all.begin() + static_cast<std::ptrdiff_t>(envFloats + kNodes));
-  r.tables->upload(all.data(), all.size() * sizeof(float));
+  // The albedo tables of this render's sheen visibility, after the environment's: uploaded
+  // again only when it changes (the viewer resets at every move of the camera).
+  if (static_cast<int>(o.sheenVisibility) != r.albedoVisibility) {
+    const shared::AlbedoTables albedo = referenceAlbedoTables(o.sheenVisibility);
+    constexpr std::size_t kNodes =
+        std::size_t{shared::kAlbedoTableNodes} * shared::kAlbedoTableNodes;
+    std::vector<float>& all = r.tableHost;
+    const auto envFloats = static_cast<std::ptrdiff_t>(all.size() - r.iesFloats - 2 * kNodes);
+    std::copy(albedo.ggx, albedo.ggx + kNodes, all.begin() + envFloats);
+    std::copy(albedo.sheen, albedo.sheen + kNodes,
+              all.begin() + envFloats + static_cast<std::ptrdiff_t>(kNodes));
+    r.tables->upload(all.data(), all.size() * sizeof(float));
+    r.albedoVisibility = static_cast<int>(o.sheenVisibility);
+  }
   const std::size_t pixels = static_cast<std::size_t>(camera.width) * camera.height;
   if (!r.accumulation || r.accumulation->size() != 2 * pixels * sizeof(glm::vec4))
     r.accumulation = std::make_unique<Buffer>(r.context, 2 * pixels * sizeof(glm::vec4));

@@ -113,6 +113,16 @@ IBL_FN vec3 microsurfacePhase(Microsurface s, vec3 wi, vec3 wo) {
          (ggxDistribution(h.z, s.alpha) / (4.0f * projectedArea));
 }
 
+// One bounce of the walk at a hit, the ray arriving from direction w: a normal visible from w, of
+// either hemisphere (a ray going up meets the underside of the microsurface's upper part), drawn
+// for xi; `energy` takes its Fresnel; the new ray direction, reflected.
+IBL_FN vec3 walkBounce(Microsurface s, vec3 w, vec2 xi, IBL_INOUT(vec3) energy) {
+  vec3 m = sampleGgxVisibleNormal(w, xi, s.alpha);
+  float WoM = dot(w, m);
+  energy *= fresnelSchlick(s.f0, s.f90, max(WoM, 0.0f));
+  return 2.0f * WoM * m - w;
+}
+
 struct WalkSample {
   vec3 wo;
   vec3 weight;  // f cos(wo) / p(wo): the product of the bounces' Fresnel
@@ -144,13 +154,7 @@ IBL_FN WalkSample sampleMicrofacetWalk(Microsurface s, vec3 wi, IBL_INOUT(PathSa
       return result;
     }
     if (order == kWalkMaxOrder) break;  // cut off: the sample is lost (weight 0)
-    vec3 w = -wr;
-    // The visible normals from w, of either hemisphere (a ray going up meets the underside of
-    // the microsurface's upper part), reflected.
-    vec3 m = sampleGgxVisibleNormal(w, pathUniform2(numbers), s.alpha);
-    float WoM = dot(w, m);
-    energy *= fresnelSchlick(s.f0, s.f90, max(WoM, 0.0f));
-    wr = 2.0f * WoM * m - w;
+    wr = walkBounce(s, -wr, pathUniform2(numbers), energy);
     if (!finiteVec3(wr) || !finiteFloat(hr)) break;
   }
   return result;
@@ -179,10 +183,7 @@ IBL_FN vec3 evaluateMicrofacetWalk(Microsurface s, vec3 wi, vec3 wo, IBL_INOUT(P
       if (finiteVec3(term)) sum += term;
     }
     if (order == maxOrder) break;
-    vec3 m = sampleGgxVisibleNormal(w, pathUniform2(numbers), s.alpha);
-    float WoM = dot(w, m);
-    energy *= fresnelSchlick(s.f0, s.f90, max(WoM, 0.0f));
-    wr = 2.0f * WoM * m - w;
+    wr = walkBounce(s, w, pathUniform2(numbers), energy);
     if (!finiteVec3(wr) || !finiteFloat(hr)) break;
   }
   return sum;

@@ -9,6 +9,7 @@
 #ifndef IBL_SHARED_PATH_SAMPLER_H
 #define IBL_SHARED_PATH_SAMPLER_H
 #include "ibl/shared/lang.h"
+#include "ibl/shared/sampling.h"
 
 #ifdef __cplusplus
 namespace ibl {
@@ -22,15 +23,6 @@ std::uint32_t sobolDimension1ReversedFromTables(std::uint32_t index);
 #endif
 
 IBL_BEGIN
-
-IBL_FN uint reverseBits(uint x) {
-  x = (x << 16u) | (x >> 16u);
-  x = ((x & 0x00FF00FFu) << 8u) | ((x & 0xFF00FF00u) >> 8u);
-  x = ((x & 0x0F0F0F0Fu) << 4u) | ((x & 0xF0F0F0F0u) >> 4u);
-  x = ((x & 0x33333333u) << 2u) | ((x & 0xCCCCCCCCu) >> 2u);
-  x = ((x & 0x55555555u) << 1u) | ((x & 0xAAAAAAAAu) >> 1u);
-  return x;
-}
 
 // Burley 2020, listing 1: a permutation of the high bits that depends only on lower bits.
 IBL_FN uint laineKarrasPermutation(uint x, uint seed) {

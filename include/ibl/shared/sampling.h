@@ -6,14 +6,19 @@
 
 IBL_BEGIN
 
+// The bits of x in reverse order.
+IBL_FN uint reverseBits(uint x) {
+  x = (x << 16u) | (x >> 16u);
+  x = ((x & 0x00FF00FFu) << 8u) | ((x & 0xFF00FF00u) >> 8u);
+  x = ((x & 0x0F0F0F0Fu) << 4u) | ((x & 0xF0F0F0F0u) >> 4u);
+  x = ((x & 0x33333333u) << 2u) | ((x & 0xCCCCCCCCu) >> 2u);
+  x = ((x & 0x55555555u) << 1u) | ((x & 0xAAAAAAAAu) >> 1u);
+  return x;
+}
+
 // Van der Corput radical inverse in base 2 (the bit reversal of i), in [0, 1).
 IBL_FN float radicalInverse2(uint i) {
-  i = (i << 16u) | (i >> 16u);
-  i = ((i & 0x55555555u) << 1u) | ((i & 0xAAAAAAAAu) >> 1u);
-  i = ((i & 0x33333333u) << 2u) | ((i & 0xCCCCCCCCu) >> 2u);
-  i = ((i & 0x0F0F0F0Fu) << 4u) | ((i & 0xF0F0F0F0u) >> 4u);
-  i = ((i & 0x00FF00FFu) << 8u) | ((i & 0xFF00FF00u) >> 8u);
-  return float(i) * 2.3283064365386963e-10f;  // 2^-32
+  return float(reverseBits(i)) * 2.3283064365386963e-10f;  // 2^-32
 }
 
 // Point i of the n-point Hammersley set: (i / n, radicalInverse2(i)).
