@@ -13,6 +13,7 @@
 #include <fmt/ranges.h>
 #include <unistd.h>
 
+#include "bake.hpp"
 #include "batch.hpp"
 #include "commands.hpp"
 #include "ibl/bake/bake.hpp"
@@ -26,42 +27,6 @@
 namespace ibl::cli {
 
 namespace {
-
-struct BakeCliOptions {
-  std::vector<std::string> inputs;  // none: the bundled default
-  std::string list;                 // --list FILE: more inputs
-  std::string shard;                // --shard K/N: the batch's inputs i with i mod N == K
-  std::string output;
-  std::string inputLayout;
-  std::string layer;
-  int size = 256;
-  std::optional<int> levels;  // default: down to 8x8
-  std::string mapping = "linear";
-  std::string method = "direct";
-  int samples = 64;
-  bool fresnelWeighted = false;
-  bool sheen = false;
-  std::string sheenVisibility;  // empty: charlie
-  std::vector<std::string> targets = {"ibl"};
-  int irradianceSize = 32;
-  int dfgSize = 128;
-  int dfgSamples = 512;
-  std::string shWindow = "off";
-  float rotate = 0.0f;
-  float clamp = 0.0f;  // 0: no limit
-  std::string format = "rgba16f";
-  bool exr = false;
-  bool hdr = false;
-  std::string layout = "hcross";
-  bool noPreview = false;
-  int previewSize = 96;
-  bool force = false;
-  bool extractSun = false;
-  EnvScaleOptions envScale;  // --env-intensity, --env-illuminance
-  std::string device = "cpu";
-  bool listDevices = false;
-  std::set<std::string> given;  // the options on the command line (CLI11's count)
-};
 
 // The library's options from the command line's (nothing read yet).
 BakeOptions bakeOptionsOf(const BakeCliOptions& o) {
@@ -144,46 +109,12 @@ std::string bakeOne(const BakeCliOptions& o, const std::string& input, const std
   const auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  LoadOptions loadOptions;
-  if (!o.inputLayout.empty()) loadOptions.layout = parseLayout(o.inputLayout);
-  loadOptions.layer = o.layer;
-  SourceEnvironment source =
-      loadSourceEnvironment(input, loadOptions, o.extractSun, global, device);
-  const std::string& name = source.name;
-  LoadedEnvironment& loaded = source.loaded;
-  requireLight(loaded.environment, name);
-  scaleSourceEnvironment(source, o.envScale, global);  // before anything else
-  RangeLoss clampLoss;
-  if (o.clamp > 0.0f) {
-    clampLoss = clampEnvironment(loaded.environment, o.clamp);
-    if (!global.quiet)
-      fmt::print(stderr, "ibl: note: {}: --clamp: {}\n", name, describe(clampLoss, o.clamp));
-  }
-
-  const BakeOptions options = bakeOptionsOf(o);
+  SourceEnvironment source = loadBakeInput(o, input, device, global);
   ProgressLine line(showProgress);
-  const ProgressFn progress = line.callback();
-  if (device) progress(fmt::format("GPU stages on {}", device->device().name), 0.0);
-  const BakeResult result = bakeEnvironment(loaded.environment, options, progress, device);
-
-  BakeOutputOptions output = outputOptionsOf(o);
-  output.manifestRecords = source.manifestRecords;
-  output.warn = [&](const std::string& message) {
-    if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
-  };
-  const Environment& env = loaded.environment;
-  BakeSource facts{input,
-                   loaded.format,
-                   std::string(layoutName(env.layout)),
-                   env.isCube() ? env.cube.size() : env.equirect.width,
-                   env.isCube() ? env.cube.size() : env.equirect.height,
-                   loaded.replaced,
-                   o.clamp,
-                   clampLoss};
-  output.progress = progress;
-  const auto files = writeBakeOutputs(result, options, output, facts, outDir);
-  return fmt::format("baked {} into {}: {} files in {:.2f} s (bake {:.0f} ms)", name, outDir,
-                     files.size(), elapsed(), result.timingsMs.at("total"));
+  const BakeRun run = bakeSource(o, std::move(source), input, line.callback(), device, global);
+  const auto files = writeBakeOutputs(run.result, run.options, run.output, run.facts, outDir);
+  return fmt::format("baked {} into {}: {} files in {:.2f} s (bake {:.0f} ms)", run.source.name,
+                     outDir, files.size(), elapsed(), run.result.timingsMs.at("total"));
 }
 
 // Everything that can be known wrong before the work: the options, the inputs (there and
@@ -208,7 +139,7 @@ void checkBeforeBaking(const BakeCliOptions& o, const std::vector<std::string>& 
   }
   if (!o.list.empty()) inputFiles.emplace_back(o.list);
   std::uint64_t diskBytes = 0;
-  for (const std::string& dir : outDirs) {
+  for (const std::string& dir : outDirs) {  // none: a bake kept in memory (Python)
     refuseInputsInside(dir, inputFiles);
     checkBakeOutputDirectory(dir, o.force);
     diskBytes += estimateBakeOutputBytes(options, output);
@@ -216,10 +147,24 @@ void checkBeforeBaking(const BakeCliOptions& o, const std::vector<std::string>& 
   // Several inputs bake at once (the task scheduler shares the cores): at most two at their
   // peak together is what the measured batches show; one at a time on a GPU.
   const std::uint64_t memory =
-      estimateBakeMemoryBytes(options, output) * std::min<std::size_t>(outDirs.size(), 2);
+      estimateBakeMemoryBytes(options, output) * std::clamp<std::size_t>(outDirs.size(), 1, 2);
   requireMemory(memory, fmt::format("--size {}", o.size),
                 "bake with a smaller --size, or fewer targets");
-  requireDiskSpace(outDirs.front(), diskBytes, "the bake");
+  if (!outDirs.empty()) requireDiskSpace(outDirs.front(), diskBytes, "the bake");
+}
+
+// The usage errors of options that contradict each other, the output directory aside.
+void checkOptionPairs(const BakeCliOptions& o) {
+  const int mipCount = std::bit_width(static_cast<unsigned>(o.size));
+  if (o.levels && *o.levels > mipCount)
+    failUsage("--levels", fmt::format("{} levels need a cube of at least {}^2; --size {} has {} "
+                                      "(down to 1x1)",
+                                      *o.levels, 1 << (*o.levels - 1), o.size, mipCount));
+  if (!o.sheenVisibility.empty() && !o.sheen &&
+      std::find(o.targets.begin(), o.targets.end(), "gltf-sample-viewer") == o.targets.end())
+    failUsage("--sheen-visibility",
+              "chooses the visibility of the sheen table, which only --sheen or --target "
+              "gltf-sample-viewer bakes");
 }
 
 void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
@@ -232,16 +177,7 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
     return;
   }
   if (o.output.empty()) failUsage("--output", "an output directory is required");
-  const int mipCount = std::bit_width(static_cast<unsigned>(o.size));
-  if (o.levels && *o.levels > mipCount)
-    failUsage("--levels", fmt::format("{} levels need a cube of at least {}^2; --size {} has {} "
-                                      "(down to 1x1)",
-                                      *o.levels, 1 << (*o.levels - 1), o.size, mipCount));
-  if (!o.sheenVisibility.empty() && !o.sheen &&
-      std::find(o.targets.begin(), o.targets.end(), "gltf-sample-viewer") == o.targets.end())
-    failUsage("--sheen-visibility",
-              "chooses the visibility of the sheen table, which only --sheen or --target "
-              "gltf-sample-viewer bakes");
+  checkOptionPairs(o);
   const bool batch =
       o.inputs.size() > 1 || !o.list.empty() ||
       (o.inputs.size() == 1 && o.inputs[0].find_first_of("*?[") != std::string::npos &&
@@ -292,8 +228,77 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
 
 }  // namespace
 
+void checkSingleBake(const BakeCliOptions& o, const std::string& input, const std::string& outDir,
+                     const GlobalOptions& global) {
+  checkOptionPairs(o);
+  checkBeforeBaking(o, {input},
+                    outDir.empty() ? std::vector<std::string>{} : std::vector<std::string>{outDir},
+                    global);
+}
+
+SourceEnvironment loadBakeInput(const BakeCliOptions& o, const std::string& input,
+                                gpu::Context* device, const GlobalOptions& global,
+                                std::optional<Image> pixels) {
+  LoadOptions loadOptions;
+  if (!o.inputLayout.empty()) loadOptions.layout = parseLayout(o.inputLayout);
+  loadOptions.layer = o.layer;
+  if (pixels) return sourceFromImage(std::move(*pixels), input, loadOptions, o.extractSun, global);
+  return loadSourceEnvironment(input, loadOptions, o.extractSun, global, device);
+}
+
+BakeRun bakeSource(const BakeCliOptions& o, SourceEnvironment source, const std::string& input,
+                   const ProgressFn& progress, gpu::Context* device, const GlobalOptions& global) {
+  BakeRun run;
+  run.source = std::move(source);
+  const std::string& name = run.source.name;
+  LoadedEnvironment& loaded = run.source.loaded;
+  requireLight(loaded.environment, name);
+  scaleSourceEnvironment(run.source, o.envScale, global);  // before anything else
+  RangeLoss clampLoss;
+  if (o.clamp > 0.0f) {
+    clampLoss = clampEnvironment(loaded.environment, o.clamp);
+    if (!global.quiet)
+      fmt::print(stderr, "ibl: note: {}: --clamp: {}\n", name, describe(clampLoss, o.clamp));
+  }
+
+  run.options = bakeOptionsOf(o);
+  if (device && progress) progress(fmt::format("GPU stages on {}", device->device().name), 0.0);
+  run.result = bakeEnvironment(loaded.environment, run.options, progress, device);
+
+  run.output = outputOptionsOf(o);
+  run.output.manifestRecords = run.source.manifestRecords;
+  run.output.warn = [&global](const std::string& message) {
+    if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
+  };
+  const Environment& env = loaded.environment;
+  run.facts = BakeSource{input,
+                         loaded.format,
+                         std::string(layoutName(env.layout)),
+                         env.isCube() ? env.cube.size() : env.equirect.width,
+                         env.isCube() ? env.cube.size() : env.equirect.height,
+                         loaded.replaced,
+                         o.clamp,
+                         clampLoss};
+  run.output.progress = progress;
+  return run;
+}
+
+void noteGivenOptions(const CLI::App* cmd, BakeCliOptions& o) {
+  for (const CLI::Option* option : cmd->get_options())
+    if (option->count() > 0) o.given.insert(option->get_name());
+}
+
 void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
   auto opts = std::make_shared<BakeCliOptions>();
+  CLI::App* cmd = addBakeOptions(app, *opts);
+  cmd->callback([opts, cmd, &global] {
+    noteGivenOptions(cmd, *opts);
+    runBake(*opts, global);
+  });
+}
+
+CLI::App* addBakeOptions(CLI::App& app, BakeCliOptions& o) {
+  BakeCliOptions* opts = &o;
   CLI::App* cmd = app.add_subcommand(
       "bake", "Bake an HDR environment into IBL assets (specular, irradiance, SH9, DFG)");
   cmd->add_option("inputs", opts->inputs,
@@ -402,11 +407,7 @@ void addBakeCommand(CLI::App& app, const GlobalOptions& global) {
                   "Pixels per sphere of preview.png (6 x 2 spheres: 6N x 2N)")
       ->check(numberIn(8, 1024))
       ->capture_default_str();
-  cmd->callback([opts, cmd, &global] {
-    for (const CLI::Option* option : cmd->get_options())
-      if (option->count() > 0) opts->given.insert(option->get_name());
-    runBake(*opts, global);
-  });
+  return cmd;
 }
 
 }  // namespace ibl::cli

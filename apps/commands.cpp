@@ -18,6 +18,7 @@
 #include "ibl/env/sky.hpp"
 #include "ibl/env/sun_extraction.hpp"
 #include "ibl/gpu/compute.hpp"
+#include "ibl/io/image_io.hpp"
 
 namespace ibl::cli {
 
@@ -192,7 +193,25 @@ SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOpti
   s.loaded = input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), s.name, options)
                            : loadEnvironment(input, options);
   if (!input.empty()) warnAboutReplacedPixels(s.name, s.loaded.replaced, global);
-  if (!removeSun) return s;
+  if (removeSun) extractSourceSun(s, global);
+  return s;
+}
+
+SourceEnvironment sourceFromImage(Image image, const std::string& name, const LoadOptions& options,
+                                  bool removeSun, const GlobalOptions& global) {
+  SourceEnvironment s;
+  s.name = name;
+  DecodedFile file;
+  file.format = FileFormat::Exr;  // linear radiance
+  file.levels = {{std::move(image)}};
+  s.loaded = loadEnvironment(std::move(file), s.name, options);
+  s.loaded.format = "array";
+  warnAboutReplacedPixels(s.name, s.loaded.replaced, global);
+  if (removeSun) extractSourceSun(s, global);
+  return s;
+}
+
+void extractSourceSun(SourceEnvironment& s, const GlobalOptions& global) {
   Environment& env = s.loaded.environment;
   if (env.layout != Layout::Equirect) {
     // Found and filled on a panorama of the cube's resolution (4 n wide).
@@ -218,7 +237,6 @@ SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOpti
                "{:.4f},{:.4f},{:.4f}; {} pixels filled)\n",
                s.name, light.intensity, glm::degrees(light.angularDiameter), light.direction.x,
                light.direction.y, light.direction.z, sun->pixels);
-  return s;
 }
 
 void addEnvScaleOptions(CLI::App* cmd, EnvScaleOptions& o) {

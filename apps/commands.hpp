@@ -106,6 +106,12 @@ struct SourceEnvironment {
 SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOptions& options,
                                         bool extractSun, const GlobalOptions& global,
                                         gpu::Context* device = nullptr);
+// An environment given as an image in memory (the Python module's arrays), laid out by its
+// shape or options.layout, its invalid pixels replaced as a file's are; format "array".
+SourceEnvironment sourceFromImage(Image image, const std::string& name, const LoadOptions& options,
+                                  bool extractSun, const GlobalOptions& global);
+// --extract-sun: takes the sun out of the source (a panorama afterwards) into its lights.
+void extractSourceSun(SourceEnvironment& source, const GlobalOptions& global);
 // Scales a source environment and the suns it brings by --env-intensity / --env-illuminance
 // (nothing without them), before anything else is done with it; the manifest records (lights
 // and "environment_scale") follow. Prints a note with the factor unless quiet.

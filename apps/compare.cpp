@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "compare.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/core/stats.hpp"
 #include "ibl/io/file_io.hpp"
@@ -17,13 +18,6 @@
 namespace ibl::cli {
 
 namespace {
-
-struct CompareOptions {
-  std::string a, b, mask, errorPng;
-  double maxRelError = -1.0;
-  double errorScale = 0.1;
-  bool json = false;
-};
 
 struct FlatImage {
   Image image;
@@ -50,45 +44,17 @@ nlohmann::ordered_json errorsJson(const ChannelErrors& e) {
           {"psnr_db", e.psnr}};
 }
 
-int runCompare(const CompareOptions& o) {
-  std::vector<std::filesystem::path> inputs;
-  for (const std::string& input : {o.a, o.b, o.mask})
-    if (!input.empty()) {
-      requireReadable(input);
-      inputs.emplace_back(input);
-    }
-  if (!o.errorPng.empty()) refuseOverwritingInputs({o.errorPng}, inputs);
-  const FlatImage fa = readFlat(o.a), fb = readFlat(o.b);
-  if (displayReferred(fa.format) != displayReferred(fb.format)) {
-    const bool aDisplay = displayReferred(fa.format);
-    fail(o.a,
-         fmt::format("is {} but {} is {}: compare two linear images (EXR, HDR) or two "
-                     "display images (PNG, JPEG)",
-                     aDisplay ? "a display image (tone-mapped PNG/JPEG)" : "linear radiance", o.b,
-                     aDisplay ? "linear radiance" : "a display image (tone-mapped PNG/JPEG)"));
-  }
-  const Image& a = fa.image;
-  const Image& b = fb.image;
+void requireSameSize(const Image& a, const Image& b, const std::string& nameA,
+                     const std::string& nameB) {
   if (a.width != b.width || a.height != b.height)
-    fail(o.a, fmt::format("is {}x{} but {} is {}x{}", a.width, a.height, o.b, b.width, b.height));
-  std::vector<float> mask;
-  if (!o.mask.empty()) {
-    const Image m = readFlat(o.mask).image;
-    if (m.width != a.width || m.height != a.height)
-      fail(o.mask, "mask size differs from the images");
-    for (const auto& p : m.pixels) mask.push_back(p.x);
-  }
-  const ImageComparison c = compareImages(a, b, o.mask.empty() ? nullptr : &mask);
-  if (!o.errorPng.empty())
-    writeFileAtomic(o.errorPng, encodePng(errorFalseColor(a, b, o.errorScale)));
+    fail(nameA,
+         fmt::format("is {}x{} but {} is {}x{}", a.width, a.height, nameB, b.width, b.height));
+}
+
+int runCompare(const CompareOptions& o) {
+  const ImageComparison c = compareFiles(o);
   if (o.json) {
-    nlohmann::ordered_json j;
-    j["pixels"] = c.pixels;
-    j["overall"] = errorsJson(c.overall);
-    j["r"] = errorsJson(c.channel[0]);
-    j["g"] = errorsJson(c.channel[1]);
-    j["b"] = errorsJson(c.channel[2]);
-    fmt::print("{}\n", j.dump(2));
+    fmt::print("{}\n", comparisonJson(c).dump(2));
   } else {
     fmt::print("compared {} pixels of {} against {}\n", c.pixels, o.a, o.b);
     fmt::print("{:8} {:>12} {:>12} {:>12} {:>12} {:>9}\n", "channel", "RMSE", "rel. MSE",
@@ -110,8 +76,67 @@ int runCompare(const CompareOptions& o) {
 
 }  // namespace
 
+ImageComparison compareFiles(const CompareOptions& o) {
+  std::vector<std::filesystem::path> inputs;
+  for (const std::string& input : {o.a, o.b, o.mask})
+    if (!input.empty()) {
+      requireReadable(input);
+      inputs.emplace_back(input);
+    }
+  if (!o.errorPng.empty()) refuseOverwritingInputs({o.errorPng}, inputs);
+  const FlatImage fa = readFlat(o.a), fb = readFlat(o.b);
+  if (displayReferred(fa.format) != displayReferred(fb.format)) {
+    const bool aDisplay = displayReferred(fa.format);
+    fail(o.a,
+         fmt::format("is {} but {} is {}: compare two linear images (EXR, HDR) or two "
+                     "display images (PNG, JPEG)",
+                     aDisplay ? "a display image (tone-mapped PNG/JPEG)" : "linear radiance", o.b,
+                     aDisplay ? "linear radiance" : "a display image (tone-mapped PNG/JPEG)"));
+  }
+  requireSameSize(fa.image, fb.image, o.a, o.b);
+  std::vector<float> mask;
+  if (!o.mask.empty()) {
+    const Image m = readFlat(o.mask).image;
+    if (m.width != fa.image.width || m.height != fa.image.height)
+      fail(o.mask, "mask size differs from the images");
+    for (const auto& p : m.pixels) mask.push_back(p.x);
+  }
+  return compareLoaded(o, fa.image, fb.image, mask, o.a, o.b, o.mask);
+}
+
+ImageComparison compareLoaded(const CompareOptions& o, const Image& a, const Image& b,
+                              const std::vector<float>& mask, const std::string& nameA,
+                              const std::string& nameB, const std::string& maskName) {
+  requireSameSize(a, b, nameA, nameB);
+  if (!mask.empty() && mask.size() != a.pixels.size())
+    fail(maskName, "mask size differs from the images");
+  const ImageComparison c = compareImages(a, b, mask.empty() ? nullptr : &mask);
+  if (!o.errorPng.empty())
+    writeFileAtomic(o.errorPng, encodePng(errorFalseColor(a, b, o.errorScale)));
+  return c;
+}
+
+nlohmann::ordered_json comparisonJson(const ImageComparison& c) {
+  nlohmann::ordered_json j;
+  j["pixels"] = c.pixels;
+  j["overall"] = errorsJson(c.overall);
+  j["r"] = errorsJson(c.channel[0]);
+  j["g"] = errorsJson(c.channel[1]);
+  j["b"] = errorsJson(c.channel[2]);
+  return j;
+}
+
 void addCompareCommand(CLI::App& app, const GlobalOptions&) {
   auto opts = std::make_shared<CompareOptions>();
+  CLI::App* cmd = addCompareOptions(app, *opts);
+  cmd->callback([opts] {
+    const int status = runCompare(*opts);
+    if (status != 0) throw CLI::RuntimeError(status);
+  });
+}
+
+CLI::App* addCompareOptions(CLI::App& app, CompareOptions& o) {
+  CompareOptions* opts = &o;
   CLI::App* cmd = app.add_subcommand(
       "compare", "Error of an image against a reference (RMSE, relative MSE, PSNR)");
   cmd->add_option("image", opts->a, "Image to judge")->required();
@@ -125,10 +150,7 @@ void addCompareCommand(CLI::App& app, const GlobalOptions&) {
                   "Exit with status 3 if the mean relative error is above")
       ->check(nonNegativeNumber());
   cmd->add_flag("--json", opts->json, "Print JSON");
-  cmd->callback([opts] {
-    const int status = runCompare(*opts);
-    if (status != 0) throw CLI::RuntimeError(status);
-  });
+  return cmd;
 }
 
 }  // namespace ibl::cli

@@ -16,6 +16,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/core/version.hpp"
 #include "ibl/io/file_io.hpp"
+#include "manual.hpp"
 
 namespace {
 
@@ -65,6 +66,7 @@ int main(int argc, char** argv) {
   ibl::cli::addCompareCommand(app, global);
   ibl::cli::addViewCommand(app, global);
   ibl::cli::addInfoCommand(app, global);
+  ibl::cli::addManualCommands(app);  // last: it describes the commands above
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -1,6 +1,8 @@
 // `ibl render`: a glTF model or a built-in scene, lit by a baked environment.
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include <fmt/core.h>
 #include <unistd.h>
@@ -11,25 +13,35 @@
 #include "ibl/render/bloom.hpp"
 #include "ibl/render/probe.hpp"
 #include "preflight.hpp"
+#include "render.hpp"
 #include "scene_options.hpp"
 
 namespace ibl::cli {
 
 namespace {
 
-struct RenderCliOptions {
-  SceneCliOptions scene;
-  std::string output;
-  std::string mode = "split-sum";
-  float noise = 0.0f;
-  int bounces = 4;
-  bool exrExposed = false;
-  unsigned seed = 1;
-  std::string device = "cpu";
-};
-
 void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
-  checkRenderedImagePath(o.output);
+  const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
+  const auto report = [&](float f) {
+    if (showProgress) fmt::print(stderr, "\rrendering {:3.0f} %", 100.0f * f);
+  };
+  const RenderedImage image = renderImage(o, global, report);
+  if (showProgress) fmt::print(stderr, "\r");
+  writeRenderOutput(o, image);
+  const RenderResult& result = image.result;
+  if (!global.quiet)
+    fmt::print(
+        stderr,
+        "rendered {} ({}x{}, {}, {:.0f} samples, {:.2f} s, {:.2f} M samples/s, EV100 {:.2f})\n",
+        o.output, result.color.width, result.color.height, o.mode, result.samples,
+        result.milliseconds / 1000.0, result.samples / result.milliseconds / 1000.0, image.ev100);
+}
+
+}  // namespace
+
+RenderedImage renderImage(const RenderCliOptions& o, const GlobalOptions& global,
+                          const std::function<void(float)>& report) {
+  if (!o.output.empty()) checkRenderedImagePath(o.output);
   checkSceneOptions(o.scene);
   if (o.mode == "reference" && o.scene.shadows && *o.scene.shadows == "map")
     failUsage("--shadows", "map is the split sum's; the reference traces rays (--shadows alone)");
@@ -40,7 +52,8 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   if (o.device == "gpu" && o.noise > 0.0f)
     failUsage("--noise", "adaptive stopping is the CPU reference's; use --device cpu");
   const auto [width, height] = parseSize(o.scene.size);
-  refuseOverwritingInputs({o.output}, sceneInputFiles(o.scene));
+  const std::vector<std::filesystem::path> inputs = sceneInputFiles(o.scene);
+  if (!o.output.empty()) refuseOverwritingInputs({o.output}, inputs);
   requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
                 "render a smaller image");
   Scene scene = loadScene(o.scene, global);
@@ -67,10 +80,6 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
     });
   r.probes = &probes;
   r.seed = o.seed;
-  const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
-  const auto report = [&](float f) {
-    if (showProgress) fmt::print(stderr, "\rrendering {:3.0f} %", 100.0f * f);
-  };
   // auto picks a real GPU for the reference only, and not for --noise (the CPU's).
   const std::unique_ptr<gpu::Context> device =
       o.mode == "reference" && !(o.device == "auto" && o.noise > 0.0f) ? openDevice(o.device)
@@ -79,24 +88,25 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   RenderResult result =
       device ? gpu::renderReference(*device, scene, camera, baked.bake, baked.options, r, report)
              : renderScene(scene, camera, baked.bake, baked.options, r, report);
-  if (showProgress) fmt::print(stderr, "\r");
   const float ev100 = chooseEv100(o.scene, result.color);
   if (const std::optional<float> bloom = bloomCompensation(o.scene, std::nullopt))
     result.color = applyBloom(result.color, ev100 - o.scene.compensation, *bloom);
-  writeRenderedImage(o.output, result, ev100 - o.scene.compensation, toneCurve(o.scene),
-                     o.exrExposed);
-  if (!global.quiet)
-    fmt::print(
-        stderr,
-        "rendered {} ({}x{}, {}, {:.0f} samples, {:.2f} s, {:.2f} M samples/s, EV100 {:.2f})\n",
-        o.output, width, height, o.mode, result.samples, result.milliseconds / 1000.0,
-        result.samples / result.milliseconds / 1000.0, ev100);
+  return {std::move(result), ev100};
 }
 
-}  // namespace
+void writeRenderOutput(const RenderCliOptions& o, const RenderedImage& image) {
+  writeRenderedImage(o.output, image.result, image.ev100 - o.scene.compensation, toneCurve(o.scene),
+                     o.exrExposed);
+}
 
 void addRenderCommand(CLI::App& app, const GlobalOptions& global) {
   auto opts = std::make_shared<RenderCliOptions>();
+  CLI::App* cmd = addRenderOptions(app, *opts);
+  cmd->callback([opts, &global] { runRender(*opts, global); });
+}
+
+CLI::App* addRenderOptions(CLI::App& app, RenderCliOptions& o) {
+  RenderCliOptions* opts = &o;
   CLI::App* cmd =
       app.add_subcommand("render", "Render a glTF model or a built-in scene lit by an environment");
   addSceneOptions(cmd, opts->scene);
@@ -128,7 +138,7 @@ void addRenderCommand(CLI::App& app, const GlobalOptions& global) {
                   "numbers), or auto (a real GPU if present)")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}))
       ->capture_default_str();
-  cmd->callback([opts, &global] { runRender(*opts, global); });
+  return cmd;
 }
 
 }  // namespace ibl::cli

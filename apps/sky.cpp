@@ -17,26 +17,11 @@
 #include "ibl/io/file_io.hpp"
 #include "ibl/render/light.hpp"
 #include "preflight.hpp"
+#include "sky.hpp"
 
 namespace ibl::cli {
 
 namespace {
-
-struct SkyCliOptions {
-  std::string output;
-  std::optional<float> elevation, azimuth;
-  std::string date, time;
-  std::optional<double> utcOffset, latitude, longitude;
-  float altitude = 0.0f;
-  float turbidity = 2.0f;
-  float ozone = 300.0f;
-  float groundAlbedo = 0.3f;
-  std::string size = "2048x1024";
-  std::string sunJson;
-  bool sunDisk = false;
-  bool singleScattering = false;
-  std::string device = "cpu";
-};
 
 SkyParameters skyParameters(const SkyCliOptions& o) {
   SkyParameters p;
@@ -72,48 +57,26 @@ SkyParameters skyParameters(const SkyCliOptions& o) {
   return p;
 }
 
-void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
-  const auto start = std::chrono::steady_clock::now();
-  const SkyParameters p = skyParameters(o);
-  int width = 0, height = 0;
-  if (std::sscanf(o.size.c_str(), "%dx%d", &width, &height) != 2 || width < 8 || height < 4 ||
-      width > 16384 || height > 8192 || fmt::format("{}x{}", width, height) != o.size)
-    failUsage("--size", fmt::format("\"{}\" is not WxH from 8x4 to 16384x8192", o.size));
-  if (o.sunDisk && !o.sunJson.empty())
-    failUsage("--sun-json",
-              "contradicts --sun-disk: the sun is painted into the image or written as a "
-              "light, not both");
+ExportOptions skyExportOptions(const SkyCliOptions& o, const GlobalOptions& global) {
   ExportOptions e;
   e.output = o.output;
   e.exrType = ExrPixelType::Float;  // cd/m^2 of the sun's disk exceed half floats
   e.ktx2Format = o.sunDisk ? PixelFormat::Rgba32f : PixelFormat::Rgba16f;
-  e.warn = [&](const std::string& message) {
+  e.warn = [&global](const std::string& message) {
     if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
   };
-  checkExportOptions(e);
-  if (!o.sunJson.empty())
-    for (const auto& path : possibleExportPaths(e))
-      if (std::filesystem::weakly_canonical(std::filesystem::absolute(path)) ==
-          std::filesystem::weakly_canonical(std::filesystem::absolute(o.sunJson)))
-        failUsage("--sun-json", fmt::format("is the image's own file {}", path.string()));
-  // Measured: the panorama, its encoding and the sky's tables, about 30 bytes per pixel.
-  requireMemory(static_cast<std::uint64_t>(60e6 + 40.0 * width * height),
-                fmt::format("--size {}", o.size), "compute a smaller sky");
+  return e;
+}
 
-  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
-  Environment env;
-  env.layout = Layout::Equirect;
-  env.equirect = skyImage(p, width, height, o.sunDisk, device.get());
-  std::vector<EncodedFile> files = encodeEnvironment(env, e);
-  const Light sun = skySun(p);
-  if (!o.sunJson.empty()) {
-    const std::string text = sun.intensity > 0.0f
-                                 ? fmt::format("{{\"lights\": [{}]}}\n", sunLightJson(sun))
-                                 : std::string("{\"lights\": []}\n");
-    files.push_back({o.sunJson, std::vector<std::uint8_t>(text.begin(), text.end())});
-  }
-  writeFilesTogether(files);
+void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
+  const auto start = std::chrono::steady_clock::now();
+  const SkyRequest request = checkSkyRequest(o, global);
+  std::string deviceName;
+  const Image panorama = computeSky(o, request, &deviceName);
+  const std::vector<EncodedFile> files = writeSkyOutputs(o, request, panorama, global);
   if (global.quiet) return;
+  const SkyParameters& p = request.parameters;
+  const Light sun = skySun(p);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fmt::print(stderr,
@@ -123,14 +86,70 @@ void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
              o.sunDisk ? " (painted into the image)" : "");
   for (const auto& f : files)
     fmt::print(stderr, "wrote {} ({} bytes)\n", f.path.string(), f.bytes.size());
-  fmt::print(stderr, "{}x{} in {:.2f} s on {}\n", width, height, seconds,
-             device ? device->device().name : std::string("the CPU"));
+  fmt::print(stderr, "{}x{} in {:.2f} s on {}\n", request.width, request.height, seconds,
+             deviceName);
 }
 
 }  // namespace
 
+SkyRequest checkSkyRequest(const SkyCliOptions& o, const GlobalOptions& global) {
+  SkyRequest r;
+  r.parameters = skyParameters(o);
+  int& width = r.width;
+  int& height = r.height;
+  if (std::sscanf(o.size.c_str(), "%dx%d", &width, &height) != 2 || width < 8 || height < 4 ||
+      width > 16384 || height > 8192 || fmt::format("{}x{}", width, height) != o.size)
+    failUsage("--size", fmt::format("\"{}\" is not WxH from 8x4 to 16384x8192", o.size));
+  if (o.sunDisk && !o.sunJson.empty())
+    failUsage("--sun-json",
+              "contradicts --sun-disk: the sun is painted into the image or written as a "
+              "light, not both");
+  if (!o.output.empty()) {  // none: a panorama kept in memory (Python)
+    const ExportOptions e = skyExportOptions(o, global);
+    checkExportOptions(e);
+    if (!o.sunJson.empty())
+      for (const auto& path : possibleExportPaths(e))
+        if (std::filesystem::weakly_canonical(std::filesystem::absolute(path)) ==
+            std::filesystem::weakly_canonical(std::filesystem::absolute(o.sunJson)))
+          failUsage("--sun-json", fmt::format("is the image's own file {}", path.string()));
+  }
+  // Measured: the panorama, its encoding and the sky's tables, about 30 bytes per pixel.
+  requireMemory(static_cast<std::uint64_t>(60e6 + 40.0 * width * height),
+                fmt::format("--size {}", o.size), "compute a smaller sky");
+  return r;
+}
+
+Image computeSky(const SkyCliOptions& o, const SkyRequest& request, std::string* deviceName) {
+  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
+  if (deviceName) *deviceName = device ? device->device().name : std::string("the CPU");
+  return skyImage(request.parameters, request.width, request.height, o.sunDisk, device.get());
+}
+
+std::vector<EncodedFile> writeSkyOutputs(const SkyCliOptions& o, const SkyRequest& request,
+                                         const Image& panorama, const GlobalOptions& global) {
+  Environment env;
+  env.layout = Layout::Equirect;
+  env.equirect = panorama;
+  std::vector<EncodedFile> files = encodeEnvironment(env, skyExportOptions(o, global));
+  const Light sun = skySun(request.parameters);
+  if (!o.sunJson.empty()) {
+    const std::string text = sun.intensity > 0.0f
+                                 ? fmt::format("{{\"lights\": [{}]}}\n", sunLightJson(sun))
+                                 : std::string("{\"lights\": []}\n");
+    files.push_back({o.sunJson, std::vector<std::uint8_t>(text.begin(), text.end())});
+  }
+  writeFilesTogether(files);
+  return files;
+}
+
 void addSkyCommand(CLI::App& app, const GlobalOptions& global) {
   auto opts = std::make_shared<SkyCliOptions>();
+  CLI::App* cmd = addSkyOptions(app, *opts);
+  cmd->callback([opts, &global] { runSky(*opts, global); });
+}
+
+CLI::App* addSkyOptions(CLI::App& app, SkyCliOptions& o) {
+  SkyCliOptions* opts = &o;
   CLI::App* cmd = app.add_subcommand(
       "sky",
       "A physically based clear sky (Rayleigh, Mie, ozone, multiple scattering; spectral) as "
@@ -182,7 +201,7 @@ void addSkyCommand(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   cmd->add_flag("--single-scattering", opts->singleScattering,
                 "Leave out multiple scattering (for comparison)");
-  cmd->callback([opts, &global] { runSky(*opts, global); });
+  return cmd;
 }
 
 }  // namespace ibl::cli

@@ -578,9 +578,10 @@ Json manifestJson(const BakeResult& r, const BakeOptions& o, const BakeSource& s
   manifest["generator"] = fmt::format("ibl {}", kVersion);
   manifest["device"] = r.device;
   // An absolute path: the manifest is read from anywhere, not from where the bake ran. A sky's
-  // description is no path: it is recorded as it was given.
+  // description is no path, nor is an image in memory (format "array", the Python module's):
+  // they are recorded as they were given.
   const std::string path = src.path.empty() ? std::string("(bundled default: sunset.exr)")
-                           : isSkySpec(src.path)
+                           : isSkySpec(src.path) || src.format == "array"
                                ? src.path
                                : fs::absolute(src.path).lexically_normal().string();
   manifest["source"] = {{"path", path},
@@ -753,9 +754,11 @@ void addSheen(OutputPlan& plan, const BakeResult& r, const BakeOptions& o,
 
 }  // namespace
 
-std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o,
-                                       const BakeOutputOptions& out, const BakeSource& src,
-                                       const fs::path& outDir) {
+namespace {
+
+// Every file of a bake, manifest.json last, planned but not encoded.
+OutputPlan planBakeOutputs(const BakeResult& r, const BakeOptions& o, const BakeOutputOptions& out,
+                           const BakeSource& src, const fs::path& outDir) {
   OutputPlan plan;
   if (o.wants(EngineTarget::Ibl)) {
     addSpecular(plan, r, o, out);
@@ -775,7 +778,24 @@ std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o
   Json manifest = manifestJson(r, o, src, plan.outputs);
   if (!out.manifestRecords.empty()) manifest.update(Json::parse(out.manifestRecords));
   plan.addText("manifest.json", manifest.dump(2) + "\n");
+  return plan;
+}
+
+}  // namespace
+
+std::vector<fs::path> writeBakeOutputs(const BakeResult& r, const BakeOptions& o,
+                                       const BakeOutputOptions& out, const BakeSource& src,
+                                       const fs::path& outDir) {
+  OutputPlan plan = planBakeOutputs(r, o, out, src, outDir);
   return writeAll(plan.files, outDir, out.force, out.progress);
+}
+
+std::string bakeManifestJson(const BakeResult& r, const BakeOptions& o,
+                             const BakeOutputOptions& out, const BakeSource& src,
+                             const fs::path& outDir) {
+  const std::vector<std::uint8_t> text =
+      planBakeOutputs(r, o, out, src, outDir).files.back().encode();
+  return std::string(text.begin(), text.end());
 }
 
 CubeMap readBakedCube(const fs::path& path) {

@@ -405,3 +405,12 @@ TEST(Usage, CompareAndInfo) {
                     {"file", "nosuch.exr", 1, "nosuch.exr: no such file"},
                 });
 }
+
+TEST(Usage, Completion) {
+  expectMisuses("completion", "",
+                {
+                    {"shell", "fish", 2, "shell: fish not in {bash,zsh}"},
+                    {"shell", "", 2, "shell is required"},
+                    {"shell", "bash zsh", 2, "zsh"},
+                });
+}

@@ -1,10 +1,11 @@
 // The documentation is tested as a user would use it (docs/testing.md, "The documentation"):
 // every fenced ```sh block of README.md and docs/*.md runs with bash, each in a fresh scratch
-// folder that has `ibl` on its PATH and a link `data` to the repository's data/, as the docs tell
-// users to run them (from the repository root, `ibl` on the PATH). A ```console block is a
-// transcript: its `$ ` lines run the same way, its other lines are output and are not compared.
-// A block that must not run here says why just above it: `<!-- not run: REASON -->`.
-// Every relative link of those pages must name an existing file, and each #anchor a heading.
+// folder that has `ibl` on its PATH and links `data` and `examples` to the repository's data/
+// and examples/ and `build` to the build folder, as the docs tell users to run them (from the
+// repository root, `ibl` on the PATH). A ```console block is a transcript: its `$ ` lines run the
+// same way, its other lines are output and are not compared. A block that must not run here says
+// why just above it: `<!-- not run: REASON -->`. Every relative link of those pages must name an
+// existing file, and each #anchor a heading.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -212,7 +213,15 @@ TEST_P(DocsPage, ShBlocksRunAsWritten) {
     fs::remove_all(dir);
     fs::create_directories(dir / ".bin");
     fs::create_directory_symlink(kSource / "data", dir / "data");
+    // What the pages on installing and embedding use from the repository root: the build
+    // folder (cmake --install, cpack, the Python module) and the example program.
+    fs::create_directory_symlink(fs::path(IBL_CLI).parent_path(), dir / "build");
+    fs::create_directory_symlink(kSource / "examples", dir / "examples");
     fs::create_symlink(IBL_CLI, dir / ".bin" / "ibl");
+#ifdef IBL_PYTHON
+    // `python3` is the interpreter the module was built for (python/CMakeLists.txt).
+    fs::create_symlink(IBL_PYTHON, dir / ".bin" / "python3");
+#endif
     std::ofstream(dir / ".block.sh") << "set -e -o pipefail\n" << commands;
     const auto start = std::chrono::steady_clock::now();
     const ibl::test::CliRun r =

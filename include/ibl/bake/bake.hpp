@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // The bake: an HDR environment in, the assets of image-based lighting out (source cube with
 // mips, GGX-prefiltered specular cube, irradiance cube, SH9, DFG table), each written as KTX2
 // (and optionally EXR / HDR), a preview, and a manifest stating every convention.
@@ -21,13 +22,13 @@
 namespace ibl {
 
 struct BakeOptions {
-  PrefilterOptions specular;     // size (also the source cube's), levels, mapping, method
-  bool fresnelWeighted = false;  // also bake the C(n, l)-weighted pair (F0 = 0 and F0 = 1)
-  int irradianceSize = 32;
-  int dfgSize = 128;
-  int dfgSamples = 512;
+  PrefilterOptions specular;          // size (also the source cube's), levels, mapping, method
+  bool fresnelWeighted = false;       // also bake the C(n, l)-weighted pair (F0 = 0 and F0 = 1)
+  int irradianceSize = 32;            // texels per side of the irradiance cube
+  int dfgSize = 128;                  // texels per side of the DFG (and sheen) table
+  int dfgSamples = 512;               // samples per texel of those tables
   ShWindow shWindow = ShWindow::Off;  // the SH9 coefficients' window against ringing
-  float rotateDegrees = 0.0f;
+  float rotateDegrees = 0.0f;         // about +Y, degrees (rotationY in env/resample.hpp: +X to -Z)
   // Also prefilter the environment with the Charlie sheen lobe (the same levels and roughness
   // mapping as the specular chain) and integrate the sheen table (manifest roles sheen and
   // sheen_dfg). The glTF Sample Viewer target always does.
@@ -37,23 +38,24 @@ struct BakeOptions {
   SheenVisibility sheenVisibility = SheenVisibility::Charlie;
   // What to write (writeBakeOutputs) and so what to compute: the ibl set, engine targets.
   std::vector<EngineTarget> targets = {EngineTarget::Ibl};
-  bool wants(EngineTarget t) const;
+  bool wants(EngineTarget t) const;  // t is among `targets`
+  // Whether the sheen chain and table are baked (asked for, or needed by a target).
   bool wantsSheen() const { return sheen || wants(EngineTarget::GltfSampleViewer); }
 };
 
 struct BakeResult {
-  CubeMap source;  // area-resampled source with its full mip chain
-  CubeMap specular;
-  std::vector<LevelMethod> specularLevels;
+  CubeMap source;    // area-resampled source with its full mip chain
+  CubeMap specular;  // level m: roughness roughnessForLevel(m), options.specular.mapping
+  std::vector<LevelMethod> specularLevels;               // how each specular level was computed
   std::optional<CubeMap> specularF0Zero, specularF0One;  // with fresnelWeighted
-  CubeMap irradiance;                                    // E / pi
-  Sh9 sh;                                   // radiance coefficients (windowed if asked)
-  Image dfg;                                // RGB = A, B, diffuse
-  std::optional<CubeMap> sheen;             // Charlie-prefiltered, with wantsSheen()
-  std::optional<Image> sheenDfg;            // R = E of the sheen lobe (integrateSheenDfgLut)
+  CubeMap irradiance;             // E / pi, one level of irradianceSize (the radiance's units)
+  Sh9 sh;                         // radiance coefficients (windowed if asked)
+  Image dfg;                      // RGB = A, B, diffuse; dfgSize^2 (dfg.hpp)
+  std::optional<CubeMap> sheen;   // Charlie-prefiltered, with wantsSheen()
+  std::optional<Image> sheenDfg;  // R = E of the sheen lobe (integrateSheenDfgLut)
   std::optional<CubeMap> filamentSpecular;  // cmgen's chain (levels, mapping), our axes
   std::optional<CubeMap> babylonSpecular;   // Babylon's chain (to 1^2, its mapping), our axes
-  std::map<std::string, double> timingsMs;  // per stage
+  std::map<std::string, double> timingsMs;  // per stage, milliseconds of wall time
   std::string device = "cpu";               // "cpu", or the Vulkan device's name
   // The SH window's factor per band, as applied to sh (1, 1, 1 without a window).
   std::array<float, 3> shWindowFactors = {1.0f, 1.0f, 1.0f};
@@ -65,18 +67,20 @@ class Context;
 
 // Fails with a UsageError when options contradict each other (the glTF Sample Viewer reads a
 // linear roughness mapping). bakeEnvironment checks them too; a front end calls it before
-// reading any input.
+// reading any input. Throws UsageError("--target gltf-sample-viewer: ...").
 void checkBakeOptions(const BakeOptions& options);
 
 // Runs every stage on all cores. The result does not depend on the number of threads. With a
 // GPU context, every stage runs as compute shaders (the ring prefilter combines its passes on
-// the host).
+// the host). env: any layout, in its own linear radiance units (the outputs keep them);
+// progress: one stage per output (ProgressFn). Throws UsageError as checkBakeOptions, Error
+// ("prefilter: ...") unless options.specular.size is a power of two.
 BakeResult bakeEnvironment(const Environment& env, const BakeOptions& options,
                            const ProgressFn& progress = {}, gpu::Context* device = nullptr);
 
 struct BakeOutputOptions {
   PixelFormat format = PixelFormat::Rgba16f;  // KTX2 cube maps (the DFG table is always RGBA16F)
-  bool exr = false;                           // also EXR files
+  bool exr = false;                           // also EXR files (half float)
   bool hdr = false;                           // also Radiance HDR files
   Layout layout = Layout::HCross;  // of the EXR / HDR copies: a cross, strip, faces or equirect
   bool preview = true;   // preview.png (material grid) and PNG views (with the ibl target)
@@ -97,10 +101,10 @@ struct BakeOutputOptions {
 struct BakeSource {
   std::string path;  // "" for the bundled default
   std::string format;
-  std::string layout;  // "equirect" for a panorama (and a sky), else a cube layout
-  int width = 0, height = 0;
-  InvalidPixelCounts replaced;
-  float clamp = 0.0f;   // the radiance limit applied before baking (--clamp), 0: none
+  std::string layout;           // "equirect" for a panorama (and a sky), else a cube layout
+  int width = 0, height = 0;    // of the input image, pixels
+  InvalidPixelCounts replaced;  // NaN, infinite and negative components set to 0 on loading
+  float clamp = 0.0f;   // the radiance limit applied before baking (--clamp, input units), 0: none
   RangeLoss clampLoss;  // what it removed
 };
 
@@ -109,13 +113,19 @@ struct BakeSource {
 // `outDir`/<target name>/; manifest.json lists every file with its target. a missing directory is
 // staged and renamed into place; an existing one must be empty unless output.force, and then
 // the earlier bake's files (as its manifest lists them) are replaced or removed, other files
-// kept. Returns the written paths.
+// kept. Returns the written paths. Throws Error naming the directory or file (not writable, not
+// enough disk space, an encoding failure); nothing is left half-written.
 std::vector<std::filesystem::path> writeBakeOutputs(const BakeResult& result,
                                                     const BakeOptions& options,
                                                     const BakeOutputOptions& output,
                                                     const BakeSource& source,
                                                     const std::filesystem::path& outDir);
 
+// The text of the manifest.json writeBakeOutputs writes into `outDir` (nothing encoded or
+// written; only the directory's name is used, by engine targets that name files after it).
+std::string bakeManifestJson(const BakeResult& result, const BakeOptions& options,
+                             const BakeOutputOptions& output, const BakeSource& source,
+                             const std::filesystem::path& outDir);
 // Fails, naming the directory, unless writeBakeOutputs can write `outDir`: a directory that
 // does not exist yet (its nearest existing parent must be writable), or an existing writable
 // directory that is empty or, with `force`, holds anything (an earlier bake's files are
@@ -138,7 +148,8 @@ void scaleBake(BakeResult& bake, double factor, std::string_view name = "bake");
 
 // Reads a bake written by writeBakeOutputs back (specular, irradiance, source, DFG, SH9, the
 // sheen pair, and the roughness mapping and sheen visibility from its manifest), for rendering
-// without baking again.
+// without baking again. options, if given, receives the specular size, mapping and sheen
+// visibility. Throws Error naming the directory, manifest.json or the file at fault.
 BakeResult loadBake(const std::filesystem::path& dir, BakeOptions* options);
 // A cube map file of a bake (KTX2, every level), e.g. a probe's coverage; throws, naming the
 // file, when it is not a cube map.

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // The DFG (BRDF integration) lookup table of the split-sum approximation.
 //
 // Texel (i, j) of a W x H table has n.v = (i + 0.5) / W and perceptual roughness
@@ -28,9 +29,11 @@ namespace ibl {
 // (A, B, diffuse) at one (n.v, r) by quasi-Monte Carlo integration over `samples` Hammersley
 // points: visible-normal GGX sampling for A and B (Heitz 2018: the weights F G2 / G1 lie in
 // [0, 1]), cosine sampling for the diffuse term. 512 points: RMS error 1e-3 over the table.
+// NoV: cosine, 0 to 1; roughness: perceptual, 0 to 1.
 glm::vec3 integrateDfg(float NoV, float roughness, int samples);
 
 // The whole table (RGB = A, B, diffuse). `progress`, if given, hears of `stage` as rows finish.
+// width, height: texels (n.v along x, roughness along y); samples: per texel.
 Image integrateDfgLut(int width, int height, int samples, const ProgressFn& progress = {},
                       const std::string& stage = {});
 
@@ -39,12 +42,12 @@ Image integrateDfgLut(int width, int height, int samples, const ProgressFn& prog
 // with V the chosen visibility (Charlie by default), the sheen lobe's directional albedo, so
 // that sheen = sheenColor * prefilteredCharlie(r) * E and the layer below is scaled by
 // 1 - max(sheenColor) * E (KHR_materials_sheen's albedo scaling). `samples` half vectors
-// uniform on the hemisphere, Hammersley points.
+// uniform on the hemisphere, Hammersley points. NoV, roughness, width, height as above.
 float integrateSheenDfg(float NoV, float roughness, int samples, SheenVisibility visibility);
 Image integrateSheenDfgLut(int width, int height, int samples, SheenVisibility visibility,
                            const ProgressFn& progress = {}, const std::string& stage = {});
 
-// Bilinear lookup in a DFG table at (n.v, r).
+// Bilinear lookup in a DFG table at (n.v, r), both 0 to 1, clamped to the texel centers.
 glm::vec3 sampleDfgLut(const Image& lut, float NoV, float roughness);
 
 }  // namespace ibl

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // Convolutions of an environment for image-based lighting: the GGX-prefiltered specular cube
 // map of the split-sum approximation (Karis 2013) and the irradiance cube map.
 #include <functional>
@@ -15,7 +16,8 @@ namespace ibl {
 // Babylon.js's lodGenerationScale (HDRFiltering, and the default of .env files).
 inline constexpr float kBabylonLodGenerationScale = 0.8f;
 
-// Roughness of mip level m of L prefiltered levels.
+// Roughness of mip level m of L prefiltered levels. Roughness throughout: perceptual (glTF's
+// roughnessFactor), 0 to 1; the GGX alpha is its square.
 enum class RoughnessMapping {
   Linear,     // r = m / (L - 1) (the default)
   Frostbite,  // r = (m / (L - 1))^2, i.e. level = sqrt(r) (L - 1) (Lagarde & de Rousiers 2014)
@@ -29,8 +31,10 @@ enum class RoughnessMapping {
 };
 // "linear", "frostbite", "filament", "babylon"
 std::string_view mappingName(RoughnessMapping mapping);
+// level: 0 to levelCount - 1; 0 when levelCount <= 1.
 float roughnessForLevel(int level, int levelCount, RoughnessMapping mapping);
-// The mip level (fractional) that holds roughness r: the inverse of roughnessForLevel.
+// The mip level (fractional, 0 to levelCount - 1) that holds roughness r: the inverse of
+// roughnessForLevel.
 float specularLodForRoughness(float roughness, int levelCount, RoughnessMapping mapping);
 
 // What each specular level averages the environment with (the split sum's first factor).
@@ -48,9 +52,9 @@ using shared::kMinSheenRoughness;
 struct LevelMethod {
   float roughness = 0.0f;
   std::string method;    // "source", "direct", "rings", "sampled"
-  int sourceSize = 0;    // size of the source level read
+  int sourceSize = 0;    // size of the source level read, texels per side
   int samples = 0;       // samples per texel ("sampled")
-  int computedSize = 0;  // the size it was computed at (then interpolated up, if smaller)
+  int computedSize = 0;  // texels per side it was computed at (interpolated up, if smaller)
 };
 
 enum class PrefilterMethod {
@@ -59,29 +63,32 @@ enum class PrefilterMethod {
 };
 
 struct PrefilterOptions {
-  int size = 256;  // size of level 0
-  int levels = 0;  // 0: down to kMinSpecularSize
+  int size = 256;  // texels per side of level 0, a power of two
+  int levels = 0;  // 0: down to kMinSpecularSize; at most the full chain (fullMipCount)
   RoughnessMapping mapping = RoughnessMapping::Linear;
   PrefilterWeight weight = PrefilterWeight::Standard;
   PrefilterMethod method = PrefilterMethod::Direct;
   int samples = 64;  // GGX samples per texel with PrefilterMethod::Sampled
 };
 
-inline constexpr int kMinSpecularSize = 8;
-// Levels from `size` down to kMinSpecularSize (or 1 level if size is smaller).
+inline constexpr int kMinSpecularSize = 8;  // texels per side
+// Levels from `size` (texels per side) down to kMinSpecularSize (or 1 level if size is smaller).
 int defaultSpecularLevels(int size);
 // The number of specular levels `options` asks for (options.levels, or the default).
 int specularLevelCount(const PrefilterOptions& options);
 
 // Prefiltered specular cube map: level m holds the environment averaged with the GGX lobe of
 // roughness roughnessForLevel(m) around n = v = r. Level 0 (r = 0) is the source itself.
-// `source` must hold a full mip chain (buildMipChain) of a power-of-two size.
+// `source` must hold a full mip chain (buildMipChain) of a power-of-two size. `methods`, if
+// given, receives one entry per level; `progress` hears of each level. Throws Error
+// ("prefilter: ...") when options.size is not a power of two or the source's chain is not full.
 CubeMap prefilterGgx(const CubeMap& source, const PrefilterOptions& options,
                      std::vector<LevelMethod>* methods = nullptr, const ProgressFn& progress = {});
 
 // The chain of `options`: level 0 (r = 0) taken from the source (the mirror reflection), every
 // other level computed by `level(size, roughness, method)`, which also fills in how. The loop
-// shared by prefilterGgx and its GPU twin; checks the source's mip chain and the size.
+// shared by prefilterGgx and its GPU twin; checks the source's mip chain and the size (throws
+// Error("prefilter: ...") as prefilterGgx). size: texels per side of the level asked for.
 using SpecularLevelFn =
     std::function<std::array<Image, kFaceCount>(int size, float roughness, LevelMethod& method)>;
 CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& options,
@@ -90,20 +97,22 @@ CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& option
 
 // Direct convolution of one specular level over every texel of source level `sourceLevel`:
 // sum L w / sum w with w = weight(n.l) x texel solid angle. The reference for the tests and
-// the accuracy benchmark, and the method for rough levels.
+// the accuracy benchmark, and the method for rough levels. size: texels per side of the
+// output; sourceLevel must exist (not checked).
 std::array<Image, kFaceCount> prefilterLevelDirect(const CubeMap& source, int sourceLevel, int size,
                                                    float roughness, PrefilterWeight weight);
 
 // A radial window in c = cos(theta) around each output direction: smoothstep(outer) -
 // smoothstep(inner), each smoothstep rising from 0 at c = lo to 1 at c = lo + 1 / inv. The
 // windows of consecutive rings add up to 1, so every direction is counted once whatever level
-// each ring reads. The default is 1 everywhere.
+// each ring reads. The default is 1 everywhere. lo: a cosine; inv: 1 / the width of the rise.
 struct RadialWindow {
   float outerLo = -3.0f, outerInv = 1.0f;
   float innerLo = 2.0f, innerInv = 1.0f;
 };
 
-// Per output texel, the sums of L w and of w (in x) of one convolution pass.
+// Per output texel, the sums of L w and of w (in x) of one convolution pass; w is the lobe's
+// weight times the texel's solid angle (sr).
 struct ConvolutionSums {
   std::array<Image, kFaceCount> sum;
   std::array<Image, kFaceCount> weight;
@@ -124,17 +133,19 @@ using ConvolutionPassFn = std::function<ConvolutionSums(
 // level, then rings [b, 4b] of growing radius (b doubling) over ever coarser levels, at ever
 // coarser output resolution, blended by smooth radial windows that add up to 1. The cost no
 // longer grows with the source resolution times the output resolution. The passes run with
-// `pass` (default: convolvePass, on the CPU).
+// `pass` (default: convolvePass, on the CPU). size: texels per side of the output; `info`, if
+// given, receives how the level was computed.
 std::array<Image, kFaceCount> prefilterLevelRings(const CubeMap& source, int size, float roughness,
                                                   PrefilterWeight weight,
                                                   LevelMethod* info = nullptr,
                                                   const ConvolutionPassFn& pass = {});
 
-// The same convolution for arbitrary directions (brute-force references: pass level 0).
+// The same convolution for arbitrary directions (brute-force references: pass level 0);
+// directions: unit, one result per direction.
 std::vector<glm::vec3> prefilterDirections(const std::array<Image, kFaceCount>& sourceLevel,
                                            std::span<const glm::vec3> directions, float roughness,
                                            PrefilterWeight weight);
-// E(n) / pi for arbitrary directions, by direct convolution over a source level.
+// E(n) / pi for arbitrary unit directions, by direct convolution over a source level.
 std::vector<glm::vec3> irradianceDirections(const std::array<Image, kFaceCount>& sourceLevel,
                                             std::span<const glm::vec3> directions);
 
@@ -143,27 +154,31 @@ std::vector<glm::vec3> irradianceDirections(const std::array<Image, kFaceCount>&
 // (0.5 log2(sample solid angle / level-0 texel solid angle) + 1), and weights (n.l, times V F
 // for the C(n, l) variants). Shared by the CPU and GPU paths.
 struct FisSample {
-  glm::vec3 l;
-  float lod;
+  glm::vec3 l;  // unit, tangent frame
+  float lod;    // source mip level, fractional, clamped to the chain
   float weight;
 };
+// sourceSize: texels per side of source level 0; sourceLevels: its mip levels. Samples below
+// the horizon are left out (fewer than `samples` may come back).
 std::vector<FisSample> filteredImportanceSamples(int sourceSize, int sourceLevels, float roughness,
                                                  int samples, PrefilterWeight weight);
 
 // Filtered importance sampling of one specular level (Krivanek & Colbert 2008): `samples`
 // Hammersley GGX samples per texel, each read from the source mip whose texel solid angle
-// matches the sample's.
+// matches the sample's (in `source`'s mip chain); size: texels per side of the output.
 std::array<Image, kFaceCount> prefilterLevelSampled(const CubeMap& source, int size,
                                                     float roughness, int samples,
                                                     PrefilterWeight weight);
 
 // Irradiance cube map storing E(n) / pi (a white Lambertian surface's radiance), by direct
 // convolution with the clamped cosine over source level `sourceLevel`. `progress` gets the
-// fraction of the texels done, as stage "irradiance NxN".
+// fraction of the texels done, as stage "irradiance NxN". size: texels per side of the one
+// output level (in the source's radiance units); sourceLevel must exist (not checked).
 CubeMap convolveIrradiance(const CubeMap& source, int size, int sourceLevel,
                            const ProgressFn& progress = {});
 
-// Index of the first level of `cube` no larger than `size` (the last level if none).
+// Index of the first level of `cube` no larger than `size` texels per side (the last level if
+// none).
 int levelOfSize(const CubeMap& cube, int size);
 
 }  // namespace ibl

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; the bake's preview picture, behind bake/bake.hpp)
 // The picture a user looks at first: spheres of roughness 0..1 (columns), dielectric and metal
 // (rows), lit by the baked assets with the split-sum model, over the environment, tone-mapped.
 #include "ibl/bake/bake.hpp"

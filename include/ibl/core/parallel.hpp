@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; the library's own threading over oneTBB)
 // The library's fork-join parallelism, in one place: oneTBB's parallel_for and parallel_invoke.
 //
 // Under ThreadSanitizer (CI builds the suite with it) the fork and the join are annotated as

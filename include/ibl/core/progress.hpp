@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // Progress of long work, reported to a front end (apps/progress.hpp draws it on a terminal).
 
 #include <atomic>
@@ -8,8 +9,9 @@
 
 namespace ibl {
 
-// Progress of long work: `stage` has done `fraction` of its work (0 when it starts). Called
-// from any thread; stages may run at the same time (the DFG table beside the convolutions).
+// Progress of long work: `stage` (a few words naming it, e.g. "irradiance 32x32") has done
+// `fraction` (0 to 1) of its work (0 when it starts). Called from any thread; stages may run at the
+// same time (the DFG table beside the convolutions).
 using ProgressFn = std::function<void(const std::string& stage, double fraction)>;
 
 // Counts the parts of a stage as parallel workers finish them, and reports `stage` to
@@ -17,6 +19,8 @@ using ProgressFn = std::function<void(const std::string& stage, double fraction)
 // number of parts. Thread-safe.
 class ProgressCounter {
  public:
+  // progress: kept by reference (it must outlive the counter), may be empty; parts: the number
+  // of advance() calls that complete the stage (below 1 counts as 1).
   ProgressCounter(const ProgressFn& progress, std::string stage, std::int64_t parts)
       : progress_(progress), stage_(std::move(stage)), parts_(parts > 0 ? parts : 1) {}
 

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // Statistics of an image or environment: the figures `ibl info` prints.
 #include <optional>
 #include <vector>
@@ -9,40 +10,47 @@
 
 namespace ibl {
 
+// Per channel, in the image's own units; a channel with no finite value reports 0.
 struct ImageStats {
-  glm::vec3 min{0.0f};  // over finite values
-  glm::vec3 max{0.0f};
-  glm::dvec3 mean{0.0};  // plain mean over pixels (finite values)
-  InvalidPixelCounts invalid;
+  glm::vec3 min{0.0f};   // over finite values (negative ones included)
+  glm::vec3 max{0.0f};   // over finite values
+  glm::dvec3 mean{0.0};  // plain mean over pixels (finite values), not weighted by solid angle
+  InvalidPixelCounts invalid;  // NaN, infinite and negative components
 };
+// The figures above for one image; never throws.
 ImageStats imageStats(const Image& image);
 
 // Integral of the radiance over the sphere (per channel), in W/m^2 when L is in W/(m^2 sr):
-// the irradiance a sphere-sized sensor would integrate. Uses level 0 of a cube map.
+// the irradiance a sphere-sized sensor would integrate (the file's relative units times sr
+// otherwise). Uses level 0 of a cube map; solid angles are exact per texel or pixel.
 glm::dvec3 radiantIntegral(const Environment& env);
 
 // Unit direction of the brightest texel (luminance) of an environment; none when no texel has
-// a positive luminance (a black image).
+// a positive luminance (a black image). Rec.709 luminance; the first of equal maxima; the
+// direction through the texel's center, in the library's axes (docs/conventions.md, +Y up).
 std::optional<glm::vec3> brightestDirection(const Environment& env);
 
-// Differences of image a from reference b over the pixels where mask > 0.5 (all without mask).
+// Differences of image a from reference b over the pixels where mask > 0.5 (all without mask),
+// in the images' own units. a, b and mask must have the same number of pixels (not checked).
 struct ChannelErrors {
   double rmse = 0.0;
   double relativeMse = 0.0;        // sum (a - b)^2 / sum b^2
   double meanRelativeError = 0.0;  // mean |a - b| / (|b| + 1e-3)
   double maxError = 0.0;           // max |a - b|
-  double psnr = 0.0;               // dB, peak = the reference's maximum
+  double psnr = 0.0;               // dB, peak = the reference's maximum; +inf when a equals b
 };
 struct ImageComparison {
   ChannelErrors channel[3];  // R, G, B
   ChannelErrors overall;     // over all three channels
-  std::size_t pixels = 0;    // compared
+  std::size_t pixels = 0;    // compared (inside the mask)
 };
+// mask: one value per pixel of a (null: every pixel). Never throws.
 ImageComparison compareImages(const Image& a, const Image& b,
                               const std::vector<float>* mask = nullptr);
 
 // False-color picture of the per-pixel relative error |a - b| / (|b| + 1e-3) (luminance):
-// black 0, blue, green, yellow, red at `scale` and above.
+// black 0, blue, green, yellow, red at `scale` and above. scale: relative error (e.g. 0.1 for
+// 10 %), > 0. a and b must have the same size (not checked); returns an image of a's size.
 Image errorFalseColor(const Image& a, const Image& b, double scale);
 
 }  // namespace ibl

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // Equirectangular (latitude-longitude) maps: u = 0.5 + atan2(z, x) / 2pi, v = acos(y) / pi,
 // row 0 at v = 0 (straight up), image center toward +X (docs/conventions.md).
 #include <algorithm>
@@ -17,10 +18,11 @@
 
 namespace ibl {
 
+// (u, v) in [0, 1]^2 of a direction (any nonzero length), by the formulas above.
 glm::vec2 directionToEquirect(glm::vec3 dir);
 
 // atan2(y, x) to within 1e-7 radians, several times faster than std::atan2 (the resampling
-// evaluates it for every sample).
+// evaluates it for every sample). Radians in [-pi, pi].
 inline float atan2Approx(float y, float x) {
   // atan on [0, 1] by Abramowitz & Stegun 4.4.49 (|error| <= 2e-8), extended by symmetry.
   const float ax = std::abs(x), ay = std::abs(y);
@@ -45,10 +47,11 @@ inline float atan2Approx(float y, float x) {
 // The direction of (u, v), defined once for C++ and GLSL in ibl/shared/cube.h.
 using shared::equirectToDirection;
 
-// Exact solid angle of one pixel of row y in a width x height map.
+// Exact solid angle (sr) of one pixel of row y (0 at the top) in a width x height map (pixels).
 double equirectPixelSolidAngle(int y, int width, int height);
 
-// Bilinear lookup at (u, v): wraps around in u, clamps at the poles.
+// Bilinear lookup at (u, v) in [0, 1]^2 (pixel centers at (x + 0.5) / width): wraps around in
+// u, clamps at the poles. `dir`: any nonzero direction, mapped by directionToEquirect.
 glm::vec3 sampleEquirect(const Image& image, float u, float v);
 glm::vec3 sampleEquirect(const Image& image, glm::vec3 dir);
 
@@ -57,6 +60,7 @@ glm::vec3 sampleEquirect(const Image& image, glm::vec3 dir);
 // check, and with each window's steepness (windowIsSteep) computed once, not per lookup.
 class EquirectCubic {
  public:
+  // Keeps a pointer to `image`, which must outlive this object.
   explicit EquirectCubic(const Image& image);
   // The reconstruction at (u, v) in [0, 1]^2; `range` learns whether its window is steep.
   glm::vec3 operator()(float u, float v, TapRange* range = nullptr) const;
@@ -71,10 +75,11 @@ class EquirectCubic {
 };
 
 // Halves width and height; each pixel is the solid-angle weighted mean of its 2 x 2 children,
-// so the integral over the sphere is unchanged. Width and height must be even.
+// so the integral over the sphere is unchanged. Throws Error("equirect downsample: width and
+// height must be even") otherwise.
 Image downsampleEquirect(const Image& image);
 
-// Integral of the radiance over the sphere (per channel).
+// Integral of the radiance over the sphere (per channel): sum of L * pixel solid angle (sr).
 glm::dvec3 integrateEquirect(const Image& image);
 
 }  // namespace ibl

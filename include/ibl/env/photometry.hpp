@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; used by the command-line front end)
 // Photometry of an environment: its illuminance on an upward horizontal surface, the range of its
 // luminance, and scaling it into physical units (Frostbite 4.9.1.1 and 4.3: light probes and
 // the sky in cd/m^2, the sun in lux, so that an HDRI and photometric lights can be combined).

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; the resampling inside the bake and env/export.hpp)
 // Area-filtered resampling between equirectangular maps and cube maps, with an optional
 // rotation about +Y.
 #include <array>

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // A physically based clear sky: Rayleigh and Mie scattering and ozone absorption over a
 // spherical planet, single and multiple scattering, integrated over the visible spectrum and
 // written as linear Rec.709 radiance in cd/m^2, with the sun as a light in lux. docs/sky.md has
@@ -36,14 +37,15 @@ glm::vec3 sunDirection(float elevationDegrees, float azimuthDegrees);
 struct SkyParameters {
   float sunElevation = 30.0f;  // degrees above the horizon (-90 to 90)
   float sunAzimuth = 180.0f;   // degrees, compass (0 north, 90 east)
-  float altitude = 0.0f;       // of the observer above the ground, meters (0 to 100 km)
-  float turbidity = 2.0f;      // 1 + aerosol optical depth / Rayleigh optical depth at 550 nm
-  float ozone = 300.0f;        // ozone column, Dobson units (0: none)
-  float groundAlbedo = 0.3f;   // Lambertian, 0 to 1
-  bool multipleScattering = true;
+  float altitude = 0.0f;       // of the observer above the ground, meters (0 to 80 km)
+  float turbidity = 2.0f;     // 1 + aerosol optical depth / Rayleigh optical depth at 550 nm (1-20)
+  float ozone = 300.0f;       // ozone column, Dobson units (0: none, up to 1000)
+  float groundAlbedo = 0.3f;  // Lambertian, 0 to 1
+  bool multipleScattering = true;  // false: single scattering only
 };
 
-// Throws Error("<what>: ...") for a parameter out of its range.
+// Throws UsageError("<what>: ...") for a parameter out of its range (elevation -90 to 90,
+// azimuth -360 to 360, the ranges above otherwise).
 void checkSkyParameters(const SkyParameters& p, std::string_view what);
 
 // The atmosphere's spectral coefficients at sea level (the ozone's at its peak), m^-1, per band.
@@ -52,6 +54,7 @@ struct AtmosphereCoefficients {
   Spectrum mieScattering{}, mieExtinction{};
   Spectrum ozoneAbsorption{};
 };
+// Of p's turbidity and ozone column (the other parameters are not used).
 AtmosphereCoefficients atmosphereCoefficients(const SkyParameters& p);
 
 // The planet and the constituents' profiles (Earth: 6371 km, 100 km of atmosphere), and the
@@ -73,17 +76,20 @@ glm::vec3 spectrumToXyz(const Spectrum& s);
 
 class SkyModel {
  public:
-  // Precomputes the optical-depth and multiple-scattering tables (a few milliseconds).
+  // Precomputes the optical-depth and multiple-scattering tables (a few milliseconds). Throws
+  // UsageError("sky: ...") for parameters out of range (checkSkyParameters).
   explicit SkyModel(const SkyParameters& p);
   ~SkyModel();
   SkyModel(SkyModel&&) noexcept;
   SkyModel& operator=(SkyModel&&) noexcept;
 
+  // The parameters it was built with; the unit direction toward the sun (ibl::sunDirection).
   const SkyParameters& parameters() const;
   glm::vec3 sunDirection() const;
 
   // The transmittance of the atmosphere from the observer (at its altitude) toward unit
-  // direction `d` up to the top of the atmosphere (0 through the ground), per band.
+  // direction `d` up to the top of the atmosphere (0 through the ground), per band: a fraction,
+  // 0 to 1.
   Spectrum transmittance(glm::vec3 d) const;
 
   // The sky's spectral radiance toward the observer from direction `d` (the sun's disk left
@@ -98,6 +104,7 @@ class SkyModel {
 
   // The sky's panorama (equirect, docs/conventions.md): linear Rec.709 in cd/m^2. With
   // `paintSun`, the sun's disk (limb-darkened) is drawn into it carrying the sun's illuminance.
+  // width, height: pixels (checkSkyPanoramaSize; throws Error("sky: ...") outside it).
   Image panorama(int width, int height, bool paintSun) const;
 
  private:
@@ -106,23 +113,25 @@ class SkyModel {
   std::unique_ptr<Tables> tables_;
 };
 
-// Throws Error("sky: ...") unless a panorama of width x height is in 2x1 to 16384x8192.
+// Throws Error("sky: ...") unless a panorama of width x height (pixels) is in 2x1 to 16384x8192.
 void checkSkyPanoramaSize(int width, int height);
 
 // The sun of the sky `p` as a light (SkyModel::sun, without building the model's tables): the
 // solar spectrum at the top of the atmosphere seen through the atmosphere's column toward it.
+// Throws UsageError("sky: ...") as checkSkyParameters.
 Light skySun(const SkyParameters& p);
 
 // Draws the sun's disk, limb-darkened, into an equirect panorama so that the added radiance
 // times the pixels' solid angles sums to the light's illuminance (its color times its lux).
-// Nothing for a light of 0 lux.
+// Nothing for a light of 0 lux. panorama: equirect in cd/m^2; sun: a directional light (lux).
 void paintSunDisk(Image& panorama, const Light& sun);
 
 // A Monte Carlo reference for SkyModel::radiance (src/env/sky_reference.cpp): a spectral
 // volumetric path tracer of the same atmosphere, every order of scattering and the ground's
 // reflections traced (no tables, no multiple-scattering approximation), `paths` paths per band.
 // For measuring the model (tests, docs/sky.md): seconds per direction. `orders` bounds the
-// scattering events (and ground reflections) of a path: 1 is single scattering.
+// scattering events (and ground reflections) of a path: 1 is single scattering. Returns
+// W m^-2 sr^-1 nm^-1 per band, as SkyModel::radiance; direction: unit, as SkyModel::radiance's d.
 Spectrum pathTracedSkyRadiance(const SkyParameters& p, glm::vec3 direction, int paths,
                                unsigned seed = 1, int orders = 200);
 
@@ -139,8 +148,11 @@ struct DateTime {
   double hours = 12.0;     // local clock time, hours
   double utcOffset = 0.0;  // hours east of Greenwich (UTC+2: 2)
 };
-// The Julian day (Meeus eq. 7.1) of a UTC instant.
+// The Julian day (Meeus eq. 7.1) of a UTC instant: Gregorian date, utcHours the hours
+// after its 0:00 UTC (below 0 or past 24 moves to the day before or after).
 double julianDay(int year, int month, int day, double utcHours);
+// latitude: degrees, north positive (-90 to 90); longitude: degrees, east positive (-180 to
+// 180); altitudeMeters: the observer's, for the refraction.
 SolarPosition solarPosition(const DateTime& when, double latitude, double longitude,
                             double altitudeMeters = 0.0);
 // The Sun's apparent right ascension and declination at Julian day `jd` (Meeus chapter 25).
@@ -153,11 +165,12 @@ struct SkySpec {
   SkyParameters parameters;
   int width = 1024, height = 512;
 };
+// isSkySpec: whether text is "sky" or starts with "sky:". parseSkySpec throws UsageError.
 bool isSkySpec(std::string_view text);
 SkySpec parseSkySpec(std::string_view text);
 
-// Parses "YYYY-MM-DD" and "HH:MM[:SS]" into `when` (the offset left alone); throws Error naming
-// `option`.
+// Parses "YYYY-MM-DD" (1900 to 2100) and "HH:MM[:SS]" into `when` (the offset left alone);
+// throws UsageError naming `option`.
 void parseDate(std::string_view text, DateTime& when, std::string_view option);
 void parseClockTime(std::string_view text, DateTime& when, std::string_view option);
 

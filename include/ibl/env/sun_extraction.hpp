@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; used by the command-line front end)
 // Removing the sun from a captured HDRI (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR",
 // section 4.9.2: strong sources in an HDRI make the prefiltered maps noisy and cast no shadow;
 // they are taken out and lit as analytic lights). The sun becomes a sun light in lux; its disk

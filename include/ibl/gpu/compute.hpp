@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; the Vulkan back end of the command-line front end)
 // The bake's stages as Vulkan compute shaders (shaders/{env,bake}/*.comp), sharing the math of the
 // CPU path: the same formulas (ibl/shared/*.h, compiled as C++ and as GLSL) and the same Hammersley
 // points. Runs on any Vulkan 1.1 device, Mesa's software device (lavapipe) included.

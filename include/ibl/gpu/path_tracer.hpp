@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; the Vulkan back end of the command-line front end)
 // The reference on the device: the path tracer of `ibl render --mode reference` (next-event
 // estimation of every light, the emissive triangles and the environment, multiple importance
 // sampling, Russian roulette, the same BRDF, sheen and multiple-scattering model) as a compute
@@ -41,7 +42,7 @@ class PathTracer {
   // each pixel's low-discrepancy sequence, the numbers the CPU reference draws for the same
   // seed, pixel and index.
   void accumulate(int samples);
-  int samplesPerPixel() const;
+  int samplesPerPixel() const;  // accumulated since the last reset
 
   // The mean so far: linear radiance and coverage, as renderScene returns them (samples: the
   // total over all pixels; milliseconds: the device time spent since reset()).

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; the Vulkan back end of the command-line front end)
 // The real-time viewer on Vulkan: the scene rasterized and shaded with the split sum of
 // `ibl render` (the formulas of ibl/shared/split_sum.h, as shadeSplitSum), the environment as
 // a skybox; offscreen (screenshots, tests) or in a GLFW window.

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; container internals of the reader and the targets)
 // Babylon.js's environment file (.env), as its EnvironmentTextureTools writes and reads it
 // (packages/dev/core/src/Misc/environmentTextureTools.ts): the 8 magic bytes
 // 86 16 87 96 f6 d6 96 36, a JSON manifest ended by a 0 byte, then one PNG per face per level

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; container internals of the reader and the targets)
 // DirectDraw Surface container with the DX10 extension header (Microsoft, "DDS programming
 // guide": DDS_HEADER and DDS_HEADER_DXT10): what Unity, Unreal and every DirectX loader read.
 // 2D textures and cube maps with their mip chains, uncompressed, in the formats of PixelFormat.

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; file helpers of the library and the front end)
 // Whole-file reads with a size limit, and atomic writes (temporary file, then rename).
 #include <cstdint>
 #include <filesystem>

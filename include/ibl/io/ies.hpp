@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; the IES reader behind the lights of render/light.hpp)
 // IES photometric profiles (ANSI/IESNA LM-63, the 1986, 1991, 1995 and 2002 editions): a
 // luminaire's luminous intensity, in candela, over a web of angles. Type C photometry only (the
 // one interior and street luminaires use), TILT=NONE only.

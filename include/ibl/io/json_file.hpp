@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; exposes nlohmann::json)
 // Reading a JSON file (manifests, probe grids, shard lists) with the one error message for
 // every reader.
 #include <filesystem>

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; container internals of the reader and the targets)
 // KTX 1.1 container (Khronos KTX File Format Specification, version 1.1): the format Filament's
 // ktxreader loads and cmgen writes. 2D textures and cube maps with their mip levels,
 // uncompressed, in R11F_G11F_B10F, RGBA16F or RGBA32F.

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; container internals of the reader and the targets)
 // KTX 2.0 container (Khronos KTX File Format Specification 2.0): 2D textures and cube maps
 // with all mip levels, uncompressed, in the float formats of PixelFormat.
 #include <cstdint>

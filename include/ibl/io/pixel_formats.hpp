@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // GPU texel formats ibl writes, with exact encoders and decoders.
 #include <cstdint>
 #include <optional>
@@ -16,15 +17,17 @@ enum class PixelFormat : std::uint32_t {
   E5B9G9R9 = 123,   // VK_FORMAT_E5B9G9R9_UFLOAT_PACK32
 };
 
-std::uint32_t bytesPerTexel(PixelFormat f);
-// Size of one component as KTX2's typeSize field defines it.
+std::uint32_t bytesPerTexel(PixelFormat f);  // as stored (RGBA formats with their alpha)
+// Size of one component as KTX2's typeSize field defines it, bytes (the packed word's for the
+// packed formats).
 std::uint32_t ktxTypeSize(PixelFormat f);
 std::string_view formatName(PixelFormat f);        // e.g. "rgba16f"
 std::string_view vulkanFormatName(PixelFormat f);  // e.g. "VK_FORMAT_R16G16B16A16_SFLOAT"
+// The format of a formatName, or of a VkFormat value; none for any other.
 std::optional<PixelFormat> parsePixelFormat(std::string_view name);
 std::optional<PixelFormat> pixelFormatFromVk(std::uint32_t vkFormat);
 
-// IEEE 754 binary16, round to nearest even; values beyond 65504 become infinity.
+// IEEE 754 binary16 bits, round to nearest even; values beyond 65504 become infinity.
 std::uint16_t floatToHalf(float v);
 float halfToFloat(std::uint16_t h);
 

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // The standard material's BRDF terms (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR",
 // section 3; glTF 2.0 metallic-roughness): GGX distribution, height-correlated Smith
 // visibility, Schlick Fresnel, renormalized Disney diffuse; and the analytic fits of the DFG
@@ -13,7 +14,9 @@
 
 namespace ibl {
 
-// Defined once for C++ and GLSL in ibl/shared/brdf.h.
+// Defined once for C++ and GLSL in ibl/shared/brdf.h, where each is documented. Their
+// arguments: roughness r perceptual (0 to 1), alpha = r^2; NoV, NoL, NoH, LoH, VoH cosines
+// (0 to 1); f0, f90 reflectances (0 to 1, linear). ggxDistribution returns D in sr^-1.
 using shared::alphaFromRoughness;
 using shared::disneyDiffuseRenormalized;
 using shared::fresnelSchlick;
@@ -33,13 +36,15 @@ enum class SheenVisibility {
 };
 // "charlie" or "neubelt", as the option and manifest.json spell them.
 std::string_view sheenVisibilityName(SheenVisibility v);
-std::optional<SheenVisibility> parseSheenVisibility(std::string_view name);
-// V(n.v, n.l) of the chosen model at sheen alpha = r^2.
+std::optional<SheenVisibility> parseSheenVisibility(std::string_view name);  // none if unknown
+// V(n.v, n.l) of the chosen model at sheen alpha = r^2 (r the sheen roughness); NoV, NoL
+// cosines, 0 to 1.
 inline float sheenVisibility(SheenVisibility v, float NoV, float NoL, float alpha) {
   return shared::sheenVisibility(static_cast<int>(v), NoV, NoL, alpha);
 }
 
 // Analytic fits of the split-sum DFG term: (scale A, bias B) with specular = F0 A + B.
+// roughness: perceptual, 0 to 1; NoV: cosine, 0 to 1.
 // Lazarov 2013, "Getting More Physical in Call of Duty: Black Ops II" (gloss = 1 - roughness).
 glm::vec2 dfgBlackOps2(float roughness, float NoV);
 // Karis 2014, "Physically Based Shading on Mobile" (UE4's adaptation of Lazarov's fit).

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; math shared with the shaders)
 // Color conversions: the exact sRGB transfer curve (IEC 61966-2-1), Rec.709 luminance, CIE XYZ
 // to Rec.709 and the color of a blackbody.
 #include <cstdint>

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; math shared with the shaders)
 // Low-discrepancy sequences, tangent frames and the importance sampling of BRDF lobes, shared
 // by the bake, the reference renderer and the compute shaders: defined once for C++ and GLSL
 // in ibl/shared/sampling.h (Hammersley points, Duff et al.'s frame, Walter et al.'s GGX

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // Real spherical harmonics, bands 0..2, with the normalization of Ramamoorthi & Hanrahan 2001
 // ("An Efficient Representation for Irradiance Environment Maps"), as polynomials of the
 // world-frame direction (x, y, z), +Y up. Coefficient order: (l, m) = (0,0), (1,-1), (1,0),
@@ -12,7 +13,7 @@
 
 namespace ibl {
 
-using Sh9 = std::array<glm::vec3, 9>;  // RGB coefficients
+using Sh9 = std::array<glm::vec3, 9>;  // RGB coefficients, in the order above
 
 // Defined once for C++ and GLSL in ibl/shared/sh.h: basis function k at a unit direction,
 // the band of coefficient k, and the cosine lobe's A_l (R&H eq. 8).
@@ -20,16 +21,18 @@ using shared::shBand;
 using shared::shBasis;
 using shared::shCosineLobe;
 
-// The nine basis functions at a unit direction.
+// The nine basis functions at direction d, which must be unit (not normalized here).
 std::array<float, 9> shBasis9(glm::vec3 d);
 
-// Radiance coefficients L_lm = integral of L(w) Y_lm(w) dw, with exact texel solid angles.
+// Radiance coefficients L_lm = integral of L(w) Y_lm(w) dw, with exact texel solid angles:
+// the radiance's units times sr. level must exist (not checked).
 Sh9 projectSh9(const CubeMap& cube, int level = 0);
 
-// Radiance reconstructed from the coefficients.
+// Radiance reconstructed from the coefficients toward unit direction d (the radiance's units).
 glm::vec3 evaluateSh9(const Sh9& sh, glm::vec3 d);
 
-// Irradiance E(n) = sum A_l L_lm Y_lm(n) (R&H eq. 7).
+// Irradiance E(n) = sum A_l L_lm Y_lm(n) (R&H eq. 7) at unit normal n: radiance times sr
+// (W/m^2 for radiance in W/(m^2 sr)); divide by pi for a white Lambertian surface's radiance.
 glm::vec3 irradianceSh9(const Sh9& sh, glm::vec3 n);
 
 // Multiplies band l by the Lanczos sigma factor sinc(l / 3) (1, 0.827, 0.414) to soften the
@@ -50,7 +53,8 @@ enum class ShWindow {
 // z = -1/sqrt 2), evaluated as Filament's cmgen does (CubemapSH::windowSH, shmin).
 float irradianceLowerBound(const std::array<float, 9>& e);
 
-// The band factors of cmgen's window with cutoff w (in bands): 1 for l = 0, 0 for l >= w, else
+// The band factors of cmgen's window with cutoff w (in bands, > 0) for band l (0 to 2): 1 for
+// l = 0, 0 for l >= w, else
 // (sin x / x)^4 with x = pi l / w (a sinc applied four times).
 float cmgenBandWindow(int l, float w);
 
@@ -61,7 +65,7 @@ float cmgenBandWindow(int l, float w);
 float cmgenShCutoff(const Sh9& radiance);
 
 // The coefficients windowed as `window` says; `factors`, if given, receives the factor of each
-// band (1, 1, 1 when off).
+// band (1, 1, 1 when off). radiance: the coefficients L_lm of projectSh9.
 Sh9 windowSh9(const Sh9& radiance, ShWindow window, std::array<float, 3>* factors = nullptr);
 
 // The coefficients with band l multiplied by bandFactors[l] (a window chosen before).

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; renderer internals behind render/renderer.hpp)
 // Screen-space ambient occlusion for the CPU's split sum: GTAO (ibl/shared/ambient_occlusion.h,
 // the viewer's full-screen pass runs the same code) over the view-space positions and normals of
 // the pixel centers, as a rasterizer's depth and normal buffers hold them. Combined with the

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; post-processing of the renderer and the viewer)
 // Bloom: the light a lens scatters around bright sources, energy-conserving and in
 // exposure-relative units (Lagarde & de Rousiers 2014, section 5.1.3; ibl/shared/bloom.h). The
 // light above bloomThreshold(EV100, EC) is taken out of each pixel and spread by a wide

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // glTF 2.0 scenes for the renderer and the viewer, and what `ibl info` reports of them.
 #include <cstddef>
 #include <cstdint>
@@ -24,14 +25,15 @@ struct GltfLoadOptions {
   // Limits on what a file can make ibl allocate beyond its own size (docs/scenes.md): the
   // triangles and vertices of the scene as ibl stores them (every instance of a mesh counted),
   // and the decoded texels of its textures.
-  std::uint64_t maxGeometryBytes = std::uint64_t{8} << 30;
-  std::uint64_t maxTextureBytes = std::uint64_t{8} << 30;
+  std::uint64_t maxGeometryBytes = std::uint64_t{8} << 30;  // bytes
+  std::uint64_t maxTextureBytes = std::uint64_t{8} << 30;   // bytes
 };
 
 // Reads a glTF 2.0 file (.gltf with external or embedded buffers, .glb), applying node
 // transforms; KHR_draco_mesh_compression and EXT_meshopt_compression are decoded; missing normals
 // and tangents are generated. Every count, offset, stride and index is checked before anything
-// is allocated for it. Throws Error("<path>: ...") for anything it cannot read.
+// is allocated for it. Throws Error("<path>: ...") for anything it cannot read. Positions in
+// the file's units (meters); lights (KHR_lights_punctual) in cd and lx, as the file states them.
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options = {});
 // The same from bytes already in memory: `path` names the file in messages and is where its
 // external buffers and images are looked for.
@@ -62,8 +64,8 @@ struct GltfSummary {
   };
   struct Material {
     std::string name;
-    glm::vec4 baseColor{1.0f};
-    float metallic = 1.0f, roughness = 1.0f;
+    glm::vec4 baseColor{1.0f};                // baseColorFactor, linear RGBA
+    float metallic = 1.0f, roughness = 1.0f;  // factors; roughness perceptual
     glm::vec3 emissive{0.0f};  // emissiveFactor times KHR_materials_emissive_strength
     std::string alphaMode = "OPAQUE";
     bool doubleSided = false;
@@ -75,20 +77,22 @@ struct GltfSummary {
     int image = -1;      // -1: none that ibl can read
     std::string source;  // the image's file name, "data URI" or "buffer view N"
     std::string mimeType;
-    int width = 0, height = 0;
-    std::string problem;  // empty: readable; else "missing" or why it cannot be read
-    bool used = false;    // read by a material slot that ibl renders
+    int width = 0, height = 0;  // pixels
+    std::string problem;        // empty: readable; else "missing" or why it cannot be read
+    bool used = false;          // read by a material slot that ibl renders
   };
   struct Light {
     std::string name, type;  // KHR_lights_punctual: point, spot, directional
     double intensity = 1.0;  // cd (point, spot), lx (directional)
-    glm::vec3 color{1.0f};
-    double range = 0.0;                                 // 0: none
+    glm::vec3 color{1.0f};   // linear
+    double range = 0.0;      // scene units; 0: none
     double innerConeAngle = 0.0, outerConeAngle = 0.0;  // spot, radians
     std::size_t instances = 0;
   };
   struct Camera {
     std::string name, type;  // perspective, orthographic
+    // As the file holds them: yfov radians, aspectRatio width / height, xmag and ymag
+    // (half extents), znear and zfar in scene units; 0 where the file gives none.
     double yfov = 0.0, aspectRatio = 0.0, xmag = 0.0, ymag = 0.0, znear = 0.0, zfar = 0.0;
     std::size_t instances = 0;
   };
@@ -102,8 +106,8 @@ struct GltfSummary {
   std::size_t meshInstances = 0;
   std::uint64_t triangles = 0, vertices = 0;
   bool hasBounds = false;
-  glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
-  std::vector<std::string> warnings;  // as loadGltf would report them, without the path
+  glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world space, scene units
+  std::vector<std::string> warnings;           // as loadGltf would report them, without the path
 };
 
 // Reads and checks the file as loadGltf does (the same errors), without decoding textures.

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // Analytic lights in photometric units (Lagarde & de Rousiers 2014, "Moving Frostbite to
 // Physically Based Rendering", section 4): what a scene holds, how a lights file describes them,
 // and how the real-time shading (ibl/shared/lights.h) and the reference (light_sampling.hpp)
@@ -21,6 +22,7 @@ enum class LightType { Point, Spot, Sun, Sphere, Disk, Tube, Rect };
 // "point", "spot", ... as the lights file spells them.
 std::string_view lightTypeName(LightType type);
 
+// Positions and sizes in scene units (meters for glTF: nits and lumens assume meters).
 struct Light {
   LightType type = LightType::Point;
   std::string name;                        // for messages: "lights.json: light 2 (spot)"
@@ -31,18 +33,18 @@ struct Light {
   glm::vec3 color{1.0f};                   // linear Rec.709, multiplies the intensity
   // cd (point, spot), lx on a surface facing the sun (sun), nit (area lights).
   float intensity = 0.0f;
-  float radius = 0.0f;                // sphere, disk, tube
+  float radius = 0.0f;                // sphere, disk, tube; scene units
   float length = 0.0f;                // tube: of the segment between the caps' centers
-  float width = 0.0f, height = 0.0f;  // rect
+  float width = 0.0f, height = 0.0f;  // rect; scene units
   float innerAngle = 0.0f, outerAngle = 0.785398163f;  // spot: half-angles, radians
   float angularDiameter = 0.00925024504f;              // sun: radians (0.53 degrees)
-  float range = 0.0f;  // influence radius with the smooth window; 0: none
+  float range = 0.0f;  // influence radius with the smooth window, scene units; 0: none
 
   // Point and spot: a photometric profile, its candela x iesScale replacing `intensity` (the
   // web's nadir along `direction`, or down (-Y) for a point light; its 0-degree plane toward
   // iesHorizontalAxis()).
   std::shared_ptr<const IesProfile> ies;
-  float iesScale = 1.0f;
+  float iesScale = 1.0f;  // multiplier of the profile's candela
 
   bool isPunctual() const { return type == LightType::Point || type == LightType::Spot; }
   // Punctual lights: the luminous intensity (cd, before color) toward unit direction w from
@@ -51,7 +53,7 @@ struct Light {
   // The axis of the profile's nadir and the direction of its 0-degree plane.
   glm::vec3 iesNadir() const;
   glm::vec3 iesHorizontalAxis() const;
-  // The luminous power in lumens (the sun: none, 0).
+  // The luminous power in lumens, times the color's luminance (the sun: none, 0).
   double power() const;
 };
 
@@ -69,6 +71,7 @@ enum class SpotLumens { Physical, Frostbite };
 std::vector<Light> parseLights(std::string_view text, const std::string& name,
                                const std::filesystem::path& baseDirectory,
                                SpotLumens spotLumens = SpotLumens::Physical);
+// The same for a file (IES files relative to its directory); errors name it.
 std::vector<Light> readLightsFile(const std::filesystem::path& path,
                                   SpotLumens spotLumens = SpotLumens::Physical);
 

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; renderer internals behind render/renderer.hpp)
 // Which lights can reach which part of the view: the clustered light lists the viewer reads so
 // that a pixel evaluates only the lights that reach it (ibl/shared/clusters.h holds the grid's
 // arithmetic, shared with the shader). A light is left out of a cluster only where its

@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; renderer internals behind render/renderer.hpp)
 // The reference renderer's view of the analytic lights: sampling each light's solid angle or
 // area as seen from a point, the density of any direction under that sampling (for multiple
 // importance sampling with the BRDF), and rays meeting the lights' emitting shapes.

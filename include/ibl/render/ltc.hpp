@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; renderer internals behind render/renderer.hpp)
 // The table of linearly transformed cosines (ibl/shared/ltc.h) that the real-time area lights
 // read for the GGX lobe, and the fitter that computes it. The table is the project's own fit:
 // `ibl_ltc_fit` (tools/ltc_fit.cpp) runs fitLtcTable and writes src/render/ltc_table.inc, with
@@ -34,6 +35,7 @@ struct LtcTable {
   std::span<const glm::vec4> entries;
   std::span<const glm::vec4> norms;
 };
+// The fitted table compiled into the library (static storage).
 const LtcTable& ltcGgxTable();
 
 // The table's entry at (perceptual roughness, n.v), interpolated bilinearly between texel

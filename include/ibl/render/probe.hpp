@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; local probes of the front end and the viewer)
 // Local light probes: cube maps captured inside the scene by the path tracer and baked like an
 // environment, then looked up with parallax correction and blended by influence volumes
 // (Lagarde & de Rousiers 2014, section 4.9; the formulas are ibl/shared/probes.h).

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // A CPU renderer for materials lit by an environment, in two modes: the real-time split-sum
 // approximation reading the baked assets, and a Monte Carlo reference of the full integral.
 #include <functional>
@@ -40,6 +41,7 @@ struct RenderOptions {
   ShadingTerms only = ShadingTerms::Both;
   int spp = 4;                  // samples per pixel (reference: the maximum)
   float noiseThreshold = 0.0f;  // reference: stop a pixel when its relative standard error is below
+  // (a fraction, e.g. 0.01; checked from 16 samples on; 0: always take spp)
   // Both modes (the split sum compensates for Scale and Walk alike); the commands' default is
   // Walk.
   MultipleScattering multipleScattering = MultipleScattering::Scale;
@@ -82,7 +84,7 @@ struct RenderOptions {
   // Split sum: ambient occlusion by casting this many rays per pixel over the hemisphere (up to
   // aoDistance; 0: a tenth of the scene's size) where the material has no occlusion texture.
   int aoRays = 0;
-  float aoDistance = 0.0f;
+  float aoDistance = 0.0f;  // scene units (meters for glTF)
   // Split sum: screen-space ambient occlusion (ambient_occlusion.hpp), computed by renderScene
   // from its camera's view buffers, min with the material's occlusion, the diffuse through the
   // multiple-bounce fit and read along the bent normal.
@@ -96,54 +98,60 @@ struct RenderOptions {
   const ScreenReflections* screenReflection = nullptr;
   bool environmentLight = true;       // false (--env none): the scene's lights alone
   bool backgroundEnvironment = true;  // else backgroundColor
-  glm::vec3 backgroundColor{0.0f};
-  unsigned seed = 1;
+  glm::vec3 backgroundColor{0.0f};    // linear Rec.709 radiance, the output's units
+  unsigned seed = 1;                  // of the reference's sample sequences
 };
 
 struct RenderResult {
-  Image color;               // linear radiance
-  std::vector<float> alpha;  // coverage of the model per pixel
-  double samples = 0.0;      // path samples taken (reference) or pixel samples (split sum)
-  double milliseconds = 0.0;
+  // Linear Rec.709 radiance, not exposed: the lights add cd/m^2 (nits), the environment its own
+  // units (scale the bake with scaleBake to match).
+  Image color;
+  std::vector<float> alpha;   // coverage of the model per pixel, 0 to 1, row-major as color
+  double samples = 0.0;       // path samples taken (reference) or pixel samples (split sum)
+  double milliseconds = 0.0;  // wall time of the render
 };
 
 // Renders `scene` as seen by `camera`, lit by the baked environment (split sum: specular,
 // irradiance / SH, DFG; reference and background: the source cube's level 0, taken as
 // piecewise constant over its texels) and by the scene's lights (split sum: the approximations
 // of ibl/shared/lights.h; reference: light_sampling.hpp with multiple importance sampling).
-// Area lights and the sun are seen by the camera as their luminance.
+// Area lights and the sun are seen by the camera as their luminance. bakeOptions: those of the
+// bake (its mapping, sheen visibility). progress: the fraction done, 0 to 1. Throws
+// Error("camera: ...") (checkCamera) and Error("render: ...") for a bake that lacks what the
+// scene needs (a sheen table) or inputs of mismatched sizes.
 RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeResult& bake,
                          const BakeOptions& bakeOptions, const RenderOptions& options,
                          const std::function<void(float)>& progress = {});
 
 // The same for any rays: generateRay(pixel) for a point in pixels ((0, 0) the top-left corner
 // of pixel (0, 0)), pixels sampled as renderScene does. A probe capture renders a cube's faces.
+// width, height: pixels. Throws Error("render: ...") as renderScene.
 using RayGenerator = std::function<Ray(glm::vec2 pixel)>;
 RenderResult renderRays(const Scene& scene, int width, int height, const RayGenerator& generateRay,
                         const BakeResult& bake, const BakeOptions& bakeOptions,
                         const RenderOptions& options,
                         const std::function<void(float)>& progress = {});
 
-// Throws when a split sum would read a sheen table integrated with the visibility `table`
-// while `options` gives the lights' sheen lobe another (renderRays and the viewer call it for
-// scenes with a sheen).
+// Throws Error("render: ...") when a split sum would read a sheen table integrated with the
+// visibility `table` while `options` gives the lights' sheen lobe another (renderRays and the
+// viewer call it for scenes with a sheen).
 void checkSheenVisibility(SheenVisibility table, const RenderOptions& options);
 
 // Shading of one surface point, exposed for the tests.
 struct SurfacePoint {
-  glm::vec3 position{0.0f};  // world (local probes and ambient occlusion read it)
-  glm::vec3 normal;          // shading normal, unit
-  glm::vec3 baseColor;       // linear
-  float metallic;
-  float roughness;  // perceptual
-  float occlusion = 1.0f;
+  glm::vec3 position{0.0f};    // world, scene units (local probes and ambient occlusion read it)
+  glm::vec3 normal;            // shading normal, unit
+  glm::vec3 baseColor;         // linear
+  float metallic;              // 0 to 1
+  float roughness;             // perceptual, 0 to 1
+  float occlusion = 1.0f;      // 0 (occluded) to 1
   glm::vec3 bentNormal{0.0f};  // world, unit: the irradiance's direction (0: the normal)
   // The screen-space reflection: premultiplied radiance and the share of the specular lobe it
   // holds (0: the probes and the environment take all).
   glm::vec4 screenReflection{0.0f};
   bool occlusionTexture =
-      false;  // the occlusion comes from the material (else --ao may compute it)
-  glm::vec3 emissive{0.0f};
+      false;                   // the occlusion comes from the material (else --ao may compute it)
+  glm::vec3 emissive{0.0f};    // linear radiance, the output's units
   glm::vec3 sheenColor{0.0f};  // KHR_materials_sheen (0: no sheen layer)
   float sheenRoughness = 0.0f;
 };
@@ -152,10 +160,13 @@ struct SurfacePoint {
 shared::SplitSumSwitches splitSumSwitches(const RenderOptions& options);
 // The real-time shading of a point from the bake: the formulas of ibl/shared/split_sum.h with
 // the CPU's lookups (seam-aware trilinear in the specular chain, bilinear in the irradiance
-// cube or SH9, bilinear in the DFG table).
+// cube or SH9, bilinear in the DFG table). view: unit, from the point toward the eye. Returns
+// the outgoing radiance (environment units). Throws Error("render: ...") for a sheen the bake
+// lacks.
 glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult& bake,
                         const BakeOptions& bakeOptions, const RenderOptions& options);
-// The real-time shading of a point at `position` by the scene's lights (ibl/shared/lights.h,
+// The real-time shading of a point at `position` (world) by the scene's lights, seen from unit
+// direction `view` (toward the eye); radiance in cd/m^2 (ibl/shared/lights.h,
 // IES profiles applied on the CPU); dfg: the DFG table's A, B at the point's n.v (the LTC table
 // is looked up here, once for all the lights). A sheen layer adds its lobe
 // (shared::sheenLightRadiance) and scales the layer below by `belowScale` (its albedo scaling).

@@ -1,4 +1,5 @@
 #pragma once
+// API: stable
 // Scenes to render: triangle meshes with glTF metallic-roughness materials (from glTF 2.0
 // files), analytic spheres (the built-in scenes), analytic lights, and an optional camera.
 #include <cstdint>
@@ -29,7 +30,7 @@ struct TextureSampler {
 // A glTF texture: 8-bit RGBA texels as stored (several textures may share one image) and its
 // sampler.
 struct Texture {
-  int width = 0, height = 0;
+  int width = 0, height = 0;                              // texels
   std::shared_ptr<const std::vector<std::uint8_t>> rgba;  // 4 bytes per texel, row by row
   TextureSampler sampler;
 
@@ -37,6 +38,8 @@ struct Texture {
   // The filtered value at uv (bilinear, or nearest), wrapped as the sampler says. With srgb
   // (base color and emission, glTF 2.0 3.9.2), each texel's RGB is decoded to linear before
   // filtering, as an sRGB texture format does on a GPU; alpha and other textures are linear.
+  // uv: glTF texture coordinates ((0, 0) the image's top-left corner, 1 its width or height);
+  // returns RGBA in [0, 1], (1, 1, 1, 1) for an empty texture.
   glm::vec4 sample(glm::vec2 uv, bool srgb) const;
 };
 
@@ -51,18 +54,19 @@ enum class AlphaMode { Opaque = 0, Mask = 1, Blend = 2 };
 
 // glTF 2.0 metallic-roughness material.
 struct Material {
-  glm::vec3 baseColor{1.0f};    // linear
+  glm::vec3 baseColor{1.0f};    // linear, 0 to 1
   TextureRef baseColorTexture;  // sRGB; its A multiplies baseColorAlpha
   float baseColorAlpha = 1.0f;  // baseColorFactor's A
   AlphaMode alphaMode = AlphaMode::Opaque;
-  float alphaCutoff = 0.5f;  // with AlphaMode::Mask
-  float metallic = 1.0f;
-  float roughness = 1.0f;               // perceptual
+  float alphaCutoff = 0.5f;             // with AlphaMode::Mask
+  float metallic = 1.0f;                // 0 to 1
+  float roughness = 1.0f;               // perceptual, 0 to 1
   TextureRef metallicRoughnessTexture;  // B = metallic, G = roughness (linear)
   TextureRef normalTexture;
-  float normalScale = 1.0f;
-  TextureRef occlusionTexture;  // R
-  float occlusionStrength = 1.0f;
+  float normalScale = 1.0f;        // scales the normal map's X and Y (glTF normalTextureInfo.scale)
+  TextureRef occlusionTexture;     // R
+  float occlusionStrength = 1.0f;  // 0 (none) to 1 (all of the texture's occlusion)
+  // emissiveFactor times KHR_materials_emissive_strength: linear radiance, the output's units.
   glm::vec3 emissive{0.0f};
   TextureRef emissiveTexture;  // sRGB
   // KHR_materials_sheen: a Charlie sheen layer over the rest (sheenColor 0: none).
@@ -74,29 +78,29 @@ struct Material {
 
 // Triangles in world space.
 struct Mesh {
-  std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;   // per vertex
-  std::vector<glm::vec4> tangents;  // per vertex, w = handedness (empty: no normal map)
-  std::vector<glm::vec2> uvs;       // TEXCOORD_0 (empty: no textures)
-  std::vector<glm::vec2> uvs1;      // TEXCOORD_1 (empty: none)
-  std::vector<std::uint32_t> indices;
-  int material = 0;
+  std::vector<glm::vec3> positions;    // scene units (meters for glTF)
+  std::vector<glm::vec3> normals;      // per vertex, unit
+  std::vector<glm::vec4> tangents;     // per vertex, w = handedness (empty: no normal map)
+  std::vector<glm::vec2> uvs;          // TEXCOORD_0 (empty: no textures)
+  std::vector<glm::vec2> uvs1;         // TEXCOORD_1 (empty: none)
+  std::vector<std::uint32_t> indices;  // three per triangle, into the vertex arrays
+  int material = 0;                    // index into Scene::materials
   // The names it answers to (--exclude): its glTF mesh's, its node's and that node's ancestors'
   // (unnamed ones left out).
   std::vector<std::string> names;
 };
 
 struct Sphere {
-  glm::vec3 center{0.0f};
-  float radius = 1.0f;
-  int material = 0;
+  glm::vec3 center{0.0f};  // world, scene units
+  float radius = 1.0f;     // scene units
+  int material = 0;        // index into Scene::materials
 };
 
 struct CameraDescription {
   bool perspective = true;
-  float yfovRadians = 0.8f;
-  float xmag = 1.0f;      // orthographic half width
-  glm::mat4 world{1.0f};  // camera looks down its -Z, +Y up
+  float yfovRadians = 0.8f;  // vertical field of view
+  float xmag = 1.0f;         // orthographic half width, scene units
+  glm::mat4 world{1.0f};     // camera to world; camera looks down its -Z, +Y up
 };
 
 struct Scene {
@@ -107,24 +111,24 @@ struct Scene {
   std::optional<CameraDescription> camera;
   std::vector<Light> lights;  // analytic lights (glTF KHR_lights_punctual, --lights files)
 
-  // Axis-aligned bounds of everything.
+  // Axis-aligned bounds (min, max) of everything, world space.
   std::pair<glm::vec3, glm::vec3> bounds() const;
 };
 
 // The scene without the meshes that answer to any of `names` (Mesh::names: a glTF mesh, or a
-// node and everything below it), as a probe capture leaves out dynamic objects. Throws, naming
-// `option`, when a name matches no mesh.
+// node and everything below it), as a probe capture leaves out dynamic objects. Throws
+// UsageError("<option>: ...") when a name matches no mesh or nothing would be left.
 Scene withoutObjects(const Scene& scene, const std::vector<std::string>& names,
                      const std::string& option);
 
-// One sphere of radius 1 at the origin.
+// One sphere of radius 1 at the origin, with `material` (no lights, no camera).
 Scene makeSphereScene(const Material& material);
 // Spheres of roughness 0..1 (columns, left to right) x metallic 1 (top row) and 0 (bottom),
-// radius 1, 2.5 apart, centered on the origin in the XY plane.
+// radius 1, 2.5 apart, centered on the origin in the XY plane. baseColor: linear, 0 to 1.
 Scene makeSphereGrid(glm::vec3 baseColor, int columns = 6);
 
 // A sphere as triangles for a rasterizer: `segments` around, segments / 2 from pole to pole,
-// vertices on the sphere with exact normals.
+// vertices on the sphere with exact normals (at least 3 segments and 2 rings).
 Mesh tessellateSphere(const Sphere& sphere, int segments);
 
 }  // namespace ibl

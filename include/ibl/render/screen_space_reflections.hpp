@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; renderer internals behind render/renderer.hpp)
 // Screen-space reflections for the CPU's split sum: the stochastic trace of
 // ibl/shared/screen_space_reflections.h (the viewer's full-screen pass runs the same code) over
 // the view buffers and a lit frame of the same camera, composed before the probes as Lagarde &

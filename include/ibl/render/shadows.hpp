@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; renderer internals behind render/renderer.hpp)
 // Shadows of the analytic lights in the real-time paths (the CPU split sum and the viewer): each
 // light's shadow-map layers planned from the scene and the camera (the sun's cascades fitted to
 // the view and texel-snapped; a perspective map over a spot's cone; a cube around point, sphere,
@@ -20,7 +21,7 @@ namespace ibl {
 // How the real-time paths shadow the lights: not at all, through shadow maps, or by tracing
 // rays to samples of each light (the CPU split sum only: the bound a map can reach).
 enum class ShadowMode { None, Map, Ray };
-std::string_view shadowModeName(ShadowMode mode);
+std::string_view shadowModeName(ShadowMode mode);  // "none", "map", "ray"
 
 struct ShadowSettings {
   int mapSize = 1024;   // texels per side of every layer (a power of two, 16 to 8192)

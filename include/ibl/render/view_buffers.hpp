@@ -1,4 +1,5 @@
 #pragma once
+// API: internal (may change without notice; renderer internals behind render/renderer.hpp)
 // The screen-space effects' view of the scene (ambient occlusion, reflections): what the viewer's
 // view-buffers pass (shaders/view/view_buffers.frag) rasterizes, ray-cast at the pixel centers.
 #include <vector>
@@ -22,6 +23,7 @@ struct ViewBuffers {
   std::vector<glm::vec3> positions, normals;
   std::vector<float> roughness;
 };
+// The buffers of `camera`'s image (width x height pixels), ray traced; throws as checkCamera.
 ViewBuffers renderViewBuffers(const Scene& scene, const Camera& camera);
 
 }  // namespace ibl

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Screen-space ambient occlusion: ground-truth ambient occlusion (GTAO; Jimenez, Wu, Pesce &
 // Jarabo 2016, "Practical Real-Time Strategies for Accurate Indirect Occlusion"), from a buffer
 // of view-space positions. C++ and GLSL (see lang.h): the CPU's split sum

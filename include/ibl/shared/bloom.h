@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Bloom in exposure-relative units (Lagarde & de Rousiers 2014, section 5.1.3): the light above
 // a luminance set in stops relative to the frame's exposure is spread by a wide kernel, the rest
 // stays. C++ and GLSL (see lang.h): applyBloom in src/render/bloom.cpp and the window's passes

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // The standard material's BRDF terms (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR",
 // section 3; glTF 2.0 metallic-roughness) and the integrands built from them: the GGX lobes
 // the specular prefilter averages with and one sample of the DFG integral. C++ and GLSL (see

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Rays against the scene's triangles in a binary BVH (built on the host by Embree's generic
 // builder, src/gpu/bvh.hpp, whose comments give the layout), traversed alike by the CPU and the
 // GPU path tracer. C++ and GLSL (see lang.h). The hierarchy is read through accessors each

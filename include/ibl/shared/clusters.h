@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Clustered light culling (Olsson, Billeter and Assarsson 2012, "Clustered Deferred and Forward
 // Shading"; the clustered forward renderer of Persson and Olsson 2013): the view is cut into
 // tiles of pixels and, along the view depth, into slices; each cluster (a tile's slice) lists

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Color: the exact sRGB transfer curve (IEC 61966-2-1), Rec.709 luminance and the display tone
 // curves. C++ and GLSL (see lang.h).
 #ifndef IBL_SHARED_COLOR_H

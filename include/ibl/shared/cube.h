@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Cube-map geometry: the face table of the Vulkan / OpenGL specification ("Cube Map Face
 // Selection"), faces +X, -X, +Y, -Y, +Z, -Z, and the Catmull-Rom weights of the
 // reconstruction filter. C++ and GLSL (see lang.h).

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // The prelude of every header in ibl/shared/: the math written once for the CPU and the GPU.
 //
 // A header in this folder compiles both as C++20 (included by the library, through the C++

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // The reference's sampling of the analytic lights' emitting shapes, for the CPU path tracer
 // (src/render/light_sampling.cpp) and the GPU's (shaders/render/path_trace.comp): a direction
 // toward the light seen from a point, and the density per solid angle of any direction under

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Analytic lights in photometric units (Lagarde & de Rousiers 2014, "Moving Frostbite to
 // Physically Based Rendering", section 4): the conversions from luminous power to intensity and
 // luminance, the attenuation of punctual lights, and the illuminance of spheres and disks with
@@ -240,6 +241,8 @@ IBL_FN vec3 rayPlaneOffset(vec3 c, vec3 m, vec3 r) {
   return rInPlane * 1e6f - (c - dot(c, m) * m);
 }
 
+// A point or spot light: toLight from the shaded point to the light (world units), n the unit
+// normal; the inverse square, the range window and the spot's cone applied.
 IBL_FN LightIncidence punctualIncidence(ShadingLight light, vec3 toLight, vec3 n) {
   float d2 = dot(toLight, toLight);
   vec3 l = toLight / sqrt(max(d2, 1e-20f));
@@ -270,6 +273,9 @@ IBL_FN LightIncidence sunIncidence(ShadingLight light, vec3 n, vec3 r, float alp
   return inc;
 }
 
+// The area lights' incidence (lightIncidence without LTCs): c the light's center relative to
+// the shaded point, n the unit normal, r the specular lobe's unit direction (the reflected view
+// or its dominant direction), alpha the GGX alpha.
 IBL_FN LightIncidence sphereIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
   float d2 = dot(c, c);
   float window = smoothDistanceWindow(d2, light.invSquaredRange);
@@ -285,6 +291,7 @@ IBL_FN LightIncidence sphereIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r
   return inc;
 }
 
+// As sphereIncidence, for a disk.
 IBL_FN LightIncidence diskIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
   float d2 = dot(c, c);
   float window = smoothDistanceWindow(d2, light.invSquaredRange);
@@ -315,6 +322,7 @@ IBL_FN vec3 rectCorner(ShadingLight light, vec3 c, int i) {
   return c + left * (sx * light.width) + light.up * (sy * light.height);
 }
 
+// As sphereIncidence, for a rect.
 IBL_FN LightIncidence rectIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
   float d2 = dot(c, c);
   float window = smoothDistanceWindow(d2, light.invSquaredRange);
@@ -363,6 +371,7 @@ IBL_FN vec3 tubeCapsCenter(ShadingLight tube, vec3 c) {
   return c + tube.direction * clamp(-dot(c, tube.direction), -hl, hl);
 }
 
+// As sphereIncidence, for a tube.
 IBL_FN LightIncidence tubeIncidence(ShadingLight light, vec3 c, vec3 n, vec3 r, float alpha) {
   float d2 = dot(c, c);
   float window = smoothDistanceWindow(d2, light.invSquaredRange);

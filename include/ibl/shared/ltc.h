@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Linearly transformed cosines (Heitz, Dupuy, Hill & Neubelt 2016, "Real-Time Polygonal-Light
 // Shading with Linearly Transformed Cosines"): the GGX lobe times the cosine, for a given
 // roughness and view, is approximated by a clamped cosine distribution D_o transformed by a

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // How a glTF 2.0 material's textures enter the shading (glTF 2.0 specification, section 3.9):
 // the channels, the normal map's tangent frame, the occlusion strength. C++ and GLSL (see
 // lang.h): surfaceAt in src/render/renderer.cpp and shaders/view/scene.frag both call these.

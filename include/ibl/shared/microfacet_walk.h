@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Multiple scattering between the microfacets of a conductor, for the CPU reference
 // (src/render/microfacet_walk.hpp) and the GPU's: Heitz, Hanika, d'Eon & Dachsbacher 2016,
 // "Multiple-Scattering Microfacet BSDFs with the Smith Model" (SIGGRAPH). The microsurface is a

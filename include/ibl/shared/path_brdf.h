@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // The reference's material, for the CPU path tracer (src/render/path_tracer.cpp) and the GPU's
 // (shaders/render/path_trace.comp): glTF's metallic-roughness BRDF (GGX with the height-correlated
 // Smith term and Schlick's Fresnel, a Disney or Lambert diffuse), its multiple scattering (the
@@ -92,6 +93,7 @@ struct PathBrdf {
   int sheenVisibility;
 };
 
+// Whether the material has a sheen layer, and which lobes b.lobes asks to shade.
 IBL_FN bool pathHasSheen(PathBrdf b) {
   return b.sheenColor != vec3(0.0f);
 }

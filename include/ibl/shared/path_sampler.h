@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // The reference's numbers, for the CPU path tracer (src/render/sampler.hpp) and the GPU's
 // (shaders/render/path_trace.comp) alike: the same seed, pixel and sample index give the same
 // numbers on both. C++ and GLSL (see lang.h).

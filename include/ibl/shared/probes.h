@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Local light probes (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR", section 4.9.3 and
 // appendix F; Lagarde & Zanuttini 2012, "Local Image-based Lighting with Parallax-corrected
 // Cubemaps"): a cube map captured at a point of the scene is looked up along the direction from

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Low-discrepancy points, tangent frames and the importance sampling of BRDF lobes. C++ and
 // GLSL (see lang.h): the bake, the reference renderer and the compute shaders use these.
 #ifndef IBL_SHARED_SAMPLING_H

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Screen-space reflections: the near reflections no probe holds, traced through the frame's own
 // view buffers (Lagarde & de Rousiers 2014, "Moving Frostbite to PBR", section 4.9.4) and
 // composed before the probes (section 4.9.5). Stochastic, as Stachowiak 2015 ("Stochastic

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Real spherical harmonics, bands 0..2, with the normalization of Ramamoorthi & Hanrahan 2001
 // ("An Efficient Representation for Irradiance Environment Maps", eq. 3), as polynomials of
 // the world-frame direction (x, y, z). C++ and GLSL (see lang.h).

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // Shadow maps of the analytic lights, read the same way by the CPU split sum and the viewer:
 // the light-space projection of each map layer, the choice of a cascade or a cube face, the
 // bias, and the percentage-closer soft shadow filter (Fernando 2005, "Percentage-Closer Soft

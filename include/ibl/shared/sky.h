@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // A clear-sky atmosphere over a spherical planet: the geometry of rays in (r, mu) coordinates
 // (r: distance from the planet's center, mu: cosine of the ray's zenith angle), the density
 // profiles of its three constituents, and their phase functions. C++ and GLSL (see lang.h):

@@ -1,3 +1,4 @@
+// API: internal (may change without notice; math shared with the shaders)
 // The split-sum shading of a surface point under a prefiltered environment (Karis 2013, "Real
 // Shading in Unreal Engine 4"; Lagarde & de Rousiers 2014, "Moving Frostbite to PBR", section
 // 4.9): everything but the three map lookups, which each language does its own way (the CPU's

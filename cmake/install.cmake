@@ -1,0 +1,87 @@
+# What `cmake --install build --prefix P` puts where, the CMake package and pkg-config file that
+# let other projects use the installed library, and the Debian packages cpack builds from the
+# same rules (docs/install.md). Three components:
+#   runtime  the command (P/bin/ibl), libibl.so.<version> with its SONAME link, man pages and
+#            shell completions (cmake/manual_pages.cmake): Debian package `ibl`;
+#   dev      the headers, libibl.so, the CMake package and ibl.pc: `ibl-dev`;
+#   python   the Python module (python/CMakeLists.txt): `python3-ibl`.
+# The command needs nothing else at run time: the shaders and the default environment are
+# compiled into the library.
+include(CMakePackageConfigHelpers)
+
+set(IBL_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/ibl)
+
+# The command finds the library relative to itself, wherever the prefix is.
+file(RELATIVE_PATH ibl_bin_to_lib /${CMAKE_INSTALL_BINDIR} /${CMAKE_INSTALL_LIBDIR})
+set_target_properties(ibl_cli PROPERTIES INSTALL_RPATH "$ORIGIN/${ibl_bin_to_lib}")
+
+install(TARGETS ibl_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+install(TARGETS ibl EXPORT iblTargets
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev)
+install(DIRECTORY include/ibl DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "*.h")
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/generated/ibl/core/version.hpp
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/ibl/core COMPONENT dev)
+
+# The install tests (tests/install) copy what these targets make.
+foreach(made ibl_manual ibl_python)
+  if(TARGET ibl_install_tests AND TARGET ${made})
+    add_dependencies(ibl_install_tests ${made})
+  endif()
+endforeach()
+
+# find_package(ibl CONFIG): the imported target ibl::ibl and the dependencies its public headers
+# include (glm, oneTBB), found again by the consumer.
+install(EXPORT iblTargets NAMESPACE ibl:: DESTINATION ${IBL_CMAKE_INSTALL_DIR} COMPONENT dev)
+configure_package_config_file(cmake/iblConfig.cmake.in
+                              ${CMAKE_CURRENT_BINARY_DIR}/iblConfig.cmake
+                              INSTALL_DESTINATION ${IBL_CMAKE_INSTALL_DIR})
+# Before 1.0 a minor version may break the API: 0.1 accepts 0.1.x only.
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/iblConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/iblConfig.cmake
+              ${CMAKE_CURRENT_BINARY_DIR}/iblConfigVersion.cmake
+        DESTINATION ${IBL_CMAKE_INSTALL_DIR} COMPONENT dev)
+
+# pkg-config --cflags --libs ibl; the prefix is found from the file's own place.
+file(RELATIVE_PATH ibl_pc_to_prefix /${CMAKE_INSTALL_LIBDIR}/pkgconfig /)
+string(REGEX REPLACE "/$" "" ibl_pc_to_prefix "${ibl_pc_to_prefix}")
+configure_file(cmake/ibl.pc.in ${CMAKE_CURRENT_BINARY_DIR}/ibl.pc @ONLY)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/ibl.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig
+        COMPONENT dev)
+
+# cpack -G DEB: ibl_<version>_<arch>.deb, ibl-dev_... and python3-ibl_..., the shared-library
+# dependencies computed by dpkg-shlibdeps.
+set(CPACK_PACKAGE_NAME ibl)
+set(CPACK_PACKAGE_VENDOR "ibl developers")
+set(CPACK_PACKAGE_CONTACT "ibl developers <ibl@example.org>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Image-based lighting: bake HDR environments, render, compare")
+set(CPACK_PACKAGE_DESCRIPTION
+    "ibl bakes HDR environments into the assets real-time renderers read (prefiltered specular and irradiance cube maps, SH9, DFG tables) for Filament, the glTF Sample Viewer, Babylon.js and DDS engines, renders scenes with them and with a path-traced reference, and compares the two.")
+set(CPACK_PACKAGE_HOMEPAGE_URL "https://example.org/ibl")
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_DEB_COMPONENT_INSTALL ON)
+set(CPACK_COMPONENTS_ALL runtime dev)
+if(TARGET ibl_python)
+  list(APPEND CPACK_COMPONENTS_ALL python)
+endif()
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# The runtime package's own library, for the shared-library dependencies of the command and of
+# the Python module.
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS
+    ${CMAKE_CURRENT_BINARY_DIR})
+set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME ibl)
+set(CPACK_DEBIAN_DEV_PACKAGE_NAME ibl-dev)
+set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
+set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "ibl (= ${PROJECT_VERSION}), libglm-dev, libtbb-dev")
+set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-ibl)
+set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
+set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS "ibl (= ${PROJECT_VERSION}), python3-numpy")
+set(CPACK_COMPONENT_RUNTIME_DESCRIPTION "the ibl command and library")
+set(CPACK_COMPONENT_DEV_DESCRIPTION "headers, CMake package and pkg-config file of libibl")
+set(CPACK_COMPONENT_PYTHON_DESCRIPTION "Python bindings of ibl")
+include(CPack)

@@ -1,0 +1,35 @@
+# Man pages and shell completions, generated from the command's own option definitions: the
+# built `ibl` walks the CLI11 tree that --help prints (apps/manual.cpp) and writes
+#   build/man/man1/ibl.1, build/man/man1/ibl-COMMAND.1   (man -l build/man/man1/ibl-bake.1)
+#   build/completions/ibl                                (bash: source build/completions/ibl)
+#   build/completions/_ibl                               (zsh)
+# Not under the sanitizers (their command is slow to start and not installed).
+include(GNUInstallDirs)
+
+if(NOT IBL_SANITIZE AND NOT IBL_TSAN)
+  set(IBL_MAN_DIR ${CMAKE_CURRENT_BINARY_DIR}/man/man1)
+  set(IBL_COMPLETIONS_DIR ${CMAKE_CURRENT_BINARY_DIR}/completions)
+  # One stamp for the command's run: the pages' names follow the commands, which CMake does not
+  # know; the folder is emptied first so that a removed command leaves no stale page.
+  add_custom_command(
+    OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/man/manual.stamp
+    COMMAND ${CMAKE_COMMAND} -E rm -rf ${IBL_MAN_DIR}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${IBL_MAN_DIR} ${IBL_COMPLETIONS_DIR}
+    COMMAND ibl_cli manual --man-dir ${IBL_MAN_DIR} --bash ${IBL_COMPLETIONS_DIR}/ibl
+            --zsh ${IBL_COMPLETIONS_DIR}/_ibl
+    COMMAND ${CMAKE_COMMAND} -E touch ${CMAKE_CURRENT_BINARY_DIR}/man/manual.stamp
+    DEPENDS ibl_cli
+    BYPRODUCTS ${IBL_COMPLETIONS_DIR}/ibl ${IBL_COMPLETIONS_DIR}/_ibl ${IBL_MAN_DIR}/ibl.1
+    COMMENT "man pages and shell completions of ibl"
+    VERBATIM)
+  add_custom_target(ibl_manual ALL DEPENDS ${CMAKE_CURRENT_BINARY_DIR}/man/manual.stamp)
+
+  if(NOT DEFINED IBL_INSTALL OR IBL_INSTALL)
+    install(DIRECTORY ${IBL_MAN_DIR}/ DESTINATION ${CMAKE_INSTALL_MANDIR}/man1
+            COMPONENT runtime FILES_MATCHING PATTERN "*.1")
+    install(FILES ${IBL_COMPLETIONS_DIR}/ibl
+            DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions COMPONENT runtime)
+    install(FILES ${IBL_COMPLETIONS_DIR}/_ibl
+            DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions COMPONENT runtime)
+  endif()
+endif()
