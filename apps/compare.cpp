@@ -104,6 +104,10 @@ ImageComparison compareFiles(const CompareOptions& o) {
   return compareLoaded(o, fa.image, fb.image, mask, o.a, o.b, o.mask);
 }
 
+Image readFlatImage(const std::string& path) {
+  return readFlat(path).image;
+}
+
 ImageComparison compareLoaded(const CompareOptions& o, const Image& a, const Image& b,
                               const std::vector<float>& mask, const std::string& nameA,
                               const std::string& nameB, const std::string& maskName) {

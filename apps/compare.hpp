@@ -22,6 +22,8 @@ struct CompareOptions {
 // Adds the subcommand "compare" to `app` with its options, stored into `o` (no callback).
 CLI::App* addCompareOptions(CLI::App& app, CompareOptions& o);
 
+// A flat image file as `ibl compare` reads it (a cube map is an error naming the file).
+Image readFlatImage(const std::string& path);
 // Reads o.a, o.b (and o.mask) and measures, writing --error-png if asked.
 ImageComparison compareFiles(const CompareOptions& o);
 // The measurement of images already read (`nameA`, `nameB`, `maskName` for errors; `mask` the

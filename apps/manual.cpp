@@ -522,7 +522,9 @@ std::string bashCompletion(const CLI::App& top) {
   elif [[ "$cur" == -*=* ]]; then
     option="${cur%%=*}" prefix="${cur%%=*}=" cur="${cur#*=}"
   elif [[ "$prev" == -* ]]; then
-    option="$prev"
+    # Only an option that takes a value: after a flag comes anything else.
+    _ibl_value "$cmd" "$prev"
+    [[ -n "$_ibl_kind" ]] && option="$prev"
   fi
   if [[ -n "$option" ]]; then
     _ibl_value "$cmd" "$option"

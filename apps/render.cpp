@@ -21,6 +21,8 @@ namespace ibl::cli {
 namespace {
 
 void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
+  // (An empty --output is Python's image kept in memory, not the command's.)
+  if (o.output.empty()) failUsage("--output", "is empty: name the image to write");
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
   const auto report = [&](float f) {
     if (showProgress) fmt::print(stderr, "\rrendering {:3.0f} %", 100.0f * f);

@@ -69,11 +69,13 @@ ExportOptions skyExportOptions(const SkyCliOptions& o, const GlobalOptions& glob
 }
 
 void runSky(const SkyCliOptions& o, const GlobalOptions& global) {
+  // (An empty --output is Python's panorama kept in memory, not the command's.)
+  if (o.output.empty()) failUsage("--output", "is empty: name the file to write");
   const auto start = std::chrono::steady_clock::now();
   const SkyRequest request = checkSkyRequest(o, global);
   std::string deviceName;
-  const Image panorama = computeSky(o, request, &deviceName);
-  const std::vector<EncodedFile> files = writeSkyOutputs(o, request, panorama, global);
+  const std::vector<EncodedFile> files =
+      writeSkyOutputs(o, request, computeSky(o, request, &deviceName), global);
   if (global.quiet) return;
   const SkyParameters& p = request.parameters;
   const Light sun = skySun(p);
@@ -104,6 +106,8 @@ SkyRequest checkSkyRequest(const SkyCliOptions& o, const GlobalOptions& global) 
     failUsage("--sun-json",
               "contradicts --sun-disk: the sun is painted into the image or written as a "
               "light, not both");
+  if (o.output.empty() && !o.sunJson.empty())
+    failUsage("--sun-json", "is written beside the image: give an output file too");
   if (!o.output.empty()) {  // none: a panorama kept in memory (Python)
     const ExportOptions e = skyExportOptions(o, global);
     checkExportOptions(e);
@@ -126,10 +130,10 @@ Image computeSky(const SkyCliOptions& o, const SkyRequest& request, std::string*
 }
 
 std::vector<EncodedFile> writeSkyOutputs(const SkyCliOptions& o, const SkyRequest& request,
-                                         const Image& panorama, const GlobalOptions& global) {
+                                         Image panorama, const GlobalOptions& global) {
   Environment env;
   env.layout = Layout::Equirect;
-  env.equirect = panorama;
+  env.equirect = std::move(panorama);
   std::vector<EncodedFile> files = encodeEnvironment(env, skyExportOptions(o, global));
   const Light sun = skySun(request.parameters);
   if (!o.sunJson.empty()) {

@@ -42,8 +42,9 @@ SkyRequest checkSkyRequest(const SkyCliOptions& o, const GlobalOptions& global);
 // The panorama (linear Rec.709, cd/m^2), on --device (its name into `deviceName`).
 Image computeSky(const SkyCliOptions& o, const SkyRequest& request,
                  std::string* deviceName = nullptr);
-// Encodes and writes o.output (and --sun-json) as `ibl sky` does; returns the files written.
+// Encodes and writes o.output (and --sun-json) as `ibl sky` does, the panorama moved into the
+// encoder; returns the files written.
 std::vector<EncodedFile> writeSkyOutputs(const SkyCliOptions& o, const SkyRequest& request,
-                                         const Image& panorama, const GlobalOptions& global);
+                                         Image panorama, const GlobalOptions& global);
 
 }  // namespace ibl::cli

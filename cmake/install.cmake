@@ -12,7 +12,7 @@ include(CMakePackageConfigHelpers)
 set(IBL_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/ibl)
 
 # The command finds the library relative to itself, wherever the prefix is.
-file(RELATIVE_PATH ibl_bin_to_lib /${CMAKE_INSTALL_BINDIR} /${CMAKE_INSTALL_LIBDIR})
+file(RELATIVE_PATH ibl_bin_to_lib ${CMAKE_INSTALL_FULL_BINDIR} ${CMAKE_INSTALL_FULL_LIBDIR})
 set_target_properties(ibl_cli PROPERTIES INSTALL_RPATH "$ORIGIN/${ibl_bin_to_lib}")
 
 install(TARGETS ibl_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
@@ -44,8 +44,9 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/iblConfig.cmake
         DESTINATION ${IBL_CMAKE_INSTALL_DIR} COMPONENT dev)
 
 # pkg-config --cflags --libs ibl; the prefix is found from the file's own place.
-file(RELATIVE_PATH ibl_pc_to_prefix /${CMAKE_INSTALL_LIBDIR}/pkgconfig /)
-string(REGEX REPLACE "/$" "" ibl_pc_to_prefix "${ibl_pc_to_prefix}")
+file(RELATIVE_PATH ibl_pc_to_prefix ${CMAKE_INSTALL_FULL_LIBDIR}/pkgconfig ${CMAKE_INSTALL_PREFIX})
+file(RELATIVE_PATH ibl_pc_libdir ${CMAKE_INSTALL_PREFIX} ${CMAKE_INSTALL_FULL_LIBDIR})
+file(RELATIVE_PATH ibl_pc_includedir ${CMAKE_INSTALL_PREFIX} ${CMAKE_INSTALL_FULL_INCLUDEDIR})
 configure_file(cmake/ibl.pc.in ${CMAKE_CURRENT_BINARY_DIR}/ibl.pc @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/ibl.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig
         COMPONENT dev)
@@ -78,9 +79,19 @@ set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME ibl)
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME ibl-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS "ibl (= ${PROJECT_VERSION}), libglm-dev, libtbb-dev")
+# (The internal header ibl/io/json_file.hpp includes nlohmann's; a program that includes it
+# installs nlohmann-json3-dev itself.)
 set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-ibl)
 set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
-set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS "ibl (= ${PROJECT_VERSION}), python3-numpy")
+if(TARGET ibl_python)
+  # The module's file name carries the Python ABI it was built for (ibl.cpython-311-...).
+  string(REPLACE "." ";" ibl_python_version "${IBL_PYTHON_VERSION}")
+  list(GET ibl_python_version 0 ibl_python_major)
+  list(GET ibl_python_version 1 ibl_python_minor)
+  math(EXPR ibl_python_next "${ibl_python_minor} + 1")
+  set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS
+      "ibl (= ${PROJECT_VERSION}), python3 (>= ${IBL_PYTHON_VERSION}), python3 (<< ${ibl_python_major}.${ibl_python_next}), python3-numpy")
+endif()
 set(CPACK_COMPONENT_RUNTIME_DESCRIPTION "the ibl command and library")
 set(CPACK_COMPONENT_DEV_DESCRIPTION "headers, CMake package and pkg-config file of libibl")
 set(CPACK_COMPONENT_PYTHON_DESCRIPTION "Python bindings of ibl")

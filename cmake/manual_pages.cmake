@@ -24,12 +24,22 @@ if(NOT IBL_SANITIZE AND NOT IBL_TSAN)
     VERBATIM)
   add_custom_target(ibl_manual ALL DEPENDS ${CMAKE_CURRENT_BINARY_DIR}/man/manual.stamp)
 
-  if(NOT DEFINED IBL_INSTALL OR IBL_INSTALL)
+  if(IBL_INSTALL)
     install(DIRECTORY ${IBL_MAN_DIR}/ DESTINATION ${CMAKE_INSTALL_MANDIR}/man1
             COMPONENT runtime FILES_MATCHING PATTERN "*.1")
     install(FILES ${IBL_COMPLETIONS_DIR}/ibl
             DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions COMPONENT runtime)
-    install(FILES ${IBL_COMPLETIONS_DIR}/_ibl
-            DESTINATION ${CMAKE_INSTALL_DATADIR}/zsh/vendor-completions COMPONENT runtime)
+    # zsh reads a system's packages' functions from /usr/share/zsh/vendor-completions (Debian)
+    # and a local install's from PREFIX/share/zsh/site-functions: chosen when installing, since
+    # cpack installs the same rules under /usr (its staging folder's .../usr).
+    install(CODE "
+      if(CMAKE_INSTALL_PREFIX MATCHES \"(^|/)usr/?$\")
+        set(ibl_zsh_dir vendor-completions)
+      else()
+        set(ibl_zsh_dir site-functions)
+      endif()
+      file(INSTALL \"${IBL_COMPLETIONS_DIR}/_ibl\"
+           DESTINATION \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_DATADIR}/zsh/\${ibl_zsh_dir}\")
+    " COMPONENT runtime)
   endif()
 endif()

@@ -49,6 +49,19 @@ std::string textOf(const py::handle& value) {
   return py::str(value).cast<std::string>();  // numbers: Python's shortest exact repr
 }
 
+// A NumPy scalar as Python's own bool, int or float (np.int64(48) is the option value 48); an
+// array is no option value: a TypeError naming the keyword.
+py::object plainValue(const std::string& key, const py::handle& value) {
+  const py::module_ np = py::module_::import("numpy");
+  if (py::isinstance(value, np.attr("ndarray")))
+    throw py::type_error(key + ": an array is not an option value (pass a file path)");
+  if (py::isinstance(value, np.attr("bool_"))) return py::bool_(value.cast<bool>());
+  const py::object object = py::reinterpret_borrow<py::object>(value);
+  if (py::isinstance(value, np.attr("integer"))) return py::int_(object);
+  if (py::isinstance(value, np.attr("floating"))) return py::float_(object);
+  return object;
+}
+
 bool isNumber(const py::handle& value) {
   return !py::isinstance<py::bool_>(value) &&
          (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value));
@@ -57,27 +70,29 @@ bool isNumber(const py::handle& value) {
 // `name=value` as the command line's `--name value`: True is a bare flag, False and None leave
 // the option out, a sequence of numbers is joined ("1,2,3"; a size "WxH"), one of strings gives
 // the option once per item.
-void addOption(std::vector<std::string>& args, const std::string& key, const py::handle& value) {
+void addOption(std::vector<std::string>& args, const std::string& key, const py::handle& given) {
   std::string option = "--" + key;
   for (char& c : option)
     if (c == '_') c = '-';
+  const py::object value = plainValue(key, given);
   if (value.is_none()) return;
   if (py::isinstance<py::bool_>(value)) {
     if (value.cast<bool>()) args.push_back(option);
     return;
   }
   if ((py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value))) {
-    const py::sequence items = py::reinterpret_borrow<py::sequence>(value);
-    bool numbers = items.size() > 0;
-    for (const py::handle item : items) numbers = numbers && isNumber(item);
+    std::vector<py::object> items;
+    for (const py::handle item : value) items.push_back(plainValue(key, item));
+    bool numbers = !items.empty();
+    for (const py::object& item : items) numbers = numbers && isNumber(item);
     if (numbers) {
       std::string joined;
-      for (const py::handle item : items)
+      for (const py::object& item : items)
         joined += (joined.empty() ? "" : (key == "size" ? "x" : ",")) + textOf(item);
       args.push_back(option);
       args.push_back(joined);
     } else {
-      for (const py::handle item : items) {
+      for (const py::object& item : items) {
         args.push_back(option);
         args.push_back(textOf(item));
       }
@@ -409,22 +424,26 @@ py::object compare(const py::object& a, const py::object& b, const py::object& m
     }();
     return parseJson(comparisonJson(c).dump());
   }
-  // Arrays (or a path among them, read as a flat image).
-  const auto imageFrom = [](const py::object& value, const char* name) {
-    if (!isPath(value)) return imageOf(value, name);
-    const std::string path = textOf(value);
-    DecodedFile d = readImageFile(path);
-    if (d.levels[0].size() != 1) fail(path, "is a cube map; compare flat images");
-    return std::move(d.levels[0][0]);
+  // Arrays, converted with the GIL held; a path among them is read (as `ibl compare` reads a
+  // flat image) without it.
+  const auto arrayOrNothing = [](const py::object& value, const char* name) {
+    return value.is_none() || isPath(value) ? Image() : imageOf(value, name);
   };
-  const Image ia = imageFrom(a, "a"), ib = imageFrom(b, "b");
-  std::vector<float> maskValues;
-  if (!mask.is_none())
-    for (const glm::vec3& p : imageFrom(mask, "mask").pixels) maskValues.push_back(p.x);
-  const std::string nameA = isPath(a) ? textOf(a) : "a", nameB = isPath(b) ? textOf(b) : "b";
+  const auto pathOrName = [](const py::object& value, const char* name) {
+    return isPath(value) ? textOf(value) : std::string(name);
+  };
+  Image ia = arrayOrNothing(a, "a"), ib = arrayOrNothing(b, "b"), im = arrayOrNothing(mask, "mask");
+  const std::string nameA = pathOrName(a, "a"), nameB = pathOrName(b, "b"),
+                    nameMask = pathOrName(mask, "mask");
+  const bool readA = isPath(a), readB = isPath(b), readMask = !mask.is_none() && isPath(mask);
   const ImageComparison c = [&] {
     const py::gil_scoped_release release;
-    return compareLoaded(o, ia, ib, maskValues, nameA, nameB, "mask");
+    if (readA) ia = readFlatImage(nameA);
+    if (readB) ib = readFlatImage(nameB);
+    if (readMask) im = readFlatImage(nameMask);
+    std::vector<float> maskValues;
+    for (const glm::vec3& p : im.pixels) maskValues.push_back(p.x);
+    return compareLoaded(o, ia, ib, maskValues, nameA, nameB, nameMask);
   }();
   return parseJson(comparisonJson(c).dump());
 }
@@ -525,8 +544,9 @@ PYBIND11_MODULE(ibl, m) {
       "Returns a float32 (height, width, 4) array: linear radiance in nits (cd/m^2, before "
       "exposure and tone mapping; bloom applied with bloom=...) and the coverage in [0, 1], "
       "the numbers `ibl render -o x.exr` writes. size=(width, height) in pixels; "
-      "mode='split-sum' or 'reference'; spp, seed, bounces; env (an environment as in "
-      "bake()) or bake (a bake's directory). output: also write the image (.exr or .png) as "
+      "mode='split-sum' or 'reference'; spp, seed, bounces; env (a file or a sky: description, "
+      "as `ibl render --env` takes) or bake (a bake's directory). output: also write the image "
+      "(.exr or .png) as "
       "the command does. progress('rendering', fraction) from worker threads.\n\nOptions "
       "(the command's):\n" +
       docOf<RenderCliOptions>(addRenderOptions, {"scene", "output"});

@@ -321,6 +321,21 @@ class TestImagesAndErrors(Case):
 
         with self.assertRaises(ibl.UsageError):
             ibl.bake(no_such_option=1)
+        # The sun's file is written beside the image: without one, there is nowhere to put it.
+        with self.assertRaises(ibl.UsageError):
+            ibl.sky(size=(64, 32), sun_json=self.path("sun.json"))
+        self.assertFalse(os.path.exists(self.path("sun.json")))
+        # An array is no option value (the environment argument of bake() is the one that
+        # takes pixels).
+        with self.assertRaises(TypeError):
+            ibl.render("grid", env=np.zeros((8, 16, 3), np.float32))
+
+    def test_numpy_scalars_are_option_values(self):
+        plain = ibl.sky(size=(64, 32), sun_elevation=20, quiet=True)
+        numpy = ibl.sky(size=(np.int64(64), np.int32(32)), sun_elevation=np.float32(20),
+                        quiet=True)
+        self.assertTrue(np.array_equal(plain, numpy))
+        self.assertEqual(plain.shape, (32, 64, 3))
 
     def test_version(self):
         self.assertEqual(f"ibl {ibl.__version__}", run_cli("--version").stdout.strip())

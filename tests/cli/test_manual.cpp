@@ -258,6 +258,11 @@ TEST(Manual, BashCompletesCommandsAndOptions) {
       if (n.rfind("--", 0) == 0) longs.insert(n);
     EXPECT_EQ(bashComplete({"ibl", "-q", command, "--"}), longs) << command;
   }
+  // After a flag, the next word is no flag's value: commands, options and positionals as before.
+  EXPECT_EQ(bashComplete({"ibl", "-q", ""}), asSet(commands));
+  EXPECT_EQ(bashComplete({"ibl", "-q", "comp"}), (std::set<std::string>{"compare", "completion"}));
+  EXPECT_EQ(bashComplete({"ibl", "bake", "--sheen", "--targ"}), std::set<std::string>{"--target"});
+  EXPECT_EQ(bashComplete({"ibl", "completion", "-q", ""}), (std::set<std::string>{"bash", "zsh"}));
 }
 
 TEST(Manual, BashCompletesValues) {

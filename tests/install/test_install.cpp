@@ -11,6 +11,7 @@
 #include <numbers>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include "support/run_command.hpp"
 
@@ -75,6 +76,22 @@ void expectExampleOutput(const std::string& output) {
   }
 }
 
+#ifdef IBL_PYTHON
+// The Python module in `sitePackages` imports in a clean environment, from there, and finds the
+// library installed beside it (its RUNPATH), not the build folder's.
+void expectPythonModuleImports(const fs::path& sitePackages) {
+  const auto r =
+      runCommand(kCleanEnv + "PYTHONPATH=" + quoted(sitePackages) + " " + IBL_PYTHON +
+                 " -c 'import ibl, os; print(ibl.__version__, os.path.dirname(ibl.__file__)); "
+                 "print(open(\"/proc/self/maps\").read())'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.substr(0, r.output.find('\n')), kVersion + " " + sitePackages.string());
+  const fs::path lib = sitePackages.parent_path().parent_path() / ("libibl.so." + kVersion);
+  EXPECT_NE(r.output.find(fs::weakly_canonical(lib).string()), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(kBuild.string()), std::string::npos) << r.output;
+}
+#endif
+
 }  // namespace
 
 TEST(Install, PutsEachFileWhereThePrefixLayoutSays) {
@@ -86,7 +103,7 @@ TEST(Install, PutsEachFileWhereThePrefixLayoutSays) {
         "include/ibl/shared/brdf.h", "lib/cmake/ibl/iblConfig.cmake",
         "lib/cmake/ibl/iblConfigVersion.cmake", "lib/cmake/ibl/iblTargets.cmake",
         "lib/pkgconfig/ibl.pc", "share/man/man1/ibl.1", "share/man/man1/ibl-bake.1",
-        "share/bash-completion/completions/ibl", "share/zsh/vendor-completions/_ibl"})
+        "share/bash-completion/completions/ibl", "share/zsh/site-functions/_ibl"})
     EXPECT_TRUE(fs::is_regular_file(p / file)) << file;
   // The versioned library, its SONAME link and the development link.
   const fs::path real = p / "lib" / ("libibl.so." + kVersion);
@@ -101,11 +118,9 @@ TEST(Install, PutsEachFileWhereThePrefixLayoutSays) {
   const auto runpath = runCommand("readelf -d " + quoted(p / "bin/ibl"));
   EXPECT_NE(runpath.output.find("[$ORIGIN/../lib]"), std::string::npos) << runpath.output;
   EXPECT_EQ(runpath.output.find(kBuild.string()), std::string::npos) << runpath.output;
-  // The Python module lies in the prefix's site-packages.
-  bool module = false;
-  for (const auto& e : fs::recursive_directory_iterator(p / "lib/python3"))
-    module |= e.path().filename().string().starts_with("ibl.cpython");
-  EXPECT_TRUE(module);
+#ifdef IBL_PYTHON
+  expectPythonModuleImports(p / "lib/python3/dist-packages");
+#endif
 }
 
 TEST(Install, CommandRunsFromAnotherFolder) {
@@ -218,7 +233,11 @@ TEST(Install, DebianPackagesUnpackAndRun) {
   ASSERT_EQ(cpack.status, 0) << cpack.output;
   const std::string arch = runCommand("dpkg --print-architecture").output;
   const std::string suffix = "_" + kVersion + "_" + arch.substr(0, arch.find('\n')) + ".deb";
-  for (const char* name : {"ibl", "ibl-dev", "python3-ibl"}) {
+  std::vector<std::string> packages{"ibl", "ibl-dev"};
+#ifdef IBL_PYTHON
+  packages.push_back("python3-ibl");
+#endif
+  for (const std::string& name : packages) {
     const fs::path deb = out / (name + suffix);
     ASSERT_TRUE(fs::is_regular_file(deb)) << deb << "\n" << cpack.output;
     const auto x = runCommand("dpkg -x " + quoted(deb) + " " + quoted(root));
@@ -237,10 +256,27 @@ TEST(Install, DebianPackagesUnpackAndRun) {
   EXPECT_TRUE(fs::is_regular_file(root / "usr/include/ibl/render/renderer.hpp"));
   EXPECT_TRUE(fs::is_regular_file(root / "usr/share/man/man1/ibl-render.1") ||
               fs::is_regular_file(root / "usr/share/man/man1/ibl-render.1.gz"));
+  // Where Debian's bash-completion and zsh look for a package's completions.
+  EXPECT_TRUE(fs::is_regular_file(root / "usr/share/bash-completion/completions/ibl"));
+  EXPECT_TRUE(fs::is_regular_file(root / "usr/share/zsh/vendor-completions/_ibl"));
   const auto version = runCommand("cd " + quoted(scratch.path()) + " && " + kCleanEnv +
                                   quoted(root / "usr/bin/ibl") + " --version");
   EXPECT_EQ(version.status, 0);
   EXPECT_EQ(version.output, "ibl " + kVersion + "\n");
+#ifdef IBL_PYTHON
+  // The module is built for one Python ABI (its file name says which): the package says so.
+  const auto pythonDepends =
+      runCommand("dpkg-deb -f " + quoted(out / ("python3-ibl" + suffix)) + " Depends");
+  const auto abi =
+      runCommand(std::string(IBL_PYTHON) +
+                 " -c 'import sys; v = sys.version_info; "
+                 "print(f\"python3 (>= {v[0]}.{v[1]}), python3 (<< {v[0]}.{v[1] + 1})\")'");
+  EXPECT_NE(pythonDepends.output.find(abi.output.substr(0, abi.output.find('\n'))),
+            std::string::npos)
+      << pythonDepends.output << " / " << abi.output;
+  EXPECT_NE(pythonDepends.output.find("python3-numpy"), std::string::npos);
+  expectPythonModuleImports(root / "usr/lib/python3/dist-packages");
+#endif
 }
 
 TEST(Install, EveryInstalledHeaderSaysWhetherItIsStable) {
