@@ -379,6 +379,12 @@ py::dict bake(const py::object& environment, const py::object& output, bool forc
   return out;
 }
 
+// A command whose --output Python may leave out: the result is returned instead.
+CLI::App* outputOptional(CLI::App* command) {
+  command->get_option("--output")->required(false);
+  return command;
+}
+
 py::array_t<float> render(const py::object& scene, const py::object& output,
                           const py::object& progressCallback, bool quiet,
                           const py::kwargs& options) {
@@ -387,11 +393,8 @@ py::array_t<float> render(const py::object& scene, const py::object& output,
   args.insert(args.begin(), textOf(scene));
   CLI::App app;
   RenderCliOptions o;
-  parseOptions(app, "render", args, [&](CLI::App& a) {
-    CLI::App* cmd = addRenderOptions(a, o);
-    cmd->get_option("--output")->required(false);  // the image is returned
-    return cmd;
-  });
+  parseOptions(app, "render", args,
+               [&](CLI::App& a) { return outputOptional(addRenderOptions(a, o)); });
   const GlobalOptions global = globalOf(quiet);
   PythonProgress progress(progressCallback);
   const ProgressFn report = progress.fn();
@@ -453,11 +456,7 @@ py::array_t<float> sky(const py::object& output, bool quiet, const py::kwargs& o
   addOption(args, "output", output);
   CLI::App app;
   SkyCliOptions o;
-  parseOptions(app, "sky", args, [&](CLI::App& a) {
-    CLI::App* cmd = addSkyOptions(a, o);
-    cmd->get_option("--output")->required(false);  // the panorama is returned
-    return cmd;
-  });
+  parseOptions(app, "sky", args, [&](CLI::App& a) { return outputOptional(addSkyOptions(a, o)); });
   const GlobalOptions global = globalOf(quiet);
   const Image panorama = [&] {
     const py::gil_scoped_release release;

@@ -86,6 +86,12 @@ class Case(unittest.TestCase):
         self.assertEqual(a.dtype, b.dtype, msg)
         self.assertTrue(np.array_equal(bits(a), bits(b)), msg)
 
+    def assertBakeCubesEqual(self, result, directory, dtype):
+        """The bake's specular, source and irradiance arrays against its KTX2 files."""
+        for role, levels in (("specular", result["specular"]), ("source", result["source"]),
+                             ("irradiance", [result["irradiance"]])):
+            self.assertCubeLevelsEqual(levels, os.path.join(directory, role + ".ktx2"), dtype)
+
     def assertCubeLevelsEqual(self, arrays, ktx2, dtype):
         """Each returned level against the file's, as the file's texel type stores it."""
         for level, array in enumerate(arrays):
@@ -115,12 +121,7 @@ class TestBake(Case):
         # The arrays are the bake's floats; the KTX2 files hold them as half floats.
         self.assertEqual(len(result["specular"]), 3)  # 32, 16, 8
         self.assertEqual(result["specular"][0].shape, (6, 32, 32, 3))
-        self.assertCubeLevelsEqual(result["specular"], os.path.join(cmd, "specular.ktx2"),
-                                   np.float16)
-        self.assertCubeLevelsEqual(result["source"], os.path.join(cmd, "source.ktx2"),
-                                   np.float16)
-        self.assertCubeLevelsEqual([result["irradiance"]], os.path.join(cmd, "irradiance.ktx2"),
-                                   np.float16)
+        self.assertBakeCubesEqual(result, cmd, np.float16)
         dfg = read_ktx2(os.path.join(cmd, "dfg.ktx2"))
         self.assertEqual(result["dfg"].shape, (16, 16, 3))
         self.assertBitEqual(result["dfg"].astype(np.float16), dfg.astype(np.float16))
@@ -153,12 +154,7 @@ class TestBake(Case):
         run_cli("bake", exr, *BAKE_ARGS, "--format", "rgba32f", "--rotate", "30", "-o", cmd,
                 "--quiet")
         result = ibl.bake(pixels, **BAKE, format="rgba32f", rotate=30, quiet=True)
-        self.assertCubeLevelsEqual(result["specular"], os.path.join(cmd, "specular.ktx2"),
-                                   np.float32)
-        self.assertCubeLevelsEqual(result["source"], os.path.join(cmd, "source.ktx2"),
-                                   np.float32)
-        self.assertCubeLevelsEqual([result["irradiance"]], os.path.join(cmd, "irradiance.ktx2"),
-                                   np.float32)
+        self.assertBakeCubesEqual(result, cmd, np.float32)
         with open(os.path.join(cmd, "manifest.json")) as f:
             manifest = json.load(f)
         # The same manifest but for the source's name and format.
