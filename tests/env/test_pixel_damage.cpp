@@ -184,3 +184,20 @@ TEST(PixelDamage, CubeFacesAreSearchedAndRepairedEach) {
   EXPECT_NEAR(repair.powerAfter, 4.0 * std::numbers::pi, 1e-4);  // the texels' solid angles
   EXPECT_EQ(env.cube.face(0, 3).at(7, 9), glm::vec3(1.0f));
 }
+
+TEST(PixelDamage, RepairWeighsTheNeighboursByInverseSquareDistance) {
+  // One damaged pixel: its 5 x 5 window holds 1 on the inner ring (4 pixels at d^2 = 1, 4 at 2)
+  // and 3 on the outer (4 at d^2 = 4, 8 at 5, 4 at 8): weights 6 and 3.1 in all.
+  Image image(64, 32, glm::vec3(1.0f));
+  const glm::ivec2 at(20, 12);
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx)
+      if (std::max(std::abs(dx), std::abs(dy)) == 2)
+        image.at(at.x + dx, at.y + dy) = glm::vec3(3.0f);
+  image.at(at.x, at.y) = glm::vec3(0.0f, 0.0f, 1e3f);
+  Environment env = equirectEnvironment(image);
+  ASSERT_EQ(repairPixelDamage(env).damage.pixels(), 1u);
+  const float expected = (6.0f * 1.0f + 3.1f * 3.0f) / 9.1f;
+  EXPECT_NEAR(env.equirect.at(at.x, at.y).x, expected, 1e-5f);
+  EXPECT_NEAR(env.equirect.at(at.x, at.y).z, expected, 1e-5f);
+}
