@@ -127,11 +127,15 @@ void checkBeforeBaking(const BakeCliOptions& o, const std::vector<std::string>& 
   checkBakeOptions(options);
   checkEnvScaleOptions(o.envScale);
   checkTargetsTakeTheOptions(o, options, output, global);
-  if (o.extractSun)
-    for (const std::string& input : inputs)
-      if (isSkySpec(input))
-        failUsage("--extract-sun",
-                  fmt::format("contradicts {}: a sky's sun is a light already", input));
+  for (const std::string& input : inputs) {
+    if (!isSkySpec(input)) continue;
+    if (o.extractSun)
+      failUsage("--extract-sun",
+                fmt::format("contradicts {}: a sky's sun is a light already", input));
+    for (const char* option : {"--input-layout", "--layer"})
+      if (o.given.count(option))
+        failUsage(option, fmt::format("reads a file; {} is computed", input));
+  }
   std::vector<std::filesystem::path> inputFiles;
   for (const std::string& input : inputs) {
     requireReadable(input);
@@ -165,6 +169,16 @@ void checkOptionPairs(const BakeCliOptions& o) {
     failUsage("--sheen-visibility",
               "chooses the visibility of the sheen table, which only --sheen or --target "
               "gltf-sample-viewer bakes");
+  if (o.noPreview && o.given.count("--preview-size"))
+    failUsage("--preview-size", "contradicts --no-preview: there is no preview to size");
+  if (o.given.count("--layout") && !o.exr && !o.hdr)
+    failUsage("--layout",
+              "lays out the EXR and HDR copies: add --exr or --hdr (the KTX2 files "
+              "are cube maps)");
+  if (o.given.count("--samples") && o.method != "sampled")
+    failUsage("--samples",
+              "counts the GGX samples of --method sampled; --method direct (the "
+              "default) integrates in rings");
 }
 
 void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
@@ -262,7 +276,11 @@ BakeRun bakeSource(const BakeCliOptions& o, SourceEnvironment source, const std:
   }
 
   run.options = bakeOptionsOf(o);
-  if (device && progress) progress(fmt::format("GPU stages on {}", device->device().name), 0.0);
+  if (device && progress) {  // a line naming the device, a stage without work of its own
+    const std::string stage = fmt::format("GPU stages on {}", device->device().name);
+    progress(stage, 0.0);
+    progress(stage, 1.0);
+  }
   run.result = bakeEnvironment(loaded.environment, run.options, progress, device);
 
   run.output = outputOptionsOf(o);
@@ -312,8 +330,8 @@ CLI::App* addBakeOptions(CLI::App& app, BakeCliOptions& o) {
                   "Bake the K-th of N disjoint parts of a batch (K/N, K from 0): the inputs whose "
                   "index in the batch (the command line's, then the list's) is K modulo N");
   cmd->add_option("-o,--output", opts->output,
-                  "Output directory (required); of a batch: the parent of one directory per "
-                  "input");
+                  "Output directory (required; created with its missing parents); of a batch: the "
+                  "parent of one directory per input");
   cmd->add_option("--device", opts->device,
                   "cpu, gpu (every stage in Vulkan compute: resampling, mips, specular, "
                   "irradiance, SH9, DFG), or auto (a real GPU if present)")
@@ -371,13 +389,11 @@ CLI::App* addBakeOptions(CLI::App& app, BakeCliOptions& o) {
       ->check(numberIn(1, 1 << 20))
       ->capture_default_str();
   cmd->add_option("--sh-window", opts->shWindow,
-                  "Window the SH9 coefficients against ringing: lanczos (what --sh-window alone "
-                  "gives: the sigma factors 1, 0.827, 0.414), cmgen (Filament cmgen's default "
-                  "--sh-window=auto: the widest sinc^4 window whose irradiance stays >= 0) or off "
-                  "(the default: exact)")
-      ->expected(0, 1)
-      ->default_str("lanczos")
-      ->check(CLI::IsMember({"off", "lanczos", "cmgen"}));
+                  "Window the SH9 coefficients against ringing: lanczos (the sigma factors 1, "
+                  "0.827, 0.414), cmgen (Filament cmgen's default --sh-window=auto: the widest "
+                  "sinc^4 window whose irradiance stays >= 0) or off (exact)")
+      ->check(CLI::IsMember({"off", "lanczos", "cmgen"}))
+      ->capture_default_str();
   cmd->add_option("--rotate", opts->rotate, "Rotate the environment about +Y by DEG degrees")
       ->check(finiteNumber())
       ->capture_default_str();

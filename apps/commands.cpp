@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -36,6 +37,43 @@ void warnAboutReplacedPixels(std::string_view name, const InvalidPixelCounts& re
              "ibl: warning: {}: replaced {} NaN, {} infinite and {} negative pixel components by "
              "0\n",
              name, replaced.nan, replaced.infinite, replaced.negative);
+}
+
+std::string damageSummary(const PixelDamage& damage, bool cube) {
+  if (damage.empty()) return "no pixel";
+  const std::size_t regions = damage.regions.size();
+  std::string places;
+  for (std::size_t i = 0; i < std::min<std::size_t>(regions, 3); ++i) {
+    const DamagedRegion& r = damage.regions[i];
+    const auto span = [](int a, int b) {
+      return a == b ? fmt::format("{}", a) : fmt::format("{}-{}", a, b);
+    };
+    places +=
+        fmt::format("{}{}x {}, y {}", i ? "; " : "",
+                    cube ? fmt::format("face {}: ", kFaceNames[static_cast<std::size_t>(r.face)])
+                         : std::string(),
+                    span(r.x0, r.x1), span(r.y0, r.y1));
+  }
+  return fmt::format("{} pixel{} in {} region{} ({}{})", damage.pixels(),
+                     damage.pixels() == 1 ? "" : "s", regions, regions == 1 ? "" : "s", places,
+                     regions > 3 ? "; ..." : "");
+}
+
+void reportLoadedPixels(std::string_view name, const LoadedEnvironment& loaded,
+                        const GlobalOptions& global) {
+  if (!global.quiet && loaded.repair)
+    fmt::print(stderr,
+               "ibl: note: {}: repaired {} from their neighbourhood; the environment's power "
+               "(luminance over the sphere) changed by {:+.3g} %\n",
+               name, damageSummary(loaded.damage, loaded.environment.isCube()),
+               100.0 * loaded.repair->powerChange());
+  else if (!global.quiet && !loaded.damage.empty())
+    fmt::print(stderr,
+               "ibl: warning: {}: {} damaged: their channels contradict their neighbourhood by "
+               "orders of magnitude (lossy compression?); `ibl convert --repair-damage` "
+               "replaces them\n",
+               name, damageSummary(loaded.damage, loaded.environment.isCube()));
+  warnAboutReplacedPixels(name, loaded.replaced, global);
 }
 
 namespace {
@@ -192,7 +230,7 @@ SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOpti
   s.name = input.empty() ? std::string(kDefaultEnvironmentName) + " (bundled)" : input;
   s.loaded = input.empty() ? loadEnvironmentFromMemory(defaultEnvironmentBytes(), s.name, options)
                            : loadEnvironment(input, options);
-  if (!input.empty()) warnAboutReplacedPixels(s.name, s.loaded.replaced, global);
+  if (!input.empty()) reportLoadedPixels(s.name, s.loaded, global);
   if (removeSun) extractSourceSun(s, global);
   return s;
 }
@@ -206,7 +244,7 @@ SourceEnvironment sourceFromImage(Image image, const std::string& name, const Lo
   file.levels = {{std::move(image)}};
   s.loaded = loadEnvironment(std::move(file), s.name, options);
   s.loaded.format = "array";
-  warnAboutReplacedPixels(s.name, s.loaded.replaced, global);
+  reportLoadedPixels(s.name, s.loaded, global);
   if (removeSun) extractSourceSun(s, global);
   return s;
 }

@@ -27,6 +27,16 @@ struct GlobalOptions {
 void warnAboutReplacedPixels(std::string_view name, const InvalidPixelCounts& replaced,
                              const GlobalOptions& global);
 
+// Where damaged pixels are (pixel_damage.hpp), for messages: "36 pixels in 1 region (x 304-309,
+// y 110-115)", the largest three regions placed ("face +X: x .." on a cube), "no pixel" if none.
+std::string damageSummary(const PixelDamage& damage, bool cube);
+
+// What loading did to an environment's pixels, one line each, unless quiet: the damaged pixels
+// (a warning) or their repair and its change of the environment's power (a note), then the
+// replaced ones (warnAboutReplacedPixels).
+void reportLoadedPixels(std::string_view name, const LoadedEnvironment& loaded,
+                        const GlobalOptions& global);
+
 // Fails, naming the file, when an environment holds no light after loading (every pixel zero,
 // NaN, infinite or negative): baking it would give black maps.
 void requireLight(const Environment& env, std::string_view name);

@@ -83,7 +83,10 @@ ImageComparison compareFiles(const CompareOptions& o) {
       requireReadable(input);
       inputs.emplace_back(input);
     }
-  if (!o.errorPng.empty()) refuseOverwritingInputs({o.errorPng}, inputs);
+  if (!o.errorPng.empty()) {
+    refuseOverwritingInputs({o.errorPng}, inputs);
+    requireWritableFile(o.errorPng);
+  }
   const FlatImage fa = readFlat(o.a), fb = readFlat(o.b);
   if (displayReferred(fa.format) != displayReferred(fb.format)) {
     const bool aDisplay = displayReferred(fa.format);
@@ -146,7 +149,9 @@ CLI::App* addCompareOptions(CLI::App& app, CompareOptions& o) {
   cmd->add_option("image", opts->a, "Image to judge")->required();
   cmd->add_option("reference", opts->b, "Reference image")->required();
   cmd->add_option("--mask", opts->mask, "Compare only where this image's red channel is > 0.5");
-  cmd->add_option("--error-png", opts->errorPng, "Write a false-color map of the relative error");
+  cmd->add_option(
+      "--error-png", opts->errorPng,
+      "Write a false-color map of the relative error (PNG; missing folders are created)");
   cmd->add_option("--error-scale", opts->errorScale, "Relative error shown as red in --error-png")
       ->check(positiveNumber())
       ->capture_default_str();

@@ -36,6 +36,7 @@ struct ConvertOptions {
   float rotate = 0.0f;
   bool mips = false;
   bool extractSun = false;
+  bool repairDamage = false;
   std::string sunJson;
   EnvScaleOptions envScale;  // --env-intensity, --env-illuminance: the pixels written are scaled
 };
@@ -66,14 +67,17 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
   std::vector<std::filesystem::path> outputs = possibleExportPaths(e);
   if (!o.sunJson.empty()) outputs.emplace_back(o.sunJson);
   refuseOverwritingInputs(outputs, filesOfInput(input));
+  for (const std::filesystem::path& path : outputs) requireWritableFile(path);
   requireReadable(input);
   std::optional<Layout> inLayout;
   if (!o.inputLayout.empty()) inLayout = parseLayout(o.inputLayout);
 
   // A plain image that is no environment layout (a rendered frame, a lookup table) is
   // converted as a 2D image when no layout is asked.
-  const bool mayBeFlat = o.layout.empty() && !inLayout && !o.extractSun && !isSkySpec(input) &&
-                         !o.envScale.given() && input.find("{face}") == std::string::npos;
+  const bool mayBeFlat = o.layout.empty() && !inLayout && !o.extractSun && !o.repairDamage &&
+                         !isSkySpec(input) && !o.envScale.given() &&
+                         input.find("{face}") == std::string::npos;
+  const LoadOptions loadOptions{inLayout, o.layer, o.repairDamage};
   SourceEnvironment source;
   if (mayBeFlat) {
     DecodedFile decoded = readImageFile(input, {o.layer});
@@ -87,10 +91,10 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
                          files[0].path.string(), files[0].bytes.size(), image.width, image.height);
     }
     source.name = input;
-    source.loaded = loadEnvironment(std::move(decoded), input, {inLayout, o.layer});
-    warnAboutReplacedPixels(input, source.loaded.replaced, global);
+    source.loaded = loadEnvironment(std::move(decoded), input, loadOptions);
+    reportLoadedPixels(input, source.loaded, global);
   } else {
-    source = loadSourceEnvironment(input, {inLayout, o.layer}, o.extractSun, global);
+    source = loadSourceEnvironment(input, loadOptions, o.extractSun, global);
   }
   if (o.envScale.given()) {
     requireLight(source.loaded.environment, source.name);
@@ -121,6 +125,11 @@ void runConvert(const ConvertOptions& o, const GlobalOptions& global) {
       if (isSkySpec(input))
         failUsage("--extract-sun",
                   fmt::format("contradicts {}: a sky's sun is a light already", input));
+  if (o.repairDamage)
+    for (const std::string& input : o.inputs)
+      if (isSkySpec(input))
+        failUsage("--repair-damage",
+                  fmt::format("contradicts {}: a computed sky has no damaged pixels", input));
   if (o.extractSun && o.sunJson.empty())
     failUsage("--extract-sun", "needs --sun-json FILE: where the sun taken out of the image goes");
   if (!o.sunJson.empty() && !o.extractSun && !isSkySpec(o.inputs.empty() ? "" : o.inputs[0]))
@@ -163,7 +172,7 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("-o,--output", opts->output,
                   "Output file (.ktx2, .exr, .hdr, .png); with --layout faces, {face} in the "
                   "name is replaced, else _px.. is appended. Several inputs: {name} in it is "
-                  "each input's name (out/{name}.ktx2)")
+                  "each input's name (out/{name}.ktx2). Missing folders are created")
       ->required();
   const auto layouts =
       CLI::IsMember({"equirect", "cube", "cross", "hcross", "vcross", "hstrip", "vstrip", "faces"});
@@ -200,8 +209,14 @@ void addConvertCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--extract-sun", opts->extractSun,
                 "Take the sun (the brightest compact source) out of the image, fill its disk "
                 "from the sky around it, and write it with --sun-json");
+  cmd->add_flag("--repair-damage", opts->repairDamage,
+                "Replace damaged pixels (a block whose channels contradict their neighbourhood by "
+                "orders of magnitude, as lossy EXR compression leaves them; `ibl info` lists "
+                "them) by their undamaged neighbourhood, and print how much the environment's "
+                "power changed");
   cmd->add_option("--sun-json", opts->sunJson,
-                  "Write the extracted sun (or a sky: input's sun) as a lights file for --lights");
+                  "Write the extracted sun (or a sky: input's sun) as a lights file for --lights "
+                  "(missing folders are created)");
   cmd->callback([opts, &global] { runConvert(*opts, global); });
 }
 

@@ -306,7 +306,16 @@ void runInfo(const InfoOptions& o) {
     images.push_back(&d.levels[0][0]);
   }
   const ImageStats stats = statistics(images);
-  if (env) sanitizeEnvironment(*env);
+  // Damaged pixels as stored, before NaN, infinities and negative values are replaced.
+  PixelDamage damage;
+  if (env) {
+    damage = findPixelDamage(*env);
+    sanitizeEnvironment(*env);
+  } else {
+    const Image& image = *images[0];
+    damage.regions = damagedRegions(damagedPixelMask(image), image.width, image.height, 0);
+  }
+  const bool cube = env && env->isCube();
 
   nlohmann::ordered_json j;
   j["file"] = o.file;
@@ -325,6 +334,14 @@ void runInfo(const InfoOptions& o) {
   j["nan"] = stats.invalid.nan;
   j["infinite"] = stats.invalid.infinite;
   j["negative"] = stats.invalid.negative;
+  j["damaged"] = {{"pixels", damage.pixels()}, {"regions", nlohmann::ordered_json::array()}};
+  for (const DamagedRegion& r : damage.regions)
+    j["damaged"]["regions"].push_back({{"face", r.face},
+                                       {"x0", r.x0},
+                                       {"y0", r.y0},
+                                       {"x1", r.x1},
+                                       {"y1", r.y1},
+                                       {"pixels", r.pixels}});
   glm::dvec3 integral(0.0);
   std::optional<glm::vec3> brightest;
   double illuminance = 0.0;
@@ -365,6 +382,13 @@ void runInfo(const InfoOptions& o) {
   fmt::print("mean        {:.6g} {:.6g} {:.6g}\n", stats.mean.x, stats.mean.y, stats.mean.z);
   fmt::print("invalid     {} NaN, {} infinite, {} negative components\n", stats.invalid.nan,
              stats.invalid.infinite, stats.invalid.negative);
+  if (damage.empty())
+    fmt::print("damaged     none\n");
+  else
+    fmt::print(
+        "damaged     {}: channels that contradict their neighbourhood by orders of magnitude "
+        "(`ibl convert --repair-damage` replaces them)\n",
+        damageSummary(damage, cube));
   if (env) {
     fmt::print(
         "integral    {:.6g} {:.6g} {:.6g}  (RGB, sum of L dw over the sphere; invalid "

@@ -7,7 +7,9 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <fmt/core.h>
 #include <tbb/global_control.h>
@@ -17,6 +19,7 @@
 #include "ibl/core/version.hpp"
 #include "ibl/io/file_io.hpp"
 #include "manual.hpp"
+#include "usage.hpp"
 
 namespace {
 
@@ -73,10 +76,11 @@ int main(int argc, char** argv) {
     return e.get_exit_code();  // a command's own status (compare above its threshold)
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    // Usage errors: one line with the same prefix as every other error, and status 2.
-    fmt::print(stderr,
-               "ibl: error: {}\nRun 'ibl --help' or 'ibl COMMAND --help' for the options.\n",
-               e.what());
+    // Usage errors: one line in the project's words with the same prefix as every other error
+    // (the nearest option or command for a misspelling), and status 2.
+    fmt::print(
+        stderr, "ibl: error: {}\n",
+        ibl::cli::usageErrorMessage(app, e, std::vector<std::string>(argv + 1, argv + argc)));
     return 2;
   } catch (const ibl::UsageError& e) {  // a request found wrong before any work
     fmt::print(stderr, "ibl: error: {}\n", e.what());

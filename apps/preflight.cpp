@@ -82,6 +82,22 @@ void refuseOverwritingInputs(const std::vector<fs::path>& outputs,
                                             in.string()));
 }
 
+void requireWritableFile(const fs::path& output) {
+  const std::string name = output.string();
+  std::error_code ec;
+  if (fs::is_directory(output, ec)) fail(name, "is a directory; name a file to write");
+  // The folders the write would create, up to the nearest one that exists (writeFileAtomic
+  // creates them, as a bake its directory).
+  fs::path folder = output.lexically_normal().parent_path();
+  while (!folder.empty() && !fs::exists(folder, ec) && folder != folder.root_path())
+    folder = folder.parent_path();
+  if (folder.empty()) folder = ".";
+  if (!fs::is_directory(folder, ec))
+    fail(name, fmt::format("cannot be written: {} is not a directory", folder.string()));
+  if (::access(folder.c_str(), W_OK | X_OK) != 0)
+    fail(name, fmt::format("cannot be written in {}: {}", folder.string(), std::strerror(errno)));
+}
+
 void refuseInputsInside(const fs::path& outDir, const std::vector<fs::path>& inputs) {
   const fs::path dir = resolved(outDir);
   for (const fs::path& in : inputs) {

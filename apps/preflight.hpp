@@ -22,6 +22,11 @@ void requireReadable(const std::string& input);
 void refuseOverwritingInputs(const std::vector<std::filesystem::path>& outputs,
                              const std::vector<std::filesystem::path>& inputs);
 
+// Refuses (before any work) an output file that cannot be written: the command creates its
+// missing folders when it writes, so its nearest existing folder must be a writable directory;
+// an existing output must not be a directory. Fails naming `output`.
+void requireWritableFile(const std::filesystem::path& output);
+
 // Refuses an input inside `outDir` when a command writes that directory as a whole (a bake, a
 // probe): its files may be replaced or removed.
 void refuseInputsInside(const std::filesystem::path& outDir,

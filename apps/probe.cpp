@@ -20,6 +20,7 @@
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/io/file_io.hpp"
+#include "ibl/io/json_file.hpp"
 #include "ibl/render/probe.hpp"
 #include "preflight.hpp"
 #include "scene_options.hpp"
@@ -239,6 +240,7 @@ void mergeShards(const std::string& dir, const GlobalOptions& global) {
     for (const auto& e : fs::directory_iterator(dir))
       if (e.path().filename().string().starts_with("probes.shard-")) parts.push_back(e.path());
   if (parts.empty()) fail(dir, "holds no probes.shard-K-of-N.json to merge");
+  requireWritableFile(fs::path(dir) / "probes.json");
   std::sort(parts.begin(), parts.end());
   Json merged;
   std::set<int> seen;
@@ -247,12 +249,8 @@ void mergeShards(const std::string& dir, const GlobalOptions& global) {
     // Read in order (readJsonFile's map sorts the keys): probes.json is then the same bytes as
     // the one a grid captured in one process writes.
     const std::vector<std::uint8_t> bytes = readFileBytes(part);
-    Json j;
-    try {
-      j = Json::parse(bytes.begin(), bytes.end());
-    } catch (const nlohmann::json::exception& e) {
-      fail(part.string(), fmt::format("not valid JSON: {}", e.what()));
-    }
+    Json j = parseJsonText<Json>(
+        std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), part.string());
     try {
       const int count =
           j.at("grid")[0].get<int>() * j.at("grid")[1].get<int>() * j.at("grid")[2].get<int>();
@@ -304,9 +302,17 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
               "give either --at X,Y,Z (one probe) or --grid with "
               "--bounds (a grid of probes)");
   if (!o.shard.empty() && o.grid.empty()) failUsage("--shard", "splits a grid: it needs --grid");
+  if (!o.bounds.empty() && o.grid.empty())
+    failUsage("--bounds", "is the box of --grid; one probe (--at) has --proxy and --influence");
   checkSceneOptions(o.scene);
   const glm::vec3 rotation = parseVec3(o.rotation, "--rotation");
+  if (rotation != glm::vec3(0.0f) && !o.proxy.starts_with("box:") &&
+      !o.influence.starts_with("box:"))
+    failUsage("--rotation", "turns the box of --proxy or --influence (box:...); neither is given");
   refuseInputsInside(o.output, sceneInputFiles(o.scene));
+  // The output before the scene is read: one probe's directory (empty unless --force), or a
+  // grid's, which holds its shards' probes.
+  checkBakeOutputDirectory(o.output, o.force || !o.grid.empty());
   // Dynamic objects left out: engines capture the static scene alone.
   Scene scene = withoutObjects(loadScene(o.scene, global), o.exclude, "--exclude");
   const auto [sceneLo, sceneHi] = scene.bounds();
@@ -436,8 +442,8 @@ void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--bake", opts->scene.bakeDir, "An existing bake of the distant environment");
   addEnvScaleOptions(cmd, opts->scene.envScale);
   cmd->add_option("-o,--output", opts->output,
-                  "Output directory: the probe's bake (--at), or one directory per probe and "
-                  "probes.json (--grid)");
+                  "Output directory (created with its missing parents): the probe's bake (--at), "
+                  "or one directory per probe and probes.json (--grid)");
   cmd->add_option("--at", opts->at, "Capture one probe at X,Y,Z");
   cmd->add_option("--grid", opts->grid,
                   "A grid of NX,NY,NZ probes at the cell centers of --bounds");

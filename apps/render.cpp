@@ -1,4 +1,5 @@
 // `ibl render`: a glTF model or a built-in scene, lit by a baked environment.
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -10,6 +11,7 @@
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/gpu/path_tracer.hpp"
+#include "ibl/io/image_io.hpp"
 #include "ibl/render/bloom.hpp"
 #include "ibl/render/probe.hpp"
 #include "preflight.hpp"
@@ -21,6 +23,7 @@ namespace ibl::cli {
 namespace {
 
 void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
+  const auto start = std::chrono::steady_clock::now();  // the whole command's wall time
   // (An empty --output is Python's image kept in memory, not the command's.)
   if (o.output.empty()) failUsage("--output", "is empty: name the image to write");
   const bool showProgress = !global.quiet && ::isatty(STDERR_FILENO);
@@ -31,12 +34,16 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   if (showProgress) fmt::print(stderr, "\r");
   writeRenderOutput(o, image);
   const RenderResult& result = image.result;
+  // The wall time of it all (loading, baking, shadow maps, occlusion, shading, writing); the
+  // shading's own rate beside it.
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!global.quiet)
-    fmt::print(
-        stderr,
-        "rendered {} ({}x{}, {}, {:.0f} samples, {:.2f} s, {:.2f} M samples/s, EV100 {:.2f})\n",
-        o.output, result.color.width, result.color.height, o.mode, result.samples,
-        result.milliseconds / 1000.0, result.samples / result.milliseconds / 1000.0, image.ev100);
+    fmt::print(stderr,
+               "rendered {} ({}x{}, {}, {:.0f} samples, {:.2f} s in all, {:.2f} M samples/s "
+               "shaded, EV100 {:.2f})\n",
+               o.output, result.color.width, result.color.height, o.mode, result.samples, seconds,
+               result.samples / result.milliseconds / 1000.0, image.ev100);
 }
 
 }  // namespace
@@ -44,18 +51,36 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
 RenderedImage renderImage(const RenderCliOptions& o, const GlobalOptions& global,
                           const std::function<void(float)>& report) {
   if (!o.output.empty()) checkRenderedImagePath(o.output);
-  checkSceneOptions(o.scene);
-  if (o.mode == "reference" && o.scene.shadows && *o.scene.shadows == "map")
-    failUsage("--shadows", "map is the split sum's; the reference traces rays (--shadows alone)");
+  if (o.mode == "reference" && o.scene.shadows == "map")
+    failUsage("--shadows", "map is the split sum's; the reference traces rays (--shadows ray)");
   if (o.device == "gpu" && o.mode != "reference")
     failUsage("--device",
               "gpu runs the reference: add --mode reference (the split sum on the GPU "
               "is `ibl view`)");
   if (o.device == "gpu" && o.noise > 0.0f)
     failUsage("--noise", "adaptive stopping is the CPU reference's; use --device cpu");
+  // The mode's options first: what the other mode alone reads is the first mistake to name.
+  refuseOptionsTheModeIgnores(o.scene, o.mode == "reference",
+                              o.scene.spp > 0 ? o.scene.spp : (o.mode == "reference" ? 256 : 4),
+                              o.bounces, o.noise);
+  checkSceneOptions(o.scene);
+  if (!o.output.empty()) {
+    const bool exr = fileFormatFromExtension(o.output) == FileFormat::Exr;
+    if (o.exrExposed && !exr && !global.quiet)
+      fmt::print(stderr, "ibl: note: --exr-exposed: no effect: {} is exposed and tone-mapped\n",
+                 o.output);
+    if (exr && !o.exrExposed)
+      noteToneOptionsWithoutEffect(
+          o.scene,
+          fmt::format("{} holds linear radiance; add --exr-exposed or write a .png", o.output),
+          bloomCompensation(o.scene, std::nullopt).has_value(), global);
+  }
   const auto [width, height] = parseSize(o.scene.size);
   const std::vector<std::filesystem::path> inputs = sceneInputFiles(o.scene);
-  if (!o.output.empty()) refuseOverwritingInputs({o.output}, inputs);
+  if (!o.output.empty()) {
+    refuseOverwritingInputs({o.output}, inputs);
+    requireWritableFile(o.output);
+  }
   requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
                 "render a smaller image");
   Scene scene = loadScene(o.scene, global);
@@ -72,8 +97,8 @@ RenderedImage renderImage(const RenderCliOptions& o, const GlobalOptions& global
   r.mode = o.mode == "reference" ? RenderMode::Reference : RenderMode::SplitSum;
   r.spp = o.scene.spp > 0 ? o.scene.spp : (r.mode == RenderMode::Reference ? 256 : 4);
   r.noiseThreshold = o.noise;
-  // --shadows: the reference's visibility (given bare or as ray), the split sum's mode.
-  r.shadows = o.scene.shadows && (o.scene.shadows->empty() || *o.scene.shadows == "ray");
+  // --shadows ray: the reference's visibility (the split sum's mode is realTimeShadows).
+  r.shadows = o.scene.shadows == "ray";
   r.bounces = o.bounces;
   // The reference reads no probe: only the split sum must match their shading.
   if (o.mode != "reference")
@@ -113,7 +138,8 @@ CLI::App* addRenderOptions(CLI::App& app, RenderCliOptions& o) {
       app.add_subcommand("render", "Render a glTF model or a built-in scene lit by an environment");
   addSceneOptions(cmd, opts->scene);
   cmd->add_option("-o,--output", opts->output,
-                  "Output image: .exr (linear radiance + alpha) or .png")
+                  "Output image: .exr (linear radiance + alpha) or .png; missing folders are "
+                  "created")
       ->required();
   cmd->add_option("--mode", opts->mode, "split-sum (real time) or reference (Monte Carlo)")
       ->check(CLI::IsMember({"split-sum", "reference"}))
@@ -134,7 +160,10 @@ CLI::App* addRenderOptions(CLI::App& app, RenderCliOptions& o) {
       ->capture_default_str();
   cmd->add_flag("--exr-exposed", opts->exrExposed,
                 "Write the exposed, tone-mapped image to the EXR too");
-  cmd->add_option("--seed", opts->seed, "Random seed of the reference")->capture_default_str();
+  cmd->add_option("--seed", opts->seed,
+                  "Random seed of the sample sequences (the reference's paths; the split sum's "
+                  "positions in the pixel and its rays)")
+      ->capture_default_str();
   cmd->add_option("--device", opts->device,
                   "Reference: cpu, gpu (a Vulkan compute path tracer: the same paths and "
                   "numbers), or auto (a real GPU if present)")

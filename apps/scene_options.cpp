@@ -3,6 +3,7 @@
 #include "commands.hpp"
 #include "preflight.hpp"
 
+#include <fstream>
 #include <sstream>
 
 #include <fmt/core.h>
@@ -40,6 +41,7 @@ MultipleScattering multipleScatteringChoice(const SceneCliOptions& o) {
 }
 
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
+  o.command = cmd;
   cmd->add_option("scene", o.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'")->required();
   cmd->add_flag("--strict", o.strict,
                 "Refuse a scene that ibl would render incompletely: a missing or unreadable "
@@ -135,10 +137,11 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
       ->check(numberIn(0.001f, 10.0f))
       ->capture_default_str();
   cmd->add_option("--shadows", o.shadows,
-                  "The lights' shadows. Split sum and viewer: none, map (shadow maps, default) or "
-                  "ray (ray-traced per light sample; `ibl render` only). Reference: --shadows "
-                  "alone traces visibility with --bounces 0")
-      ->expected(0, 1);
+                  "The lights' shadows. Split sum and viewer: none, map (shadow maps, the "
+                  "default) or ray (ray-traced per light sample; `ibl render` only). Reference: "
+                  "ray traces the visibility of the environment and the lights with --bounces 0 "
+                  "(any bounce implies it), none (the default with --bounces 0) does not")
+      ->check(CLI::IsMember({"none", "map", "ray"}));
   cmd->add_option("--shadow-map-size", o.shadowMapSize,
                   "Texels per side of each shadow map layer (a power of two)")
       ->check(powerOfTwo(16, 8192))
@@ -243,6 +246,126 @@ Scene loadScene(const SceneCliOptions& o, const GlobalOptions& global) {
   return scene;
 }
 
+bool given(const SceneCliOptions& o, const std::string& option) {
+  const CLI::Option* given = o.command ? o.command->get_option_no_throw(option) : nullptr;
+  return given && given->count() > 0;
+}
+
+namespace {
+
+bool builtInScene(const SceneCliOptions& o) {
+  return o.scene == "sphere" || o.scene == "grid";
+}
+
+// The options that another one given makes meaningless, each a usage error naming both.
+void refuseIgnoredSceneOptions(const SceneCliOptions& o) {
+  // The exposure: --ev100, or the camera's three settings together.
+  const std::pair<const char*, float> settings[] = {
+      {"--aperture", o.aperture}, {"--shutter", o.shutter}, {"--iso", o.iso}};
+  for (const auto& [option, value] : settings) {
+    if (!(value > 0.0f)) continue;
+    if (!o.ev100.empty())
+      failUsage("--ev100", fmt::format("contradicts {} {}: each sets the exposure; pass --ev100 "
+                                       "or --aperture, --shutter and --iso",
+                                       option, formatNumber(value)));
+    std::string missing;
+    for (const auto& [other, otherValue] : settings)
+      if (!(otherValue > 0.0f))
+        missing += fmt::format("{}{}", missing.empty() ? "" : " and ", other);
+    if (!missing.empty())
+      failUsage(option, fmt::format("sets the exposure together with {}: give all three, or "
+                                    "--ev100 (alone, the automatic exposure would ignore it)",
+                                    missing));
+  }
+  // The camera's kind.
+  if (o.camera == "ortho" && given(o, "--fov"))
+    failUsage("--fov",
+              "applies to --camera perspective; --camera ortho's view is --ortho-width "
+              "wide");
+  if (o.orthoWidth && (given(o, "--camera") || builtInScene(o)) && o.camera != "ortho")
+    failUsage("--ortho-width", "applies to --camera ortho; --camera perspective's view is --fov");
+  // The built-in scenes' material.
+  for (const char* option : {"--base-color", "--metallic", "--roughness"})
+    if (given(o, option) && !builtInScene(o))
+      failUsage(option, fmt::format("sets the material of the built-in scenes (sphere, grid); "
+                                    "the scene {} has its own",
+                                    o.scene));
+    else if (given(o, option) && o.scene == "grid" && option != std::string("--base-color"))
+      failUsage(option,
+                "sets the built-in sphere's material; the grid varies it over its "
+                "spheres");
+  // Settings of what is off.
+  const auto refuseWhenOff = [&](bool on, const char* option, const char* feature,
+                                 const std::string& off) {
+    if (!on && given(o, option))
+      failUsage(option, fmt::format("sets the {}, which is off here ({})", feature, off));
+  };
+  const std::string ssaoOff = o.ssao == "off" ? "--ssao off"
+                              : o.aoRays > 0  ? fmt::format("--ao {} replaces it", o.aoRays)
+                                              : "the built-in scenes' default; add --ssao on";
+  for (const char* option : {"--ssao-radius", "--ssao-quality"})
+    refuseWhenOff(screenAmbientOcclusionOn(o), option, "screen-space occlusion", ssaoOff);
+  const std::string ssrOff =
+      o.ssr == "off" ? "--ssr off" : "the built-in scenes' default; add --ssr on";
+  for (const char* option : {"--ssr-quality", "--ssr-thickness"})
+    refuseWhenOff(screenReflectionsOn(o), option, "screen-space reflections", ssrOff);
+  for (const char* option : {"--shadow-map-size", "--shadow-cascades"})
+    refuseWhenOff(realTimeShadowMode(o) == ShadowMode::Map, option, "shadow maps",
+                  "--shadows " + o.shadows);
+  refuseWhenOff(o.shadows == "ray", "--shadow-rays", "ray-traced shadows",
+                o.shadows.empty() ? "the default is --shadows map; add --shadows ray"
+                                  : "--shadows " + o.shadows);
+  for (const char* option : {"--no-parallax", "--no-distance-roughness", "--force"})
+    refuseWhenOff(!o.probes.empty(), option, "reading of local probes", "no --probes given");
+  refuseWhenOff(!o.lightsFile.empty(), "--spot-lumens", "spot lights' conversion of --lights",
+                "no --lights given; a glTF file's spots are in candela");
+}
+
+}  // namespace
+
+void noteToneOptionsWithoutEffect(const SceneCliOptions& o, const std::string& image,
+                                  bool exposureUsed, const GlobalOptions& global) {
+  std::vector<std::string> unused;
+  if (given(o, "--tonemap")) unused.emplace_back("--tonemap");
+  if (!exposureUsed)
+    for (const char* option :
+         {"--ev100", "--aperture", "--shutter", "--iso", "--exposure-compensation"})
+      if (given(o, option)) unused.emplace_back(option);
+  if (unused.empty() || global.quiet) return;
+  std::string names;
+  for (const std::string& name : unused) names += (names.empty() ? "" : ", ") + name;
+  fmt::print(stderr, "ibl: note: {}: no effect: {}{}\n", names, image,
+             exposureUsed ? "" : " (and no --bloom reads the exposure)");
+}
+
+void refuseOptionsTheModeIgnores(const SceneCliOptions& o, bool reference, int spp, int bounces,
+                                 float noise) {
+  if (reference) {
+    for (const char* option : {"--probes", "--force", "--no-parallax", "--no-distance-roughness",
+                               "--ao", "--ssao-radius", "--ssao-quality", "--ssr-quality",
+                               "--ssr-thickness", "--shadow-map-size", "--shadow-cascades",
+                               "--shadow-rays", "--no-dominant", "--irradiance", "--area-lights"})
+      if (given(o, option))
+        failUsage(option, "is the split sum's; --mode reference does not read it");
+    if (o.ssao == "on")
+      failUsage("--ssao", "on is the split sum's; --mode reference traces the occlusion itself");
+    if (o.ssr == "on")
+      failUsage("--ssr", "on is the split sum's; --mode reference traces the reflections itself");
+    if (o.shadows == "none" && bounces > 0)
+      failUsage("--shadows", fmt::format("none contradicts --bounces {}: every bounce traces the "
+                                         "visibility; add --bounces 0",
+                                         bounces));
+  } else if (given(o, "--bounces")) {
+    failUsage("--bounces",
+              "is the reference's; add --mode reference (the split sum does not "
+              "trace bounces)");
+  }
+  if (noise > 0.0f && spp < 16)
+    failUsage("--noise", fmt::format("is checked from 16 samples per pixel on; --spp {}{} takes "
+                                     "fewer",
+                                     spp, given(o, "--spp") ? "" : " (the default)"));
+}
+
 void checkSceneOptions(const SceneCliOptions& o) {
   if (!o.bakeDir.empty() && !o.env.empty())
     failUsage("--env", fmt::format("contradicts --bake {}: the bake holds the environment; pass "
@@ -274,9 +397,7 @@ void checkSceneOptions(const SceneCliOptions& o) {
     failUsage("--ssao", fmt::format("on contradicts --ao {}: the ray-traced occlusion is the "
                                     "screen-space one's reference; pass one of them",
                                     o.aoRays));
-  if (o.shadows && !o.shadows->empty() && *o.shadows != "none" && *o.shadows != "map" &&
-      *o.shadows != "ray")
-    failUsage("--shadows", fmt::format("'{}' is not none, map or ray", *o.shadows));
+  refuseIgnoredSceneOptions(o);
 }
 
 bool hasSheen(const Scene& scene) {
@@ -337,7 +458,8 @@ LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, boo
     out.bake = bakeEnvironment(black, out.options);
     return out;
   }
-  SourceEnvironment env = loadSourceEnvironment(o.env, {}, false, global);
+  SourceEnvironment env = o.envPixels ? sourceFromImage(*o.envPixels, o.env, {}, false, global)
+                                      : loadSourceEnvironment(o.env, {}, false, global);
   requireLight(env.loaded.environment, env.name);
   out.envScale = scaleSourceEnvironment(env, o.envScale, global);
   out.lights = env.lights;
@@ -346,15 +468,41 @@ LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, boo
   return out;
 }
 
+namespace {
+
+// Refuses an image (by its first bytes, or its name) where `what` goes, before a JSON parser
+// reads it; `hint` says where the image goes instead.
+void refuseImageAs(const std::string& path, std::string_view what, std::string_view hint) {
+  std::vector<std::uint8_t> head(64);
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  std::optional<FileFormat> format = detectFileFormat(head);
+  if (!format) format = fileFormatFromExtension(path);
+  if (format)
+    failUsage(path,
+              fmt::format("is an image ({}), not {}; {}", fileFormatName(*format), what, hint));
+}
+
+}  // namespace
+
 std::vector<std::filesystem::path> sceneInputFiles(const SceneCliOptions& o) {
   std::vector<std::filesystem::path> files;
   const auto add = [&](const std::string& input) {
     requireReadable(input);
     for (auto& f : filesOfInput(input)) files.push_back(std::move(f));
   };
-  if (o.scene != "sphere" && o.scene != "grid" && !o.scene.empty()) add(o.scene);
-  if (!o.env.empty() && !environmentIsNone(o)) add(o.env);
-  if (!o.lightsFile.empty()) add(o.lightsFile);
+  if (o.scene != "sphere" && o.scene != "grid" && !o.scene.empty()) {
+    add(o.scene);
+    refuseImageAs(o.scene, "a scene (glTF)",
+                  fmt::format("light a scene with it: sphere --env {} (or a glTF file)", o.scene));
+  }
+  if (!o.env.empty() && !environmentIsNone(o) && !o.envPixels) add(o.env);
+  if (!o.lightsFile.empty()) {
+    add(o.lightsFile);
+    refuseImageAs(o.lightsFile, "a lights file (JSON, docs/lights.md)",
+                  fmt::format("an environment goes with --env {}", o.lightsFile));
+  }
   std::vector<std::string> dirs = o.probes;
   if (!o.bakeDir.empty()) dirs.push_back(o.bakeDir);
   for (const std::string& dir : dirs) {
@@ -376,6 +524,11 @@ Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int 
   const glm::vec3 center = 0.5f * (lo + hi);
   const float radius = 0.5f * glm::length(hi - lo);
   if (scene.camera && o.lookFrom.empty() && o.lookAt.empty()) {
+    for (const char* option : {"--camera", "--fov", "--up"})
+      if (given(o, option))
+        failUsage(option, fmt::format("has no effect: {}'s own camera frames the view; add "
+                                      "--look-from (or --look-at) to place one with {}",
+                                      o.scene, option));
     const CameraDescription& d = *scene.camera;
     camera.perspective = d.perspective;
     camera.yfovDegrees = glm::degrees(d.yfovRadians);
@@ -403,6 +556,10 @@ Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int 
   if (o.orthoWidth) {
     if (!(*o.orthoWidth > 0.0f) || !std::isfinite(*o.orthoWidth))
       failUsage("--ortho-width", fmt::format("must be positive, not {}", *o.orthoWidth));
+    if (camera.perspective)  // --camera perspective, or the scene's own perspective camera
+      failUsage("--ortho-width",
+                "applies to an orthographic camera; this view's is perspective "
+                "(--camera ortho, or --fov for its angle)");
     camera.orthoWidth = *o.orthoWidth;
   }
   checkCamera(camera);
@@ -420,8 +577,8 @@ bool screenReflectionsOn(const SceneCliOptions& o) {
 }
 
 ShadowMode realTimeShadowMode(const SceneCliOptions& o) {
-  if (o.shadows && *o.shadows == "none") return ShadowMode::None;
-  if (o.shadows && *o.shadows == "ray") return ShadowMode::Ray;
+  if (o.shadows == "none") return ShadowMode::None;
+  if (o.shadows == "ray") return ShadowMode::Ray;
   return ShadowMode::Map;
 }
 

@@ -2,6 +2,7 @@
 // The options `ibl render` and `ibl view` share: the scene, the environment or bake, the camera,
 // the built-in scenes' material, the split sum's switches and the exposure.
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -21,6 +22,9 @@ struct SceneCliOptions {
   std::string scene;
   bool strict = false;  // what a glTF file lacks (a texture, an extension) is an error
   std::string env;      // empty: bundled default; "none": lights only
+  // The Python module's environment array in place of the file of --env (env then holds the
+  // name its messages give it, "(array)"), laid out by its shape.
+  std::shared_ptr<const Image> envPixels;
   std::string lightsFile;
   std::string spotLumens = "physical";
   std::string bakeDir;
@@ -54,8 +58,9 @@ struct SceneCliOptions {
   std::string ssr;  // on or off; empty: on for glTF scenes, off for built-in ones
   std::string ssrQuality = "medium";
   float ssrThickness = 0.05f;
-  // --shadows: unset (the split sum's default, map), "" (given bare), none, map or ray.
-  std::optional<std::string> shadows;
+  // --shadows none, map or ray; empty: not given (the split sum's map, the reference's none
+  // with --bounces 0).
+  std::string shadows;
   int shadowMapSize = 1024;
   int shadowCascades = 4;
   int shadowRays = 16;
@@ -65,7 +70,12 @@ struct SceneCliOptions {
   float compensation = 0.0f;
   std::string tonemap = "aces";
   std::string bloom;  // EC (stops) or off; empty: the command's default
+  // The command these options were parsed by (addSceneOptions sets it): which were given.
+  const CLI::App* command = nullptr;
 };
+
+// Whether `option` ("--fov") was on the command line that o.command parsed.
+bool given(const SceneCliOptions& o, const std::string& option);
 
 // Registers the shared options on `cmd` (the scene positional argument included).
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o);
@@ -99,8 +109,21 @@ ShadowMode realTimeShadowMode(const SceneCliOptions& o);
 
 // Every scene option that can be checked before anything is read (usage errors): --env with
 // --bake, a sky description, the size, the camera's points and up, the built-in scenes' color,
-// the background, --ev100.
+// the background, --ev100, and each option that another one makes meaningless (it would be
+// ignored: --fov with --camera ortho, --aperture without --shutter and --iso, --ssao-quality
+// with the occlusion off...).
 void checkSceneOptions(const SceneCliOptions& o);
+// A note (unless quiet) naming --tonemap, and unless the exposure is used still (`exposureUsed`:
+// for the bloom's threshold) --ev100, --aperture, --shutter, --iso and --exposure-compensation,
+// when they are given and the image written is not exposed: harmless (the image is right), but
+// not what they ask; `image` says why ("out.exr holds linear radiance; ...").
+void noteToneOptionsWithoutEffect(const SceneCliOptions& o, const std::string& image,
+                                  bool exposureUsed, const GlobalOptions& global);
+// Usage errors for the options `ibl render`'s mode would ignore: the split sum's with
+// --mode reference (`reference`), the reference's (--bounces) without; --noise with fewer
+// samples per pixel (`spp`) than it waits for; --shadows none with the reference's `bounces`.
+void refuseOptionsTheModeIgnores(const SceneCliOptions& o, bool reference, int spp, int bounces,
+                                 float noise);
 
 // The --bake directory, or a bake of --env (or the bundled environment) on the CPU.
 // --env-intensity / --env-illuminance scale --env before it is baked, or the --bake's radiance

@@ -116,6 +116,8 @@ SkyRequest checkSkyRequest(const SkyCliOptions& o, const GlobalOptions& global) 
         if (std::filesystem::weakly_canonical(std::filesystem::absolute(path)) ==
             std::filesystem::weakly_canonical(std::filesystem::absolute(o.sunJson)))
           failUsage("--sun-json", fmt::format("is the image's own file {}", path.string()));
+    for (const auto& path : possibleExportPaths(e)) requireWritableFile(path);
+    if (!o.sunJson.empty()) requireWritableFile(o.sunJson);
   }
   // Measured: the panorama, its encoding and the sky's tables, about 30 bytes per pixel.
   requireMemory(static_cast<std::uint64_t>(60e6 + 40.0 * width * height),
@@ -159,7 +161,8 @@ CLI::App* addSkyOptions(CLI::App& app, SkyCliOptions& o) {
       "A physically based clear sky (Rayleigh, Mie, ozone, multiple scattering; spectral) as "
       "linear Rec.709 radiance in cd/m^2, and its sun as a light in lux");
   cmd->add_option("-o,--output", opts->output,
-                  "Output file: .exr (equirect, 32-bit float), .hdr, or .ktx2 (cube map)")
+                  "Output file: .exr (equirect, 32-bit float), .hdr, or .ktx2 (cube map); missing "
+                  "folders are created")
       ->required();
   cmd->add_option("--sun-elevation", opts->elevation,
                   "The sun's elevation above the horizon, degrees (default 30)")
@@ -192,9 +195,11 @@ CLI::App* addSkyOptions(CLI::App& app, SkyCliOptions& o) {
       ->check(numberIn(0.0f, 1.0f))
       ->capture_default_str();
   cmd->add_option("--size", opts->size, "Panorama size WxH")->capture_default_str();
-  cmd->add_option("--sun-json", opts->sunJson,
-                  "Also write the sun as a lights file ({\"lights\": [{\"type\": \"sun\", ...}]}: "
-                  "direction, lux after the atmosphere, color, angular diameter) for --lights");
+  cmd->add_option(
+      "--sun-json", opts->sunJson,
+      "Also write the sun as a lights file ({\"lights\": [{\"type\": \"sun\", ...}]}: "
+      "direction, lux after the atmosphere, color, angular diameter) for --lights; missing folders "
+      "are created");
   cmd->add_flag("--sun-disk", opts->sunDisk,
                 "Paint the sun's limb-darkened disk into the image instead (carrying its full "
                 "illuminance)");

@@ -78,12 +78,29 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   if (o.referenceSpp && o.reference.empty())
     failUsage("--reference-spp", "needs --reference reference, difference or split");
   checkSceneOptions(o.scene);
+  if (!o.screenshot.empty() && viewMode(o.reference) == gpu::ViewMode::Difference)
+    noteToneOptionsWithoutEffect(
+        o.scene, "--reference difference shows the relative error in false colors", false, global);
+  else if (!o.screenshot.empty() && fileFormatFromExtension(o.screenshot) == FileFormat::Exr)
+    noteToneOptionsWithoutEffect(
+        o.scene, fmt::format("{} holds linear radiance; write a .png", o.screenshot),
+        bloomCompensation(o.scene, kViewBloom).has_value(), global);
+  if (!o.screenshot.empty() && o.frames > 0)
+    failUsage("--frames", "closes the window after so many frames; --screenshot opens none");
+  if (o.skyboxMip > 0.0f && (o.scene.background != "env" || environmentIsNone(o.scene)))
+    failUsage("--skybox-mip",
+              fmt::format("blurs the environment behind the scene; {} shows none",
+                          environmentIsNone(o.scene) ? "--env none"
+                                                     : "--background " + o.scene.background));
   const auto [width, height] = parseSize(o.scene.size);
   if (o.scene.aoRays > 0) failUsage("--ao", "ray-cast ambient occlusion is `ibl render`'s alone");
-  if (o.scene.shadows && *o.scene.shadows == "ray")
+  if (o.scene.shadows == "ray")
     failUsage("--shadows", "ray is `ibl render`'s alone; the viewer casts shadow maps (map)");
   const std::vector<std::filesystem::path> inputs = sceneInputFiles(o.scene);
-  if (!o.screenshot.empty()) refuseOverwritingInputs({o.screenshot}, inputs);
+  if (!o.screenshot.empty()) {
+    refuseOverwritingInputs({o.screenshot}, inputs);
+    requireWritableFile(o.screenshot);
+  }
   requireMemory(renderMemoryBytes(width, height), fmt::format("--size {}", o.scene.size),
                 "view a smaller image");
   Scene scene = loadScene(o.scene, global);
@@ -239,7 +256,8 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
       "view", "Real-time viewer (Vulkan): a window, or a headless screenshot with --screenshot");
   addSceneOptions(cmd, opts->scene);
   cmd->add_option("--screenshot", opts->screenshot,
-                  "Render offscreen to this image (.png or .exr) and exit, without a window");
+                  "Render offscreen to this image (.png or .exr) and exit, without a window; "
+                  "missing folders are created");
   cmd->add_option("--spp", opts->scene.spp, "Multisamples per pixel: 1, 2, 4 or 8 (default 4)")
       ->check(CLI::IsMember({1, 2, 4, 8}));
   cmd->add_option("--skybox-mip", opts->skyboxMip, "Mip level of the skybox (0: sharpest)")

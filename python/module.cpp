@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +30,7 @@
 #include "ibl/io/image_io.hpp"
 #include "render.hpp"
 #include "sky.hpp"
+#include "usage.hpp"
 
 namespace py = pybind11;
 
@@ -103,19 +104,58 @@ void addOption(std::vector<std::string>& args, const std::string& key, const py:
   args.push_back(textOf(value));
 }
 
+// The command's option names in a message as Python spells them: `--input-layout` is
+// `input_layout=` (a long option after a space, a parenthesis, a quote or at the start).
+std::string pythonSpelling(const std::string& message) {
+  static const std::regex option(R"((^|[\s(\[{,;'"`])--([A-Za-z][A-Za-z0-9]*(?:-[A-Za-z0-9]+)*))");
+  std::string out;
+  auto last = message.cbegin();
+  for (std::sregex_iterator it(message.begin(), message.end(), option), end; it != end; ++it) {
+    const std::smatch& m = *it;
+    out.append(last, m[2].first - 2);
+    std::string name = m[2].str();
+    std::replace(name.begin(), name.end(), '-', '_');
+    out += name + "=";
+    last = m[2].second;
+  }
+  out.append(last, message.cend());
+  return out;
+}
+
+// A keyword that is none of the command's long options: a UsageError naming it, with the
+// nearest keyword when it looks like a misspelling (the command's rule, nearestName).
+void checkKeywords(CLI::App* cmd, const std::vector<std::string>& keywords,
+                   const std::string& function) {
+  std::vector<std::string> known;
+  for (const CLI::Option* option : cmd->get_options())
+    for (std::string name : option->get_lnames()) {
+      std::replace(name.begin(), name.end(), '-', '_');
+      known.push_back(name);
+    }
+  for (const std::string& keyword : keywords) {
+    if (std::find(known.begin(), known.end(), keyword) != known.end()) continue;
+    const std::string near = nearestName(keyword, known);
+    throw UsageError(fmt::format("{}=: not a keyword of ibl.{}(){}", keyword, function,
+                                 near.empty() ? "" : fmt::format("; did you mean {}=?", near)));
+  }
+}
+
 // Parses `args` (after the subcommand's name) with the subcommand that `add` registers, as the
-// command does: a mistake is a UsageError with the command's message.
+// command does: a mistake is a UsageError with the command's message; a keyword (of `keywords`,
+// those the caller passed as options) that is no option of the command, one naming it.
 template <typename AddOptions>
 CLI::App* parseOptions(CLI::App& app, const std::string& command, std::vector<std::string> args,
-                       AddOptions add) {
+                       AddOptions add, const std::vector<std::string>& keywords) {
   CLI::App* cmd = add(app);
+  checkKeywords(cmd, keywords, command);
   app.require_subcommand(1);
   args.insert(args.begin(), command);
+  const std::vector<std::string> given = args;
   std::reverse(args.begin(), args.end());  // CLI11 takes them last first
   try {
     app.parse(args);
   } catch (const CLI::ParseError& e) {
-    throw UsageError(e.what());
+    throw UsageError(usageErrorMessage(app, e, given));  // the command's words
   }
   return cmd;
 }
@@ -124,6 +164,12 @@ std::vector<std::string> optionArgs(const py::kwargs& options) {
   std::vector<std::string> args;
   for (const auto& [key, value] : options) addOption(args, key.cast<std::string>(), value);
   return args;
+}
+
+std::vector<std::string> keywordsOf(const py::kwargs& options) {
+  std::vector<std::string> keywords;
+  for (const auto& item : options) keywords.push_back(item.first.cast<std::string>());
+  return keywords;
 }
 
 // The options of a subcommand as a docstring's list: name=default: description.
@@ -146,9 +192,13 @@ std::string optionsDoc(CLI::App* cmd, const std::vector<std::string>& skip) {
 
 // ---- Progress and the GIL --------------------------------------------------------------------
 
-// A Python callable progress(stage, fraction), called from the library's threads with the GIL,
-// one call at a time, with the fractions of a stage in increasing order; the first exception it
-// raises is kept (it is not called again) and raised after the work.
+// A Python callable progress(stage, fraction) that one progress bar can follow
+// (docs/python.md): called with the GIL, one call at a time, one stage after another in the
+// order the work started them. A stage that runs beside the one being reported (the DFG table
+// beside the convolutions) is held back and reported when that one ends. Each stage's first call
+// has the fraction 0 and its last 1 (finish() ends the stages still open when the work is done),
+// and the fractions in between never decrease. The first exception the callable raises is kept
+// (it is not called again) and raised after the work.
 class PythonProgress {
  public:
   explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {}
@@ -159,19 +209,21 @@ class PythonProgress {
   PythonProgress(const PythonProgress&) = delete;
   PythonProgress& operator=(const PythonProgress&) = delete;
 
+  // From the library's threads, without the GIL.
   void report(const std::string& stage, double fraction) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (error_) return;
+    auto it = std::find_if(stages_.begin(), stages_.end(),
+                           [&](const Stage& s) { return s.name == stage; });
+    if (it == stages_.end()) it = stages_.insert(stages_.end(), Stage{stage});
     // Workers report as they finish parts: a smaller fraction may come after a larger one.
-    const auto [last, first] = reported_.try_emplace(stage, fraction);
-    if (!first && fraction < last->second) return;
-    last->second = fraction;
-    py::gil_scoped_acquire gil;
-    try {
-      callback_(stage, fraction);
-    } catch (py::error_already_set& e) {
-      error_ = std::make_unique<py::error_already_set>(std::move(e));
-    }
+    it->done = std::max(it->done, std::clamp(fraction, 0.0, 1.0));
+    show();
+  }
+  // After the work, without the GIL: the stages it left open end at 1.
+  void finish() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (Stage& s : stages_) s.done = 1.0;
+    show();
   }
   ProgressFn fn() {
     if (callback_.is_none()) return {};
@@ -186,10 +238,37 @@ class PythonProgress {
   }
 
  private:
+  struct Stage {
+    std::string name;
+    double done = 0.0;    // the largest fraction reported
+    double shown = -1.0;  // the last fraction passed to the callback; -1: none yet
+  };
+
+  // Under mutex_: the calls the stages' reports allow, from the first stage not yet ended.
+  void show() {
+    for (; current_ < stages_.size(); ++current_) {
+      Stage& s = stages_[current_];
+      if (s.shown < 0.0) call(s, 0.0);
+      if (s.done > s.shown) call(s, s.done);
+      if (s.shown < 1.0) return;
+    }
+  }
+  void call(Stage& stage, double fraction) {
+    stage.shown = fraction;
+    if (error_ || callback_.is_none()) return;
+    py::gil_scoped_acquire gil;
+    try {
+      callback_(stage.name, fraction);
+    } catch (py::error_already_set& e) {
+      error_ = std::make_unique<py::error_already_set>(std::move(e));
+    }
+  }
+
   py::object callback_;
   std::mutex mutex_;
   std::unique_ptr<py::error_already_set> error_;
-  std::map<std::string, double> reported_;  // the largest fraction of each stage so far
+  std::vector<Stage> stages_;  // in the order they first reported
+  std::size_t current_ = 0;    // the stage being shown
 };
 
 // Runs `work` without the GIL; the callback's exception comes first (the work may have failed
@@ -198,7 +277,9 @@ template <typename Work>
 auto withoutGil(PythonProgress& progress, Work work) {
   try {
     const py::gil_scoped_release release;
-    return work();
+    auto result = work();
+    progress.finish();
+    return result;
   } catch (...) {
     progress.raiseIfFailed();
     throw;
@@ -333,8 +414,8 @@ py::dict bake(const py::object& environment, const py::object& output, bool forc
   }
   CLI::App app;
   BakeCliOptions o;
-  CLI::App* cmd =
-      parseOptions(app, "bake", args, [&](CLI::App& a) { return addBakeOptions(a, o); });
+  CLI::App* cmd = parseOptions(
+      app, "bake", args, [&](CLI::App& a) { return addBakeOptions(a, o); }, keywordsOf(options));
   noteGivenOptions(cmd, o);
   if (!o.list.empty() || !o.shard.empty() || o.listDevices)
     failUsage(!o.list.empty()    ? "--list"
@@ -386,15 +467,25 @@ CLI::App* outputOptional(CLI::App* command) {
 }
 
 py::array_t<float> render(const py::object& scene, const py::object& output,
-                          const py::object& progressCallback, bool quiet,
-                          const py::kwargs& options) {
+                          const py::object& progressCallback, bool quiet, py::kwargs options) {
+  // env= as an array: the environment's pixels, laid out by their shape as bake()'s are.
+  std::shared_ptr<const Image> envPixels;
+  if (options.contains("env") && !options["env"].is_none() && !isPath(options["env"])) {
+    envPixels = std::make_shared<const Image>(imageOf(options["env"], "env"));
+    PyDict_DelItemString(options.ptr(), "env");
+  }
   std::vector<std::string> args = optionArgs(options);
   addOption(args, "output", output);
   args.insert(args.begin(), textOf(scene));
   CLI::App app;
   RenderCliOptions o;
-  parseOptions(app, "render", args,
-               [&](CLI::App& a) { return outputOptional(addRenderOptions(a, o)); });
+  parseOptions(
+      app, "render", args, [&](CLI::App& a) { return outputOptional(addRenderOptions(a, o)); },
+      keywordsOf(options));
+  if (envPixels) {
+    o.scene.env = "(array)";  // the name in messages; --env with --bake is refused as the file's
+    o.scene.envPixels = std::move(envPixels);
+  }
   const GlobalOptions global = globalOf(quiet);
   PythonProgress progress(progressCallback);
   const ProgressFn report = progress.fn();
@@ -417,7 +508,9 @@ py::object compare(const py::object& a, const py::object& b, const py::object& m
   if (files) addOption(args, "mask", mask);
   CLI::App app;
   CompareOptions o;
-  parseOptions(app, "compare", args, [&](CLI::App& cli) { return addCompareOptions(cli, o); });
+  parseOptions(
+      app, "compare", args, [&](CLI::App& cli) { return addCompareOptions(cli, o); },
+      keywordsOf(options));
   if (o.maxRelError >= 0.0)
     failUsage("--max-rel-error", "is the command's exit status; compare the returned numbers");
   if (files) {
@@ -456,7 +549,9 @@ py::array_t<float> sky(const py::object& output, bool quiet, const py::kwargs& o
   addOption(args, "output", output);
   CLI::App app;
   SkyCliOptions o;
-  parseOptions(app, "sky", args, [&](CLI::App& a) { return outputOptional(addSkyOptions(a, o)); });
+  parseOptions(
+      app, "sky", args, [&](CLI::App& a) { return outputOptional(addSkyOptions(a, o)); },
+      keywordsOf(options));
   const GlobalOptions global = globalOf(quiet);
   const Image panorama = [&] {
     const py::gil_scoped_release release;
@@ -487,13 +582,27 @@ PYBIND11_MODULE(ibl, m) {
   m.attr("__version__") = kVersion;
 
   // ibl::Error and ibl::UsageError with their messages (the command prints them after
-  // "ibl: error: "); translators are tried last registered first.
+  // "ibl: error: "), the options named as Python's keywords; translators are tried last
+  // registered first.
   auto& error = py::register_exception<Error>(m, "Error", PyExc_RuntimeError);
   auto& usageError = py::register_exception<UsageError>(m, "UsageError", error.ptr());
-  error.doc() = "A failure of ibl: the command's message, without 'ibl: error: '.";
+  error.doc() =
+      "A failure of ibl: the command's message, without 'ibl: error: ', its options named as "
+      "keywords (input_layout=, not --input-layout).";
   usageError.doc() =
-      "A request found wrong before any work (a bad option value, contradicting options): the "
-      "command exits with status 2 for it.";
+      "A request found wrong before any work (a bad option value, contradicting options, an "
+      "unknown keyword): the command exits with status 2 for it.";
+  static PyObject* errorType = error.ptr();
+  static PyObject* usageErrorType = usageError.ptr();
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const UsageError& e) {
+      PyErr_SetString(usageErrorType, pythonSpelling(e.what()).c_str());
+    } catch (const Error& e) {
+      PyErr_SetString(errorType, pythonSpelling(e.what()).c_str());
+    }
+  });
 
   m.def("read_image", &readImage, py::arg("path"), py::kw_only(), py::arg("level") = 0,
         py::arg("layer") = "",
@@ -520,7 +629,8 @@ PYBIND11_MODULE(ibl, m) {
       "4) array of linear radiance laid out by its shape (2:1 equirect, crosses, strips; or "
       "input_layout=...). output: also write the files `ibl bake -o output` writes; force: "
       "write into a non-empty directory. progress(stage: str, fraction: float) is called "
-      "from worker threads; quiet: no notes or warnings on stderr.\n\n"
+      "from worker threads, one stage after another, each from 0 to 1; quiet: no notes or "
+      "warnings on stderr.\n\n"
       "Returns a dict of float32 arrays of radiance in the environment's units (cube maps "
       "(6, size, size, 3), faces +X, -X, +Y, -Y, +Z, -Z): 'specular' (list, one per mip "
       "level, roughness by the manifest's mapping), 'source' (list of the resampled source's "
@@ -544,9 +654,10 @@ PYBIND11_MODULE(ibl, m) {
       "exposure and tone mapping; bloom applied with bloom=...) and the coverage in [0, 1], "
       "the numbers `ibl render -o x.exr` writes. size=(width, height) in pixels; "
       "mode='split-sum' or 'reference'; spp, seed, bounces; env (a file or a sky: description, "
-      "as `ibl render --env` takes) or bake (a bake's directory). output: also write the image "
-      "(.exr or .png) as "
-      "the command does. progress('rendering', fraction) from worker threads.\n\nOptions "
+      "as `ibl render --env` takes, or a float (height, width, 3 or 4) array of linear radiance "
+      "laid out by its shape, as bake() takes one) or bake (a bake's directory). output: also "
+      "write the image (.exr or .png) as the command does. progress('rendering', fraction) "
+      "from worker threads, from 0 to 1.\n\nOptions "
       "(the command's):\n" +
       docOf<RenderCliOptions>(addRenderOptions, {"scene", "output"});
   m.def("render", &render, py::arg("scene") = "grid", py::kw_only(), py::arg("output") = py::none(),

@@ -18,8 +18,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev python3 python3-yaml
   # the Python module (python/) and its tests
   pybind11-dev python3-dev python3-numpy
-  # the Debian packages (cpack: dpkg-shlibdeps, file) and the completion tests (zsh)
-  dpkg-dev file zsh
+  # the Debian packages (cpack: dpkg-shlibdeps, file; Debian's checker lintian, run by the
+  # install tests) and the completion tests (zsh)
+  dpkg-dev file lintian zsh
   # the engine targets rendered by the engines in a headless browser (scripts/engines.sh)
   chromium
   # probe grids and batch bakes as array jobs on a single-node Slurm cluster (scripts/cluster.sh)

@@ -6,6 +6,7 @@ compared bit for bit with what the command writes for the same options.
 """
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -26,6 +27,9 @@ BAKE = {"size": 32, "irradiance_size": 8, "dfg_size": 16, "dfg_samples": 64,
         "preview_size": 8}
 BAKE_ARGS = ["--size", "32", "--irradiance-size", "8", "--dfg-size", "16", "--dfg-samples",
              "64", "--preview-size", "8"]
+# The same without the preview (whose size --no-preview refuses).
+BAKE_NO_PREVIEW = {**{k: v for k, v in BAKE.items() if k != "preview_size"}, "no_preview": True}
+BAKE_NO_PREVIEW_ARGS = BAKE_ARGS[:-2] + ["--no-preview"]
 
 
 def run_cli(*args, check=True):
@@ -43,6 +47,13 @@ def cli_error(*args):
     prefix = "ibl: error: "
     assert line.startswith(prefix), line
     return result.returncode, line[len(prefix):]
+
+
+def python_spelling(message):
+    """The command's message as the module words it: each long option `--input-layout` as the
+    keyword `input_layout=` (written here apart from the module's C++)."""
+    return re.sub(r"(^|[\s(\[{,;'\"`])--([A-Za-z][A-Za-z0-9-]*)",
+                  lambda m: m[1] + m[2].replace("-", "_") + "=", message)
 
 
 def bits(array):
@@ -131,9 +142,9 @@ class TestBake(Case):
 
     def test_float_files_hold_the_arrays_exactly(self):
         cmd = self.path("cmd")
-        run_cli("bake", *BAKE_ARGS, "--format", "rgba32f", "--sheen", "--no-preview", "-o", cmd,
+        run_cli("bake", *BAKE_NO_PREVIEW_ARGS, "--format", "rgba32f", "--sheen", "-o", cmd,
                 "--quiet")
-        result = ibl.bake(**BAKE, format="rgba32f", sheen=True, no_preview=True, quiet=True)
+        result = ibl.bake(**BAKE_NO_PREVIEW, format="rgba32f", sheen=True, quiet=True)
         self.assertCubeLevelsEqual(result["specular"], os.path.join(cmd, "specular.ktx2"),
                                    np.float32)
         self.assertCubeLevelsEqual(result["sheen"], os.path.join(cmd, "sheen.ktx2"), np.float32)
@@ -173,7 +184,7 @@ class TestRender(Case):
     @classmethod
     def setUpClass(cls):
         cls.bake_dir = tempfile.TemporaryDirectory()
-        run_cli("bake", *BAKE_ARGS, "--no-preview", "-o", cls.bake_dir.name, "--quiet")
+        run_cli("bake", *BAKE_NO_PREVIEW_ARGS, "-o", cls.bake_dir.name, "--quiet")
 
     @classmethod
     def tearDownClass(cls):
@@ -207,6 +218,30 @@ class TestRender(Case):
         other = ibl.render("grid", size=(48, 32), bake=self.bake_dir.name, mode="reference",
                            spp=4, seed=8, bounces=2, quiet=True)
         self.assertFalse(np.array_equal(image, other))  # the seed is used
+
+    def test_environment_array_equals_the_same_pixels_in_a_file(self):
+        # As bake() takes one: an (h, w, 3 or 4) array laid out by its shape, here 2:1.
+        rng = np.random.default_rng(5)
+        pixels = rng.uniform(0.0, 3.0, (16, 32, 3)).astype(np.float32)
+        exr = self.path("env.exr")
+        ibl.write_image(exr, pixels, exr_type="float")
+        cmd = self.path("cmd.exr")
+        run_cli("render", "sphere", "--size", "16x16", "--env", exr, "--spp", "1", "-o", cmd,
+                "--quiet")
+        image = ibl.render("sphere", size=(16, 16), env=pixels, spp=1, quiet=True)
+        self.assertBitEqual(image[..., :3], ibl.read_image(cmd))
+        rgba = np.concatenate([pixels, np.ones((16, 32, 1), np.float32)], axis=2)
+        self.assertBitEqual(ibl.render("sphere", size=(16, 16), env=rgba, spp=1, quiet=True),
+                            image)
+        # Another environment gives another image: the array is the one used.
+        other = ibl.render("sphere", size=(16, 16), env=pixels * 2, spp=1, quiet=True)
+        self.assertFalse(np.array_equal(other, image))
+        with self.assertRaises(ValueError):
+            ibl.render("sphere", env=np.zeros((4, 4), np.float32))
+        with self.assertRaises(ibl.UsageError) as caught:
+            ibl.render("sphere", env=pixels, bake=self.bake_dir.name)
+        self.assertTrue(str(caught.exception).startswith("env=: contradicts bake= "),
+                        caught.exception)
 
     def test_sphere_with_material_options(self):
         exr = self.path("cmd.exr")
@@ -266,8 +301,9 @@ class TestImagesAndErrors(Case):
         run_cli("convert", self.path("f.exr"), "-o", self.path("cmd.hdr"), "--quiet")
         with open(self.path("py.hdr"), "rb") as a, open(self.path("cmd.hdr"), "rb") as b:
             self.assertEqual(a.read(), b.read())
-        park = ibl.read_image(os.path.join(DATA, "hdri", "park.exr"))
-        self.assertEqual((park.ndim, park.shape[1], park.shape[2]), (3, 2 * park.shape[0], 3))
+        sunset = ibl.read_image(os.path.join(DATA, "hdri", "sunset.exr"))
+        self.assertEqual((sunset.ndim, sunset.shape[1], sunset.shape[2]),
+                         (3, 2 * sunset.shape[0], 3))
         with self.assertRaises(ValueError):
             ibl.write_image(self.path("x.exr"), np.zeros((4, 4), np.float32))
 
@@ -297,34 +333,56 @@ class TestImagesAndErrors(Case):
             ibl.read_image(missing)
         self.assertEqual(str(caught.exception), message)
 
+        # Usage errors: the command's message with its options spelled as keywords.
         status, message = cli_error("bake", "--size", "33", "-o", self.path("out"))
         self.assertEqual(status, 2)
         with self.assertRaises(ibl.UsageError) as caught:
             ibl.bake(size=33)
-        self.assertEqual(str(caught.exception), message)
+        self.assertEqual(str(caught.exception), python_spelling(message))
+        self.assertTrue(str(caught.exception).startswith("size=: "), caught.exception)
+
+        status, message = cli_error("bake", "--input-layout", "diagonal", "-o", self.path("out"))
+        self.assertEqual(status, 2)
+        with self.assertRaises(ibl.UsageError) as caught:
+            ibl.bake(input_layout="diagonal")
+        self.assertEqual(str(caught.exception), python_spelling(message))
+        self.assertIn("input_layout=", str(caught.exception))
+        self.assertNotIn("--", str(caught.exception))
 
         status, message = cli_error("render", "grid", "--mode", "reference", "--shadows", "map",
                                     "-o", self.path("x.exr"))
         with self.assertRaises(ibl.UsageError) as caught:
             ibl.render("grid", mode="reference", shadows="map")
-        self.assertEqual(str(caught.exception), message)
+        self.assertEqual(str(caught.exception), python_spelling(message))
+        self.assertNotIn("--", str(caught.exception))
 
         status, message = cli_error("sky", "--size", "64x32", "--sun-elevation", "100", "-o",
                                     self.path("s.exr"))
         with self.assertRaises(ibl.UsageError) as caught:
             ibl.sky(size=(64, 32), sun_elevation=100)
-        self.assertEqual(str(caught.exception), message)
+        self.assertEqual(str(caught.exception), python_spelling(message))
+        self.assertTrue(str(caught.exception).startswith("sun_elevation=: "), caught.exception)
 
-        with self.assertRaises(ibl.UsageError):
-            ibl.bake(no_such_option=1)
+        # An unknown keyword is named as given, with the nearest ones, and its value (which
+        # the command line would take for a positional argument) is not in the message.
+        with self.assertRaises(ibl.UsageError) as caught:
+            ibl.bake(sizee=64)
+        self.assertEqual(str(caught.exception),
+                         "sizee=: not a keyword of ibl.bake(); did you mean size=?")
+        with self.assertRaises(ibl.UsageError) as caught:
+            ibl.render("sphere", no_such_option=12345)
+        self.assertEqual(str(caught.exception), "no_such_option=: not a keyword of ibl.render()")
+        with self.assertRaises(ibl.UsageError) as caught:
+            ibl.sky(sun_elevatoin=10)
+        self.assertIn("; did you mean sun_elevation=?", str(caught.exception))
         # The sun's file is written beside the image: without one, there is nowhere to put it.
         with self.assertRaises(ibl.UsageError):
             ibl.sky(size=(64, 32), sun_json=self.path("sun.json"))
         self.assertFalse(os.path.exists(self.path("sun.json")))
-        # An array is no option value (the environment argument of bake() is the one that
-        # takes pixels).
+        # An array is no option value (the environment of bake() and render()'s env= are the
+        # ones that take pixels).
         with self.assertRaises(TypeError):
-            ibl.render("grid", env=np.zeros((8, 16, 3), np.float32))
+            ibl.render("grid", lights=np.zeros((8, 16, 3), np.float32))
 
     def test_numpy_scalars_are_option_values(self):
         plain = ibl.sky(size=(64, 32), sun_elevation=20, quiet=True)
@@ -336,26 +394,60 @@ class TestImagesAndErrors(Case):
     def test_version(self):
         self.assertEqual(f"ibl {ibl.__version__}", run_cli("--version").stdout.strip())
 
+    def test_docs_name_the_interpreter_of_this_build(self):
+        # docs/python.md states the Python the module is built for; CMake's (IBL_PYTHON_VERSION)
+        # and this interpreter's (the one CMake found runs the tests) must be that one.
+        with open(os.path.join(DATA, "..", "docs", "python.md")) as f:
+            stated = re.search(r"built for Python (\d+)\.(\d+)", f.read())
+        self.assertIsNotNone(stated, "docs/python.md names no Python version")
+        version = tuple(int(n) for n in stated.groups())
+        self.assertEqual(version, sys.version_info[:2])
+        built = os.environ.get("IBL_PYTHON_VERSION", "")
+        self.assertEqual(tuple(int(n) for n in built.split(".")[:2]), version, built)
+        tag = f"cpython-{version[0]}{version[1]}-"
+        self.assertIn(tag, os.path.basename(ibl.__file__))
+
 
 class TestProgressAndThreads(Case):
-    def test_progress_fractions_increase_per_stage(self):
-        calls = []
-        ibl.bake(**BAKE, progress=lambda stage, fraction: calls.append((stage, fraction)),
-                 quiet=True)
-        self.assertGreater(len(calls), 3)
-        last = {}
+    def assertOneBarFollows(self, calls):
+        """The callback's contract (docs/python.md): the stages one after another, each from
+        0 to 1 with fractions that never decrease; returns the stages in their order."""
+        stages = []
         for stage, fraction in calls:
             self.assertIsInstance(stage, str)
-            self.assertGreaterEqual(fraction, 0.0)
-            self.assertLessEqual(fraction, 1.0)
-            self.assertGreaterEqual(fraction, last.get(stage, 0.0), stage)
-            last[stage] = fraction
-        self.assertTrue(any(f == 1.0 for f in last.values()), last)
-        fractions = []
-        ibl.render("sphere", size=(16, 16), spp=1, env="none", progress=lambda s, f:
-                   fractions.append(f), quiet=True)
-        self.assertEqual(fractions, sorted(fractions))
-        self.assertGreater(len(fractions), 0)
+            self.assertIsInstance(fraction, float)
+            if not stages or stages[-1][0] != stage:
+                self.assertNotIn(stage, [s for s, _ in stages], f"{stage} again, in {calls}")
+                stages.append((stage, []))
+            stages[-1][1].append(fraction)
+        for stage, fractions in stages:
+            self.assertEqual(fractions[0], 0.0, stage)
+            self.assertEqual(fractions[-1], 1.0, stage)
+            self.assertEqual(fractions, sorted(fractions), stage)
+        return [s for s, _ in stages]
+
+    def test_progress_reports_one_stage_after_another(self):
+        # A DFG table no other test integrates (so it runs beside the convolutions), and a
+        # sheen chain: stages that run at the same time in the library.
+        calls = []
+        ibl.bake(size=64, irradiance_size=16, dfg_size=32, dfg_samples=1000, sheen=True,
+                 no_preview=True, quiet=True,
+                 progress=lambda stage, fraction: calls.append((stage, fraction)))
+        stages = self.assertOneBarFollows(calls)
+        self.assertTrue(stages[0].startswith("source cube 64x64"), stages)
+        for expected in ("irradiance 16x16", "DFG table 32x32 (1000 samples per texel)",
+                         "sheen table 32x32 (4000 samples per texel)"):
+            self.assertIn(expected, stages)
+        levels = [s for s in stages if s.startswith("specular level ")]
+        self.assertEqual(len(levels), 4)  # 64, 32, 16, 8: in their order
+        self.assertEqual([s.split()[2] for s in levels], ["1/4", "2/4", "3/4", "4/4"])
+        self.assertEqual(len([s for s in stages if s.startswith("sheen (Charlie): ")]), 4)
+        self.assertGreater(len(calls), 2 * len(stages))  # fractions between 0 and 1 too
+
+        calls = []
+        ibl.render("sphere", size=(16, 16), spp=1, env="none",
+                   progress=lambda stage, fraction: calls.append((stage, fraction)), quiet=True)
+        self.assertEqual(self.assertOneBarFollows(calls), ["rendering"])
 
     def test_a_raising_callback_propagates(self):
         class Stop(Exception):

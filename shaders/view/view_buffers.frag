@@ -5,6 +5,7 @@
 // renderViewBuffers (src/render/view_buffers.cpp) computes them at the pixel centers.
 #extension GL_GOOGLE_include_directive : require
 #include "view/frame.glsl"
+#include "ibl/shared/ambient_occlusion.h"
 #include "ibl/shared/split_sum.h"
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
@@ -23,7 +24,11 @@ vec3 toView(vec3 w) {
 }
 
 void main() {
+  // The triangle's plane, before fragmentSurface may discard (derivatives need every fragment).
+  vec3 geometric = cross(dFdx(worldPosition), dFdy(worldPosition));
   ShadedSurface surface = fragmentSurface(1);  // single-sampled: the pixel center, as the CPU
+  if (material.sphere.w > 0.0) geometric = surface.normal;  // traced: the sphere's own
   outPosition = vec4(toView(surface.position - frame.cameraPosition.xyz), 1.0);
-  outNormal = vec4(toView(surface.normal), surface.material.roughness);
+  vec3 normal = viewBufferNormal(surface.normal, geometric, surface.view);
+  outNormal = vec4(toView(normal), surface.material.roughness);
 }

@@ -180,7 +180,8 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
   StageTimer time(r.timingsMs);
   const auto start = std::chrono::steady_clock::now();
   const int size = o.specular.size;
-  if (progress) progress(fmt::format("source cube {}x{} with mips", size, size), 0.0);
+  const std::string sourceStage = fmt::format("source cube {}x{} with mips", size, size);
+  if (progress) progress(sourceStage, 0.0);
   r.source = time("source", [&] {
     CubeMap cube = env.isCube() && env.cube.size() == size && o.rotateDegrees == 0.0f ? CubeMap()
                    : device ? gpu::resampleToCube(*device, env, size, o.rotateDegrees)
@@ -193,6 +194,7 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
     }
     return cube;
   });
+  if (progress) progress(sourceStage, 1.0);
   // The DFG table does not depend on the environment: compute it beside the convolutions.
   parallelInvoke(
       [&] {
@@ -243,10 +245,13 @@ BakeResult bakeEnvironment(const Environment& env, const BakeOptions& o, const P
         }
         r.irradiance = time("irradiance", [&] {
           const int level = levelOfSize(r.source, o.irradianceSize);
-          if (device && progress)
-            progress(fmt::format("irradiance {}x{}", o.irradianceSize, o.irradianceSize), 0.0);
-          return device ? gpu::convolveIrradiance(*device, r.source, o.irradianceSize, level)
-                        : convolveIrradiance(r.source, o.irradianceSize, level, progress);
+          if (!device) return convolveIrradiance(r.source, o.irradianceSize, level, progress);
+          const std::string stage =
+              fmt::format("irradiance {}x{}", o.irradianceSize, o.irradianceSize);
+          if (progress) progress(stage, 0.0);
+          CubeMap irradiance = gpu::convolveIrradiance(*device, r.source, o.irradianceSize, level);
+          if (progress) progress(stage, 1.0);
+          return irradiance;
         });
         r.sh = time("sh", [&] {
           // The 64^2 level integrates like level 0 (box-filtered mips keep every texel's

@@ -658,10 +658,9 @@ CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& o,
   for (int m = 0; m < levels; ++m) {
     const int size = o.size >> m;
     const float r = roughnessForLevel(m, levels, o.mapping);
-    if (progress)
-      progress(fmt::format("specular level {}/{} ({}x{}, roughness {:.3f})", m + 1, levels, size,
-                           size, r),
-               0.0);
+    const std::string stage =
+        fmt::format("specular level {}/{} ({}x{}, roughness {:.3f})", m + 1, levels, size, size, r);
+    if (progress) progress(stage, 0.0);
     LevelMethod method{r, "", 0, 0, size};
     if (r == 0.0f && o.weight != PrefilterWeight::Charlie) {
       // Mirror reflection: the source itself (the sheen lobe has no mirror limit).
@@ -673,6 +672,7 @@ CubeMap buildSpecularChain(const CubeMap& source, const PrefilterOptions& o,
       out.levels[m] = level(size, r, method);
     }
     if (methods) (*methods)[m] = method;
+    if (progress) progress(stage, 1.0);
   }
   return out;
 }

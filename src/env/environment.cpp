@@ -215,6 +215,23 @@ Environment environmentFromFile(DecodedFile&& d, const LoadOptions& options,
   return env;
 }
 
+namespace {
+
+// Finds (or repairs) the damage of the pixels as read, then replaces what is not finite,
+// non-negative radiance by 0.
+void checkDamageAndSanitize(LoadedEnvironment& out, const LoadOptions& options) {
+  if (options.repairDamage) {
+    DamageRepair repair = repairPixelDamage(out.environment);
+    out.damage = repair.damage;
+    if (!repair.damage.empty()) out.repair = std::move(repair);
+  } else {
+    out.damage = findPixelDamage(out.environment);
+  }
+  out.replaced = sanitizeEnvironment(out.environment);
+}
+
+}  // namespace
+
 LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& options) {
   LoadedEnvironment out;
   Environment& env = out.environment;
@@ -232,7 +249,7 @@ LoadedEnvironment loadEnvironment(const std::string& path, const LoadOptions& op
       out.format = fileFormatName(d.format);
       env.cube.levels[0][f] = std::move(img);
     }
-    out.replaced = sanitizeEnvironment(env);
+    checkDamageAndSanitize(out, options);
     return out;
   }
   return loadEnvironment(readImageFile(path, {options.layer}), path, options);
@@ -243,7 +260,7 @@ LoadedEnvironment loadEnvironment(DecodedFile&& d, std::string_view name,
   LoadedEnvironment out;
   out.format = fileFormatName(d.format);
   out.environment = environmentFromFile(std::move(d), options, name);
-  out.replaced = sanitizeEnvironment(out.environment);
+  checkDamageAndSanitize(out, options);
   return out;
 }
 

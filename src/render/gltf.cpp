@@ -39,6 +39,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/io/file_io.hpp"
+#include "ibl/io/json_file.hpp"
 
 namespace ibl {
 
@@ -499,7 +500,9 @@ class FilteringDomBuilder {
  public:
   using Json = nlohmann::json;
   using KeepFn = bool (*)(const std::vector<std::string>& keys, std::size_t depth);
-  FilteringDomBuilder(Json& root, KeepFn keep) : root_(root), keep_(keep) {}
+  // `text`: what is parsed, for the place of an error.
+  FilteringDomBuilder(Json& root, KeepFn keep, std::string_view text)
+      : root_(root), keep_(keep), text_(text) {}
 
   bool null() { return put(nullptr); }
   bool boolean(bool v) { return put(v); }
@@ -521,8 +524,9 @@ class FilteringDomBuilder {
     if (!skipNext_) key_ = std::move(k);
     return true;
   }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) {
-    error_ = e.what();
+  bool parse_error(std::size_t charactersRead, const std::string& token,
+                   const nlohmann::detail::exception& e) {
+    error_ = describeJsonError(text_, charactersRead, token, e.id, e.what());
     return false;
   }
   const std::string& error() const { return error_; }
@@ -566,6 +570,7 @@ class FilteringDomBuilder {
 
   Json& root_;
   KeepFn keep_;
+  std::string_view text_;
   std::vector<Json*> open_;  // the containers being filled, outermost first
   std::vector<std::string> keys_;
   std::string key_;
@@ -590,11 +595,10 @@ PreparedJson prepareJson(std::string_view text, const std::string& path, const f
     fail(path, fmt::format("not a readable glTF 2.0 file: JSON nested deeper than {} levels",
                            kMaxJsonDepth));
   nlohmann::json j;
-  FilteringDomBuilder builder(j, keepMember);
+  FilteringDomBuilder builder(j, keepMember, text);
   try {
     if (!nlohmann::json::sax_parse(text.begin(), text.end(), &builder))
-      fail(path, fmt::format("not a readable glTF 2.0 file: invalid JSON ({})",
-                             firstLine(builder.error())));
+      fail(path, fmt::format("not a readable glTF 2.0 file: invalid JSON: {}", builder.error()));
   } catch (const nlohmann::json::exception& e) {
     fail(path, fmt::format("not a readable glTF 2.0 file: invalid JSON ({})", firstLine(e.what())));
   }

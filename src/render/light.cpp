@@ -13,6 +13,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/io/file_io.hpp"
+#include "ibl/io/json_file.hpp"
 #include "ibl/math/color.hpp"
 
 namespace ibl {
@@ -420,8 +421,7 @@ shared::ShadingLight shadingLightOf(const Light& l) {
 
 std::vector<Light> parseLights(std::string_view text, const std::string& name,
                                const std::filesystem::path& baseDirectory, SpotLumens spotLumens) {
-  const Json root = Json::parse(text, nullptr, false);
-  if (root.is_discarded()) fail(name, "not valid JSON");
+  const Json root = parseJsonText<Json>(text, name);
   if (!root.is_object() || !root.contains("lights") || !root["lights"].is_array())
     fail(name, "expected {\"lights\": [ ... ]}");
   for (const auto& [key, v] : root.items())

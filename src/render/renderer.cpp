@@ -183,7 +183,7 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
                          const std::function<void(float)>& progress) {
   checkCamera(camera);
   if (o.mode == RenderMode::SplitSum && o.realTimeShadows == ShadowMode::Map && !o.shadowMaps &&
-      !scene.lights.empty()) {
+      !scene.lights.empty() && sceneCastsShadows(scene)) {
     // The sun's cascades are fitted to this camera's view.
     const ShadowMapBuilder builder(scene);
     const ShadowMaps maps = builder.build(scene.lights, &camera, o.shadowSettings);
@@ -247,7 +247,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   // The lights' shadows in the split sum: maps (built here over the whole scene unless given),
   // or rays.
   const bool shadowed = o.mode == RenderMode::SplitSum && o.realTimeShadows != ShadowMode::None &&
-                        !scene.lights.empty();
+                        !scene.lights.empty() && sceneCastsShadows(scene);
   ShadowMaps ownMaps;
   const ShadowMaps* maps = o.shadowMaps;
   if (shadowed && o.realTimeShadows == ShadowMode::Map && !maps) {

@@ -233,6 +233,10 @@ std::size_t shadowMapBytes(const std::vector<Light>& lights, const ShadowSetting
          static_cast<std::size_t>(settings.mapSize) * sizeof(float);
 }
 
+bool sceneCastsShadows(const Scene& scene) {
+  return !scene.meshes.empty() || scene.spheres.size() > 1;
+}
+
 ShadowMaps planShadowMaps(const std::vector<Light>& lights, std::pair<glm::vec3, glm::vec3> bounds,
                           const Camera* camera, const ShadowSettings& settings) {
   if (settings.mapSize < 16 || settings.mapSize > 8192 || settings.cascades < 1 ||

@@ -45,7 +45,9 @@ ViewBuffers renderViewBuffers(const Scene& scene, const Camera& camera) {
       const SurfacePoint p = surfaceAt(scene, tracer, hit, ray);
       const std::size_t i = static_cast<std::size_t>(y) * b.width + x;
       b.positions[i] = toView(p.position - camera.from);
-      b.normals[i] = toView(p.normal);
+      // The buffers' normal faces the camera on the geometry's side (a sphere's is exact).
+      const glm::vec3 geometric = tracer.isSphere(hit.geometry) ? p.normal : hit.ng;
+      b.normals[i] = toView(shared::viewBufferNormal(p.normal, geometric, -ray.direction));
       b.roughness[i] = p.roughness;
     }
   });

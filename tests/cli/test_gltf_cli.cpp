@@ -304,3 +304,47 @@ TEST(GltfCli, InfoDescribesAScene) {
         "  2 'wedge node': mesh 1 'wedge', child of 1\n"})
     EXPECT_NE(t.output.find(line), std::string::npos) << line << t.output;
 }
+
+// A scene's own camera frames the view unless --look-from or --look-at place another: --camera,
+// --fov and --up would be ignored with it, and are usage errors naming it; nothing is written.
+TEST(GltfCli, TheScenesCameraLeavesNoRoom) {
+  TempDir dir;
+  const KnownScene k = writeKnownScene(dir);
+  const std::string render =
+      "render " + quote(k.path) + " --env none --size 8x8 -o " + quote(dir / "out.png") + " ";
+  for (const std::string option : {"--fov 30", "--camera ortho", "--up 1,0,0"}) {
+    const CliRun r = runIbl(render + option);
+    EXPECT_EQ(r.status, 2) << option << "\n" << r.output;
+    EXPECT_NE(r.output.find("ibl: error: " + option.substr(0, option.find(' ')) +
+                            ": has no effect: " + k.path + "'s own camera"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
+  }
+  // Its camera is a perspective one: no width to set.
+  const CliRun width = runIbl(render + "--ortho-width 2");
+  EXPECT_EQ(width.status, 2) << width.output;
+  EXPECT_NE(width.output.find("ibl: error: --ortho-width: applies to an orthographic camera"),
+            std::string::npos)
+      << width.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
+  const CliRun placed = runIbl(render + "--fov 30 --look-from 0,1,6 -q");
+  EXPECT_EQ(placed.status, 0) << placed.output;
+}
+
+// A glTF file that is not JSON is named with the line and column of the mistake (counted here
+// by hand), its bytes escaped: the same words as a lights file's (LightsFile.JsonMistakes...).
+TEST(GltfCli, InvalidJsonNamesTheLineAndColumn) {
+  TempDir dir;
+  std::ofstream(dir / "bad.gltf") << "{\"asset\": {\"version\": \"2.0\"},\n  \"nodes\": [\xff]}";
+  const CliRun r = runIbl("info " + quote(dir / "bad.gltf"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(r.output.rfind("ibl: error: " + (dir / "bad.gltf").string() +
+                               ": not a readable glTF 2.0 file: invalid JSON: line 2, column 13: ",
+                           0),
+            0u)
+      << r.output;
+  EXPECT_NE(r.output.find("\\xff"), std::string::npos) << r.output;
+  for (const char c : r.output)
+    EXPECT_TRUE(c == '\n' || (c >= 0x20 && c < 0x7f)) << int(static_cast<unsigned char>(c));
+}

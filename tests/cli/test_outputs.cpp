@@ -1,5 +1,6 @@
 // Commands that write several files write all of them or none, a bake into an existing
 // directory replaces exactly its own files, and readers of a bake check it against its manifest.
+#include <algorithm>
 #include <csignal>
 #include <fstream>
 #include <map>
@@ -399,4 +400,71 @@ TEST(Outputs, InterruptsRemoveTheProcesssTemporaries) {
       }
     }
   }
+}
+
+// Every command that writes checks its outputs before any work: a path under a regular file
+// (which no one may create, root included) fails at once with one line naming it, and nothing
+// is written. The inputs here are not what they claim (broken.exr is no image, broken.gltf no
+// glTF): an error naming them would show that the work started first. Missing folders of an
+// output are created, by every command alike.
+TEST(Outputs, UnwritableOutputsFailBeforeTheWork) {
+  TempDir dir;
+  std::ofstream(dir / "file") << "a regular file";
+  std::ofstream(dir / "broken.exr") << "not an image";
+  std::ofstream(dir / "broken.gltf") << "not a glTF file";
+  const std::string exr = quote(dir / "broken.exr"), gltf = quote(dir / "broken.gltf");
+  const auto under = [&](const std::string& name) { return (dir / "file" / name).string(); };
+  const std::pair<std::string, std::string> cases[] = {
+      {"render " + gltf + " --size 8x8 -o ", under("r.png")},
+      {"render sphere --env " + exr + " --size 8x8 -o ", under("r.exr")},
+      {"sky --size 16x8 --device gpu -o ", under("s.exr")},
+      {"sky --size 16x8 --sun-json " + quote(dir / "new" / "sun.json") + " -o ", under("s.hdr")},
+      {"view " + gltf + " --size 8x8 --screenshot ", under("v.png")},
+      {"convert " + exr + " -o ", under("c.hdr")},
+      {"convert " + exr + " --layout faces -o ", under("f_{face}.exr")},
+      {"compare " + exr + " " + exr + " --error-png ", under("e.png")},
+      {"probe " + gltf + " --at 0,0,0 -o ", under("p")},
+      {"bake " + exr + " -o ", under("b")},
+  };
+  for (const auto& [args, output] : cases) {
+    const CliRun r = runIbl(args + quote(output));
+    EXPECT_EQ(r.status, 1) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.rfind("ibl: error: ", 0), 0u) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find("file is not a directory"), std::string::npos) << args << r.output;
+    EXPECT_EQ(r.output.find("broken"), std::string::npos) << args << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "new"));
+  // A folder the user may not write (permissions do not stop root: then the check is moot).
+  if (::geteuid() != 0) {
+    fs::create_directories(dir / "locked");
+    fs::permissions(dir / "locked", fs::perms::owner_read | fs::perms::owner_exec);
+    const CliRun r = runIbl("render " + gltf + " -o " + quote(dir / "locked" / "sub" / "r.png"));
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("r.png: cannot be written in " + (dir / "locked").string()),
+              std::string::npos)
+        << r.output;
+    fs::permissions(dir / "locked", fs::perms::owner_all);
+    EXPECT_TRUE(fs::is_empty(dir / "locked"));
+  }
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::recursive_directory_iterator(dir.path())) ++entries;
+  EXPECT_EQ(entries, fs::exists(dir / "locked") ? 4 : 3);
+  // Missing folders are created: an image, a sky and its lights file, a bake.
+  ASSERT_EQ(runIbl("render sphere --env none --size 8x8 --spp 1 -q -o " +
+                   quote(dir / "a" / "b" / "r.png"))
+                .status,
+            0);
+  EXPECT_TRUE(fs::is_regular_file(dir / "a" / "b" / "r.png"));
+  ASSERT_EQ(runIbl("sky --size 16x8 -q -o " + quote(dir / "c" / "s.exr") + " --sun-json " +
+                   quote(dir / "d" / "e" / "sun.json"))
+                .status,
+            0);
+  EXPECT_TRUE(fs::is_regular_file(dir / "c" / "s.exr"));
+  EXPECT_TRUE(fs::is_regular_file(dir / "d" / "e" / "sun.json"));
+  ASSERT_EQ(runIbl("bake sky:elevation=30 --size 16" + kSmallBake + " -o " +
+                   quote(dir / "f" / "g" / "bake"))
+                .status,
+            0);
+  EXPECT_TRUE(fs::is_regular_file(dir / "f" / "g" / "bake" / "manifest.json"));
 }

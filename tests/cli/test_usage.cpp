@@ -2,6 +2,7 @@
 // option's name on the first line) for a wrong command line, 1 for a file that is missing or not
 // what it says (a failure of the work), and nothing written either way. The table must name
 // every option that `--help` lists: a new option cannot escape it.
+#include <algorithm>
 #include <map>
 #include <regex>
 #include <set>
@@ -247,6 +248,8 @@ TEST(Usage, Convert) {
            "--mips needs a power-of-two size, not 100"},
           {"--extract-sun", "-o out.hdr --extract-sun", 2, "--extract-sun: needs"},
           {"--sun-json", "-o out.hdr --sun-json sun.json", 2, "--sun-json: applies"},
+          {"--repair-damage", "sky:elevation=30 -o out.hdr --repair-damage", 2,
+           "--repair-damage: contradicts sky:elevation=30"},
           {"--env-intensity", "-o out.hdr --env-intensity inf", 2, "--env-intensity: 'inf'"},
           {"--env-illuminance", "-o out.hdr --env-illuminance 5 --env-intensity 2", 2,
            "--env-illuminance: contradicts --env-intensity 2"},
@@ -409,8 +412,162 @@ TEST(Usage, CompareAndInfo) {
 TEST(Usage, Completion) {
   expectMisuses("completion", "",
                 {
-                    {"shell", "fish", 2, "shell: fish not in {bash,zsh}"},
-                    {"shell", "", 2, "shell is required"},
+                    {"shell", "fish", 2, "shell: 'fish' is not bash or zsh"},
+                    {"shell", "", 2, "shell: required (bash or zsh)"},
                     {"shell", "bash zsh", 2, "zsh"},
                 });
+}
+
+namespace {
+
+// A usage error's whole output: status 2, one line, with every piece of `pieces`.
+void expectOneLineUsageError(const std::string& args, const std::vector<std::string>& pieces) {
+  const CliRun r = runIbl(args);
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.output;
+  EXPECT_EQ(r.output.rfind("ibl: error: ", 0), 0u) << args << "\n" << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << "\n" << r.output;
+  for (const std::string& piece : pieces)
+    EXPECT_NE(r.output.find(piece), std::string::npos)
+        << args << ": expected '" << piece << "' in\n"
+        << r.output;
+}
+
+}  // namespace
+
+// Options that another option makes meaningless (the command would ignore them) are usage errors
+// naming both, found before any work: nothing is written.
+TEST(Usage, OptionsThatOthersMakeMeaninglessNameBoth) {
+  TempDir dir;
+  const std::string png = " -o " + quote(dir / "out.png");
+  const std::string exr = " -o " + quote(dir / "out.exr");
+  const std::string shot = " --screenshot " + quote(dir / "out.png");
+  const std::string bake = "bake --size 16 -o " + quote(dir / "b");
+  const std::string probe = "probe grid --size 8 --spp 1 -o " + quote(dir / "p");
+  const std::string gltf = quote(dataDir() / "models" / "bunny.glb");
+  // The arguments, and the two options the message names (the first one leads it).
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      // The exposure: --ev100, or the three settings of a camera together.
+      {"render sphere --ev100 5 --aperture 2.8 --shutter 0.01 --iso 100" + png,
+       {"--ev100: contradicts --aperture 2.8"}},
+      {"render sphere --aperture 2.8" + png, {"--aperture:", "--shutter and --iso"}},
+      {"render sphere --aperture 2.8 --iso 100" + png, {"--aperture:", "--shutter"}},
+      {"view sphere --shutter 0.01" + shot, {"--shutter:", "--aperture and --iso"}},
+      // The mode: the split sum's options with the reference, the reference's without.
+      {"render sphere --mode reference --ssao on" + png, {"--ssao: on", "--mode reference"}},
+      {"render sphere --mode reference --ssr on" + png, {"--ssr: on", "--mode reference"}},
+      {"render sphere --mode split-sum --bounces 3" + png, {"--bounces:", "--mode reference"}},
+      {"render sphere --bounces 0" + png, {"--bounces:", "--mode reference"}},
+      {"render sphere --mode reference --shadows none" + png,
+       {"--shadows: none contradicts --bounces 4"}},
+      {"render sphere --noise 0.1" + png, {"--noise:", "--spp 4 (the default)"}},
+      {"render sphere --mode reference --spp 8 --noise 0.1" + png, {"--noise:", "--spp 8"}},
+      {"render " + gltf + " --mode reference --ao 4" + png, {"--ao:", "--mode reference"}},
+      {"render sphere --mode reference --probes " + quote(dir.path()) + png,
+       {"--probes:", "--mode reference"}},
+      {"render sphere --mode reference --no-dominant" + png,
+       {"--no-dominant:", "--mode reference"}},
+      {"render sphere --mode reference --irradiance sh" + png,
+       {"--irradiance:", "--mode reference"}},
+      {"render sphere --mode reference --area-lights frostbite" + png,
+       {"--area-lights:", "--mode reference"}},
+      {"render sphere --mode reference --shadows ray --shadow-map-size 512" + png,
+       {"--shadow-map-size:", "--mode reference"}},
+      {"render sphere --mode reference --shadow-cascades 2" + png,
+       {"--shadow-cascades:", "--mode reference"}},
+      {"render " + gltf + " --mode reference --ssao-quality high" + png,
+       {"--ssao-quality:", "--mode reference"}},
+      {"render " + gltf + " --mode reference --ssr-thickness 0.1" + png,
+       {"--ssr-thickness:", "--mode reference"}},
+      // The camera's kind (a glTF file's own camera: GltfCli.TheScenesCameraLeavesNoRoom).
+      {"render sphere --camera ortho --fov 30" + png, {"--fov:", "--camera perspective"}},
+      {"view sphere --ortho-width 2" + shot, {"--ortho-width:", "--camera ortho"}},
+      {"render sphere --camera perspective --ortho-width 2" + png,
+       {"--ortho-width:", "--camera ortho"}},
+      // The built-in scenes' material.
+      {"render " + gltf + " --metallic 1" + png, {"--metallic:", "built-in scenes"}},
+      {"render " + gltf + " --base-color 1,0,0" + png, {"--base-color:", "built-in scenes"}},
+      {"render grid --roughness 0.2" + png, {"--roughness:", "built-in sphere"}},
+      // Settings of what is off.
+      {"render sphere --ssao-quality high" + png, {"--ssao-quality:", "add --ssao on"}},
+      {"render " + gltf + " --ssao off --ssao-radius 0.5" + png, {"--ssao-radius:", "--ssao off"}},
+      {"render " + gltf + " --ao 4 --ssao-quality low" + png, {"--ssao-quality:", "--ao 4"}},
+      {"view sphere --ssr-quality high" + shot, {"--ssr-quality:", "add --ssr on"}},
+      {"render " + gltf + " --ssr off --ssr-thickness 0.1" + png,
+       {"--ssr-thickness:", "--ssr off"}},
+      {"render sphere --shadows none --shadow-map-size 512" + png,
+       {"--shadow-map-size:", "--shadows none"}},
+      {"view sphere --shadows none --shadow-cascades 2" + shot,
+       {"--shadow-cascades:", "--shadows none"}},
+      {"render sphere --shadow-rays 4" + png, {"--shadow-rays:", "--shadows ray"}},
+      {"render sphere --no-parallax" + png, {"--no-parallax:", "--probes"}},
+      {"view sphere --no-distance-roughness" + shot, {"--no-distance-roughness:", "--probes"}},
+      {"render sphere --force" + png, {"--force:", "--probes"}},
+      {"render sphere --spot-lumens frostbite" + png, {"--spot-lumens:", "--lights"}},
+      // The window's options with a screenshot.
+      {"view sphere --frames 10" + shot, {"--frames:", "--screenshot"}},
+      {"view sphere --skybox-mip 2 --background 0,0,0" + shot,
+       {"--skybox-mip:", "--background 0,0,0"}},
+      {"view sphere --skybox-mip 2 --env none" + shot, {"--skybox-mip:", "--env none"}},
+      // bake.
+      {bake + " --no-preview --preview-size 64", {"--preview-size: contradicts --no-preview"}},
+      {bake + " --layout faces", {"--layout:", "--exr or --hdr"}},
+      {bake + " --samples 128", {"--samples:", "--method sampled"}},
+      {bake + " sky:elevation=30 --layer Combined", {"--layer:", "sky:elevation=30"}},
+      {bake + " sky:elevation=30 --input-layout cross", {"--input-layout:", "sky:elevation=30"}},
+      // probe.
+      {probe + " --at 0,0,0 --bounds -1,-1,-1,1,1,1", {"--bounds:", "--grid"}},
+      {probe + " --at 0,0,0 --rotation 0,45,0", {"--rotation:", "--proxy or --influence"}},
+  };
+  for (const auto& [args, pieces] : cases) expectOneLineUsageError(args, pieces);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+  // What a linear image leaves out is harmless (the image is right): a note naming the options
+  // and the image, and the image is written.
+  const std::string render = "render sphere --env none --size 8x8 --spp 1 ";
+  const std::pair<std::string, std::string> notes[] = {
+      {render + "--tonemap filmic --ev100 3" + exr,
+       "ibl: note: --tonemap, --ev100: no effect: " + (dir / "out.exr").string() +
+           " holds linear radiance; add --exr-exposed or write a .png (and no --bloom reads"},
+      {render + "--exposure-compensation 1 --bloom 2" + exr, ""},  // the bloom reads it
+      {render + "--exr-exposed" + png,
+       "ibl: note: --exr-exposed: no effect: " + (dir / "out.png").string() + " is exposed"},
+  };
+  for (const auto& [args, note] : notes) {
+    const CliRun r = runIbl(args);
+    EXPECT_EQ(r.status, 0) << args << "\n" << r.output;
+    if (note.empty())
+      EXPECT_EQ(r.output.find("ibl: note:"), std::string::npos) << args << "\n" << r.output;
+    else
+      EXPECT_NE(r.output.find(note), std::string::npos) << args << "\n" << r.output;
+  }
+}
+
+// CLI11's parse errors in the project's words, one line each: what was expected, and the nearest
+// command or option for a misspelling (by edit distance).
+TEST(Usage, ParseErrorsSayWhatWasExpected) {
+  const std::pair<std::string, std::vector<std::string>> cases[] = {
+      {"frobnicate",
+       {"ibl: error: unknown command 'frobnicate'; the commands are bake, convert, render"}},
+      {"bakee", {"ibl: error: unknown command 'bakee'; did you mean bake?"}},
+      {"--threads 2 rendr sphere", {"unknown command 'rendr'; did you mean render?"}},
+      {"", {"ibl: error: a command is required: bake, convert"}},
+      {"bake --sizee 64", {"ibl: error: unknown option --sizee; did you mean --size?"}},
+      {"render sphere --roughnes 0.5 -o x.png",
+       {"unknown option --roughnes; did you mean "
+        "--roughness?"}},
+      {"render sphere --zzz -o x.png", {"unknown option --zzz; `ibl render --help` lists"}},
+      {"--threds 2 info x.exr", {"unknown option --threds; did you mean --threads?"}},
+      {"bake --size 64x64", {"ibl: error: --size: '64x64' is not a power of two from 1 to 4096"}},
+      {"render sphere --fov wide -o x.png", {"--fov: 'wide' is not a number from 1 to 179"}},
+      {"render sphere --fov", {"--fov: expects a value: a number from 1 to 179"}},
+      {"render --mode reference --shadows sphere", {"--shadows: 'sphere' is not none, map or ray"}},
+      {"render sphere -o x.png --shadows", {"--shadows: expects a value: none, map or ray"}},
+      {"render sphere --camera fisheye -o x.png",
+       {"--camera: 'fisheye' is not perspective or ortho"}},
+      {"render sphere", {"ibl: error: --output: required (output image"}},
+      {"bake --exr=maybe", {"--exr: is a switch: give it without a value, not 'maybe'"}},
+      {"info a.exr b.exr", {"unexpected argument 'b.exr'; `ibl info --help`"}},
+      {"render sphere -o x.png --no-multiscatter --multiscatter walk",
+       {"--multiscatter: contradicts --no-multiscatter"}},
+  };
+  for (const auto& [args, pieces] : cases) expectOneLineUsageError(args, pieces);
 }

@@ -100,7 +100,8 @@ TEST(ExrIo, LuminanceOnlyAndLuminanceChroma) {
 }
 
 TEST(ExrIo, ReadsBundledDwabHdris) {
-  for (const char* name : {"apartment", "night", "park", "studio", "sunset"}) {
+  // As the package ships them (park.exr is the repair of damaged/park.exr, written losslessly).
+  for (const char* name : {"apartment", "night", "damaged/park", "studio", "sunset"}) {
     const DecodedFile d = readImageFile(hdriPath(name));
     EXPECT_EQ(d.format, FileFormat::Exr);
     EXPECT_EQ(d.detail, "half, DWAB") << name;

@@ -133,3 +133,33 @@ TEST(Bloom, TheKernelIsWideAndRound) {
     EXPECT_GT(b.at(n / 2 + d / 2, n / 2).x, right) << d;  // decreasing outward
   }
 }
+
+TEST(Bloom, AColorBloomsByItsLuminanceWithItsHue) {
+  // The excess is the color scaled by its luminance's excess, c (L - T) / L (Lagarde & de
+  // Rousiers 2014, 5.1.3), not each channel's own, max(c - T, 0): gray pixels cannot tell the
+  // two apart, saturated ones can. Threshold 2^(0 + 3 - 3) = 1; L = 0.2126 R (BT.709) for red.
+  // (1.5, 0, 0): L = 0.319, below the threshold: nothing blooms (per channel, 0.5 would).
+  Image dimRed(64, 64);
+  dimRed.at(32, 32) = glm::vec3(1.5f, 0.0f, 0.0f);
+  const Image same = applyBloom(dimRed, 0.0f, 3.0f);
+  for (std::size_t i = 0; i < same.pixels.size(); ++i)
+    ASSERT_EQ(same.pixels[i], dimRed.pixels[i]) << i;
+  // (10, 0, 0): L = 2.126, its excess 10 (2.126 - 1) / 2.126 = 5.296 red (per channel, 9). The
+  // spread light is linear in the excess and normalized to its total, so beside the pixel it
+  // is that of a gray (10, 10, 10) at the same place, whose excess is 9 by either rule, times
+  // 5.296 / 9; at the pixel, what stays is 10 - excess plus the same share of the spread.
+  const double l = 0.2126 * 10.0;
+  const double excess = 10.0 * (l - 1.0) / l;
+  Image red(64, 64), gray(64, 64);
+  red.at(32, 32) = glm::vec3(10.0f, 0.0f, 0.0f);
+  gray.at(32, 32) = glm::vec3(10.0f);
+  const Image r = applyBloom(red, 0.0f, 3.0f), g = applyBloom(gray, 0.0f, 3.0f);
+  for (int d : {2, 5, 11, 23}) {
+    const double kernel = g.at(32 + d, 32).x / 9.0;  // the spread share per unit excess
+    ASSERT_GT(kernel, 0.0) << d;
+    EXPECT_NEAR(r.at(32 + d, 32).x, excess * kernel, 1e-4 * excess * kernel + 1e-7) << d;
+    EXPECT_EQ(r.at(32 + d, 32).y, 0.0f) << d;  // the hue kept: red blooms red
+  }
+  const double stays = (g.at(32, 32).x - 1.0) / 9.0;  // gray: 10 - 9 + 9 stays
+  EXPECT_NEAR(r.at(32, 32).x, 10.0 - excess + excess * stays, 1e-4 * 10.0);
+}

@@ -201,3 +201,36 @@ TEST(LightsFile, MistakesNameTheLight) {
   EXPECT_THROW(parseLights("{\"lights\": [", "bad.json", "."), Error);
   EXPECT_THROW(parseLights("{\"light\": []}", "bad.json", "."), Error);
 }
+
+// A file that is not JSON is named with the line and column of the first mistake (counted here
+// by hand: lines from 1, columns in bytes from 1) and the problem in words; a number beyond a
+// double's range says so where it starts; bytes of a binary file are escaped, never printed.
+TEST(LightsFile, JsonMistakesNameTheLineAndColumn) {
+  const auto messageOf = [](const std::string& text) -> std::string {
+    try {
+      parseLights(text, "f.json", ".");
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::pair<std::string, std::string> cases[] = {
+      {"{\"lights\": [\n  {\"type\": \"point\",\n",
+       "f.json: line 3, column 1: unexpected end of input; expected string literal"},
+      {"{\"lights\": [}\n", "f.json: line 1, column 13: unexpected '}'"},
+      {"{\"lights\": []}\r\n\n  x", "f.json: line 3, column 3: "},
+      {"{\"lights\": [{\"type\": \"point\", \"intensity\": 1e999}]}",
+       "f.json: line 1, column 44: the number 1e999 is out of range"},
+      {"{\"lights\":\n [{\"intensity\": -2E+400}]}",
+       "f.json: line 2, column 17: the number -2E+400 is out of range"},
+      {"", "f.json: line 1, column 1: unexpected end of input"},
+      {std::string("\x76\x2f\x31\x01\xff\x00\x1b", 7), "f.json: line 1, column 1: "},
+  };
+  for (const auto& [text, expected] : cases) {
+    const std::string message = messageOf(text);
+    EXPECT_EQ(message.rfind(expected, 0), 0u) << message << "\nexpected: " << expected;
+    for (const char c : message)
+      EXPECT_TRUE(c >= 0x20 && c < 0x7f)
+          << "a byte " << int(static_cast<unsigned char>(c)) << " in: " << message;
+  }
+}

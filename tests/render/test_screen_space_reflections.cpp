@@ -5,7 +5,10 @@
 // Frostbite 4.9.5); where it meets nothing, the environment.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <memory>
 #include <optional>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -144,7 +147,72 @@ int mirrorTarget(const Camera& camera, int x, int y) {
   return reflected.box;
 }
 
+// The floor at roughness 0.2 with an occlusion texture of 0 (glTF: occlusion 1 - strength).
+RenderResult renderOccludedFloor(float strength) {
+  Scene scene = mirrorFloorScene(0.2f);
+  Texture black;
+  black.width = black.height = 1;
+  black.rgba =
+      std::make_shared<const std::vector<std::uint8_t>>(std::vector<std::uint8_t>{0, 0, 0, 255});
+  scene.textures.push_back(black);
+  scene.meshes[0].uvs.assign(scene.meshes[0].positions.size(), glm::vec2(0.5f));
+  scene.materials[0].occlusionTexture.index = 0;
+  scene.materials[0].occlusionStrength = strength;
+  RenderOptions o;
+  o.spp = 1;
+  o.screenReflections.enabled = true;
+  o.screenReflections.quality = ReflectionQuality::High;
+  return renderScene(scene, floorView(), uniformSky().result, uniformSky().options, o);
+}
+
 }  // namespace
+
+TEST(ScreenSpaceReflections, TheProbesShareTakesTheSpecularOcclusionOfAlpha) {
+  // Beside a traced reflection R of alpha w, the probes' share is darkened by the specular
+  // occlusion of the material's ambient occlusion ao: R + (1 - w) so P, all of it times the
+  // metal's DFG scale. Frostbite's listing 26 (Lagarde & de Rousiers 2014, 4.10.3) takes GGX's
+  // alpha = roughness^2: so = saturate((n.v + ao)^(2^(-16 alpha - 1)) - 1 + ao). With ao = 1 it
+  // is 1 and with ao = 0 it is 0, so per pixel (c(ao) - c(0)) / (c(1) - c(0)) is so(ao) itself,
+  // whatever R, w, P and the scale are.
+  const float roughness = 0.2f, ao = 0.3f;
+  const RenderResult open = renderOccludedFloor(0.0f), half = renderOccludedFloor(1.0f - ao),
+                     closed = renderOccludedFloor(1.0f);
+  const Camera camera = floorView();
+  const Scene scene = mirrorFloorScene(roughness);
+  const auto [lo, hi] = scene.bounds();
+  ScreenReflectionSettings settings;
+  settings.quality = ReflectionQuality::High;
+  RenderOptions plain;
+  plain.spp = 1;
+  const ScreenReflections traced = screenSpaceReflections(
+      renderViewBuffers(scene, camera),
+      renderScene(scene, camera, uniformSky().result, uniformSky().options, plain).color, camera,
+      reflectionParameters(settings, glm::length(hi - lo)));
+  const double alpha = static_cast<double>(roughness) * roughness;
+  int checked = 0, beside = 0;
+  double worst = 0.0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const Ray ray = camera.generateRay(x + 0.5f, y + 0.5f);
+      const Traced seen = trace(ray.origin, ray.direction);
+      if (seen.t < 0.0f || seen.box >= 0) continue;
+      const double span = closed.color.at(x, y).x - open.color.at(x, y).x;
+      if (std::abs(span) < 0.02 * kSky) continue;  // the probes' share is too small to read
+      const double measured = (half.color.at(x, y).x - closed.color.at(x, y).x) /
+                              (open.color.at(x, y).x - closed.color.at(x, y).x);
+      const double NoV = std::max(static_cast<double>(-ray.direction.y), 1e-4);
+      const double expected =
+          std::clamp(std::pow(NoV + ao, std::exp2(-16.0 * alpha - 1.0)) - 1.0 + ao, 0.0, 1.0);
+      worst = std::max(worst, std::abs(measured - expected));
+      ++checked;
+      const float w = traced.reflection[static_cast<std::size_t>(y) * camera.width + x].w;
+      if (w > 0.05f && w < 0.95f) ++beside;
+    }
+  RecordProperty("worst_error", std::to_string(worst));
+  ASSERT_GT(checked, 3000);
+  EXPECT_GT(beside, 300);  // pixels where the probes' share sits beside a traced reflection
+  EXPECT_LT(worst, 0.01);
+}
 
 TEST(ScreenSpaceReflections, MirrorFloorShowsWhatTheTracedReflectionMeets) {
   const Camera camera = floorView();

@@ -1,7 +1,7 @@
 // The lights' real-time shadows (render/shadows.hpp, ibl/shared/shadows.h) against the
-// reference's ray-traced visibility (--bounces 0 --shadows) and against closed forms: each light
-// type's shadow where the reference has it, lit surfaces that stay lit, cascades that hold the
-// points they are chosen for and stay put as the camera turns, penumbrae as wide as the light
+// reference's ray-traced visibility (--bounces 0 --shadows ray) and against closed forms: each
+// light type's shadow where the reference has it, lit surfaces that stay lit, cascades that hold
+// the points they are chosen for and stay put as the camera turns, penumbrae as wide as the light
 // makes them. The figures are docs/lights.md's ("Shadows"); bench/lights.cpp prints the table.
 #include <cmath>
 

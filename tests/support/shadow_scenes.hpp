@@ -196,7 +196,7 @@ inline double median(std::vector<double> v) {
 }
 
 // The lights' real-time shadows (options.realTimeShadows, split sum) against the reference's
-// (--bounces 0 --shadows, `spp` samples): each as a render over its own render without shadows,
+// (--bounces 0 --shadows ray, `spp` samples): each as a render over its own render without shadows,
 // compared over the pixels that the light reaches without shadows and that do not see it.
 struct ShadowStudy {
   RenderResult reference, referenceOpen, fast, fastOpen;

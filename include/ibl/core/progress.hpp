@@ -10,8 +10,9 @@
 namespace ibl {
 
 // Progress of long work: `stage` (a few words naming it, e.g. "irradiance 32x32") has done
-// `fraction` (0 to 1) of its work (0 when it starts). Called from any thread; stages may run at the
-// same time (the DFG table beside the convolutions).
+// `fraction` (0 to 1) of its work: 0 when it starts, 1 when it ends (a front end keeps the largest
+// fraction so far: the parallel workers' calls may arrive out of order). Called from any thread;
+// stages may run at the same time (the DFG table beside the convolutions).
 using ProgressFn = std::function<void(const std::string& stage, double fraction)>;
 
 // Counts the parts of a stage as parallel workers finish them, and reports `stage` to

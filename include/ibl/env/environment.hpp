@@ -11,6 +11,7 @@
 
 #include "ibl/core/image.hpp"
 #include "ibl/env/cubemap.hpp"
+#include "ibl/env/pixel_damage.hpp"
 
 namespace ibl {
 
@@ -76,12 +77,15 @@ std::filesystem::path facePath(const std::filesystem::path& pattern, int face);
 struct LoadOptions {
   std::optional<Layout> layout;  // overrides detection by shape
   std::string layer;             // EXR layer (DecodeOptions::layer)
+  bool repairDamage = false;     // replace damaged pixels (pixel_damage.hpp) before sanitizing
 };
 
 struct LoadedEnvironment {
   Environment environment;
   std::string format;           // fileFormatName of the file: "hdr", "exr", "png", "ktx2", ...
   InvalidPixelCounts replaced;  // pixels that were NaN, infinite or negative (now 0)
+  PixelDamage damage;           // damaged pixels as read (findPixelDamage), repaired or not
+  std::optional<DamageRepair> repair;  // set when options.repairDamage found damage to repair
 };
 
 struct DecodedFile;
@@ -96,7 +100,8 @@ Environment environmentFromFile(DecodedFile&& file, const LoadOptions& options,
 // returns how many there were.
 InvalidPixelCounts sanitizeEnvironment(Environment& env);
 
-// An environment from a decoded file (environmentFromFile, then sanitized).
+// An environment from a decoded file (environmentFromFile, its damage found or repaired, then
+// sanitized).
 LoadedEnvironment loadEnvironment(DecodedFile&& file, std::string_view name,
                                   const LoadOptions& options = {});
 

@@ -42,6 +42,24 @@ IBL_FN float pixelsPerUnit(ScreenProjection s, float z) {
   return 0.5f * s.size.y / (s.scale.y * (s.perspective > 0.5f ? z : 1.0f));
 }
 
+// The normal the view buffers hold for a surface point: its shading normal n on the side of the
+// surface the camera sees, that side decided by the geometric normal g (the triangle's plane,
+// either orientation), v the unit direction toward the camera. Shading flips n whenever it faces
+// away from the camera (a double-sided surface seen from behind), but an interpolated or
+// normal-mapped n also points past the horizon where its triangle faces the camera: along a
+// smooth mesh's outline, where the vertex normals are perpendicular to the view and the pixel
+// center's surface, between them, is not. Flipped there, n points into the object, whose own
+// nearer surface then stands above that tangent plane and hides nearly all of it (a black pixel
+// on the outline, issue 47). Here n is turned to agree with the side of g the camera sees, then,
+// if it still faces away, bent to just in front of the horizon. Either sign of n gives the same.
+IBL_FN vec3 viewBufferNormal(vec3 n, vec3 g, vec3 v) {
+  if (dot(g, n) < 0.0f) g = -g;
+  if (dot(g, v) < 0.0f) n = -n;
+  float facing = dot(n, v);
+  const float kGrazing = 1e-3f;
+  return facing < kGrazing ? normalize(n + (kGrazing - facing) * v) : n;
+}
+
 struct AmbientOcclusionParameters {
   float radius;   // world units: occluders farther than this hide nothing
   float falloff;  // the outer share of the radius over which an occluder's weight fades to 0
@@ -108,7 +126,9 @@ vec3 aoViewPosition(ivec2 t);
 
 // The view-space position at framebuffer point q, bilinear between the four nearest texels
 // (points on a plane stay on it, so that a plane's horizon is its own, wherever the sample
-// falls between texel centers); the nearest texel's where any of the four has no surface.
+// falls between texel centers); no surface (z = 0) where any of the four has none. (The nearest
+// texel there is another direction's point: past an outline, the outline's next texel, taken
+// for an occluder in the slice, hid up to 7 % of a convex object's outline pixels' hemisphere.)
 IBL_FN vec3 aoPositionAt(IBL_AO_BUFFER ScreenProjection s, vec2 q) {
   vec2 t = q - vec2(0.5f);
   vec2 lo = floor(t);
@@ -119,8 +139,7 @@ IBL_FN vec3 aoPositionAt(IBL_AO_BUFFER ScreenProjection s, vec2 q) {
   vec3 p10 = aoViewPosition(IBL_AO_ARG ivec2(b.x, a.y));
   vec3 p01 = aoViewPosition(IBL_AO_ARG ivec2(a.x, b.y));
   vec3 p11 = aoViewPosition(IBL_AO_ARG b);
-  if (min(min(p00.z, p10.z), min(p01.z, p11.z)) <= 0.0f)
-    return aoViewPosition(IBL_AO_ARG ivec2(int(q.x), int(q.y)));
+  if (min(min(p00.z, p10.z), min(p01.z, p11.z)) <= 0.0f) return vec3(0.0f);
   return mix(mix(p00, p10, f.x), mix(p01, p11, f.x), f.y);
 }
 
