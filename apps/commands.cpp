@@ -69,8 +69,9 @@ void reportLoadedPixels(std::string_view name, const LoadedEnvironment& loaded,
                100.0 * loaded.repair->powerChange());
   else if (!global.quiet && !loaded.damage.empty())
     fmt::print(stderr,
-               "ibl: warning: {}: {} damaged: their channels contradict their neighbourhood by "
-               "orders of magnitude (lossy compression?); `ibl convert --repair-damage` "
+               "ibl: warning: {}: {} damaged: channels that contradict their neighbourhood by "
+               "orders of magnitude, or negative beyond a codec's ringing (lossy compression?); "
+               "`ibl convert --repair-damage` "
                "replaces them\n",
                name, damageSummary(loaded.damage, loaded.environment.isCube()));
   warnAboutReplacedPixels(name, loaded.replaced, global);

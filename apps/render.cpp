@@ -39,11 +39,12 @@ void runRender(const RenderCliOptions& o, const GlobalOptions& global) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!global.quiet)
-    fmt::print(stderr,
-               "rendered {} ({}x{}, {}, {:.0f} samples, {:.2f} s in all, {:.2f} M samples/s "
-               "shaded, EV100 {:.2f})\n",
-               o.output, result.color.width, result.color.height, o.mode, result.samples, seconds,
-               result.samples / result.milliseconds / 1000.0, image.ev100);
+    fmt::print(
+        stderr,
+        "rendered {} ({}x{}, {}, {:.0f} samples, {:.2f} s in all, {:.2f} s shading, {:.2f} M "
+        "samples/s, EV100 {:.2f})\n",
+        o.output, result.color.width, result.color.height, o.mode, result.samples, seconds,
+        result.milliseconds / 1000.0, result.samples / result.milliseconds / 1000.0, image.ev100);
 }
 
 }  // namespace

@@ -84,8 +84,8 @@ cycles_render() {  # cycles_render SEED SPP SIZE ROUGHNESS OUT [extra options]
     -o "$out" "$@"
 }
 
-ibl_seconds() {  # from "rendered X (WxH, reference, N samples, T s, ...)"
-  sed -n 's/^rendered .* samples, \([0-9.]*\) s, .*/\1/p' "$1.log" | tail -1
+ibl_seconds() {  # the shading's, from "rendered X (WxH, reference, N samples, W s in all, T s shading, ...)"
+  sed -n 's/^rendered .* s in all, \([0-9.]*\) s shading, .*/\1/p' "$1.log" | tail -1
 }
 cycles_seconds() { sed -n 's/^cycles_render_seconds: //p' "$1.log" | tail -1; }
 # Cycles' own clock at its first sample and at the end: the path tracing alone is the difference

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   const int spp = argc > 1 ? std::atoi(argv[1]) : 256;
   const BlackBake bake = blackBake();
   fmt::print(
-      "Shadows against the reference (--bounces 0 --shadows, {} spp), 1024-texel maps; "
+      "Shadows against the reference (--bounces 0 --shadows ray, {} spp), 1024-texel maps; "
       "lit pixels compared; state: visibility above or below 1/2\n\n",
       spp);
   fmt::print(

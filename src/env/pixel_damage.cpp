@@ -13,10 +13,12 @@ namespace ibl {
 
 namespace {
 
-constexpr int kTile = 8;                 // the neighbourhood's tiles (a DCT block's size)
-constexpr float kOrders = 100.0f;        // rule 1: two orders of magnitude each way
-constexpr float kRinging = 0.5f;         // rule 2: the negative part allowed of the local peak
-constexpr int kPeakRadius = 2;           // rule 2: P_c over the 5 x 5 pixels around
+constexpr int kTile = 8;           // the neighbourhood's tiles (a DCT block's size)
+constexpr float kOrders = 100.0f;  // rule 1: two orders of magnitude each way
+constexpr float kRinging = 0.5f;   // rule 2: the negative part allowed of the local peak
+constexpr int kPeakRadius = 2;
+constexpr float kNoiseFloor = 1e-3f;  // rule 2: f, of the image's mean luminance           // rule
+                                      // 2: P_c over the 5 x 5 pixels around
 constexpr float kBlockContrast = 10.0f;  // rule 3: one order of magnitude
 constexpr int kGrowth = kTile;           // rule 3: at most this many pixels from rules 1, 2
 
@@ -54,6 +56,14 @@ std::vector<glm::vec3> tileLevels(const Image& image) {
   return levels;
 }
 
+// The mean luminance of an image's pixels, negative and non-finite values as 0.
+float meanLuminance(const Image& image) {
+  double sum = 0.0;
+  for (const glm::vec3& p : image.pixels)
+    if (usable(p.x) && usable(p.y) && usable(p.z)) sum += luminance(glm::max(p, glm::vec3(0.0f)));
+  return image.pixels.empty() ? 0.0f : static_cast<float>(sum / double(image.pixels.size()));
+}
+
 // Rule 1: one channel 100 times the neighbourhood's, another a hundredth of it or less.
 bool contradictsByOrders(glm::vec3 v, glm::vec3 m) {
   bool up = false, down = false;
@@ -74,11 +84,11 @@ bool outOfPlace(glm::vec3 v, glm::vec3 m) {
   return false;
 }
 
-// Rule 2: a channel below -0.5 max(P_c, m_c).
-bool negativeBeyondNoise(const Image& image, int x, int y, glm::vec3 m) {
+// Rule 2: a channel below -0.5 max(P_c, m_c, f).
+bool negativeBeyondNoise(const Image& image, int x, int y, glm::vec3 m, float floor) {
   const glm::vec3 v = image.at(x, y);
   if (!(v.x < 0.0f || v.y < 0.0f || v.z < 0.0f)) return false;
-  glm::vec3 peak = m;
+  glm::vec3 peak = glm::max(m, glm::vec3(floor));
   for (int dy = -kPeakRadius; dy <= kPeakRadius; ++dy)
     for (int dx = -kPeakRadius; dx <= kPeakRadius; ++dx) {
       const int px = x + dx, py = y + dy;
@@ -120,11 +130,11 @@ double environmentPower(const Environment& env) {
 }
 
 // Fills the region's pixels from the undamaged ones within 2 pixels of its bounding box.
+// (Damaged pixels are written, never read: `image` is both the source and the result.)
 void fillRegion(Image& image, const std::vector<std::uint8_t>& mask, const DamagedRegion& r) {
   constexpr int kBorder = 2;
   const int x0 = std::max(r.x0 - kBorder, 0), x1 = std::min(r.x1 + kBorder, image.width - 1);
   const int y0 = std::max(r.y0 - kBorder, 0), y1 = std::min(r.y1 + kBorder, image.height - 1);
-  const Image before = image;
   for (int y = r.y0; y <= r.y1; ++y)
     for (int x = r.x0; x <= r.x1; ++x) {
       if (!mask[static_cast<std::size_t>(y) * image.width + x]) continue;
@@ -132,7 +142,7 @@ void fillRegion(Image& image, const std::vector<std::uint8_t>& mask, const Damag
       double weights = 0.0;
       for (int sy = y0; sy <= y1; ++sy)
         for (int sx = x0; sx <= x1; ++sx) {
-          const glm::vec3 v = before.at(sx, sy);
+          const glm::vec3 v = image.at(sx, sy);
           if (mask[static_cast<std::size_t>(sy) * image.width + sx] || !usable(v.x) ||
               !usable(v.y) || !usable(v.z))
             continue;
@@ -157,6 +167,7 @@ std::vector<std::uint8_t> damagedPixelMask(const Image& image) {
   std::vector<std::uint8_t> mask(static_cast<std::size_t>(w) * h, 0);
   if (image.empty()) return mask;
   const std::vector<glm::vec3> levels = tileLevels(image);
+  const float floor = kNoiseFloor * meanLuminance(image);
   const int tilesX = (w + kTile - 1) / kTile;
   const auto level = [&](int x, int y) {
     return levels[static_cast<std::size_t>(y / kTile) * tilesX + x / kTile];
@@ -165,7 +176,7 @@ std::vector<std::uint8_t> damagedPixelMask(const Image& image) {
   parallelFor(0, h, [&](int y) {
     for (int x = 0; x < w; ++x) {
       const glm::vec3 m = level(x, y);
-      if (contradictsByOrders(image.at(x, y), m) || negativeBeyondNoise(image, x, y, m))
+      if (contradictsByOrders(image.at(x, y), m) || negativeBeyondNoise(image, x, y, m, floor))
         mask[static_cast<std::size_t>(y) * w + x] = 1;
     }
   });

@@ -201,3 +201,20 @@ TEST(PixelDamage, RepairWeighsTheNeighboursByInverseSquareDistance) {
   EXPECT_NEAR(env.equirect.at(at.x, at.y).x, expected, 1e-5f);
   EXPECT_NEAR(env.equirect.at(at.x, at.y).z, expected, 1e-5f);
 }
+
+TEST(PixelDamage, NegativeNoiseInBlackAreasStaysBelowTheFloor) {
+  // Half the image black, half a sky of luminance 1: the floor is 1e-3 times the mean, 0.5e-3.
+  Image image(64, 32, glm::vec3(0.0f));
+  for (int y = 0; y < 32; ++y)
+    for (int x = 32; x < 64; ++x) image.at(x, y) = glm::vec3(1.0f);
+  const float floor = 1e-3f * 0.5f;
+  for (const float f : {kJust, 1.0f / kJust}) {
+    Image noisy = image;
+    noisy.at(8, 16) = glm::vec3(0.0f, -0.5f * floor * f, 0.0f);
+    EXPECT_EQ(damagedCount(noisy), f > 1.0f ? 1u : 0u) << f;
+  }
+  // A neighbourhood level of 0 makes no channel "100 times" it: a lone colored pixel in black.
+  Image colored = image;
+  colored.at(8, 16) = glm::vec3(0.0f, 0.0f, 5.0f);
+  EXPECT_EQ(damagedCount(colored), 0u);
+}

@@ -7,19 +7,21 @@
 // The rule (docs/cli.md#damaged-pixels). Each pixel is compared with its neighbourhood's level
 // m, per channel: the median of the pixels at even offsets within the 24 x 24 pixels of the
 // 3 x 3 tiles of 8 x 8 pixels around the pixel's own tile (144 samples, clamped at the image's
-// edges; one tile's damage is under a tenth of them, so it cannot move the median). A pixel is
+// edges; one tile's damage is a ninth of them, too few to carry the median beyond the undamaged
+// samples' range). A pixel is
 // damaged when
-//   1. one of its channels is at least 100 times the neighbourhood's (v_i >= 100 m_i) while
+//   1. one of its channels is at least 100 times the neighbourhood's (v_i >= 100 m_i, m_i > 0)
+//   while
 //      another is at most a hundredth of it (v_j <= m_j / 100, m_j > 0; zero and negative
 //      values count): its channels contradict each other and the neighbourhood by orders of
 //      magnitude, which no light source does (a sun raises every channel over the sky it
 //      stands in); or
-//   2. one of its channels is negative beyond the file's noise: v_c < -0.5 max(P_c, m_c), where
+//   2. one of its channels is negative beyond the file's noise: v_c < -0.5 max(P_c, m_c, f), where
 //      P_c is the largest value of that channel in the 5 x 5 pixels around it (lossy codecs ring
 //      below zero beside a bright source by a fraction of its peak: under a quarter for
-//      DCT blocks); or
+//      DCT blocks) and f = 10^-3 times the image's mean luminance (the noise of black areas); or
 //   3. it touches (8-connected) a damaged pixel and one of its channels is an order of magnitude
-//      below the neighbourhood's (v_c <= m_c / 10, m_c > 0) or two above it (v_c >= 100 m_c):
+//      below the neighbourhood's or two above it (v_c <= m_c / 10 or v_c >= 100 m_c, m_c > 0):
 //      the rest of a destroyed block (the glow of a real source beside it, up to 100 times its
 //      surroundings in every channel, stays); grown at most 8 pixels from rules 1 and 2.
 // Pixels that are NaN or infinite are left to sanitizePixels (they are counted there).
