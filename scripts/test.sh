@@ -61,6 +61,6 @@ cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_TSAN=O
 ninja -C build-tsan ibl_tests
 TSAN_OPTIONS="halt_on_error=1 report_mutex_bugs=0 suppressions=$PWD/tests/tsan.supp" \
   ctest --test-dir build-tsan --output-on-failure -j "$jobs" \
-  -R '^(CubeMap|Equirect|Resample|Sh|Sampling|Brdf|Dfg|Prefilter|Bake|Render|ShadingRules|Camera|Environment|Sky|SunExtraction|LightClusters|AmbientOcclusion|Bloom|ScreenSpaceReflections)\.' \
+  -R '^(CubeMap|Equirect|Resample|Sh|Sampling|Brdf|Dfg|Prefilter|Bake|Render|ShadingRules|Camera|Environment|PixelDamage|Sky|SunExtraction|LightClusters|AmbientOcclusion|Bloom|ScreenSpaceReflections)\.' \
   -E '^(Sky\.AgreesWithThePathTracedReference|Prefilter\.RingsMatchDirectQuadratureForSharpLobes|Resample\.SunKeepsItsEnergyFrom4KTo64|SunExtraction\.RenderWithoutTheSunPlusTheSunLightMatchesTheOriginal|Prefilter\.CoarseLevelsComputedSmallerAndInterpolated|Prefilter\.LevelsAgainstAnIndependentReference|Sky\.PanoramaMatchesTheDirectIntegration)$'
 phase "done"
