@@ -223,7 +223,7 @@ void runBake(const BakeCliOptions& o, const GlobalOptions& global) {
     outDirs.push_back(batch ? (std::filesystem::path(o.output) / batchName(input)).string()
                             : o.output);
   checkBeforeBaking(o, inputs, outDirs, global);
-  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
+  const std::unique_ptr<gpu::Context> device = gpu::openComputeDevice(deviceChoice(o.device));
   if (!batch) {
     const std::string line = bakeOne(
         o, inputs[0], o.output, !global.quiet && ::isatty(STDERR_FILENO), device.get(), global);

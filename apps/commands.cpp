@@ -181,19 +181,10 @@ void requireLight(const Environment& env, std::string_view name) {
          "holds no light: every pixel is zero, NaN, infinite or negative after loading");
 }
 
-std::unique_ptr<gpu::Context> openDevice(const std::string& choice) {
-  if (choice == "cpu") return nullptr;
-  if (choice == "auto") {
-    bool realGpu = false;
-    for (const auto& d : gpu::listDevices()) realGpu |= d.type != "cpu";
-    if (!realGpu) return nullptr;
-  }
-  return gpu::Context::create();
-}
-
-Image skyImage(const SkyParameters& p, int width, int height, bool paintSun, gpu::Context* device) {
-  return device ? gpu::skyPanorama(*device, p, width, height, paintSun)
-                : SkyModel(p).panorama(width, height, paintSun);
+gpu::ComputeDevice deviceChoice(const std::string& text) {
+  const std::optional<gpu::ComputeDevice> choice = gpu::parseComputeDevice(text);
+  if (!choice) failUsage("--device", fmt::format("'{}' is not cpu, gpu or auto", text));
+  return *choice;
 }
 
 SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOptions& options,
@@ -209,7 +200,7 @@ SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOpti
     s.loaded.format = "sky";
     s.loaded.environment.layout = Layout::Equirect;
     s.loaded.environment.equirect =
-        skyImage(spec.parameters, spec.width, spec.height, false, device);
+        gpu::skyPanoramaOn(device, spec.parameters, spec.width, spec.height, false);
     const Light sun = skySun(spec.parameters);
     const SkyParameters& p = spec.parameters;
     nlohmann::json records = {{"sky",

@@ -15,7 +15,8 @@
 
 namespace ibl::gpu {
 class Context;
-}
+enum class ComputeDevice;  // ibl/gpu/compute.hpp
+}  // namespace ibl::gpu
 
 namespace ibl::cli {
 
@@ -70,14 +71,9 @@ Shard parseShard(const std::string& text);
 // A number for messages: 4096, 0.25, 1e+20 (no 309-digit doubles, no trailing zeros).
 std::string formatNumber(double value);
 
-// The Vulkan context for --device gpu (required: throws when there is none), none for cpu, and
-// for auto a real GPU if there is one (the software device is slower than the CPU paths, so
-// auto does not pick it).
-std::unique_ptr<gpu::Context> openDevice(const std::string& choice);
-
-// The sky's panorama of `p` on `device`, or on the CPU without one (gpu::skyPanorama,
-// SkyModel::panorama).
-Image skyImage(const SkyParameters& p, int width, int height, bool paintSun, gpu::Context* device);
+// --device cpu, gpu or auto (which the option checks) as the library's choice, for
+// gpu::openComputeDevice; a usage error for any other text.
+gpu::ComputeDevice deviceChoice(const std::string& text);
 
 // --env-intensity K and --env-illuminance LUX: scaling an environment into physical units
 // (docs/cli.md#environments-in-physical-units). At most one of them.

@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
+#include "ibl/gpu/compute.hpp"
 #include "ibl/gpu/path_tracer.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/render/bloom.hpp"
@@ -110,8 +111,9 @@ RenderedImage renderImage(const RenderCliOptions& o, const GlobalOptions& global
   r.seed = o.seed;
   // auto picks a real GPU for the reference only, and not for --noise (the CPU's).
   const std::unique_ptr<gpu::Context> device =
-      o.mode == "reference" && !(o.device == "auto" && o.noise > 0.0f) ? openDevice(o.device)
-                                                                       : nullptr;
+      o.mode == "reference" && !(o.device == "auto" && o.noise > 0.0f)
+          ? gpu::openComputeDevice(deviceChoice(o.device))
+          : nullptr;
   if (device && !global.quiet) fmt::print(stderr, "reference on {}\n", device->device().name);
   RenderResult result =
       device ? gpu::renderReference(*device, scene, camera, baked.bake, baked.options, r, report)

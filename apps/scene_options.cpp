@@ -8,8 +8,6 @@
 
 #include <fmt/core.h>
 #include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
-#include <nlohmann/json.hpp>
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/default_environment.hpp"
@@ -17,7 +15,6 @@
 #include "ibl/env/sky.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
-#include "ibl/io/json_file.hpp"
 #include "ibl/render/gltf.hpp"
 
 namespace ibl::cli {
@@ -400,20 +397,16 @@ void checkSceneOptions(const SceneCliOptions& o) {
   refuseIgnoredSceneOptions(o);
 }
 
-bool hasSheen(const Scene& scene) {
-  for (const Material& m : scene.materials)
-    if (m.sheenColor != glm::vec3(0.0f)) return true;
-  return false;
-}
-
 LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, bool sheen) {
   LoadedBake out;
-  out.options.sheen = sheen;
+  BakeOptions options;
+  options.sheen = sheen;
   const std::optional<SheenVisibility> asked =
       o.sheenVisibility.empty() ? std::nullopt : parseSheenVisibility(o.sheenVisibility);
-  if (asked) out.options.sheenVisibility = *asked;
+  if (asked) options.sheenVisibility = *asked;
+  EnvironmentLighting& lighting = out;
   if (!o.bakeDir.empty()) {
-    out.bake = loadBake(o.bakeDir, &out.options);
+    lighting = readEnvironmentLighting(o.bakeDir, options);
     if (asked && out.bake.sheenDfg && *asked != out.options.sheenVisibility)
       failUsage("--sheen-visibility",
                 fmt::format("{} contradicts --bake {}, whose sheen table (sheen_dfg.ktx2) was "
@@ -421,23 +414,12 @@ LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, boo
                             "with --sheen-visibility {}",
                             o.sheenVisibility, o.bakeDir,
                             sheenVisibilityName(out.options.sheenVisibility), o.sheenVisibility));
-    if (asked) out.options.sheenVisibility = *asked;  // a bake without a sheen table
-    // The sun the bake's environment brought (a sky's, or one extracted from the HDRI).
-    const std::filesystem::path manifest = std::filesystem::path(o.bakeDir) / "manifest.json";
-    const nlohmann::json m = readJsonFile(manifest);
-    if (m.contains("lights"))
-      out.lights = parseLights(nlohmann::json({{"lights", m["lights"]}}).dump(), manifest.string(),
-                               o.bakeDir);
     if (o.envScale.given()) {
       // The bake's radiance scaled as the environment would have been: its source cube (level
       // 0) and sun give the illuminance --env-illuminance measures.
-      Environment source;
-      source.layout = Layout::Cube;
-      source.cube.levels.push_back(out.bake.source.levels.at(0));
-      out.envScale = envScaleFor(o.envScale, horizontalIlluminance(source, out.lights), o.bakeDir);
-      scaleBake(out.bake, out.envScale.factor,
-                fmt::format("{}: {}", o.bakeDir, out.envScale.option));
-      for (Light& light : out.lights) light.intensity *= static_cast<float>(out.envScale.factor);
+      out.envScale = envScaleFor(o.envScale, horizontalIlluminance(lighting), o.bakeDir);
+      scaleEnvironmentLighting(lighting, out.envScale.factor,
+                               fmt::format("{}: {}", o.bakeDir, out.envScale.option));
       if (!global.quiet)
         fmt::print(stderr,
                    "ibl: note: {}: the bake's radiance scaled by {:.6g} ({}: {:.6g} lx -> {:.6g} "
@@ -448,23 +430,16 @@ LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, boo
     }
     return out;
   }
+  options.dfgSamples = 256;
   if (environmentIsNone(o)) {
-    // No environment: a black one, baked small, for the DFG table the shading still reads.
-    Environment black;
-    black.equirect = Image(64, 32);
-    out.options.specular.size = 16;
-    out.options.irradianceSize = 8;
-    out.options.dfgSamples = 256;
-    out.bake = bakeEnvironment(black, out.options);
+    lighting = unlitEnvironmentLighting(options);
     return out;
   }
   SourceEnvironment env = o.envPixels ? sourceFromImage(*o.envPixels, o.env, {}, false, global)
                                       : loadSourceEnvironment(o.env, {}, false, global);
   requireLight(env.loaded.environment, env.name);
   out.envScale = scaleSourceEnvironment(env, o.envScale, global);
-  out.lights = env.lights;
-  out.options.dfgSamples = 256;
-  out.bake = bakeEnvironment(env.loaded.environment, out.options);
+  lighting = bakeEnvironmentLighting(env.loaded.environment, env.lights, options);
   return out;
 }
 
@@ -514,45 +489,31 @@ std::vector<std::filesystem::path> sceneInputFiles(const SceneCliOptions& o) {
   return files;
 }
 
+CameraChoice cameraChoice(const SceneCliOptions& o) {
+  CameraChoice choice;
+  choice.perspective = o.camera == "perspective";
+  choice.yfovDegrees = o.fov;
+  choice.orthoWidth = o.orthoWidth;
+  if (!o.lookFrom.empty()) choice.from = parsePoint(o.lookFrom, "--look-from");
+  if (!o.lookAt.empty()) choice.at = parsePoint(o.lookAt, "--look-at");
+  choice.up = parseVec3(o.up, "--up");
+  return choice;
+}
+
 Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height) {
-  Camera camera;
-  camera.width = width;
-  camera.height = height;
-  camera.perspective = o.camera == "perspective";
-  camera.yfovDegrees = o.fov;
-  const auto [lo, hi] = scene.bounds();
-  const glm::vec3 center = 0.5f * (lo + hi);
-  const float radius = 0.5f * glm::length(hi - lo);
-  if (scene.camera && o.lookFrom.empty() && o.lookAt.empty()) {
+  const CameraChoice choice = cameraChoice(o);
+  const bool ownCamera = usesSceneCamera(scene, choice);
+  if (ownCamera)
     for (const char* option : {"--camera", "--fov", "--up"})
       if (given(o, option))
         failUsage(option, fmt::format("has no effect: {}'s own camera frames the view; add "
                                       "--look-from (or --look-at) to place one with {}",
                                       o.scene, option));
-    const CameraDescription& d = *scene.camera;
-    camera.perspective = d.perspective;
-    camera.yfovDegrees = glm::degrees(d.yfovRadians);
-    camera.orthoWidth = 2.0f * d.xmag;
-    camera.from = glm::vec3(d.world[3]);
-    camera.at = camera.from - glm::vec3(d.world[2]);
-    camera.up = glm::vec3(d.world[1]);
-  } else {
-    camera.at = o.lookAt.empty() ? center : parsePoint(o.lookAt, "--look-at");
-    // Frame the bounds seen from +Z: fit their width and height, then back off by their depth.
-    const glm::vec3 half = 0.5f * (hi - lo);
-    const float t = std::tan(0.5f * glm::radians(camera.yfovDegrees));
-    const float aspect = static_cast<float>(width) / static_cast<float>(height);
-    const float distance = 1.1f * std::max(half.y / t, half.x / (t * aspect)) + half.z;
-    camera.from = o.lookFrom.empty() ? camera.at + glm::vec3(0.0f, 0.0f, distance)
-                                     : parsePoint(o.lookFrom, "--look-from");
-    if (camera.from == camera.at)
-      failUsage("--look-from", fmt::format("equals --look-at ({}, {}, {}): no view direction",
-                                           camera.at.x, camera.at.y, camera.at.z));
-    camera.up = parseVec3(o.up, "--up");
-    if (camera.up == glm::vec3(0.0f)) failUsage("--up", "must not be the zero vector");
-    camera.orthoWidth =
-        2.2f * radius * std::max(1.0f, static_cast<float>(width) / static_cast<float>(height));
-  }
+  const Camera camera = ibl::frameCamera(scene, width, height, choice);
+  if (!ownCamera && camera.from == camera.at)
+    failUsage("--look-from", fmt::format("equals --look-at ({}, {}, {}): no view direction",
+                                         camera.at.x, camera.at.y, camera.at.z));
+  if (!ownCamera && camera.up == glm::vec3(0.0f)) failUsage("--up", "must not be the zero vector");
   if (o.orthoWidth) {
     if (!(*o.orthoWidth > 0.0f) || !std::isfinite(*o.orthoWidth))
       failUsage("--ortho-width", fmt::format("must be positive, not {}", *o.orthoWidth));
@@ -560,7 +521,6 @@ Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int 
       failUsage("--ortho-width",
                 "applies to an orthographic camera; this view's is perspective "
                 "(--camera ortho, or --fov for its angle)");
-    camera.orthoWidth = *o.orthoWidth;
   }
   checkCamera(camera);
   return camera;
@@ -619,13 +579,6 @@ RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) 
     r.backgroundColor = parseVec3(o.background, "--background");
   }
   return r;
-}
-
-std::uint64_t renderMemoryBytes(int width, int height) {
-  // Measured: 52 bytes per pixel at 2048^2, 50 at 4096^2, and 40 MB besides; the screen-space
-  // occlusion's view buffers and result add 40 bytes per pixel while it is computed, the
-  // reflections' lit frame, view buffers and result 56.
-  return static_cast<std::uint64_t>(60e6 + 152.0 * width * height);
 }
 
 std::optional<float> bloomCompensation(const SceneCliOptions& o, std::optional<float> otherwise) {

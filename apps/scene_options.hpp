@@ -13,6 +13,8 @@
 #include "commands.hpp"
 #include "ibl/bake/bake.hpp"
 #include "ibl/render/camera.hpp"
+#include "ibl/render/environment_lighting.hpp"
+#include "ibl/render/framing.hpp"
 #include "ibl/render/renderer.hpp"
 #include "ibl/render/scene.hpp"
 
@@ -94,11 +96,9 @@ Scene loadScene(const SceneCliOptions& o, const GlobalOptions& global);
 // --env none: no environment light.
 bool environmentIsNone(const SceneCliOptions& o);
 
-struct LoadedBake {
-  BakeResult bake;
-  BakeOptions options;
-  std::vector<Light> lights;  // the environment's sun (a sky's, or extracted), to add to the scene
-  EnvScale envScale;          // what --env-intensity / --env-illuminance did (factor 1: nothing)
+// The environment lighting of --bake or --env (bake, options and the environment's suns).
+struct LoadedBake : EnvironmentLighting {
+  EnvScale envScale;  // what --env-intensity / --env-illuminance did (factor 1: nothing)
 };
 // Whether --ssao (or its default) turns screen-space ambient occlusion on.
 bool screenAmbientOcclusionOn(const SceneCliOptions& o);
@@ -125,7 +125,8 @@ void noteToneOptionsWithoutEffect(const SceneCliOptions& o, const std::string& i
 void refuseOptionsTheModeIgnores(const SceneCliOptions& o, bool reference, int spp, int bounces,
                                  float noise);
 
-// The --bake directory, or a bake of --env (or the bundled environment) on the CPU.
+// The --bake directory (readEnvironmentLighting), or a bake of --env (or the bundled
+// environment) on the CPU (bakeEnvironmentLighting; unlitEnvironmentLighting for --env none).
 // --env-intensity / --env-illuminance scale --env before it is baked, or the --bake's radiance
 // (its source, specular, sheen and irradiance cubes and SH9; not the DFG tables) and its sun:
 // the same result, every stage of a bake being linear in the radiance.
@@ -134,24 +135,21 @@ void refuseOptionsTheModeIgnores(const SceneCliOptions& o, bool reference, int s
 // (charlie when not given) for a bake made here; the bake's recorded one for --bake, which
 // --sheen-visibility must not contradict.
 LoadedBake loadOrBake(const SceneCliOptions& o, const GlobalOptions& global, bool sheen = false);
-// Whether any material of the scene has a sheen layer.
-bool hasSheen(const Scene& scene);
 
 // The files a scene command reads (the glTF file, the environment, the lights file, every file
 // of the --bake and --probes directories), after checking that each named one exists and can
 // be read; for refusing an output that would overwrite one of them.
 std::vector<std::filesystem::path> sceneInputFiles(const SceneCliOptions& o);
 
-// The camera: the options, else the scene file's, else one framing the scene from +Z.
+// The camera the options choose (--camera, --fov, --ortho-width, --look-from, --look-at, --up).
+CameraChoice cameraChoice(const SceneCliOptions& o);
+// The camera (ibl::frameCamera): the options, else the scene file's, else one framing the scene
+// from +Z; checked, with usage errors for the options it would ignore or cannot use.
 Camera frameCamera(const SceneCliOptions& o, const Scene& scene, int width, int height);
 
 // The shading switches (mode, spp and the reference's options left at their defaults), with
 // the sheen visibility of the bake (loadOrBake).
 RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked);
-
-// The peak memory of rendering a width x height image, estimated from measured renders
-// (docs/render.md, "Memory"): the bake of the environment and the buffers per pixel.
-std::uint64_t renderMemoryBytes(int width, int height);
 
 // EV100 from --ev100, else --aperture/--shutter/--iso, else the image's average luminance.
 float chooseEv100(const SceneCliOptions& o, const Image& linear);

@@ -126,9 +126,10 @@ SkyRequest checkSkyRequest(const SkyCliOptions& o, const GlobalOptions& global) 
 }
 
 Image computeSky(const SkyCliOptions& o, const SkyRequest& request, std::string* deviceName) {
-  const std::unique_ptr<gpu::Context> device = openDevice(o.device);
+  const std::unique_ptr<gpu::Context> device = gpu::openComputeDevice(deviceChoice(o.device));
   if (deviceName) *deviceName = device ? device->device().name : std::string("the CPU");
-  return skyImage(request.parameters, request.width, request.height, o.sunDisk, device.get());
+  return gpu::skyPanoramaOn(device.get(), request.parameters, request.width, request.height,
+                            o.sunDisk);
 }
 
 std::vector<EncodedFile> writeSkyOutputs(const SkyCliOptions& o, const SkyRequest& request,

@@ -10,6 +10,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/env/photometry.hpp"
 #include "ibl/env/sky.hpp"
+#include "ibl/gpu/compute.hpp"
 #include "ibl/gpu/path_tracer.hpp"
 #include "ibl/gpu/viewer.hpp"
 #include "ibl/io/file_io.hpp"
@@ -212,10 +213,10 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
       gpu::EnvironmentChange change;
       // The sky and its bake on the viewer's GPU; on the CPU when that is the software
       // rasterizer (lavapipe takes seconds where the CPU paths take under one).
-      const bool gpu = device.device().type != "cpu";
+      gpu::Context* const hardware = gpu::isHardwareDevice(device.device()) ? &device : nullptr;
       Environment env;
       env.equirect =
-          skyImage(parameters, skySpec->width, skySpec->height, false, gpu ? &device : nullptr);
+          gpu::skyPanoramaOn(hardware, parameters, skySpec->width, skySpec->height, false);
       // --env-intensity / --env-illuminance: the factor found for the first sky, kept.
       Light sun = skySun(parameters);
       if (baked.envScale.factor != 1.0) {
@@ -223,12 +224,12 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
         sun.intensity *= static_cast<float>(baked.envScale.factor);
       }
       change.options = baked.options;
-      change.bake = bakeEnvironment(env, change.options, {}, gpu ? &device : nullptr);
+      change.bake = bakeEnvironment(env, change.options, {}, hardware);
       change.lights = ownLights;
       change.lights.push_back(sun);
       change.label = fmt::format("sun at {:.0f} degrees, {:.0f} lx, baked on {}", elevation,
                                  change.lights.back().intensity,
-                                 gpu ? device.device().name : std::string("the CPU"));
+                                 hardware ? device.device().name : std::string("the CPU"));
       return change;
     };
   }

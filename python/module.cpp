@@ -430,7 +430,7 @@ py::dict bake(const py::object& environment, const py::object& output, bool forc
   };
   const Baked baked = withoutGil(progress, [&] {
     checkSingleBake(o, inMemory ? std::string() : input, o.output, global);
-    const std::unique_ptr<gpu::Context> device = openDevice(o.device);
+    const std::unique_ptr<gpu::Context> device = gpu::openComputeDevice(deviceChoice(o.device));
     SourceEnvironment source = loadBakeInput(o, input, device.get(), global, std::move(pixels));
     Baked b{bakeSource(o, std::move(source), input, progress.fn(), device.get(), global), {}};
     if (o.output.empty()) {

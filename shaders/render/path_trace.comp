@@ -78,7 +78,7 @@ float albedoTableNode(int table, int index) {
 
 #include "ibl/shared/lang.h"
 #include "ibl/shared/cube.h"
-#include "ibl/shared/lights.h"
+#include "ibl/shared/light_record.h"
 #include "ibl/shared/light_sampling.h"
 #include "ibl/shared/material.h"
 #include "ibl/shared/path_brdf.h"
@@ -284,23 +284,14 @@ bool materialEmits(SceneHit hit) {
 
 // --- Lights ---
 
+// Light i's record (ibl/shared/light_record.h; uploadScene in src/gpu/path_tracer.cpp).
+LightRecord lightRecordAt(uint i) {
+  uint b = params.offsets.w + uint(kLightRecordVec4s) * i;
+  return LightRecord(sceneData[b], sceneData[b + 1u], sceneData[b + 2u], sceneData[b + 3u],
+                     sceneData[b + 4u]);
+}
 ShadingLight lightAt(uint i) {
-  uint b = params.offsets.w + 5u * i;
-  vec4 a = sceneData[b], d = sceneData[b + 1u], u = sceneData[b + 2u], c = sceneData[b + 3u],
-       e = sceneData[b + 4u];
-  ShadingLight l;
-  l.type = int(a.w);
-  l.position = a.xyz;
-  l.direction = d.xyz;
-  l.radius = d.w;
-  l.up = u.xyz;
-  l.width = u.w;
-  l.color = c.rgb;
-  l.height = c.w;
-  l.cosInner = e.x;
-  l.cosOuter = e.y;
-  l.invSquaredRange = e.z;
-  return l;
+  return unpackLight(lightRecordAt(i));
 }
 
 // An IES light's intensity toward w (leaving the light), candela x its scale, bilinear in its
@@ -502,7 +493,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
         distance = length(d);
         direction = d / distance;
         radiance = light.color * punctualLightIrradiance(light, origin);
-        float ies = sceneData[params.offsets.w + 5u * i + 4u].w;
+        float ies = lightRecordProfile(lightRecordAt(i));
         if (ies >= 0.0) radiance *= iesIntensity(light, ies, -direction);
         pdf = 0.0;
       } else {

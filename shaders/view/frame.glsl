@@ -1,6 +1,9 @@
 // The per-frame inputs of the viewer's shaders: camera, shading switches and the baked
-// environment. Mirrors FrameUniforms in src/gpu/scene_renderer.cpp (std140).
-layout(std140, set = 0, binding = 0) uniform Frame {
+// environment. The block mirrors FrameUniforms in src/gpu/frame_layout.hpp (std140); the
+// bindings are named in ibl/shared/view_bindings.h.
+#include "ibl/shared/view_bindings.h"
+
+layout(std140, set = 0, binding = kFrameUniforms) uniform Frame {
   mat4 viewProjection;
   vec4 cameraPosition;  // w: 1 perspective, 0 orthographic
   vec4 cameraForward;   // unit
@@ -31,20 +34,19 @@ layout(std140, set = 0, binding = 0) uniform Frame {
                          // max distance, thickness, stride, max steps
   vec4 reflectionLobe;   // rays per pixel, roughness fade start and end, edge fade
 } frame;
-layout(set = 0, binding = 1) uniform samplerCube specularMap;
-layout(set = 0, binding = 2) uniform samplerCube irradianceMap;
-layout(set = 0, binding = 3) uniform sampler2D dfgLut;
-layout(set = 0, binding = 4) uniform samplerCube sourceMap;
-// The scene's lights, five vec4 each (lightsBuffer in src/gpu/scene_renderer.cpp): position and
-// type, direction and radius, up and width, color and height, (cos inner, cos outer, 1 / range^2,
-// IES profile: its index in iesTable, -1 for none).
-layout(std430, set = 0, binding = 5) readonly buffer Lights {
+layout(set = 0, binding = kFrameSpecularMap) uniform samplerCube specularMap;
+layout(set = 0, binding = kFrameIrradianceMap) uniform samplerCube irradianceMap;
+layout(set = 0, binding = kFrameDfgLut) uniform sampler2D dfgLut;
+layout(set = 0, binding = kFrameSourceMap) uniform samplerCube sourceMap;
+// The scene's lights (lightsBuffer in src/gpu/scene_upload.cpp), a LightRecord each: five vec4
+// as ibl/shared/light_record.h lays them out (the IES profile: its index in iesTable, -1 for none).
+layout(std430, set = 0, binding = kFrameLights) readonly buffer Lights {
   vec4 lightData[];
 };
 // The GGX table of linearly transformed cosines (src/render/ltc_table.inc), read by texelFetch.
-layout(set = 0, binding = 6) uniform sampler2D ltcTable;
-// The lights' IES profiles, kIesTableRows rows each (ibl/shared/lights.h), read by texelFetch.
-layout(set = 0, binding = 7) uniform sampler2D iesTable;
+layout(set = 0, binding = kFrameLtcTable) uniform sampler2D ltcTable;
+// The lights' IES profiles, kIesTableRows rows each (ibl/shared/light_record.h), read by texelFetch.
+layout(set = 0, binding = kFrameIesTable) uniform sampler2D iesTable;
 
 struct Ray {
   vec3 origin, direction;
@@ -71,47 +73,47 @@ float intersectSphere(Ray r, vec4 sphere) {
   return -b - s >= 0.0 ? -b - s : (-b + s >= 0.0 ? -b + s : -1.0);
 }
 
-// The local probes, smallest influence first (uploadProbes in src/gpu/scene_renderer.cpp), 11
+// The local probes, smallest influence first (uploadProbes in src/gpu/scene_upload.cpp), 11
 // vec4 each: (capture point, has a proxy), proxy (center and shape, half extent, the three
 // columns of its world-to-local rotation), influence (the same; the half extent's w: the fade).
-layout(std430, set = 0, binding = 8) readonly buffer Probes {
+layout(std430, set = 0, binding = kFrameProbes) readonly buffer Probes {
   vec4 probeData[];
 };
-layout(set = 0, binding = 9) uniform samplerCubeArray probeSpecularMaps;
-layout(set = 0, binding = 10) uniform samplerCubeArray probeIrradianceMaps;
+layout(set = 0, binding = kFrameProbeSpecularMaps) uniform samplerCubeArray probeSpecularMaps;
+layout(set = 0, binding = kFrameProbeIrradianceMaps) uniform samplerCubeArray probeIrradianceMaps;
 // The sheen (Charlie) prefiltered cube, with the specular cube's levels and mapping, and its
 // table (R: the lobe's albedo E at (n.v, sheen roughness)); 1 x 1 black when the bake has none.
-layout(set = 0, binding = 11) uniform samplerCube sheenMap;
-layout(set = 0, binding = 12) uniform sampler2D sheenDfgLut;
-// The lights' shadows (uploadShadows in src/gpu/scene_renderer.cpp): per light a caster, five
+layout(set = 0, binding = kFrameSheenMap) uniform samplerCube sheenMap;
+layout(set = 0, binding = kFrameSheenDfgLut) uniform sampler2D sheenDfgLut;
+// The lights' shadows (ShadowPass in src/gpu/shadow_pass.cpp): per light a caster, five
 // vec4 ((kind, first layer, layer count, size), light position, view origin, view forward,
 // cascade splits), then per layer four ((origin, perspective), (right, scale), (up, near),
 // (forward, far)); and the layers' depths, layer after layer in rows (ibl/shared/shadows.h).
-layout(std430, set = 0, binding = 13) readonly buffer ShadowRecords {
+layout(std430, set = 0, binding = kFrameShadowRecords) readonly buffer ShadowRecords {
   vec4 shadowData[];
 };
-layout(std430, set = 0, binding = 14) readonly buffer ShadowDepths {
+layout(std430, set = 0, binding = kFrameShadowDepths) readonly buffer ShadowDepths {
   float shadowDepths[];
 };
 // The clustered light lists (buildLightClusters in src/render/light_clusters.cpp): (first,
 // count) per cluster (clusterIndex in ibl/shared/clusters.h), then per tile for its emitters,
 // each `first` the position in this array of a run of light indices.
-layout(std430, set = 0, binding = 15) readonly buffer LightClusters {
+layout(std430, set = 0, binding = kFrameLightClusters) readonly buffer LightClusters {
   uint clusterData[];
 };
 // Screen-space ambient occlusion (and reflections): the view buffers (view/view_buffers.frag:
 // view-space position, w 1 where a surface is; view-space normal, w the perceptual roughness) and
 // the occlusion (view/gtao.frag: visibility, bent normal in world space), one texel per pixel,
 // read by texelFetch; 1 x 1 stand-ins when off.
-layout(set = 0, binding = 16) uniform sampler2D viewPositions;
-layout(set = 0, binding = 17) uniform sampler2D viewNormals;
-layout(set = 0, binding = 18) uniform sampler2D screenOcclusion;
+layout(set = 0, binding = kFrameViewPositions) uniform sampler2D viewPositions;
+layout(set = 0, binding = kFrameViewNormals) uniform sampler2D viewNormals;
+layout(set = 0, binding = kFrameScreenOcclusion) uniform sampler2D screenOcclusion;
 // Screen-space reflections: the reflection (view/ssr.frag: premultiplied radiance, the lobe's
 // share the screen holds), read by the scene's second pass, and the lit frame (the scene's first
 // pass) whose radiance the rays' hits take; one texel per pixel, read by texelFetch; 1 x 1 zero
 // stand-ins when off.
-layout(set = 0, binding = 19) uniform sampler2D screenReflection;
-layout(set = 0, binding = 20) uniform sampler2D litFrame;
+layout(set = 0, binding = kFrameScreenReflection) uniform sampler2D screenReflection;
+layout(set = 0, binding = kFrameLitFrame) uniform sampler2D litFrame;
 // The reflection as traced (view/ssr.frag), before the resolve (view/ssr_resolve.frag) shares it
 // between neighbors.
-layout(set = 0, binding = 21) uniform sampler2D tracedReflection;
+layout(set = 0, binding = kFrameTracedReflection) uniform sampler2D tracedReflection;

@@ -1,16 +1,18 @@
 // A mesh's material in the viewer's fragment shaders (the scene's and the shadow maps'): its
 // textures (set 1), its factors and the sphere it may bound (push constants, MaterialConstants in
-// src/gpu/scene_renderer.hpp), and the alpha coverage of glTF's MASK and BLEND modes. The
+// src/gpu/scene_upload.hpp), and the alpha coverage of glTF's MASK and BLEND modes. The
 // including shader declares the inputs texCoord0 and texCoord1 first.
 #include "ibl/shared/material.h"
+#include "ibl/shared/view_bindings.h"
 
-layout(set = 1, binding = 0) uniform sampler2D baseColorTexture;  // an sRGB format: linear here
-layout(set = 1, binding = 1) uniform sampler2D metallicRoughnessTexture;
-layout(set = 1, binding = 2) uniform sampler2D normalTexture;
-layout(set = 1, binding = 3) uniform sampler2D occlusionTexture;
-layout(set = 1, binding = 4) uniform sampler2D emissiveTexture;  // an sRGB format: linear here
-layout(set = 1, binding = 5) uniform sampler2D sheenColorTexture;  // an sRGB format: linear here
-layout(set = 1, binding = 6) uniform sampler2D sheenRoughnessTexture;  // A
+// Base color, emission and sheen color have sRGB formats: linear here.
+layout(set = 1, binding = kMaterialBaseColor) uniform sampler2D baseColorTexture;
+layout(set = 1, binding = kMaterialMetallicRoughness) uniform sampler2D metallicRoughnessTexture;
+layout(set = 1, binding = kMaterialNormal) uniform sampler2D normalTexture;
+layout(set = 1, binding = kMaterialOcclusion) uniform sampler2D occlusionTexture;
+layout(set = 1, binding = kMaterialEmissive) uniform sampler2D emissiveTexture;
+layout(set = 1, binding = kMaterialSheenColor) uniform sampler2D sheenColorTexture;
+layout(set = 1, binding = kMaterialSheenRoughness) uniform sampler2D sheenRoughnessTexture;  // A
 layout(push_constant) uniform Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
@@ -24,7 +26,7 @@ layout(push_constant) uniform Material {
   int shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
   int scenePass;  // 0 the frame's only scene pass; with screen-space reflections 1 the lit frame
                   // (no area light drawn over the surfaces), 2 the pass that composes them
-                  // (binding 19): ScenePass in src/gpu/scene_renderer.hpp
+                  // (kFrameScreenReflection): ScenePass in src/gpu/scene_upload.hpp
 } material;
 
 // A uniform number in [0, 1) per pixel and surface depth: BLEND's stochastic threshold (hashed

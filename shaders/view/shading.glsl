@@ -61,22 +61,14 @@ uvec2 tileEmitters(vec2 pixel) {
   return uvec2(clusterData[2 * c], clusterData[2 * c + 1]);
 }
 
+// Light i's record (ibl/shared/light_record.h; frame.glsl's Lights).
+LightRecord lightRecordAt(int i) {
+  int b = kLightRecordVec4s * i;
+  return LightRecord(lightData[b], lightData[b + 1], lightData[b + 2], lightData[b + 3],
+                     lightData[b + 4]);
+}
 ShadingLight lightAt(int i) {
-  ShadingLight l;
-  vec4 a = lightData[5 * i], b = lightData[5 * i + 1], c = lightData[5 * i + 2],
-       d = lightData[5 * i + 3], e = lightData[5 * i + 4];
-  l.type = int(a.w);
-  l.position = a.xyz;
-  l.direction = b.xyz;
-  l.radius = b.w;
-  l.up = c.xyz;
-  l.width = c.w;
-  l.color = d.xyz;
-  l.height = d.w;
-  l.cosInner = e.x;
-  l.cosOuter = e.y;
-  l.invSquaredRange = e.z;
-  return l;
+  return unpackLight(lightRecordAt(i));
 }
 
 // An IES profile's candela toward unit w leaving the light, over its peak (which the light's
@@ -211,10 +203,11 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
       // The light's shadow first: what it hides costs nothing more.
       float visible = kCastShadows ? shadowVisibility(shadowCasterAt(i), position, n) : 1.0;
       if (visible <= 0.0) continue;
-      ShadingLight l = lightAt(i);
+      LightRecord record = lightRecordAt(i);
+      ShadingLight l = unpackLight(record);
       LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s, ltc);
-      float profile = visible *
-                      iesProfileFactor(l, lightData[5 * i + 4].w, normalize(position - l.position));
+      float profile = visible * iesProfileFactor(l, lightRecordProfile(record),
+                                                 normalize(position - l.position));
       vec3 radiance = belowScale * lightRadiance(direct, n, view, inc, dfg.xy, s);
       if (shadeSheen)
         radiance += sheenLightRadiance(sheen.rgb, sheenAlpha, s.sheenVisibility, n, view, inc);

@@ -262,18 +262,7 @@ Image bloomOnDevice(Context& context, const Image& linear, float ev100, float co
   Buffer readback(context, texels.size() * sizeof(float), BufferMemory::Host);
   context.impl().submitAndWait([&](VkCommandBuffer cmd) {
     bloom.record(cmd, frame, ev100, compensation);
-    const DeviceImage& out = bloom.output();
-    transitionImage(cmd, out, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                    VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                    VK_ACCESS_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {d.width, d.height, 1};
-    vkCmdCopyImageToBuffer(cmd, out.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                           static_cast<VkBuffer>(readback.handle()), 1, &region);
-    computeBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    recordReadback(cmd, bloom.output(), static_cast<VkBuffer>(readback.handle()));
   });
   const std::vector<float> out = readback.read<float>(texels.size());
   Image result(linear.width, linear.height);

@@ -17,6 +17,7 @@
 #include "gpu/bvh.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/shared/light_record.h"
 #include "render/emissive_triangles.hpp"
 #include "render/path_tracer.hpp"
 #include "render/ray_tracer.hpp"
@@ -174,11 +175,9 @@ PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& b
       ies = static_cast<float>(iesTables.size() / (kIesRows * kIesColumns));
       appendIesTable(light, iesTables);
     }
-    data.push_back(glm::vec4(l.position, static_cast<float>(l.type)));
-    data.push_back(glm::vec4(l.direction, l.radius));
-    data.push_back(glm::vec4(l.up, l.width));
-    data.push_back(glm::vec4(l.color, l.height));
-    data.push_back(glm::vec4(l.cosInner, l.cosOuter, l.invSquaredRange, ies));
+    data.resize(data.size() + shared::kLightRecordVec4s);
+    shared::storeLightRecord(shared::packLight(l, ies),
+                             &data[data.size() - shared::kLightRecordVec4s]);
   }
   r.parameters.offsets2.x = static_cast<std::uint32_t>(data.size());
   for (const Sphere& s : scene.spheres) {

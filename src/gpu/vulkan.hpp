@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include <vulkan/vulkan.h>
 
@@ -57,6 +58,50 @@ struct Context::Impl {
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
 };
 
+// Owns one Vulkan object of a device and destroys it with `destroy` (vkDestroyPipeline, ...) when
+// it goes; moved, never copied. Converts to the handle (VK_NULL_HANDLE when empty), so that it
+// is passed to Vulkan as it is.
+template <typename T, void (*destroy)(VkDevice, T, const VkAllocationCallbacks*)>
+class Unique {
+ public:
+  Unique() = default;
+  // device: the object's device; handle: the object, now owned (VK_NULL_HANDLE: none).
+  Unique(VkDevice device, T handle) : device_(device), handle_(handle) {}
+  Unique(Unique&& other) noexcept
+      : device_(other.device_), handle_(std::exchange(other.handle_, VK_NULL_HANDLE)) {}
+  Unique& operator=(Unique&& other) noexcept {
+    if (this != &other) {
+      reset();
+      device_ = other.device_;
+      handle_ = std::exchange(other.handle_, VK_NULL_HANDLE);
+    }
+    return *this;
+  }
+  Unique(const Unique&) = delete;
+  Unique& operator=(const Unique&) = delete;
+  ~Unique() { reset(); }
+
+  // Destroys the object now, if there is one.
+  void reset() {
+    if (handle_ != VK_NULL_HANDLE) destroy(device_, handle_, nullptr);
+    handle_ = VK_NULL_HANDLE;
+  }
+  T get() const { return handle_; }
+  operator T() const { return handle_; }
+
+ private:
+  VkDevice device_ = VK_NULL_HANDLE;
+  T handle_ = VK_NULL_HANDLE;
+};
+using UniquePipeline = Unique<VkPipeline, vkDestroyPipeline>;
+using UniquePipelineLayout = Unique<VkPipelineLayout, vkDestroyPipelineLayout>;
+using UniqueRenderPass = Unique<VkRenderPass, vkDestroyRenderPass>;
+using UniqueFramebuffer = Unique<VkFramebuffer, vkDestroyFramebuffer>;
+using UniqueShaderModule = Unique<VkShaderModule, vkDestroyShaderModule>;
+using UniqueSampler = Unique<VkSampler, vkDestroySampler>;
+using UniqueDescriptorSetLayout = Unique<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
+using UniqueDescriptorPool = Unique<VkDescriptorPool, vkDestroyDescriptorPool>;
+
 // A device-local image and a view of all its levels and layers.
 class DeviceImage {
  public:
@@ -92,6 +137,11 @@ void transitionImage(VkCommandBuffer cmd, const DeviceImage& image, VkImageLayou
                      VkImageLayout newLayout, VkPipelineStageFlags fromStage,
                      VkAccessFlags fromAccess, VkPipelineStageFlags toStage,
                      VkAccessFlags toAccess);
+
+// Records the copy of a shader-readable color image's level 0, layer 0 (texels as the image's
+// format holds them, row by row) into `readback`, a host-visible buffer of at least that size,
+// which the host may read once the commands have run; the image ends shader-readable again.
+void recordReadback(VkCommandBuffer cmd, const DeviceImage& image, VkBuffer readback);
 
 // A graphics pipeline drawing triangles with both faces, no blending, dynamic viewport and
 // scissor.

@@ -340,12 +340,6 @@ void createTonemapPass(WindowResources& r, VkFormat format) {
   check(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &r.pool), "vkCreateDescriptorPool");
 }
 
-bool sameCamera(const Camera& a, const Camera& b) {
-  return a.perspective == b.perspective && a.yfovDegrees == b.yfovDegrees &&
-         a.orthoWidth == b.orthoWidth && a.from == b.from && a.at == b.at && a.up == b.up &&
-         a.width == b.width && a.height == b.height;
-}
-
 // Uploads `picture` into `image` (made, or made again, at its size: RGBA32F the bloom can copy
 // from), leaving it shader-readable. The device must not be reading the old image.
 void uploadPicture(Context& context, std::unique_ptr<DeviceImage>& image, const Image& picture) {
@@ -460,7 +454,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   state.compensation = o.compensation;
   state.skyboxLod = o.skyboxLod;
   state.toneMap = o.toneMap;
-  state.maxSkyboxLod = renderer.skyboxMaxLod;
+  state.maxSkyboxLod = renderer.scene.skyboxMaxLod();
   state.diffuse = o.render.only != ShadingTerms::Specular;
   state.specular = o.render.only != ShadingTerms::Diffuse;
   state.view = o.view;
@@ -561,7 +555,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
       const auto change = o.timeOfDay(state.timeStep, *r.context);
       if (change) {
         renderer.setEnvironment(change->bake, change->options, change->lights);
-        state.maxSkyboxLod = renderer.skyboxMaxLod;
+        state.maxSkyboxLod = renderer.scene.skyboxMaxLod();
         // The reference is traced again, by a tracer of the new environment and lights.
         r.tracer.reset();
         environment = std::move(*change);
@@ -601,7 +595,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     if (view != ViewMode::RealTime) {
       RenderOptions tracing = referenceBase;
       tracing.only = shading.only;
-      if (traced.generation != environmentGeneration || !sameCamera(traced.camera, camera) ||
+      if (traced.generation != environmentGeneration || traced.camera != camera ||
           traced.terms != tracing.only) {
         r.tracer->reset(camera, tracing);
         traced = {camera, tracing.only, 0.0f, environmentGeneration};
@@ -620,7 +614,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
         pictureCurrent = false;
       }
       if (view != ViewMode::Reference &&
-          (drawn.generation != environmentGeneration || !sameCamera(drawn.camera, camera) ||
+          (drawn.generation != environmentGeneration || drawn.camera != camera ||
            drawn.terms != shading.only || drawn.skyboxLod != state.skyboxLod)) {
         realTime = r.renderer->render(camera, shading, state.skyboxLod);
         drawn = {camera, shading.only, state.skyboxLod, environmentGeneration};

@@ -10,6 +10,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/env/cubemap.hpp"
 #include "ktx_key_values.hpp"
+#include "ktx_shape.hpp"
 #include "little_endian.hpp"
 
 namespace ibl {
@@ -45,8 +46,7 @@ GlDescription glDescription(PixelFormat f) {
 }  // namespace
 
 std::vector<std::uint8_t> encodeKtx1(const Ktx1Texture& tex) {
-  if (tex.levels.empty() || (tex.faceCount != 1 && tex.faceCount != 6))
-    fail("ktx1", "a texture needs at least one level and 1 or 6 faces");
+  checkKtxLevelCount("ktx1", tex.levels.size(), tex.faceCount);
   const GlDescription gl = glDescription(tex.format);
   const int width = tex.levels[0][0].width, height = tex.levels[0][0].height;
   const std::uint32_t texel = bytesPerTexel(tex.format);
@@ -55,14 +55,8 @@ std::vector<std::uint8_t> encodeKtx1(const Ktx1Texture& tex) {
 
   std::size_t total = kHeaderBytes + kvd.size();
   for (std::size_t m = 0; m < tex.levels.size(); ++m) {
-    const auto& faces = tex.levels[m];
     const int w = std::max(1, width >> m), h = std::max(1, height >> m);
-    if (faces.size() != static_cast<std::size_t>(tex.faceCount))
-      fail("ktx1",
-           fmt::format("level {} has {} faces, expected {}", m, faces.size(), tex.faceCount));
-    for (const Image& f : faces)
-      if (f.width != w || f.height != h)
-        fail("ktx1", fmt::format("level {} is {}x{}, expected {}x{}", m, f.width, f.height, w, h));
+    checkKtxLevel("ktx1", tex.levels[m], m, tex.faceCount, width, height);
     // Rows of 4-byte texels need no padding; RGBA16F and RGBA32F rows are multiples of 8.
     total += 4 + static_cast<std::size_t>(w) * h * texel * tex.faceCount;
   }
@@ -103,9 +97,7 @@ Ktx1Texture decodeKtx1(std::span<const std::uint8_t> b, std::string_view name) {
     fail(name, "not a KTX1 file (bad identifier or truncated header)");
   if (get32(b, 12) != kEndianness) fail(name, "big-endian KTX1 files are not supported");
   const std::uint32_t internalFormat = get32(b, 28);
-  const std::uint32_t width = get32(b, 36), height = get32(b, 40), depth = get32(b, 44);
-  const std::uint32_t elements = get32(b, 48), faces = get32(b, 52);
-  std::uint32_t levels = get32(b, 56);
+  const std::uint32_t width = get32(b, 36), height = get32(b, 40), faces = get32(b, 52);
   const std::uint32_t kvdBytes = get32(b, 60);
   Ktx1Texture tex;
   if (internalFormat == kGlR11fG11fB10f)
@@ -118,16 +110,9 @@ Ktx1Texture decodeKtx1(std::span<const std::uint8_t> b, std::string_view name) {
     fail(name, fmt::format("unsupported glInternalFormat 0x{:X} (supported: R11F_G11F_B10F, "
                            "RGBA16F, RGBA32F)",
                            internalFormat));
-  if (height == 0) fail(name, "1D textures are not supported");
-  if (depth != 0) fail(name, "3D textures are not supported");
-  if (elements != 0) fail(name, "texture arrays are not supported");
-  if (faces != 1 && faces != 6) fail(name, fmt::format("numberOfFaces {} is invalid", faces));
-  if (faces == 6 && width != height) fail(name, "cube map faces are not square");
-  checkImageSize(name, width, height);
-  if (levels == 0) levels = 1;  // "generate mipmaps": we read the one stored level
-  if (levels > static_cast<std::uint32_t>(fullMipCount(static_cast<int>(std::max(width, height)))))
-    fail(name,
-         fmt::format("numberOfMipmapLevels {} is too large for {}x{}", levels, width, height));
+  const KtxShape shape{width, height, get32(b, 44), get32(b, 48), faces, get32(b, 56)};
+  const std::uint32_t levels =
+      checkKtxShape(name, shape, {"numberOfFaces", "numberOfMipmapLevels"});
   if (kvdBytes > b.size() - kHeaderBytes) fail(name, "truncated key/value data");
   tex.keyValues = decodeKtxKeyValues(b, kHeaderBytes, kvdBytes, name);
   tex.faceCount = static_cast<int>(faces);

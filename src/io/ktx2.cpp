@@ -13,6 +13,7 @@
 #include "ibl/core/version.hpp"
 #include "ibl/env/cubemap.hpp"
 #include "ktx_key_values.hpp"
+#include "ktx_shape.hpp"
 #include "little_endian.hpp"
 
 namespace ibl {
@@ -91,8 +92,7 @@ std::vector<std::uint32_t> dataFormatDescriptor(PixelFormat f) {
 }
 
 std::vector<std::uint8_t> encodeKtx2(const Ktx2Texture& tex) {
-  if (tex.levels.empty() || (tex.faceCount != 1 && tex.faceCount != 6))
-    fail("ktx2", "a texture needs at least one level and 1 or 6 faces");
+  checkKtxLevelCount("ktx2", tex.levels.size(), tex.faceCount);
   const int width = tex.levels[0][0].width, height = tex.levels[0][0].height;
   const auto levelCount = static_cast<std::uint32_t>(tex.levels.size());
   const std::uint32_t texel = bytesPerTexel(tex.format);
@@ -113,14 +113,8 @@ std::vector<std::uint8_t> encodeKtx2(const Ktx2Texture& tex) {
   std::vector<std::size_t> offset(levelCount), length(levelCount);
   std::size_t end = kvdOffset + kvd.size();
   for (std::uint32_t m = levelCount; m-- > 0;) {
-    const auto& faces = tex.levels[m];
-    if (faces.size() != static_cast<std::size_t>(tex.faceCount))
-      fail("ktx2",
-           fmt::format("level {} has {} faces, expected {}", m, faces.size(), tex.faceCount));
+    checkKtxLevel("ktx2", tex.levels[m], m, tex.faceCount, width, height);
     const int w = std::max(1, width >> m), h = std::max(1, height >> m);
-    for (const Image& f : faces)
-      if (f.width != w || f.height != h)
-        fail("ktx2", fmt::format("level {} is {}x{}, expected {}x{}", m, f.width, f.height, w, h));
     offset[m] = alignUp(end, alignment);
     length[m] = static_cast<std::size_t>(w) * h * texel * tex.faceCount;
     end = offset[m] + length[m];
@@ -166,9 +160,7 @@ Ktx2Texture decodeKtx2(std::span<const std::uint8_t> b, std::string_view name) {
   if (b.size() < kHeaderBytes || std::memcmp(b.data(), kKtx2Identifier, 12) != 0)
     fail(name, "not a KTX2 file (bad identifier or truncated header)");
   const std::uint32_t vkFormat = get32(b, 12);
-  const std::uint32_t width = get32(b, 20), height = get32(b, 24), depth = get32(b, 28);
-  const std::uint32_t layers = get32(b, 32), faces = get32(b, 36);
-  std::uint32_t levels = get32(b, 40);
+  const std::uint32_t width = get32(b, 20), height = get32(b, 24), faces = get32(b, 36);
   const std::uint32_t scheme = get32(b, 44);
   const auto format = pixelFormatFromVk(vkFormat);
   if (!format)
@@ -177,15 +169,8 @@ Ktx2Texture decodeKtx2(std::span<const std::uint8_t> b, std::string_view name) {
                            vkFormat));
   if (get32(b, 16) != ktxTypeSize(*format)) fail(name, "typeSize does not match vkFormat");
   if (scheme != 0) fail(name, fmt::format("supercompression scheme {} is not supported", scheme));
-  if (height == 0) fail(name, "1D textures are not supported");
-  if (depth != 0) fail(name, "3D textures are not supported");
-  if (layers != 0) fail(name, "texture arrays are not supported");
-  if (faces != 1 && faces != 6) fail(name, fmt::format("faceCount {} is invalid", faces));
-  if (faces == 6 && width != height) fail(name, "cube map faces are not square");
-  checkImageSize(name, width, height);
-  if (levels == 0) levels = 1;  // "generate mipmaps": we read the one stored level
-  if (levels > static_cast<std::uint32_t>(fullMipCount(static_cast<int>(std::max(width, height)))))
-    fail(name, fmt::format("levelCount {} is too large for {}x{}", levels, width, height));
+  const KtxShape shape{width, height, get32(b, 28), get32(b, 32), faces, get32(b, 40)};
+  const std::uint32_t levels = checkKtxShape(name, shape, {"faceCount", "levelCount"});
   if (kHeaderBytes + kLevelIndexEntry * static_cast<std::uint64_t>(levels) > b.size())
     fail(name, "truncated level index");
   const std::uint64_t dfdOffset = get32(b, 48), dfdLength = get32(b, 52);

@@ -15,6 +15,7 @@
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/json_file.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/shared/light_units.h"
 
 namespace ibl {
 

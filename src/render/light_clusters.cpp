@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibl/core/parallel.hpp"
+#include "ibl/shared/light_units.h"
 
 namespace ibl {
 

@@ -54,6 +54,12 @@ std::pair<glm::vec3, glm::vec3> Scene::bounds() const {
   return {lo, hi};
 }
 
+bool hasSheen(const Scene& scene) {
+  for (const Material& m : scene.materials)
+    if (m.sheenColor != glm::vec3(0.0f)) return true;
+  return false;
+}
+
 Scene withoutObjects(const Scene& scene, const std::vector<std::string>& names,
                      const std::string& option) {
   if (names.empty()) return scene;

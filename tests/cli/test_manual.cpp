@@ -15,18 +15,12 @@
 #include <gtest/gtest.h>
 
 #include "support/helpers.hpp"
+#include "support/text_file.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
-
-std::string readText(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> out;

@@ -87,21 +87,6 @@ TEST(Environment, ClearErrorsNameTheFile) {
             std::string::npos);
 }
 
-TEST(FileIo, AtomicWriteLeavesNoTemporaryFiles) {
-  TempDir dir;
-  const std::vector<std::uint8_t> bytes = {1, 2, 3};
-  writeFileAtomic(dir / "sub" / "a.bin", bytes);
-  EXPECT_EQ(readFileBytes(dir / "sub" / "a.bin"), bytes);
-  int files = 0;
-  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir / "sub")) ++files;
-  EXPECT_EQ(files, 1);
-  // A path whose directory cannot be created fails cleanly.
-  writeFileAtomic(dir / "file", bytes);
-  EXPECT_THROW(writeFileAtomic(dir / "file" / "x.bin", bytes), Error);
-}
-
-// 6:1 and 1:6 strips hold faces +X -X +Y -Y +Z -Z in order, in their native orientation; the
-// shape alone tells them, and writing one back gives the same image.
 TEST(Environment, StripsOfFaces) {
   const int n = 4;
   for (const Layout layout : {Layout::HStrip, Layout::VStrip}) {

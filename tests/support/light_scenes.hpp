@@ -13,6 +13,7 @@
 #include "ibl/env/environment.hpp"
 #include "ibl/render/light_sampling.hpp"
 #include "ibl/render/renderer.hpp"
+#include "ibl/shared/light_units.h"
 
 namespace ibl::test {
 

@@ -3,6 +3,7 @@
 // over parametric surfaces, in double precision.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -33,6 +34,40 @@ double integrateOverPatch(const F& f, const Q& q, const M& m, const J& jacobian,
       if (facing > 0.0) sum += f(w) * facing / d2 * jacobian(u, v);
     }
   return sum / (static_cast<double>(steps) * steps);
+}
+
+// The unit direction at thetaDegrees from +z, phiDegrees around it from +x.
+inline glm::dvec3 direction(double thetaDegrees, double phiDegrees = 0.0) {
+  const double t = thetaDegrees * std::numbers::pi / 180.0,
+               p = phiDegrees * std::numbers::pi / 180.0;
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+// A rect centered at c (relative to the shaded point), emitting along m, of w x h.
+struct Rect {
+  glm::dvec3 c, m, up;
+  double w, h;
+  [[nodiscard]] glm::dvec3 left() const { return glm::cross(up, m); }
+  [[nodiscard]] glm::dvec3 at(double u, double v) const {
+    return c + (u - 0.5) * w * left() + (v - 0.5) * h * up;
+  }
+  [[nodiscard]] glm::vec3 corner(int i) const {
+    return glm::vec3(at(i < 2 ? 0.0 : 1.0, i == 0 || i == 3 ? 1.0 : 0.0));
+  }
+  template <typename F>
+  [[nodiscard]] double integrate(const F& f, int steps = 500) const {
+    return integrateOverPatch(
+        f, [&](double u, double v) { return at(u, v); }, [&](double, double) { return m; },
+        [&](double, double) { return w * h; }, steps);
+  }
+};
+
+// A rect facing the point from direction `dir` at distance d, turned by `tilt` radians.
+inline Rect rectToward(glm::dvec3 dir, double d, double tilt, double w, double h) {
+  glm::dvec3 t, b;
+  completeFrame(dir, t, b);
+  const glm::dvec3 m = glm::normalize(-std::cos(tilt) * dir + std::sin(tilt) * t);
+  return Rect{d * dir, m, glm::normalize(glm::cross(m, t)), w, h};
 }
 
 // The sheen lobe of KHR_materials_sheen written from its papers, apart from ibl/shared/brdf.h.

@@ -5,7 +5,9 @@
 // points. Runs on any Vulkan 1.1 device, Mesa's software device (lavapipe) included.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ibl/bake/prefilter.hpp"
@@ -57,6 +59,19 @@ class Context {
   std::unique_ptr<Impl> impl_;
 };
 
+// Where work that has both a CPU and a GPU path runs (the commands' --device): on the CPU, on a
+// Vulkan device, or on a real GPU when there is one, else the CPU.
+enum class ComputeDevice { Cpu, Gpu, Auto };
+// "cpu", "gpu" or "auto" as a ComputeDevice; none for any other name.
+std::optional<ComputeDevice> parseComputeDevice(std::string_view name);
+// Whether `device` is a real GPU (discrete, integrated, virtual, other), not a software
+// rasterizer (type "cpu", e.g. lavapipe), whose compute is slower than the CPU paths.
+bool isHardwareDevice(const DeviceInfo& device);
+// The Vulkan context for `choice`: none for Cpu; Context::create() for Gpu (throws
+// Error("vulkan: ...") when no device can be used); for Auto, Context::create() when listDevices
+// holds a real GPU (isHardwareDevice), else none (the software device is not picked).
+std::unique_ptr<Context> openComputeDevice(ComputeDevice choice);
+
 // GPU versions of buildMipChain (full chain), resampleToCube, prefilterGgx (both methods),
 // integrateDfgLut, convolveIrradiance and projectSh9.
 void buildMipChain(Context& context, CubeMap& cube);
@@ -83,5 +98,10 @@ Sh9 projectSh9(Context& context, const CubeMap& cube, int level);
 // (ibl/shared/sky.h) and marches, then the panorama; the sun's disk is painted on the host.
 // Throws Error("sky: ...") for parameters or a size out of range, as the CPU path does.
 Image skyPanorama(Context& context, const SkyParameters& p, int width, int height, bool paintSun);
+// The sky's panorama on `device` when one is given (skyPanorama above), else on the CPU
+// (SkyModel(p).panorama): linear Rec.709 in cd/m^2, equirect, width x height pixels, the sun's
+// disk painted with `paintSun`. device: a context of openComputeDevice, or null. Throws as
+// those.
+Image skyPanoramaOn(Context* device, const SkyParameters& p, int width, int height, bool paintSun);
 
 }  // namespace ibl::gpu

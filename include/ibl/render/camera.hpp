@@ -37,6 +37,10 @@ struct Camera {
   // Ray through image point (px, py) in pixels, (0, 0) the top-left corner of pixel (0, 0):
   // the center of pixel (i, j) is (i + 0.5, j + 0.5).
   Ray generateRay(float px, float py) const;
+
+  // Whether `other` is the same camera, field by field (exactly: the viewer redraws its shadow
+  // maps and light clusters when the camera changes at all).
+  bool operator==(const Camera& other) const = default;
 };
 
 // Throws Error("camera: ...") when the camera cannot form an image: `from` equal to `at`,

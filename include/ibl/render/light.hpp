@@ -13,7 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibl/io/ies.hpp"
-#include "ibl/shared/lights.h"
+#include "ibl/shared/light_record.h"
 
 namespace ibl {
 
@@ -57,8 +57,8 @@ struct Light {
   double power() const;
 };
 
-// The light as ibl/shared/lights.h reads it (an IES profile's value is applied by the caller
-// through intensityToward: the shading light's color then carries color alone).
+// The light as the shading reads it (ibl/shared/light_record.h; an IES profile's value is applied
+// by the caller through intensityToward: the shading light's color then carries color alone).
 shared::ShadingLight shadingLightOf(const Light& light);
 
 // How `"unit": "lm"` becomes a spot's intensity: spread over its cone (I = phi / (2 pi (1 -

@@ -2,6 +2,7 @@
 // API: stable
 // A CPU renderer for materials lit by an environment, in two modes: the real-time split-sum
 // approximation reading the baked assets, and a Monte Carlo reference of the full integral.
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -122,6 +123,14 @@ struct RenderResult {
 RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeResult& bake,
                          const BakeOptions& bakeOptions, const RenderOptions& options,
                          const std::function<void(float)>& progress = {});
+
+// The peak memory, bytes, of rendering a width x height image (pixels) with renderScene or the
+// viewer (`ibl render`, `ibl view`), estimated from measured renders (docs/render.md, "Memory"):
+// 60 MB besides and 152 bytes per pixel: the render's own buffers (measured 50 to 52 bytes per
+// pixel), the screen-space occlusion's view buffers and result (40) and the reflections' lit
+// frame, view buffers and result (56) while they are computed. For refusing, before any work,
+// a size the machine cannot hold. width, height: pixels, >= 0.
+std::uint64_t renderMemoryBytes(int width, int height);
 
 // The same for any rays: generateRay(pixel) for a point in pixels ((0, 0) the top-left corner
 // of pixel (0, 0)), pixels sampled as renderScene does. A probe capture renders a cube's faces.

@@ -115,6 +115,10 @@ struct Scene {
   std::pair<glm::vec3, glm::vec3> bounds() const;
 };
 
+// Whether any material of `scene` has a sheen layer (KHR_materials_sheen: a sheenColor other
+// than 0), so that its render needs the bake's sheen chain and table (BakeOptions::sheen).
+bool hasSheen(const Scene& scene);
+
 // The scene without the meshes that answer to any of `names` (Mesh::names: a glTF mesh, or a
 // node and everything below it), as a probe capture leaves out dynamic objects. Throws
 // UsageError("<option>: ...") when a name matches no mesh or nothing would be left.

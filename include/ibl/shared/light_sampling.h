@@ -12,7 +12,8 @@
 #ifndef IBL_SHARED_LIGHT_SAMPLING_H
 #define IBL_SHARED_LIGHT_SAMPLING_H
 #include "ibl/shared/lang.h"
-#include "ibl/shared/lights.h"
+#include "ibl/shared/light_record.h"
+#include "ibl/shared/light_units.h"
 #include "ibl/shared/sampling.h"
 
 IBL_BEGIN

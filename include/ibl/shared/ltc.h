@@ -148,7 +148,7 @@ IBL_FN vec3 ltcQuadIntegral(LtcFrame f, vec3 p0, vec3 p1, vec3 p2, vec3 p3) {
 
 // A disk as the regular polygon of kLtcDiskSides sides with the same area (its circumradius
 // scaled by sqrt(2 pi / (k sin(2 pi / k)))): the disk's integral within the polygon's shape
-// error (measured in tests/math/test_ltc.cpp).
+// error (measured in tests/shared/test_lights_ltc.cpp).
 const int kLtcDiskSides = 16;
 const float kLtcDiskRadiusScale = 1.0130016f;  // sqrt(2 pi / (16 sin(pi / 8)))
 const float kLtcDiskCosStep = 0.92387953f;     // cos(2 pi / 16)

@@ -1,0 +1,180 @@
+// The scene on the viewer's device (src/gpu/scene_upload.cpp) as the CPU split sum reads it:
+// local probes, IES profiles' tables, the sheen's chain and table, textured and compressed
+// meshes (their mip chains, sRGB formats, samplers, UV sets and alpha masks). Like the other GPU
+// tests, these fail without a Vulkan device.
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "ibl/bake/dfg.hpp"
+#include "ibl/gpu/viewer.hpp"
+#include "ibl/io/ies.hpp"
+#include "ibl/render/gltf.hpp"
+#include "support/gltf_writer.hpp"
+#include "support/helpers.hpp"
+#include "support/light_scenes.hpp"
+#include "support/probe_capture.hpp"
+#include "support/viewer_comparison.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+using namespace ibl::test::viewer;
+
+// Local probes: three probes of the sphere grid (box proxies and influences of different sizes
+// overlapping with fades, a sphere proxy and influence), composed and parallax-corrected with
+// distance-based roughness by the viewer's shader (ibl/shared/probes.h) as by the CPU's
+// lookupProbes; with parallax off too.
+TEST(Viewer, ProbesMatchTheCpu) {
+  const Scene scene = makeSphereGrid(glm::vec3(0.8f, 0.6f, 0.4f));
+  const Baked& b = sunsetBake();
+  CaptureOptions capture;
+  capture.size = 32;
+  capture.spp = 4;
+  capture.bounces = 1;
+  const auto probeAt = [&](glm::vec3 at, ProbeVolume proxy, ProbeVolume influence, float fade) {
+    return captureAndBakeProbe(scene, b.bake, b.options, placementAt(at, proxy, influence, fade),
+                               capture);
+  };
+  std::vector<LocalProbe> probes = {
+      probeAt({-2.5f, 0.0f, 1.5f}, boxVolume({-9, -4, -3}, {9, 4, 3}, {0, 20, 0}),
+              boxVolume({-6, -3, -2}, {1, 3, 2}), 1.0f),
+      probeAt({2.5f, 0.0f, 1.5f}, sphereVolume({1, 0, 0}, 8.0f), sphereVolume({3, 0, 0}, 4.0f),
+              1.5f),
+      probeAt({0.0f, 0.0f, 2.0f}, boxVolume({-9, -4, -3}, {9, 4, 3}),
+              boxVolume({-8, -3, -3}, {8, 3, 3}), 2.0f)};
+  std::stable_sort(probes.begin(), probes.end(), [](const LocalProbe& x, const LocalProbe& y) {
+    return volumeSize(x.placement.influence) < volumeSize(y.placement.influence);
+  });
+  gpu::SceneRenderer viewer(graphicsContext(), scene, b.bake, b.options, probes);
+  RenderOptions o;
+  o.spp = 1;
+  o.probes = &probes;
+  const Camera camera = lookingAt({0, 0, 20}, 320, 160);
+  for (bool parallax : {true, false}) {
+    o.parallaxCorrection = parallax;
+    const RenderResult g = viewer.render(camera, o);
+    const RenderResult c = renderScene(scene, camera, b.bake, b.options, o);
+    const Comparison cmp = compare(g, c);
+    std::printf("probes, parallax %d: mean %.5f, over 1 %% %.4f\n", parallax, cmp.meanRelative,
+                cmp.fractionOver1);
+    // Measured: mean 0.003 %, 0.05 % of the pixels over 1 %; the shader without distance-based
+    // roughness: 0.12 % and 1.5 %.
+    EXPECT_LT(cmp.meanRelative, 3e-4) << parallax;
+    EXPECT_LT(cmp.fractionOver1, 5e-3) << parallax;
+  }
+}
+
+// IES profiles shade the grid as on the CPU: the viewer's table (2 x 5 degrees, bilinear)
+// against the CPU's interpolation over the photometric web, for a profile that varies with both
+// angles, on a point light (nadir -Y) and a tilted spot (nadir along its direction).
+TEST(Viewer, IesProfilesMatchTheCpu) {
+  const auto profile =
+      std::make_shared<const IesProfile>(parseIes(test::asymmetricIesText(), "viewer.ies"));
+  Scene scene = makeSphereGrid(glm::vec3(0.8f, 0.6f, 0.4f));
+  Light point = viewerTestLight(LightType::Point, {-3, 5, 3}, {0, -1, 0}, 1.0f, 1.0f);
+  point.ies = profile;
+  Light spot = viewerTestLight(LightType::Spot, {4, 3, 5}, {-0.5f, -0.4f, -0.8f}, 1.0f, 1.0f);
+  spot.outerAngle = glm::radians(80.0f);
+  spot.innerAngle = glm::radians(70.0f);
+  spot.ies = profile;
+  checkLight(point);
+  checkLight(spot);
+  scene.lights = {point, spot};
+  const Comparison c = renderLitByLightsAlone(scene);
+  // Measured: mean 0.003 %, 0.004 % of the pixels over 1 %; the table read with the horizontal
+  // angle mirrored: 2.8 %.
+  EXPECT_LT(c.meanRelative, 1e-3);
+  EXPECT_LT(c.fractionOver1, 1e-2);
+}
+
+// KHR_materials_sheen: the sheen layer over a dielectric, under the environment alone and with a
+// point light, and the sheen alone (--only sheen), as the CPU's split sum shades it.
+TEST(Viewer, SheenMatchesTheCpu) {
+  static const Baked sheenBake = bakeSunset(true);
+  Material m;
+  m.baseColor = glm::vec3(0.2f, 0.3f, 0.6f);
+  m.roughness = 0.6f;
+  m.sheenColor = glm::vec3(0.9f, 0.7f, 0.5f);
+  m.sheenRoughness = 0.4f;
+  Scene scene = makeSphereScene(m);
+  const Camera camera = lookingAt({0.5f, 1.0f, 4.0f}, 96, 96);
+  RenderOptions o;
+  o.spp = 1;
+  for (ShadingTerms only : {ShadingTerms::Both, ShadingTerms::Sheen}) {
+    o.only = only;
+    const Comparison c = renderBoth(scene, camera, o, 0.0f, sheenBake);
+    std::printf("sheen sphere, viewer vs CPU (only %d): %.2e\n", static_cast<int>(only),
+                c.meanRelative);
+    EXPECT_LT(c.meanRelative, 1e-3) << static_cast<int>(only);
+    EXPECT_LT(c.coverageMismatch, 5e-3) << static_cast<int>(only);
+  }
+  Light l = viewerTestLight(LightType::Point, {2, 3, 3}, {0, -1, 0}, 200.0f, 1.0f);
+  scene.lights.push_back(l);
+  o.only = ShadingTerms::Both;
+  const Comparison lit = renderBoth(scene, camera, o, 0.0f, sheenBake);
+  std::printf("sheen sphere and a point light, viewer vs CPU: %.2e\n", lit.meanRelative);
+  EXPECT_LT(lit.meanRelative, 1e-3);
+  // Neubelt's visibility, named: its table in place of the bake's and the lights' lobe through
+  // the frame's uniforms; a lobe that contradicts the table is refused.
+  Baked neubelt = sheenBake;
+  neubelt.options.sheenVisibility = SheenVisibility::Neubelt;
+  neubelt.bake.sheenDfg =
+      integrateSheenDfgLut(neubelt.options.dfgSize, neubelt.options.dfgSize,
+                           4 * neubelt.options.dfgSamples, SheenVisibility::Neubelt);
+  o.sheenVisibility = SheenVisibility::Neubelt;
+  const Comparison named = renderBoth(scene, camera, o, 0.0f, neubelt);
+  std::printf("Neubelt sheen sphere and a point light, viewer vs CPU: %.2e\n", named.meanRelative);
+  EXPECT_LT(named.meanRelative, 1e-3);
+  o.sheenVisibility = SheenVisibility::Charlie;
+  try {
+    gpu::SceneRenderer viewer(graphicsContext(), scene, neubelt.bake, neubelt.options);
+    viewer.render(camera, o);
+    ADD_FAILURE() << "a Charlie lobe was drawn with a Neubelt table";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("neubelt"), std::string::npos) << e.what();
+  }
+  // A sheen without the bake's sheen chain is refused, as `ibl render` refuses it.
+  try {
+    gpu::SceneRenderer viewer(graphicsContext(), scene, sunsetBake().bake, sunsetBake().options);
+    ADD_FAILURE() << "a sheen material was drawn without a sheen bake";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--sheen"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Viewer, TexturedAndCompressedMeshesMatchTheCpu) {
+  TempDir dir;
+  writeTexturedQuad(dir / "quad.gltf");
+  RenderOptions o;
+  o.spp = 1;
+  Comparison c =
+      renderBoth(loadGltf((dir / "quad.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 96, 96), o);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  EXPECT_LT(c.coverageMismatch, 5e-3);
+  // A MASK material cuts the same holes (a texture whose left half is under the cutoff).
+  QuadMaterial masked;
+  masked.alphaCodes = {77, 204};
+  masked.alphaMode = "MASK";
+  writeMaterialQuad(dir / "mask.gltf", masked);
+  c = renderBoth(loadGltf((dir / "mask.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 96, 96), o);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  EXPECT_LT(c.coverageMismatch, 5e-3);
+  // The second UV set, a clamping nearest sampler, an sRGB texture format with mip maps.
+  writeTexturedQuad(dir / "quad1.gltf", true);
+  c = renderBoth(loadGltf((dir / "quad1.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 96, 96), o);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  EXPECT_LT(c.coverageMismatch, 5e-3);
+  const Scene bunny = loadGltf((dataDir() / "models" / "bunny.glb").string());
+  const auto [lo, hi] = bunny.bounds();
+  Camera camera =
+      lookingAt(0.5f * (lo + hi) + glm::vec3(0, 0, 2.5f * glm::length(hi - lo)), 128, 128);
+  camera.at = 0.5f * (lo + hi);
+  c = renderBoth(bunny, camera, o);
+  EXPECT_LT(c.meanRelative, 2e-3);
+  EXPECT_LT(c.fractionOver1, 2e-2);
+  EXPECT_LT(c.coverageMismatch, 1e-2);
+}

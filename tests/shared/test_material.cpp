@@ -1,0 +1,159 @@
+// The glTF material's texture rules (ibl/shared/material.h, through the renderer) against values
+// computed independently of the code under test: sRGB base color, alpha modes, the
+// metallic-roughness channels, emission, the normal map's frame. Each test fails if its rule
+// changes.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "ibl/render/gltf.hpp"
+#include "ibl/render/renderer.hpp"
+#include "support/gltf_writer.hpp"
+#include "support/synthetic_bake.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+// One pixel looking at the center of a model from +Z, orthographic.
+glm::vec3 centerPixel(const Scene& scene, const SyntheticBake& s, RenderOptions o) {
+  Camera c;
+  c.perspective = false;
+  c.orthoWidth = 0.01f;
+  c.from = glm::vec3(0.0f, 0.0f, 3.0f);
+  c.width = c.height = 1;
+  o.spp = o.mode == RenderMode::Reference ? 16 : 1;
+  const RenderResult r = renderScene(scene, c, s.bake, s.options, o);
+  EXPECT_EQ(r.alpha[0], 1.0f);
+  return r.color.at(0, 0);
+}
+
+}  // namespace
+
+// Base color textures are sRGB: code 128 is 0.2158605 linear, not 0.50196.
+TEST(ShadingRules, BaseColorTexturesAreSrgbDecoded) {
+  TempDir dir;
+  QuadMaterial m;
+  m.baseColorCodes = {128, 64, 255};
+  m.metallicFactor = 0.0f;
+  writeMaterialQuad(dir / "q.gltf", m);
+  const SyntheticBake s = syntheticBake(
+      2, [](int, glm::vec3) { return glm::vec3(0.0f); }, [](glm::vec3) { return glm::vec3(1.0f); },
+      glm::vec3(1.0f, 0.0f, 1.0f), 8);
+  RenderOptions o;
+  o.only = ShadingTerms::Diffuse;
+  o.diffuse = DiffuseModel::Lambert;
+  const glm::vec3 c = centerPixel(loadGltf((dir / "q.gltf").string()), s, o);
+  EXPECT_NEAR(c.x, 0.2158605f, 1e-5f);
+  EXPECT_NEAR(c.y, 0.0512695f, 1e-5f);
+  EXPECT_NEAR(c.z, 1.0f, 1e-5f);
+}
+
+// alphaMode (glTF 2.0 3.9.4): the fraction of a pixel's samples the quad covers. The quad fills
+// an 8 x 8 view; its texture's left half has alpha code 0.3 x 255 = 77 (0.302), the right
+// half 204 (0.8); the factor's alpha multiplies both.
+TEST(ShadingRules, AlphaModesCoverAsTheSpecificationSays) {
+  TempDir dir;
+  const SyntheticBake s = syntheticBake(
+      2, [](int, glm::vec3) { return glm::vec3(0.0f); }, [](glm::vec3) { return glm::vec3(1.0f); },
+      glm::vec3(1.0f, 0.0f, 1.0f), 8);
+  const auto coverage = [&](const QuadMaterial& m, int spp) {
+    writeMaterialQuad(dir / "q.gltf", m);
+    Camera c;
+    c.perspective = false;
+    c.orthoWidth = 1.9f;
+    c.from = glm::vec3(0.0f, 0.0f, 3.0f);
+    c.width = c.height = 8;
+    RenderOptions o;
+    o.spp = spp;
+    const RenderResult r =
+        renderScene(loadGltf((dir / "q.gltf").string()), c, s.bake, s.options, o);
+    double left = 0.0, right = 0.0;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) (x < 4 ? left : right) += r.alpha[y * 8 + x] / 32.0;
+    return std::pair{left, right};
+  };
+  QuadMaterial m;
+  m.alphaCodes = {77, 204};
+  m.alphaMode = "OPAQUE";  // alpha ignored
+  EXPECT_EQ(coverage(m, 1), std::pair(1.0, 1.0));
+  m.alphaMode = "MASK";  // cutoff 0.5: left cut out, right kept
+  EXPECT_EQ(coverage(m, 1), std::pair(0.0, 1.0));
+  m.alphaCutoff = 0.25f;
+  EXPECT_EQ(coverage(m, 1), std::pair(1.0, 1.0));
+  m.baseColorAlpha = 0.5f;  // 0.151 and 0.4 against 0.25
+  EXPECT_EQ(coverage(m, 1), std::pair(0.0, 1.0));
+  // BLEND: covered with probability alpha, 0.151 and 0.4 here (256 samples per pixel, 32 pixels
+  // per half: a standard deviation under 0.005).
+  m.alphaMode = "BLEND";
+  const auto [left, right] = coverage(m, 256);
+  EXPECT_NEAR(left, 0.5 * 77.0 / 255.0, 0.02);
+  EXPECT_NEAR(right, 0.5 * 204.0 / 255.0, 0.02);
+}
+
+// metallicRoughnessTexture: roughness in G, metalness in B (linear), R ignored.
+TEST(ShadingRules, MetallicRoughnessChannels) {
+  TempDir dir;
+  QuadMaterial m;
+  m.metallicRoughnessCodes = {200, 64, 255};
+  writeMaterialQuad(dir / "q.gltf", m);
+  const SyntheticBake s = syntheticBake(
+      6, [](int level, glm::vec3) { return glm::vec3(static_cast<float>(level)); },
+      [](glm::vec3) { return glm::vec3(1.0f); }, glm::vec3(1.0f, 0.0f, 1.0f), 8);
+  RenderOptions o;
+  o.dominantDirections = false;
+  // Metal (B = 1): no diffuse, specular = level read = roughness (64 / 255) x 5.
+  EXPECT_NEAR(centerPixel(loadGltf((dir / "q.gltf").string()), s, o).x, 64.0f / 255.0f * 5.0f,
+              1e-4f);
+  m.metallicRoughnessCodes = {200, 255, 51};  // rough (level 5), metalness 0.2
+  writeMaterialQuad(dir / "q.gltf", m);
+  // specular 5 x F0 (0.04 + 0.96 x 0.2) + diffuse (1 - 0.2) x 1.
+  EXPECT_NEAR(centerPixel(loadGltf((dir / "q.gltf").string()), s, o).x,
+              5.0f * (0.04f + 0.96f * 0.2f) + 0.8f, 1e-4f);
+}
+
+// Emission: emissiveFactor times the sRGB-decoded emissiveTexture, in both modes, added to the
+// reflected light (none here: a black environment).
+TEST(ShadingRules, Emission) {
+  TempDir dir;
+  QuadMaterial m;
+  m.emissiveFactor = {1.0f, 0.5f, 0.25f};
+  m.emissiveCodes = {128, 128, 255};
+  writeMaterialQuad(dir / "q.gltf", m);
+  const Scene scene = loadGltf((dir / "q.gltf").string());
+  SyntheticBake s = syntheticBake(
+      2, [](int, glm::vec3) { return glm::vec3(0.0f); }, [](glm::vec3) { return glm::vec3(0.0f); },
+      glm::vec3(1.0f, 0.0f, 1.0f), 8);
+  for (auto mode : {RenderMode::SplitSum, RenderMode::Reference}) {
+    RenderOptions o;
+    o.mode = mode;
+    const glm::vec3 c = centerPixel(scene, s, o);
+    EXPECT_NEAR(c.x, 0.2158605f, 1e-5f);
+    EXPECT_NEAR(c.y, 0.5f * 0.2158605f, 1e-5f);
+    EXPECT_NEAR(c.z, 0.25f, 1e-5f);
+  }
+}
+
+// The normal map's frame: tangent T, bitangent B = (N x T) w. A texel tilting the normal 45
+// degrees toward +B makes a mirror seen from +Z reflect straight up (B = +Y here), or straight
+// down when the tangent's w is -1.
+TEST(ShadingRules, NormalMapBitangentSign) {
+  TempDir dir;
+  const SyntheticBake s = syntheticBake(
+      2, [](int, glm::vec3 d) { return d + glm::vec3(2.0f); },
+      [](glm::vec3) { return glm::vec3(0.0f); }, glm::vec3(1.0f, 0.0f, 1.0f));
+  for (float w : {1.0f, -1.0f}) {
+    QuadMaterial m;
+    m.roughnessFactor = 0.0f;
+    m.normalCodes = {128, 218, 218};  // (0, 0.71, 0.71) in tangent space
+    m.tangent = {1.0f, 0.0f, 0.0f, w};
+    writeMaterialQuad(dir / "q.gltf", m);
+    RenderOptions o;
+    o.only = ShadingTerms::Specular;
+    const glm::vec3 r = decodeDirection(centerPixel(loadGltf((dir / "q.gltf").string()), s, o));
+    EXPECT_NEAR(r.y, w, 0.01f) << "w = " << w;
+    EXPECT_NEAR(r.x, 0.0f, 0.02f);
+  }
+}
