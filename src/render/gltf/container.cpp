@@ -9,17 +9,13 @@
 
 #include "document.hpp"
 #include "ibl/io/file_io.hpp"
+#include "io/little_endian.hpp"
 
 namespace ibl::gltf {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::uint32_t readLe32(std::span<const std::uint8_t> b, std::size_t at) {
-  return b[at] | (b[at + 1] << 8) | (b[at + 2] << 16) |
-         (static_cast<std::uint32_t>(b[at + 3]) << 24);
-}
 
 void appendLe32(std::vector<std::uint8_t>& b, std::uint32_t v) {
   for (int i = 0; i < 4; ++i) b.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
@@ -61,21 +57,21 @@ struct GlbChunks {
 
 GlbChunks splitGlb(std::span<const std::uint8_t> bytes, const std::string& path) {
   if (bytes.size() < 12) fail(path, "truncated GLB: no complete header");
-  const std::uint32_t version = readLe32(bytes, 4), length = readLe32(bytes, 8);
+  const std::uint32_t version = le::get32(bytes, 4), length = le::get32(bytes, 8);
   if (version != 2) fail(path, fmt::format("GLB version {} (ibl reads version 2)", version));
   if (length > bytes.size())
     fail(path, fmt::format("truncated GLB: its header says {} bytes, the file has {}", length,
                            bytes.size()));
-  if (length < 20 || readLe32(bytes, 16) != 0x4E4F534Au) fail(path, "GLB without a JSON chunk");
-  const std::uint32_t jsonLength = readLe32(bytes, 12);
+  if (length < 20 || le::get32(bytes, 16) != 0x4E4F534Au) fail(path, "GLB without a JSON chunk");
+  const std::uint32_t jsonLength = le::get32(bytes, 12);
   if (jsonLength > length - 20)
     fail(path, fmt::format("GLB JSON chunk of {} bytes runs past the end of the GLB ({} bytes)",
                            jsonLength, length));
   GlbChunks c;
   c.json = std::string_view(reinterpret_cast<const char*>(bytes.data()) + 20, jsonLength);
   const std::size_t at = 20 + static_cast<std::size_t>(jsonLength);
-  if (length - at >= 8 && readLe32(bytes, at + 4) == 0x004E4942u) {  // "BIN"
-    const std::uint32_t binLength = readLe32(bytes, at);
+  if (length - at >= 8 && le::get32(bytes, at + 4) == 0x004E4942u) {  // "BIN"
+    const std::uint32_t binLength = le::get32(bytes, at);
     if (binLength > length - at - 8)
       fail(path, fmt::format("GLB BIN chunk of {} bytes runs past the end of the GLB ({} bytes)",
                              binLength, length));
@@ -111,7 +107,7 @@ std::vector<std::uint8_t> canonicalGlb(std::string json, const GlbChunks& chunks
 }
 
 bool isGlb(std::span<const std::uint8_t> bytes) {
-  return bytes.size() >= 4 && readLe32(bytes, 0) == 0x46546C67u;
+  return bytes.size() >= 4 && le::get32(bytes, 0) == 0x46546C67u;
 }
 
 // Extensions without effect on a still image of the default look, or whose effect is reported
