@@ -65,6 +65,8 @@ int runCompare(const CompareOptions& o) {
       fmt::print("{:8} {:12.6g} {:12.6g} {:12.6g} {:12.6g} {:9.2f}\n", names[k], e.rmse,
                  e.relativeMse, e.meanRelativeError, e.maxError, e.psnr);
     }
+    fmt::print("luminance: frame error {:.4g}, median 4x4 block error {:.4g}, off by 2x {:.4g} %\n",
+               c.frame.frameError, c.frame.medianBlockError, 100.0 * c.frame.offBy2x);
   }
   if (o.maxRelError >= 0.0 && c.overall.meanRelativeError > o.maxRelError) {
     fmt::print(stderr, "ibl: mean relative error {:.6g} exceeds --max-rel-error {:.6g}\n",
@@ -130,6 +132,11 @@ nlohmann::ordered_json comparisonJson(const ImageComparison& c) {
   j["r"] = errorsJson(c.channel[0]);
   j["g"] = errorsJson(c.channel[1]);
   j["b"] = errorsJson(c.channel[2]);
+  j["frame"] = {{"frame_error", c.frame.frameError},
+                {"median_block_error", c.frame.medianBlockError},
+                {"off_by_2x", c.frame.offBy2x},
+                {"blocks", c.frame.blocks},
+                {"black_blocks", c.frame.blackBlocks}};
   return j;
 }
 
@@ -145,7 +152,9 @@ void addCompareCommand(CLI::App& app, const GlobalOptions&) {
 CLI::App* addCompareOptions(CLI::App& app, CompareOptions& o) {
   CompareOptions* opts = &o;
   CLI::App* cmd = app.add_subcommand(
-      "compare", "Error of an image against a reference (RMSE, relative MSE, PSNR)");
+      "compare",
+      "Error of an image against a reference (RMSE, relative MSE, PSNR; the luminance's frame "
+      "error, median 4x4 block error and share of pixels off by 2x)");
   cmd->add_option("image", opts->a, "Image to judge")->required();
   cmd->add_option("reference", opts->b, "Reference image")->required();
   cmd->add_option("--mask", opts->mask, "Compare only where this image's red channel is > 0.5");

@@ -1,6 +1,6 @@
 // `ibl probe`: local light probes captured inside a scene by the path tracer and baked like an
 // environment; one probe (--at), a grid (--grid, --bounds), a shard of a grid (--shard K/N),
-// and merging the shards' lists (--merge).
+// and merging the shards' lists (--merge). The irradiance volume (--volume): probe_volume.cpp.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,6 +23,7 @@
 #include "ibl/io/json_file.hpp"
 #include "ibl/render/probe.hpp"
 #include "preflight.hpp"
+#include "probe.hpp"
 #include "scene_options.hpp"
 
 namespace ibl::cli {
@@ -31,21 +32,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
-
-struct ProbeCliOptions {
-  SceneCliOptions scene;  // scene, --env, --lights, --spot-lumens
-  std::string output;
-  std::string at;
-  std::string proxy;      // sphere:R | sphere:X,Y,Z,R | box:MINX,MINY,MINZ,MAXX,MAXY,MAXZ | none
-  std::string influence;  // the same forms; default: the proxy (a grid: each probe's cell)
-  std::string rotation = "0,0,0";
-  float fade = -1.0f;  // default: a quarter of the influence's smallest half size
-  std::string grid, bounds, shard;
-  std::string merge;
-  CaptureOptions capture;
-  std::vector<std::string> exclude;  // glTF node or mesh names left out of the capture
-  bool force = false;
-};
 
 // --proxy / --influence: a sphere or a box; `center` places `sphere:R`.
 ProbeVolume parseVolume(const std::string& text, glm::vec3 center, glm::vec3 rotation,
@@ -127,19 +113,9 @@ CaptureOutcome captureAndBake(const ProbeCliOptions& o, const Scene& scene, cons
 // the fade on every side, all with one proxy.
 std::vector<PlannedProbe> planGrid(const ProbeCliOptions& o, const ProbeVolume* proxy,
                                    glm::vec3 rotation) {
-  const std::vector<float> g = parseNumbers(o.grid, 3, "--grid");
-  glm::ivec3 counts;
-  for (int i = 0; i < 3; ++i) {
-    if (g[i] < 1.0f || g[i] > 64.0f || g[i] != std::floor(g[i]))
-      failUsage("--grid",
-                fmt::format("'{}': each count must be a whole number from 1 to 64", o.grid));
-    counts[i] = static_cast<int>(g[i]);
-  }
+  const glm::ivec3 counts = parseProbeCounts(o.grid, "--grid");
   if (o.bounds.empty()) failUsage("--grid", "needs --bounds MINX,MINY,MINZ,MAXX,MAXY,MAXZ");
-  const std::vector<float> b = parseNumbers(o.bounds, 6, "--bounds");
-  const glm::vec3 lo(b[0], b[1], b[2]), hi(b[3], b[4], b[5]);
-  if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
-    failUsage("--bounds", fmt::format("'{}': an empty box", o.bounds));
+  const auto [lo, hi] = parseBounds(o.bounds);
   const glm::vec3 cell = (hi - lo) / glm::vec3(counts);
   const float fade = o.fade >= 0.0f ? o.fade : 0.25f * std::min(cell.x, std::min(cell.y, cell.z));
   std::vector<PlannedProbe> probes;
@@ -162,10 +138,6 @@ std::vector<PlannedProbe> planGrid(const ProbeCliOptions& o, const ProbeVolume* 
   return probes;
 }
 
-std::string shardListName(int k, int n) {
-  return fmt::format("probes.shard-{}-of-{}.json", k, n);
-}
-
 // The grid's list; `skipped` holds, by linear index, why a probe was left out (renders then
 // never read it: loadProbes skips it).
 Json gridListJson(const ProbeCliOptions& o, const std::vector<PlannedProbe>& probes,
@@ -185,63 +157,20 @@ Json gridListJson(const ProbeCliOptions& o, const std::vector<PlannedProbe>& pro
           {"probes", list}};
 }
 
-// What a merge lacks: the probes no shard list names (their directories, at most a dozen) and,
-// when the lists present are all of one N, the shards K/N that wrote none, to run again.
-std::string missingProbesMessage(const Json& grid, const std::set<int>& seen,
-                                 const std::vector<fs::path>& parts) {
-  const int nx = grid[0].get<int>(), ny = grid[1].get<int>(), nz = grid[2].get<int>();
-  const int total = nx * ny * nz;
-  std::vector<int> missing;
-  for (int l = 0; l < total; ++l)
-    if (!seen.count(l)) missing.push_back(l);
-  std::string names;
-  for (std::size_t i = 0; i < missing.size() && i < 12; ++i)
-    names += fmt::format("{}probe_{}_{}_{}", i ? ", " : "", missing[i] % nx, missing[i] / nx % ny,
-                         missing[i] / (nx * ny));
-  if (missing.size() > 12) names += fmt::format(" and {} more", missing.size() - 12);
-  // The shard lists' K and N, from their names.
-  std::set<int> ns, ks;
-  for (const fs::path& part : parts) {
-    int k = 0, n = 0;
-    char tail[8] = {};
-    if (std::sscanf(part.filename().string().c_str(), "probes.shard-%d-of-%d%7s", &k, &n, tail) ==
-            3 &&
-        std::string(tail) == ".json") {
-      ns.insert(n);
-      ks.insert(k);
-    }
-  }
-  std::string shards;
-  if (ns.size() == 1) {
-    const int n = *ns.begin();
-    std::vector<int> absent;
-    for (int k = 0; k < n; ++k)
-      if (!ks.count(k)) absent.push_back(k);
-    std::string list;
-    for (std::size_t i = 0; i < absent.size() && i < 12; ++i)
-      list += fmt::format("{}{}/{}", i ? ", " : "", absent[i], n);
-    if (absent.size() > 12) list += fmt::format(" and {} more", absent.size() - 12);
-    if (absent.size() == 1)
-      shards =
-          fmt::format(" (owed by shard {}, which wrote no {})", list, shardListName(absent[0], n));
-    else if (!absent.empty())
-      shards = fmt::format(" (owed by shards {}, which wrote no lists)", list);
-  }
-  return fmt::format(
-      "the shards hold {} of the grid's {} probes; missing: {}{}; run the missing "
-      "shards again (with the same options), then merge",
-      seen.size(), total, names, shards);
-}
-
-// --merge OUTDIR: the shards' lists into probes.json, once every probe of the grid is there.
-void mergeShards(const std::string& dir, const GlobalOptions& global) {
+// The files of `dir` named STEM.shard-*, sorted.
+std::vector<fs::path> shardFiles(const std::string& dir, const std::string& stem) {
   std::vector<fs::path> parts;
   if (fs::is_directory(dir))
     for (const auto& e : fs::directory_iterator(dir))
-      if (e.path().filename().string().starts_with("probes.shard-")) parts.push_back(e.path());
-  if (parts.empty()) fail(dir, "holds no probes.shard-K-of-N.json to merge");
-  requireWritableFile(fs::path(dir) / "probes.json");
+      if (e.path().filename().string().starts_with(stem + ".shard-")) parts.push_back(e.path());
   std::sort(parts.begin(), parts.end());
+  return parts;
+}
+
+// The grid's shard lists `parts` into probes.json, once every probe of the grid is there.
+void mergeGridShards(const std::string& dir, const std::vector<fs::path>& parts,
+                     const GlobalOptions& global) {
+  requireWritableFile(fs::path(dir) / "probes.json");
   Json merged;
   std::set<int> seen;
   int total = -1;
@@ -275,7 +204,10 @@ void mergeShards(const std::string& dir, const GlobalOptions& global) {
     }
   }
   if (static_cast<int>(seen.size()) != total)
-    fail(dir, missingProbesMessage(merged.at("grid"), seen, parts));
+    fail(dir, missingProbesMessage(
+                  glm::ivec3(merged.at("grid")[0].get<int>(), merged.at("grid")[1].get<int>(),
+                             merged.at("grid")[2].get<int>()),
+                  seen, parts, "probes"));
   std::sort(merged["probes"].begin(), merged["probes"].end(),
             [](const Json& a, const Json& b) { return a["linear"] < b["linear"]; });
   const std::string text = merged.dump(2) + "\n";
@@ -286,24 +218,41 @@ void mergeShards(const std::string& dir, const GlobalOptions& global) {
                (fs::path(dir) / "probes.json").string(), total);
 }
 
+// --merge OUTDIR: a grid's shard lists into probes.json, a volume's shards into its files.
+void mergeShards(const std::string& dir, const GlobalOptions& global) {
+  const std::vector<fs::path> grid = shardFiles(dir, "probes"), volume = shardFiles(dir, "volume");
+  if (grid.empty() && volume.empty())
+    fail(dir, "holds no probes.shard-K-of-N.json to merge (nor volume.shard-K-of-N.json)");
+  if (!grid.empty()) mergeGridShards(dir, grid, global);
+  if (!volume.empty()) mergeVolumeShards(dir, volume, global);
+}
+
 void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   if (!o.merge.empty()) {
-    if (!o.scene.scene.empty() || !o.at.empty() || !o.grid.empty())
+    if (!o.scene.scene.empty() || !o.at.empty() || !o.grid.empty() || !o.volume.empty())
       failUsage("--merge",
-                "merges the lists of a grid's shards; it takes no scene, --at or --grid");
+                "merges the lists of a grid's shards, or a volume's shards; it takes no scene, "
+                "--at, --grid or --volume");
     mergeShards(o.merge, global);
     return;
   }
   if (o.scene.scene.empty())
     failUsage("scene", "a scene is required (a glTF file, 'sphere', 'grid')");
   if (o.output.empty()) failUsage("--output", "an output directory is required");
+  checkVolumeOptions(o);
+  if (!o.volume.empty()) {
+    runVolume(o, global);
+    return;
+  }
   if (o.at.empty() == o.grid.empty())
     failUsage(o.at.empty() ? "--at" : "--grid",
-              "give either --at X,Y,Z (one probe) or --grid with "
-              "--bounds (a grid of probes)");
-  if (!o.shard.empty() && o.grid.empty()) failUsage("--shard", "splits a grid: it needs --grid");
+              "give either --at X,Y,Z (one probe), --grid with --bounds (a grid of probes) or "
+              "--volume with --bounds (an irradiance volume)");
+  if (!o.shard.empty() && o.grid.empty())
+    failUsage("--shard", "splits a grid or a volume: it needs --grid or --volume");
   if (!o.bounds.empty() && o.grid.empty())
-    failUsage("--bounds", "is the box of --grid; one probe (--at) has --proxy and --influence");
+    failUsage("--bounds",
+              "is the box of --grid or --volume; one probe (--at) has --proxy and --influence");
   checkSceneOptions(o.scene);
   const glm::vec3 rotation = parseVec3(o.rotation, "--rotation");
   if (rotation != glm::vec3(0.0f) && !o.proxy.starts_with("box:") &&
@@ -313,8 +262,7 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
   // The output before the scene is read: one probe's directory (empty unless --force), or a
   // grid's, which holds its shards' probes.
   checkBakeOutputDirectory(o.output, o.force || !o.grid.empty());
-  // Dynamic objects left out: engines capture the static scene alone.
-  Scene scene = withoutObjects(loadScene(o.scene, global), o.exclude, "--exclude");
+  Scene scene = loadCaptureScene(o, global);
   const auto [sceneLo, sceneHi] = scene.bounds();
   // The default proxy: the scene's bounds (a room's walls).
   std::optional<ProbeVolume> proxy;
@@ -342,16 +290,8 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
     probes = planGrid(o, proxy ? &*proxy : nullptr, rotation);
   }
   // A probe outside the scene sees nothing of it: a mistake, most likely.
-  for (const PlannedProbe& p : probes) {
-    const glm::vec3 x = p.placement.position;
-    if (glm::any(glm::lessThan(x, sceneLo)) || glm::any(glm::greaterThan(x, sceneHi)))
-      failUsage(
-          o.at.empty() ? "--bounds" : "--at",
-          fmt::format("the probe at ({}, {}, {}) lies outside the scene's bounds ({}, {}, {}) .. "
-                      "({}, {}, {})",
-                      x.x, x.y, x.z, sceneLo.x, sceneLo.y, sceneLo.z, sceneHi.x, sceneHi.y,
-                      sceneHi.z));
-  }
+  for (const PlannedProbe& p : probes)
+    requireInsideScene(p.placement.position, sceneLo, sceneHi, o.at.empty() ? "--bounds" : "--at");
   std::vector<PlannedProbe> mine;
   std::string listName = "probes.json";
   if (!o.shard.empty()) {
@@ -359,7 +299,7 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
     const Shard shard = parseShard(o.shard);
     for (const PlannedProbe& p : probes)
       if (shard.owns(static_cast<std::size_t>(p.linear))) mine.push_back(p);
-    listName = shardListName(shard.k, shard.n);
+    listName = shardListName("probes", shard.k, shard.n);
   } else {
     mine = probes;
   }
@@ -426,10 +366,100 @@ void runProbe(const ProbeCliOptions& o, const GlobalOptions& global) {
 
 }  // namespace
 
+bool given(const ProbeCliOptions& o, const std::string& option) {
+  const CLI::Option* given = o.command ? o.command->get_option_no_throw(option) : nullptr;
+  return given && given->count() > 0;
+}
+
+glm::ivec3 parseProbeCounts(const std::string& text, const char* option) {
+  const std::vector<float> g = parseNumbers(text, 3, option);
+  glm::ivec3 counts;
+  for (int i = 0; i < 3; ++i) {
+    if (g[i] < 1.0f || g[i] > 64.0f || g[i] != std::floor(g[i]))
+      failUsage(option, fmt::format("'{}': each count must be a whole number from 1 to 64", text));
+    counts[i] = static_cast<int>(g[i]);
+  }
+  return counts;
+}
+
+std::pair<glm::vec3, glm::vec3> parseBounds(const std::string& text) {
+  const std::vector<float> b = parseNumbers(text, 6, "--bounds");
+  const glm::vec3 lo(b[0], b[1], b[2]), hi(b[3], b[4], b[5]);
+  if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+    failUsage("--bounds", fmt::format("'{}': an empty box", text));
+  return {lo, hi};
+}
+
+Scene loadCaptureScene(const ProbeCliOptions& o, const GlobalOptions& global) {
+  return withoutObjects(loadScene(o.scene, global), o.exclude, "--exclude");
+}
+
+void requireInsideScene(glm::vec3 x, glm::vec3 lo, glm::vec3 hi, const char* option) {
+  if (glm::any(glm::lessThan(x, lo)) || glm::any(glm::greaterThan(x, hi)))
+    failUsage(option,
+              fmt::format("the probe at ({}, {}, {}) lies outside the scene's bounds ({}, {}, {}) "
+                          ".. ({}, {}, {})",
+                          x.x, x.y, x.z, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z));
+}
+
+std::string shardListName(const std::string& stem, int k, int n) {
+  return fmt::format("{}.shard-{}-of-{}.json", stem, k, n);
+}
+
+std::string missingProbesMessage(glm::ivec3 counts, const std::set<int>& seen,
+                                 const std::vector<fs::path>& parts, const std::string& stem) {
+  const int nx = counts.x, ny = counts.y;
+  const int total = counts.x * counts.y * counts.z;
+  std::vector<int> missing;
+  for (int l = 0; l < total; ++l)
+    if (!seen.count(l)) missing.push_back(l);
+  std::string names;
+  for (std::size_t i = 0; i < missing.size() && i < 12; ++i)
+    names += fmt::format("{}probe_{}_{}_{}", i ? ", " : "", missing[i] % nx, missing[i] / nx % ny,
+                         missing[i] / (nx * ny));
+  if (missing.size() > 12) names += fmt::format(" and {} more", missing.size() - 12);
+  // The shard files' K and N, from their names.
+  std::set<int> ns, ks;
+  const std::string format = stem + ".shard-%d-of-%d%7s";
+  for (const fs::path& part : parts) {
+    int k = 0, n = 0;
+    char tail[8] = {};
+    if (std::sscanf(part.filename().string().c_str(), format.c_str(), &k, &n, tail) == 3 &&
+        std::string(tail) == ".json") {
+      ns.insert(n);
+      ks.insert(k);
+    }
+  }
+  std::string shards;
+  if (ns.size() == 1) {
+    const int n = *ns.begin();
+    std::vector<int> absent;
+    for (int k = 0; k < n; ++k)
+      if (!ks.count(k)) absent.push_back(k);
+    std::string list;
+    for (std::size_t i = 0; i < absent.size() && i < 12; ++i)
+      list += fmt::format("{}{}/{}", i ? ", " : "", absent[i], n);
+    if (absent.size() > 12) list += fmt::format(" and {} more", absent.size() - 12);
+    if (absent.size() == 1)
+      shards = fmt::format(" (owed by shard {}, which wrote no {})", list,
+                           shardListName(stem, absent[0], n));
+    else if (!absent.empty())
+      shards =
+          fmt::format(" (owed by shards {}, which wrote no {}.shard-K-of-{}.json)", list, stem, n);
+  }
+  return fmt::format(
+      "the shards hold {} of the grid's {} probes; missing: {}{}; run the missing "
+      "shards again (with the same options), then merge",
+      seen.size(), total, names, shards);
+}
+
 void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
   auto opts = std::make_shared<ProbeCliOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "probe", "Capture local light probes inside a scene (path traced) and bake them");
+      "probe",
+      "Capture local light probes or an irradiance volume inside a scene (path traced) and bake "
+      "them");
+  opts->command = cmd;
   cmd->add_option("scene", opts->scene.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'");
   cmd->add_flag("--strict", opts->scene.strict,
                 "Refuse a scene that ibl would render incompletely: a missing or unreadable "
@@ -443,16 +473,20 @@ void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
   addEnvScaleOptions(cmd, opts->scene.envScale);
   cmd->add_option("-o,--output", opts->output,
                   "Output directory (created with its missing parents): the probe's bake (--at), "
-                  "or one directory per probe and probes.json (--grid)");
+                  "one directory per probe and probes.json (--grid), or the volume's atlases "
+                  "and volume.json (--volume)");
   cmd->add_option("--at", opts->at, "Capture one probe at X,Y,Z");
   cmd->add_option("--grid", opts->grid,
                   "A grid of NX,NY,NZ probes at the cell centers of --bounds");
-  cmd->add_option("--bounds", opts->bounds, "The grid's box MINX,MINY,MINZ,MAXX,MAXY,MAXZ");
+  cmd->add_option("--bounds", opts->bounds,
+                  "The box of the grid or the volume, MINX,MINY,MINZ,MAXX,MAXY,MAXZ");
+  addVolumeOptions(cmd, *opts);
   cmd->add_option("--shard", opts->shard,
-                  "Capture the K-th of N disjoint parts of the grid (K/N, K from 0); merge the "
-                  "parts' lists with --merge");
+                  "Capture the K-th of N disjoint parts of the grid or the volume (K/N, K from "
+                  "0); merge the parts with --merge");
   cmd->add_option("--merge", opts->merge,
-                  "Merge the shard lists in this grid directory into probes.json");
+                  "Merge the shards in this directory: a grid's lists into probes.json, a "
+                  "volume's into volume.json and its atlases");
   cmd->add_option("--proxy", opts->proxy,
                   "Parallax proxy: sphere:R (about --at), sphere:X,Y,Z,R, "
                   "box:MINX,MINY,MINZ,MAXX,MAXY,MAXZ, or none (default: the scene's bounds)");
@@ -492,7 +526,8 @@ void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
                   "as engines capture the static scene alone: NAME[,NAME...], repeatable; `ibl "
                   "info` lists the names")
       ->delimiter(',');
-  cmd->add_flag("--force", opts->force, "Replace earlier probes' files in the output directory");
+  cmd->add_flag("--force", opts->force,
+                "Replace earlier probes' (or the volume's) files in the output directory");
   cmd->callback([opts, &global] {
     opts->capture.multipleScattering = multipleScatteringChoice(opts->scene);
     opts->capture.diffuse =

@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "ibl/gpu/path_tracer.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/render/bloom.hpp"
+#include "ibl/render/irradiance_volume.hpp"
 #include "ibl/render/probe.hpp"
 #include "preflight.hpp"
 #include "render.hpp"
@@ -88,6 +90,10 @@ RenderedImage renderImage(const RenderCliOptions& o, const GlobalOptions& global
   Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
+  if (o.scene.volumeUpdateFrames > 0 && o.scene.volume.empty())
+    failUsage("--volume-update-frames", "updates the volume of --volume, which is not given");
+  std::optional<IrradianceVolume> volume =
+      o.scene.volume.empty() ? std::nullopt : std::optional(loadVolume(o.scene.volume));
   const LoadedBake baked = loadOrBake(o.scene, global, hasSheen(scene));
   scene.lights.insert(scene.lights.end(), baked.lights.begin(), baked.lights.end());
   RenderOptions r = shadingOptions(o.scene, baked);
@@ -103,11 +109,26 @@ RenderedImage renderImage(const RenderCliOptions& o, const GlobalOptions& global
   r.shadows = o.scene.shadows == "ray";
   r.bounces = o.bounces;
   // The reference reads no probe: only the split sum must match their shading.
-  if (o.mode != "reference")
-    checkProbeShading(probes, r, o.scene.force, [&](const std::string& m) {
+  if (o.mode != "reference") {
+    const auto warn = [&](const std::string& m) {
       if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", m);
-    });
+    };
+    checkProbeShading(probes, r, o.scene.force, warn);
+    if (volume) checkCaptureShading(volume->capture, volume->path, r, o.scene.force, warn);
+  }
   r.probes = &probes;
+  if (volume && o.scene.volumeUpdateFrames > 0) {
+    // The live update the viewer would run, frame after frame, from the baked volume
+    // (docs/probes.md, "The live update").
+    const auto start = std::chrono::steady_clock::now();
+    for (int frame = 0; frame < o.scene.volumeUpdateFrames; ++frame)
+      updateVolume(scene, *volume, baked.bake, baked.options, r, VolumeUpdateOptions{},
+                   static_cast<unsigned>(frame));
+    if (!global.quiet)
+      fmt::print(stderr, "volume updated over {} frames in {:.2f} s\n", o.scene.volumeUpdateFrames,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  r.volume = volume ? &*volume : nullptr;
   r.seed = o.seed;
   // auto picks a real GPU for the reference only, and not for --noise (the CPU's).
   const std::unique_ptr<gpu::Context> device =
@@ -140,6 +161,11 @@ CLI::App* addRenderOptions(CLI::App& app, RenderCliOptions& o) {
   CLI::App* cmd =
       app.add_subcommand("render", "Render a glTF model or a built-in scene lit by an environment");
   addSceneOptions(cmd, opts->scene);
+  addVolumeOption(cmd, opts->scene);
+  cmd->add_option("--volume-update-frames", opts->scene.volumeUpdateFrames,
+                  "Run this many frames of the volume's live update (rays from every probe, "
+                  "blended with hysteresis 0.9) before rendering")
+      ->check(numberIn(0, 100000));
   cmd->add_option("-o,--output", opts->output,
                   "Output image: .exr (linear radiance + alpha) or .png; missing folders are "
                   "created")

@@ -37,6 +37,13 @@ MultipleScattering multipleScatteringChoice(const SceneCliOptions& o) {
   return o.multiscatter == "scale" ? MultipleScattering::Scale : MultipleScattering::Walk;
 }
 
+void addVolumeOption(CLI::App* cmd, SceneCliOptions& o) {
+  cmd->add_option("--volume", o.volume,
+                  "Split sum: an irradiance volume (a directory written by `ibl probe --volume`) "
+                  "giving the diffuse light where it covers, the probes' and environment's "
+                  "specular normalized by it");
+}
+
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   o.command = cmd;
   cmd->add_option("scene", o.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'")->required();
@@ -95,8 +102,9 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "Split sum: local light probes (directories written by `ibl probe`: one probe, "
                   "or a grid with probes.json), composed before the distant environment");
   cmd->add_flag("--force", o.force,
-                "Use --probes captured with another shading (--diffuse, --multiscatter, "
-                "--specular-micro-occlusion) than this one's: a warning instead of an error");
+                "Use --probes (or a --volume) captured with another shading (--diffuse, "
+                "--multiscatter, --specular-micro-occlusion) than this one's: a warning instead "
+                "of an error");
   cmd->add_flag("--no-parallax", o.noParallax,
                 "Split sum: read the probes without parallax correction");
   cmd->add_flag("--no-distance-roughness", o.noDistanceRoughness,
@@ -312,8 +320,10 @@ void refuseIgnoredSceneOptions(const SceneCliOptions& o) {
   refuseWhenOff(o.shadows == "ray", "--shadow-rays", "ray-traced shadows",
                 o.shadows.empty() ? "the default is --shadows map; add --shadows ray"
                                   : "--shadows " + o.shadows);
-  for (const char* option : {"--no-parallax", "--no-distance-roughness", "--force"})
+  for (const char* option : {"--no-parallax", "--no-distance-roughness"})
     refuseWhenOff(!o.probes.empty(), option, "reading of local probes", "no --probes given");
+  refuseWhenOff(!o.probes.empty() || !o.volume.empty(), "--force",
+                "reading of local probes or a volume", "no --probes or --volume given");
   refuseWhenOff(!o.lightsFile.empty(), "--spot-lumens", "spot lights' conversion of --lights",
                 "no --lights given; a glTF file's spots are in candela");
 }
@@ -338,10 +348,11 @@ void noteToneOptionsWithoutEffect(const SceneCliOptions& o, const std::string& i
 void refuseOptionsTheModeIgnores(const SceneCliOptions& o, bool reference, int spp, int bounces,
                                  float noise) {
   if (reference) {
-    for (const char* option : {"--probes", "--force", "--no-parallax", "--no-distance-roughness",
-                               "--ao", "--ssao-radius", "--ssao-quality", "--ssr-quality",
-                               "--ssr-thickness", "--shadow-map-size", "--shadow-cascades",
-                               "--shadow-rays", "--no-dominant", "--irradiance", "--area-lights"})
+    for (const char* option :
+         {"--probes", "--volume", "--force", "--no-parallax", "--no-distance-roughness", "--ao",
+          "--ssao-radius", "--ssao-quality", "--ssr-quality", "--ssr-thickness",
+          "--shadow-map-size", "--shadow-cascades", "--shadow-rays", "--no-dominant",
+          "--irradiance", "--area-lights"})
       if (given(o, option))
         failUsage(option, "is the split sum's; --mode reference does not read it");
     if (o.ssao == "on")
@@ -480,6 +491,7 @@ std::vector<std::filesystem::path> sceneInputFiles(const SceneCliOptions& o) {
   }
   std::vector<std::string> dirs = o.probes;
   if (!o.bakeDir.empty()) dirs.push_back(o.bakeDir);
+  if (!o.volume.empty()) dirs.push_back(o.volume);
   for (const std::string& dir : dirs) {
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec)) fail(dir, "no such directory");

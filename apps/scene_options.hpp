@@ -50,7 +50,10 @@ struct SceneCliOptions {
   std::string areaLights = "ltc";
   std::string sheenVisibility;      // empty: the bake's (--bake), else charlie
   std::vector<std::string> probes;  // local probe directories (split sum)
-  bool force = false;  // use probes captured with another shading (a warning, not an error)
+  std::string volume;               // an irradiance volume's directory (split sum)
+  int volumeUpdateFrames = 0;       // frames of the live update run on it before rendering
+  // Use probes or a volume captured with another shading (a warning, not an error).
+  bool force = false;
   bool noParallax = false;
   bool noDistanceRoughness = false;
   int aoRays = 0;
@@ -85,6 +88,8 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o);
 // `ibl probe` calls it alone) and reads the choice.
 void addMultipleScatteringOptions(CLI::App* cmd, SceneCliOptions& o);
 MultipleScattering multipleScatteringChoice(const SceneCliOptions& o);
+// Registers --volume DIR, the irradiance volume of `ibl probe --volume` (`ibl render`).
+void addVolumeOption(CLI::App* cmd, SceneCliOptions& o);
 
 glm::vec3 parseVec3(const std::string& text, const char* option);
 // --size as (width, height), 1 to 16384 each.

@@ -16,6 +16,7 @@
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/render/bloom.hpp"
+#include "ibl/render/irradiance_volume.hpp"
 #include "preflight.hpp"
 #include "scene_options.hpp"
 
@@ -107,6 +108,9 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
+  std::optional<IrradianceVolume> loadedVolume;
+  if (!o.scene.volume.empty()) loadedVolume = loadVolume(o.scene.volume);
+  const IrradianceVolume* volume = loadedVolume ? &*loadedVolume : nullptr;
   const std::vector<Light> ownLights = scene.lights;  // the scene's and --lights'
   const LoadedBake baked = loadOrBake(o.scene, global, hasSheen(scene));
   scene.lights.insert(scene.lights.end(), baked.lights.begin(), baked.lights.end());
@@ -124,9 +128,12 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   }
   RenderOptions shading = shadingOptions(o.scene, baked);
   shading.spp = o.scene.spp > 0 ? o.scene.spp : 4;
-  checkProbeShading(probes, shading, o.scene.force, [&](const std::string& m) {
+  shading.volume = volume;  // what the viewer composes (it reads the one it uploads)
+  const auto warn = [&](const std::string& m) {
     if (!global.quiet) fmt::print(stderr, "ibl: warning: {}\n", m);
-  });
+  };
+  checkProbeShading(probes, shading, o.scene.force, warn);
+  if (volume) checkCaptureShading(volume->capture, volume->path, shading, o.scene.force, warn);
   if (shading.realTimeShadows == ShadowMode::Map)
     requireMemory(shadowMapBytes(scene.lights, shading.shadowSettings),
                   fmt::format("shadow maps of {} texels for {} lights", o.scene.shadowMapSize,
@@ -147,7 +154,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     const RenderResult reference = tracer.result();
     RenderResult realTime;
     if (view != gpu::ViewMode::Reference) {
-      gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes);
+      gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume);
       realTime = renderer.render(camera, shading, o.skyboxMip);
     }
     // Exposed for the reference, as `ibl render --mode reference` exposes it.
@@ -167,7 +174,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     gpu::ContextOptions co;
     co.graphics = true;
     const auto context = gpu::Context::create(co);
-    gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes);
+    gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume);
     RenderResult result = renderer.render(camera, shading, o.skyboxMip);
     if (renderer.samples() < shading.spp && !global.quiet)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
@@ -233,7 +240,8 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
       return change;
     };
   }
-  const gpu::WindowStats stats = gpu::runViewerWindow(scene, baked.bake, baked.options, w, probes);
+  const gpu::WindowStats stats =
+      gpu::runViewerWindow(scene, baked.bake, baked.options, w, probes, volume);
   if (!global.quiet) {
     if (stats.samples < shading.spp)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
@@ -256,6 +264,7 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
   CLI::App* cmd = app.add_subcommand(
       "view", "Real-time viewer (Vulkan): a window, or a headless screenshot with --screenshot");
   addSceneOptions(cmd, opts->scene);
+  addVolumeOption(cmd, opts->scene);  // baked: read as captured, not updated live
   cmd->add_option("--screenshot", opts->screenshot,
                   "Render offscreen to this image (.png or .exr) and exit, without a window; "
                   "missing folders are created");

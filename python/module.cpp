@@ -669,7 +669,9 @@ PYBIND11_MODULE(ibl, m) {
       "each of a, b and mask is a path or a float (height, width, 3 or 4) array (a mask "
       "counts where its first channel is > 0.5). Returns {'pixels': n, 'overall': {...}, "
       "'r': {...}, 'g': {...}, 'b': {...}}, each with 'rmse', 'relative_mse', "
-      "'mean_relative_error', 'max_error' (in the images' units) and 'psnr_db' (decibels)."
+      "'mean_relative_error', 'max_error' (in the images' units) and 'psnr_db' (decibels), and "
+      "'frame': the luminance's 'frame_error', 'median_block_error' (4 x 4 blocks), "
+      "'off_by_2x', 'blocks' and 'black_blocks'."
       "\n\nOptions (the command's; max_rel_error is its exit status, not taken here):\n" +
       docOf<CompareOptions>(addCompareOptions,
                             {"image", "reference", "mask", "json", "max-rel-error"});

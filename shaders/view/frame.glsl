@@ -33,6 +33,11 @@ layout(std140, set = 0, binding = kFrameUniforms) uniform Frame {
   vec4 reflectionMarch;  // screen-space reflections (ibl/shared/screen_space_reflections.h):
                          // max distance, thickness, stride, max steps
   vec4 reflectionLobe;   // rays per pixel, roughness fade start and end, edge fade
+  vec4 volumeOrigin;     // the irradiance volume's VolumeGrid (ibl/shared/irradiance_volume.h):
+                         // origin, normal bias
+  vec4 volumeSpacing;    // spacing, view bias
+  ivec4 volumeCounts;    // probes per axis, rules (kVolume* bits)
+  ivec4 volumeTexels;    // the irradiance and distance tiles' interiors, 1 with a volume (0: none)
 } frame;
 layout(set = 0, binding = kFrameSpecularMap) uniform samplerCube specularMap;
 layout(set = 0, binding = kFrameIrradianceMap) uniform samplerCube irradianceMap;
@@ -100,6 +105,15 @@ layout(std430, set = 0, binding = kFrameShadowDepths) readonly buffer ShadowDept
 // each `first` the position in this array of a run of light indices.
 layout(std430, set = 0, binding = kFrameLightClusters) readonly buffer LightClusters {
   uint clusterData[];
+};
+// The irradiance volume (VolumeUpload in src/gpu/volume_upload.cpp): its atlases (RGB the
+// irradiance over pi; R, G the distance moments; the tiles as ibl/shared/irradiance_volume.h lays
+// them out), read bilinearly, and per probe its relocation record (offset, 1 when on); 1 x 1
+// zero stand-ins without a volume.
+layout(set = 0, binding = kFrameVolumeIrradiance) uniform sampler2D volumeIrradianceAtlas;
+layout(set = 0, binding = kFrameVolumeDistance) uniform sampler2D volumeDistanceAtlas;
+layout(std430, set = 0, binding = kFrameVolumeProbes) readonly buffer VolumeProbes {
+  vec4 volumeProbeData[];
 };
 // Screen-space ambient occlusion (and reflections): the view buffers (view/view_buffers.frag:
 // view-space position, w 1 where a surface is; view-space normal, w the perceptual roughness) and

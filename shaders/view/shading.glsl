@@ -6,6 +6,7 @@
 #include "ibl/shared/sh.h"
 #include "ibl/shared/probes.h"
 #include "view/shadow_maps.glsl"
+#include "view/volume.glsl"
 #include "ibl/shared/split_sum.h"
 #include "ibl/shared/screen_space_reflections.h"
 
@@ -34,6 +35,11 @@ vec3 irradianceSh9OverPi(vec3 n) {
   vec3 sum = vec3(0.0);
   for (int k = 0; k < 9; ++k) sum += frame.sh[k].rgb * shBasis(k, n);
   return sum;
+}
+
+// The distant environment's irradiance over pi toward d: the irradiance cube or the SH9.
+vec3 distantIrradiance(vec3 d) {
+  return frame.models.y == 0 ? textureLod(irradianceMap, d, 0.0).rgb : irradianceSh9OverPi(d);
 }
 
 // The clustered light lists (buildLightClusters in src/render/light_clusters.cpp): the grid of
@@ -226,9 +232,22 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
     prefiltered += distant * textureLod(specularMap, look.specularDirection, lod).rgb;
   }
   if (frame.lods.w >= 0.5 && distants.y > 0.0 && s.terms != 2)
-    irradiance += distants.y * (frame.models.y == 0
-                                 ? textureLod(irradianceMap, look.diffuseDirection, 0.0).rgb
-                                 : irradianceSh9OverPi(look.diffuseDirection));
+    irradiance += distants.y * distantIrradiance(look.diffuseDirection);
+  if (frame.volumeTexels.z != 0) {
+    // The irradiance volume gives the diffuse light where it covers, and normalizes the specular
+    // of what it replaces by its irradiance (shadeSplitSum; ibl/shared/irradiance_volume.h).
+    VolumeGrid g = frameVolumeGrid();
+    float cover = volumeCoverage(g, position);
+    if (cover > 0.0) {
+      vec3 volume = volumeLookup(g, position, n, view, look.diffuseDirection);
+      // Under --only specular the diffuse above was not gathered: the ratio is to the distant
+      // environment's.
+      vec3 source = s.terms != 2 ? irradiance
+                    : (frame.lods.w >= 0.5 ? distantIrradiance(look.diffuseDirection) : vec3(0.0));
+      prefiltered *= volumeSpecularScale(volume, source, cover);
+      irradiance = mix(irradiance, volume, cover);
+    }
+  }
   SplitSumSwitches composed = s;
   if (reflection != vec4(0.0) && s.terms != 1) {
     // Lagarde & de Rousiers 2014, 4.9.5: the screen's reflection first, the probes for the rest;

@@ -69,8 +69,63 @@ std::optional<glm::vec3> brightestDirection(const Environment& env) {
   return dir;
 }
 
+namespace {
+
+constexpr int kBlock = 4;  // the block error's block side, pixels
+
+bool inMask(const std::vector<float>* mask, std::size_t i) {
+  return !mask || (*mask)[i] > 0.5f;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  if (v.size() % 2) return *mid;
+  return 0.5 * (*mid + *std::max_element(v.begin(), mid));
+}
+
+}  // namespace
+
+FrameErrors frameErrors(const Image& a, const Image& b, const std::vector<float>* mask) {
+  FrameErrors f;
+  double absDiff = 0.0, refSum = 0.0;
+  std::size_t pixels = 0, off = 0;
+  std::vector<double> blockErrors;
+  for (int by = 0; by < b.height; by += kBlock)
+    for (int bx = 0; bx < b.width; bx += kBlock) {
+      double la = 0.0, lr = 0.0;
+      int n = 0;
+      for (int y = by; y < std::min(by + kBlock, b.height); ++y)
+        for (int x = bx; x < std::min(bx + kBlock, b.width); ++x) {
+          const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(b.width) +
+                                static_cast<std::size_t>(x);
+          if (!inMask(mask, i)) continue;
+          const double l = luminance(a.pixels[i]), r = luminance(b.pixels[i]);
+          absDiff += std::abs(l - r);
+          refSum += r;
+          if ((l > 0.0 || r > 0.0) && (l >= 2.0 * r || r >= 2.0 * l)) ++off;
+          la += l;
+          lr += r;
+          ++n;
+        }
+      pixels += static_cast<std::size_t>(n);
+      if (n == 0) continue;
+      if (lr > 0.0)
+        blockErrors.push_back(std::abs(la - lr) / lr);
+      else
+        ++f.blackBlocks;
+    }
+  f.frameError = refSum > 0.0 ? absDiff / refSum : 0.0;
+  f.offBy2x = pixels ? static_cast<double>(off) / static_cast<double>(pixels) : 0.0;
+  f.blocks = blockErrors.size();
+  f.medianBlockError = median(std::move(blockErrors));
+  return f;
+}
+
 ImageComparison compareImages(const Image& a, const Image& b, const std::vector<float>* mask) {
   ImageComparison result;
+  result.frame = frameErrors(a, b, mask);
   double sq[4] = {}, ref[4] = {}, rel[4] = {}, peak = 0.0;
   for (std::size_t i = 0; i < a.pixels.size(); ++i) {
     if (mask && (*mask)[i] <= 0.5f) continue;

@@ -28,6 +28,7 @@ VkDescriptorType descriptorTypeOf(FrameBinding binding) {
     case FrameBinding::ShadowRecords:
     case FrameBinding::ShadowDepths:
     case FrameBinding::LightClusters:
+    case FrameBinding::VolumeProbes:
       return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     default:
       return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;  // the cube maps, tables and screen images
@@ -121,6 +122,13 @@ FrameUniforms packFrameUniforms(const Camera& camera, const RenderOptions& o,
   }
   const shared::ScreenProjection projection = screenProjection(camera);
   u.projection = glm::vec4(projection.scale, projection.perspective, 0.0f);
+  if (state.volume) {
+    const shared::VolumeGrid& v = *state.volume;
+    u.volumeOrigin = glm::vec4(v.origin, v.normalBias);
+    u.volumeSpacing = glm::vec4(v.spacing, v.viewBias);
+    u.volumeCounts = glm::ivec4(v.counts, v.rules);
+    u.volumeTexels = glm::ivec4(v.irradianceTexels, v.distanceTexels, 1, 0);
+  }
   return u;
 }
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "ibl/render/camera.hpp"
 #include "ibl/render/renderer.hpp"
 #include "ibl/shared/clusters.h"
+#include "ibl/shared/irradiance_volume.h"
 #include "ibl/shared/view_bindings.h"
 
 namespace ibl::gpu {
@@ -51,8 +53,13 @@ struct FrameUniforms {
   glm::vec4 projection;        // the screen projection's scale, perspective
   glm::vec4 reflectionMarch;   // max distance, thickness, stride, max steps
   glm::vec4 reflectionLobe;    // rays, roughness fade start and end, edge fade
+  // The irradiance volume (view/frame.glsl): its VolumeGrid and whether there is one.
+  glm::vec4 volumeOrigin;   // origin, normal bias
+  glm::vec4 volumeSpacing;  // spacing, view bias
+  glm::ivec4 volumeCounts;  // probes per axis, rules (kVolume* bits)
+  glm::ivec4 volumeTexels;  // irradiance and distance tiles' interiors, 1 with a volume
 };
-static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32 + 32 + 32);
+static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32 + 32 + 32 + 64);
 
 // What the frame's block says besides the camera and the options: the state of the renderer's
 // targets, uploads (SceneUpload) and passes (ShadowPass, the light clusters) for this frame.
@@ -75,7 +82,8 @@ struct FrameState {
   int shadowMapSize = 0;
   std::size_t shadowCasters = 0;
   bool shadows = false;
-  shared::LightClusterGrid clusterGrid{};  // the light clusters of this camera
+  shared::LightClusterGrid clusterGrid{};    // the light clusters of this camera
+  std::optional<shared::VolumeGrid> volume;  // the irradiance volume's grid (none: no volume)
 };
 
 // World to clip space of `camera` (Vulkan: y down, depth 0..1), with depth planes around the

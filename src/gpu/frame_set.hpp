@@ -4,8 +4,8 @@
 // layout of a material's set (set 1), the push constants, the pipeline layout over them, the
 // frame's uniform buffer, the samplers of the frame's images and the 1 x 1 stand-ins of the
 // screen-space passes' images. Each binding is written by the part that owns what it points at
-// (SceneUpload, ShadowPass, ClusterUpload, the screen-space passes), through writeImage and
-// writeBuffer.
+// (SceneUpload, VolumeUpload, ShadowPass, ClusterUpload, the screen-space passes), through
+// writeImage and writeBuffer.
 #include <cstdint>
 #include <memory>
 #include <vector>

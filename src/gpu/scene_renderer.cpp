@@ -97,7 +97,8 @@ VkRenderPass createSceneRenderPass(VkDevice device, VkFormat depthFormat, int sa
 }  // namespace
 
 SceneRenderer::Impl::Impl(Context& c, const Scene& sceneData, const BakeResult& bake,
-                          const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes)
+                          const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes,
+                          const IrradianceVolume* irradianceVolume)
     : context(c),
       device(rasterizingDevice(c)),
       bounds(sceneData.bounds()),
@@ -105,6 +106,7 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& sceneData, const BakeResult& 
       standardSampleLocations(hasStandardSampleLocations(c)),
       frame(c),
       scene(c, frame, sceneData, bake, bakeOptions, probes),
+      volume(c, frame, irradianceVolume, volumeAtlasFormat(c)),
       shadows(c, frame, sceneData),
       clusters(c, frame),
       sceneVert(device, c.impl().shaderModule("scene_vert")),
@@ -226,6 +228,7 @@ FrameState SceneRenderer::Impl::frameState(float skyboxLod, bool shadowed) const
   s.bounds = bounds;
   s.skyboxLod = skyboxLod;
   scene.describe(s);
+  volume.describe(s);
   shadows.describe(s, shadowed);
   s.clusterGrid = clusters.grid();
   return s;
@@ -306,8 +309,9 @@ void SceneRenderer::Impl::recordScenePass(VkCommandBuffer cmd, VkFramebuffer fra
 }
 
 SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const BakeResult& bake,
-                             const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes)
-    : impl_(std::make_unique<Impl>(context, scene, bake, bakeOptions, probes)) {}
+                             const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes,
+                             const IrradianceVolume* volume)
+    : impl_(std::make_unique<Impl>(context, scene, bake, bakeOptions, probes, volume)) {}
 SceneRenderer::~SceneRenderer() = default;
 
 void SceneRenderer::setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,

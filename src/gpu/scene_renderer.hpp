@@ -2,9 +2,9 @@
 // Internal: the state behind gpu::SceneRenderer, shared with the window (which records a frame
 // of the scene into its own command buffer before tone mapping it to the swapchain). The frame's
 // parts each own what they make: the frame set (FrameSet), the scene on the device
-// (SceneUpload), the shadow maps (ShadowPass), the light clusters (ClusterUpload) and the
-// screen-space passes (view_buffer_pass.hpp); this renderer orchestrates them and draws the
-// scene's pass (the skybox and the meshes) into its targets.
+// (SceneUpload), the irradiance volume (VolumeUpload), the shadow maps (ShadowPass), the light
+// clusters (ClusterUpload) and the screen-space passes (view_buffer_pass.hpp); this renderer
+// orchestrates them and draws the scene's pass (the skybox and the meshes) into its targets.
 #include <array>
 #include <memory>
 #include <optional>
@@ -16,6 +16,7 @@
 #include "gpu/scene_upload.hpp"
 #include "gpu/shadow_pass.hpp"
 #include "gpu/view_buffer_pass.hpp"
+#include "gpu/volume_upload.hpp"
 #include "gpu/vulkan.hpp"
 #include "ibl/gpu/viewer.hpp"
 
@@ -29,6 +30,7 @@ struct SceneRenderer::Impl {
   bool standardSampleLocations;            // the device's multisamples lie where Vulkan says
   FrameSet frame;
   SceneUpload scene;
+  VolumeUpload volume;
   ShadowPass shadows;
   ClusterUpload clusters;
   // The scene pass's shaders: the meshes' (view/scene.vert and .frag) and the skybox's.
@@ -53,10 +55,10 @@ struct SceneRenderer::Impl {
   };
   std::optional<Targets> targets;
 
-  // Uploads the scene, the bake and the probes (SceneRenderer's constructor); throws Error when
-  // the context's queue cannot rasterize.
+  // Uploads the scene, the bake, the probes and the volume (SceneRenderer's constructor); throws
+  // Error when the context's queue cannot rasterize.
   Impl(Context& context, const Scene& scene, const BakeResult& bake, const BakeOptions& bakeOptions,
-       const std::vector<LocalProbe>& probes);
+       const std::vector<LocalProbe>& probes, const IrradianceVolume* volume);
   // Waits for the device to be idle; the parts then free what they made.
   ~Impl();
   Impl(const Impl&) = delete;

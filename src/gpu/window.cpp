@@ -411,6 +411,7 @@ RenderOptions viewReferenceOptions(const RenderOptions& realTime) {
   r.noiseThreshold = 0.0f;
   r.aoRays = 0;
   r.probes = nullptr;  // the reference reads none
+  r.volume = nullptr;
   r.shadowMaps = nullptr;
   r.screenOcclusion = nullptr;
   r.screenReflection = nullptr;
@@ -419,7 +420,7 @@ RenderOptions viewReferenceOptions(const RenderOptions& realTime) {
 
 WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
                             const BakeOptions& bakeOptions, const WindowOptions& o,
-                            const std::vector<LocalProbe>& probes) {
+                            const std::vector<LocalProbe>& probes, const IrradianceVolume* volume) {
   WindowResources r;
   if (!glfwInit()) fail("window", "cannot open a window (no display?); use --screenshot");
   if (!glfwVulkanSupported()) fail("window", "GLFW finds no Vulkan loader for windows");
@@ -443,7 +444,8 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   const VkSurfaceFormatKHR format = chooseSurfaceFormat(c.physical, r.surface);
   createTonemapPass(r, format.format);
   createSwapchain(r, format);
-  r.renderer = std::make_unique<SceneRenderer>(*r.context, scene, bake, bakeOptions, probes);
+  r.renderer =
+      std::make_unique<SceneRenderer>(*r.context, scene, bake, bakeOptions, probes, volume);
   auto& renderer = r.renderer->impl();
   if (o.bloom) r.bloom = std::make_unique<DeviceBloom>(*r.context);
   const int samples = renderer.supportedSamples(std::max(o.render.spp, 1));

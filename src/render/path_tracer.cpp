@@ -151,7 +151,7 @@ void preparePathTracer() {
 // Lagarde & de Rousiers 2014, 4.9.1.2: a probe capture keeps the diffuse light of the surfaces it
 // sees, so a metal (no diffuse lobe) would be black; it is seen as a diffuse surface whose albedo
 // is its F0 instead.
-static SurfacePoint metalAsDiffuse(SurfacePoint p) {
+SurfacePoint metalAsDiffuse(SurfacePoint p) {
   const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), p.baseColor, p.metallic);
   p.baseColor = p.baseColor * (1.0f - p.metallic) + p.metallic * f0;
   p.metallic = 0.0f;

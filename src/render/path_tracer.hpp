@@ -137,4 +137,8 @@ struct NearestLight {
 };
 NearestLight nearestLight(const std::vector<Light>& lights, glm::vec3 p, glm::vec3 w);
 
+// A metal seen by a probe as a diffuse surface of albedo F0 (Lagarde & de Rousiers 2014,
+// 4.9.1.2): its specular depends on the view, and it would otherwise be black.
+SurfacePoint metalAsDiffuse(SurfacePoint p);
+
 }  // namespace ibl

@@ -115,6 +115,22 @@ bool volumeContains(const ProbeVolume& v, glm::vec3 p) {
   return o.x <= v.halfExtent.x && o.y <= v.halfExtent.y && o.z <= v.halfExtent.z;
 }
 
+RenderOptions captureRenderOptions(const CaptureOptions& options, const BakeOptions& bakeOptions) {
+  RenderOptions o;
+  o.mode = RenderMode::Reference;
+  o.spp = options.spp;
+  o.bounces = options.bounces;
+  o.cameraSeesSpecular = options.specular;
+  o.diffuse = options.diffuse;
+  o.specularMicroOcclusion = options.specularMicroOcclusion;
+  o.captureMetalsAsDiffuse = options.metalsAsDiffuse;
+  o.multipleScattering = options.multipleScattering;
+  o.cameraSeesEmitters = false;
+  o.seed = options.seed;
+  o.sheenVisibility = bakeOptions.sheenVisibility;  // the sheen of the bake it lights with
+  return o;
+}
+
 ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResult& bake,
                           const BakeOptions& bakeOptions, const CaptureOptions& options,
                           const std::function<void(float)>& progress) {
@@ -128,21 +144,10 @@ ProbeCapture captureProbe(const Scene& scene, glm::vec3 position, const BakeResu
     const float tc = 2.0f * pixel.y / static_cast<float>(n) - 1.0f;
     return Ray{position, glm::normalize(faceToDirection(face, sc, tc))};
   };
-  RenderOptions o;
-  o.mode = RenderMode::Reference;
-  o.spp = options.spp;
-  o.bounces = options.bounces;
-  o.cameraSeesSpecular = options.specular;
-  o.diffuse = options.diffuse;
-  o.specularMicroOcclusion = options.specularMicroOcclusion;
-  o.captureMetalsAsDiffuse = options.metalsAsDiffuse;
+  RenderOptions o = captureRenderOptions(options, bakeOptions);
   // Premultiplied: a ray that leaves the scene brings nothing; its share is the coverage's.
   o.backgroundEnvironment = false;
   o.backgroundColor = glm::vec3(0.0f);
-  o.multipleScattering = options.multipleScattering;
-  o.cameraSeesEmitters = false;
-  o.seed = options.seed;
-  o.sheenVisibility = bakeOptions.sheenVisibility;  // the sheen of the bake it lights with
   const RenderResult strip =
       renderRays(scene, kFaceCount * n, n, faceRays, bake, bakeOptions, o, progress);
   ProbeCapture c;
@@ -198,14 +203,8 @@ std::string unusableCaptureReason(const CaptureSite& site, const ProbeCapture* c
   return {};
 }
 
-std::string probeRecordJson(const ProbePlacement& p, const CaptureOptions& capture,
-                            double captureMilliseconds) {
-  Json j;
-  j["position"] = vec3Json(p.position);
-  j["proxy"] = p.hasProxy ? volumeJson(p.proxy, p.rotationDegrees) : Json(nullptr);
-  j["influence"] = volumeJson(p.influence, p.rotationDegrees);
-  j["fade"] = p.fade;
-  j["capture"] = {{"size", capture.size},
+std::string captureRecordJson(const CaptureOptions& capture, double captureMilliseconds) {
+  const Json j = {{"size", capture.size},
                   {"spp", capture.spp},
                   {"bounces", capture.bounces},
                   {"specular", capture.specular},
@@ -214,6 +213,47 @@ std::string probeRecordJson(const ProbePlacement& p, const CaptureOptions& captu
                   {"diffuse", capture.diffuse == DiffuseModel::Lambert ? "lambert" : "disney"},
                   {"multiscatter", multipleScatteringName(capture.multipleScattering)},
                   {"specular_micro_occlusion", capture.specularMicroOcclusion}};
+  return j.dump();
+}
+
+CaptureOptions parseCaptureRecord(const std::string& text, const std::string& name) {
+  try {
+    const Json c = Json::parse(text);
+    // Records from before the shading was written were captured with the defaults.
+    CaptureOptions capture;
+    capture.multipleScattering = MultipleScattering::Scale;
+    const std::string diffuse = c.value("diffuse", "disney");
+    if (diffuse != "disney" && diffuse != "lambert")
+      throw std::runtime_error(fmt::format("unknown diffuse model '{}'", diffuse));
+    capture.diffuse = diffuse == "lambert" ? DiffuseModel::Lambert : DiffuseModel::Disney;
+    const std::string ms = c.value("multiscatter", "scale");
+    if (ms == "off")
+      capture.multipleScattering = MultipleScattering::Off;
+    else if (ms == "walk")
+      capture.multipleScattering = MultipleScattering::Walk;
+    else if (ms != "scale")
+      throw std::runtime_error(fmt::format("unknown multiple scattering '{}'", ms));
+    capture.specularMicroOcclusion = c.value("specular_micro_occlusion", false);
+    // The sampling, as written (a merge of volume shards writes it back).
+    capture.size = c.value("size", capture.size);
+    capture.spp = c.value("spp", capture.spp);
+    capture.bounces = c.value("bounces", capture.bounces);
+    capture.specular = c.value("specular", capture.specular);
+    capture.seed = c.value("seed", capture.seed);
+    return capture;
+  } catch (const std::exception& e) {
+    fail(name, fmt::format("not a capture record: {}", e.what()));
+  }
+}
+
+std::string probeRecordJson(const ProbePlacement& p, const CaptureOptions& capture,
+                            double captureMilliseconds) {
+  Json j;
+  j["position"] = vec3Json(p.position);
+  j["proxy"] = p.hasProxy ? volumeJson(p.proxy, p.rotationDegrees) : Json(nullptr);
+  j["influence"] = volumeJson(p.influence, p.rotationDegrees);
+  j["fade"] = p.fade;
+  j["capture"] = Json::parse(captureRecordJson(capture, captureMilliseconds));
   j["conventions"] = {
       {"lookup",
        "parallax-corrected along the proxy (Lagarde & Zanuttini 2012), blended back "
@@ -234,26 +274,9 @@ ProbePlacement parseProbeRecord(const std::string& text, const std::string& name
                                 CaptureOptions* capture) {
   try {
     const Json j = Json::parse(text);
-    if (capture) {
-      // Records from before the shading was written were captured with the defaults.
-      *capture = CaptureOptions{};
-      capture->multipleScattering = MultipleScattering::Scale;
-      if (j.contains("capture")) {
-        const Json& c = j.at("capture");
-        const std::string diffuse = c.value("diffuse", "disney");
-        if (diffuse != "disney" && diffuse != "lambert")
-          throw std::runtime_error(fmt::format("unknown diffuse model '{}'", diffuse));
-        capture->diffuse = diffuse == "lambert" ? DiffuseModel::Lambert : DiffuseModel::Disney;
-        const std::string ms = c.value("multiscatter", "scale");
-        if (ms == "off")
-          capture->multipleScattering = MultipleScattering::Off;
-        else if (ms == "walk")
-          capture->multipleScattering = MultipleScattering::Walk;
-        else if (ms != "scale")
-          throw std::runtime_error(fmt::format("unknown multiple scattering '{}'", ms));
-        capture->specularMicroOcclusion = c.value("specular_micro_occlusion", false);
-      }
-    }
+    if (capture)
+      *capture = j.contains("capture") ? parseCaptureRecord(j.at("capture").dump(), name)
+                                       : parseCaptureRecord("{}", name);
     ProbePlacement p;
     p.position = vec3Of(j.at("position"));
     if (!j.at("proxy").is_null()) {
@@ -289,18 +312,22 @@ std::string captureShadingMismatch(const CaptureOptions& c, const RenderOptions&
   return out;
 }
 
+void checkCaptureShading(const CaptureOptions& capture, const std::string& name,
+                         const RenderOptions& render, bool force,
+                         const std::function<void(const std::string&)>& warn) {
+  const std::string mismatch = captureShadingMismatch(capture, render);
+  if (mismatch.empty()) return;
+  const std::string message = fmt::format(
+      "{}: captured with another shading ({}): capture it again with the same "
+      "options{}",
+      name, mismatch, force ? "" : ", or give --force to use it anyway");
+  if (!force) throw Error(message);
+  if (warn) warn(message);
+}
+
 void checkProbeShading(const std::vector<LocalProbe>& probes, const RenderOptions& render,
                        bool force, const std::function<void(const std::string&)>& warn) {
-  for (const LocalProbe& p : probes) {
-    const std::string mismatch = captureShadingMismatch(p.capture, render);
-    if (mismatch.empty()) continue;
-    const std::string message = fmt::format(
-        "{}: captured with another shading ({}): capture it again with the same "
-        "options{}",
-        p.path, mismatch, force ? "" : ", or give --force to use it anyway");
-    if (!force) throw Error(message);
-    if (warn) warn(message);
-  }
+  for (const LocalProbe& p : probes) checkCaptureShading(p.capture, p.path, render, force, warn);
 }
 
 LocalProbe bakeProbe(const ProbeCapture& capture, const ProbePlacement& placement,

@@ -15,6 +15,7 @@
 #include "ibl/core/parallel.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/math/sampling.hpp"
+#include "ibl/render/irradiance_volume.hpp"
 #include "ibl/render/light_sampling.hpp"
 #include "ibl/render/ltc.hpp"
 #include "ibl/render/probe.hpp"
@@ -87,10 +88,29 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
                                               bakeOptions.specular.mapping);
     prefiltered += distant * sampleTrilinear(bake.specular, lod, look.specularDirection);
   }
+  const auto distantIrradiance = [&] {
+    return o.irradiance == IrradianceSource::Cube
+               ? sampleBilinear(bake.irradiance, 0, look.diffuseDirection)
+               : irradianceSh9(bake.sh, look.diffuseDirection) / kPi;
+  };
   if (o.environmentLight && distantDiffuse > 0.0f && o.only != ShadingTerms::Specular)
-    irradiance += distantDiffuse * (o.irradiance == IrradianceSource::Cube
-                                        ? sampleBilinear(bake.irradiance, 0, look.diffuseDirection)
-                                        : irradianceSh9(bake.sh, look.diffuseDirection) / kPi);
+    irradiance += distantDiffuse * distantIrradiance();
+  if (o.volume) {
+    // The volume gives the diffuse light where it covers, and normalizes the specular of what
+    // it replaces by its irradiance (ibl/shared/irradiance_volume.h).
+    const float cover = shared::volumeCoverage(o.volume->grid, p.position);
+    if (cover > 0.0f) {
+      const glm::vec3 volume =
+          lookupVolume(*o.volume, p.position, p.normal, view, look.diffuseDirection);
+      // Under --only specular the diffuse above was not gathered: the ratio is to the distant
+      // environment's.
+      const glm::vec3 source = o.only == ShadingTerms::Specular
+                                   ? (o.environmentLight ? distantIrradiance() : glm::vec3(0.0f))
+                                   : irradiance;
+      prefiltered *= shared::volumeSpecularScale(volume, source, cover);
+      irradiance = glm::mix(irradiance, volume, cover);
+    }
+  }
   shared::SplitSumMaterial m;
   m.baseColor = p.baseColor;
   m.metallic = p.metallic;
@@ -203,7 +223,8 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
     const auto [lo, hi] = scene.bounds();
     const ScreenOcclusion occlusion = screenSpaceAmbientOcclusion(
         renderViewBuffers(scene, camera), camera,
-        ambientOcclusionParameters(o.screenAmbientOcclusion, glm::length(hi - lo)));
+        ambientOcclusionParameters(occlusionUnderVolume(o.screenAmbientOcclusion, o.volume),
+                                   glm::length(hi - lo)));
     RenderOptions withOcclusion = o;
     withOcclusion.screenOcclusion = &occlusion;
     return renderScene(scene, camera, bake, bakeOptions, withOcclusion, progress);

@@ -15,14 +15,13 @@
 #include "ibl/bake/prefilter.hpp"
 #include "ibl/math/brdf.hpp"
 #include "support/helpers.hpp"
+#include "support/numbers.hpp"
 #include "support/quadrature.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 double charlie(double NoH, double alpha) {
   return charlieDistributionFromPaper(NoH, alpha);

@@ -24,14 +24,13 @@
 #include "ibl/io/ktx2.hpp"
 #include "support/containers.hpp"
 #include "support/helpers.hpp"
+#include "support/numbers.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 CubeMap cubeOf(const std::vector<std::vector<Image>>& levels) {
   CubeMap c;

@@ -140,11 +140,11 @@ TEST(Cli, ShWindowIsRecordedAndAppliedToEveryTarget) {
   ASSERT_EQ(r.status, 0) << r.output;
   r = runIbl(base + quote(dir / "lanczos") + " --sh-window lanczos");
   ASSERT_EQ(r.status, 0) << r.output;
-  const auto json = [&](const std::string& sub) {
+  const auto shJson = [&](const std::string& sub) {
     const auto bytes = readFileBytes(dir / sub / "sh.json");
     return nlohmann::json::parse(bytes.begin(), bytes.end());
   };
-  const auto exact = json("exact"), cmgen = json("cmgen"), lanczos = json("lanczos");
+  const auto exact = shJson("exact"), cmgen = shJson("cmgen"), lanczos = shJson("lanczos");
   EXPECT_EQ(exact["window"], "off");
   // --help shows the default a bake without the option records (it once showed lanczos).
   const CliRun help = runIbl("bake --help");
@@ -229,6 +229,31 @@ TEST(Cli, RenderAndCompare) {
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("missing.glb: no such file"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
+}
+
+// `ibl compare`'s frame figures on images written here: an 8 x 4 reference of gray 1, the
+// judged image 2 in its first 4 x 4 block: frame error 16 / 32, block errors 1 and 0 (median
+// 0.5), 16 of 32 pixels off by 2x; the text names them too.
+TEST(Cli, CompareReportsTheFrameFigures) {
+  TempDir dir;
+  Image ref(8, 4, glm::vec3(1.0f)), img(8, 4, glm::vec3(1.0f));
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) img.at(x, y) = glm::vec3(2.0f);
+  writeFileAtomic(dir / "ref.exr", encodeExr(ref, ExrPixelType::Float));
+  writeFileAtomic(dir / "img.exr", encodeExr(img, ExrPixelType::Float));
+  const std::string files = quote(dir / "img.exr") + " " + quote(dir / "ref.exr");
+  CliRun r = runIbl("compare " + files + " --json");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json frame = nlohmann::json::parse(r.output)["frame"];
+  EXPECT_NEAR(frame["frame_error"].get<double>(), 0.5, 1e-6);
+  EXPECT_NEAR(frame["median_block_error"].get<double>(), 0.5, 1e-6);
+  EXPECT_NEAR(frame["off_by_2x"].get<double>(), 0.5, 1e-12);
+  EXPECT_EQ(frame["blocks"], 2);
+  r = runIbl("compare " + files);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("frame error 0.5, median 4x4 block error 0.5, off by 2x 50 %"),
+            std::string::npos)
+      << r.output;
 }
 
 // --env none with the bundled lights file (the README's example); a bad lights file is one line
@@ -697,8 +722,8 @@ TEST(Cli, DamagedPixelsAreReportedAndRepaired) {
   EXPECT_NE(info.output.find("damaged     36 pixels in 1 region (x 304-309, y 110-115)"),
             std::string::npos)
       << info.output;
-  const CliRun json = runIbl("info --json " + damaged);
-  const auto j = nlohmann::json::parse(json.output);
+  const CliRun infoJson = runIbl("info --json " + damaged);
+  const auto j = nlohmann::json::parse(infoJson.output);
   EXPECT_EQ(j["damaged"]["pixels"], 36);
   EXPECT_EQ(j["damaged"]["regions"][0]["x1"], 309);
 

@@ -13,16 +13,15 @@
 #include "ibl/io/json_file.hpp"
 #include "ibl/math/color.hpp"
 #include "support/helpers.hpp"
+#include "support/numbers.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // What a small bake needs besides its input and output.
-const std::string kSmallBake =
+const std::string kFloatBake =
     " --size 32 --irradiance-size 32 --dfg-size 16 --dfg-samples 64 --no-preview --format rgba32f";
 
 CubeMap readCube(const std::filesystem::path& path) {
@@ -83,7 +82,7 @@ void writeDarkSky(const std::filesystem::path& path) {
 TEST(EnvScaleCli, BakeReachesTheIlluminance) {
   TempDir dir;
   const CliRun r = runIbl("bake " + quote(hdriPath("park")) + " -o " + quote(dir / "out") +
-                          kSmallBake + " --env-illuminance 1000");
+                          kFloatBake + " --env-illuminance 1000");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("--env-illuminance"), std::string::npos) << r.output;
   EXPECT_NEAR(bakedIlluminance(dir / "out"), 1000.0, 10.0);
@@ -100,7 +99,7 @@ TEST(EnvScaleCli, BakeReachesTheIlluminance) {
 TEST(EnvScaleCli, SkyIlluminanceIncludesTheSun) {
   TempDir dir;
   const CliRun r = runIbl("bake sky:elevation=30,size=128x64 -o " + quote(dir / "out") +
-                          kSmallBake + " --env-illuminance 20000");
+                          kFloatBake + " --env-illuminance 20000");
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json m = readJsonFile(dir / "out" / "manifest.json");
   ASSERT_EQ(m.at("lights").size(), 1u);
@@ -115,9 +114,9 @@ TEST(EnvScaleCli, SkyIlluminanceIncludesTheSun) {
 TEST(EnvScaleCli, IntensityDoublesTheBakeAndScalesALoadedBake) {
   TempDir dir;
   const std::string park = quote(hdriPath("park"));
-  ASSERT_EQ(runIbl("bake " + park + " -o " + quote(dir / "one") + kSmallBake).status, 0);
+  ASSERT_EQ(runIbl("bake " + park + " -o " + quote(dir / "one") + kFloatBake).status, 0);
   const CliRun r =
-      runIbl("bake " + park + " -o " + quote(dir / "two") + kSmallBake + " --env-intensity 2");
+      runIbl("bake " + park + " -o " + quote(dir / "two") + kFloatBake + " --env-intensity 2");
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* file : {"specular.ktx2", "irradiance.ktx2", "source.ktx2"})
     EXPECT_LT(maxRatioError(readCube(dir / "two" / file), readCube(dir / "one" / file), 2.0), 1e-5)
@@ -194,9 +193,9 @@ TEST(EnvScaleCli, InfoPrintsIlluminanceAndLuminance) {
       << text.output;
   EXPECT_NE(text.output.find("luminance   min 100, median 100,"), std::string::npos) << text.output;
   EXPECT_NE(text.output.find("max 400 nits"), std::string::npos) << text.output;
-  const CliRun json = runIbl("info --json " + quote(dir / "c.exr"));
-  ASSERT_EQ(json.status, 0) << json.output;
-  const nlohmann::json j = nlohmann::json::parse(json.output);
+  const CliRun info = runIbl("info --json " + quote(dir / "c.exr"));
+  ASSERT_EQ(info.status, 0) << info.output;
+  const nlohmann::json j = nlohmann::json::parse(info.output);
   EXPECT_NEAR(j.at("horizontal_illuminance").get<double>(), 100.0 * kPi, 1e-3);
   EXPECT_NEAR(j.at("luminance").at("max").get<double>(), 400.0, 1e-3);
   EXPECT_NEAR(j.at("luminance").at("median").get<double>(), 100.0, 1e-3);

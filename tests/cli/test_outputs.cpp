@@ -36,7 +36,7 @@ std::map<std::string, std::vector<std::uint8_t>> filesIn(const fs::path& dir) {
   return files;
 }
 
-const std::string kSmallBake = " --dfg-size 16 --dfg-samples 64 --quiet";
+const std::string kQuietBake = " --dfg-size 16 --dfg-samples 64 --quiet";
 
 }  // namespace
 
@@ -88,24 +88,24 @@ TEST(Outputs, ConvertToFacesOnAFullDiskWritesNone) {
 TEST(Outputs, BakeIntoAnExistingDirectory) {
   TempDir dir;
   const fs::path out = dir / "bake";
-  ASSERT_EQ(runIbl("bake -o " + quote(out) + kSmallBake + " --size 16 --exr").status, 0);
+  ASSERT_EQ(runIbl("bake -o " + quote(out) + kQuietBake + " --size 16 --exr").status, 0);
   std::ofstream(out / "notes.txt") << "mine";
   const auto before = filesIn(out);
   ASSERT_TRUE(before.count("specular_m0.exr"));
   // Not empty: refused without --force, nothing changed.
-  CliRun r = runIbl("bake -o " + quote(out) + kSmallBake + " --size 16");
+  CliRun r = runIbl("bake -o " + quote(out) + kQuietBake + " --size 16");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find(out.string() + ": exists and is not empty; pass --force"),
             std::string::npos)
       << r.output;
   EXPECT_EQ(filesIn(out), before);
   // A failure halfway (the source cube is too large for the file limit) changes nothing.
-  r = runIblWithFileLimit("bake -o " + quote(out) + kSmallBake + " --force --size 128", 256);
+  r = runIblWithFileLimit("bake -o " + quote(out) + kQuietBake + " --force --size 128", 256);
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("write failed"), std::string::npos) << r.output;
   EXPECT_EQ(filesIn(out), before);
   // --force without --exr: the EXR copies of the earlier bake go, the user's file stays.
-  r = runIbl("bake -o " + quote(out) + kSmallBake + " --force --size 32");
+  r = runIbl("bake -o " + quote(out) + kQuietBake + " --force --size 32");
   ASSERT_EQ(r.status, 0) << r.output;
   const auto after = filesIn(out);
   EXPECT_FALSE(after.count("specular_m0.exr"));
@@ -118,7 +118,7 @@ TEST(Outputs, BakeIntoAnExistingDirectory) {
 TEST(Outputs, ReadersCheckABakeAgainstItsManifest) {
   TempDir dir;
   const fs::path out = dir / "bake";
-  ASSERT_EQ(runIbl("bake -o " + quote(out) + kSmallBake + " --size 16").status, 0);
+  ASSERT_EQ(runIbl("bake -o " + quote(out) + kQuietBake + " --size 16").status, 0);
   const std::string render =
       "render sphere --size 8x8 --spp 1 -o " + quote(dir / "r.png") + " --bake " + quote(out);
   ASSERT_EQ(runIbl(render).status, 0);
@@ -151,7 +151,7 @@ TEST(Outputs, BakeErrorsNameTheUsersDirectory) {
   TempDir dir;
   const fs::path out = dir / "new";
   const CliRun r =
-      runIblWithFileLimit("bake -o " + quote(out) + kSmallBake + " --size 128 --exr", 64);
+      runIblWithFileLimit("bake -o " + quote(out) + kQuietBake + " --size 128 --exr", 64);
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("ibl: error: " + out.string() + "/"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(": write failed"), std::string::npos) << r.output;
@@ -172,7 +172,7 @@ TEST(Outputs, BakeForEngineTargets) {
   // Several (repeated or comma-separated): each in its own folder, ibl at the top.
   run = runIbl("bake " + input +
                " --size 32 --target ibl,dds,babylon --target gltf-sample-viewer -o " +
-               quote(dir / "all") + kSmallBake + " --no-preview");
+               quote(dir / "all") + kQuietBake + " --no-preview");
   ASSERT_EQ(run.status, 0) << run.output;
   for (const char* f : {"specular.ktx2", "sheen.ktx2", "dds/specular.dds", "dds/dfg.dds",
                         "gltf-sample-viewer/ggx/specular.ktx2", "gltf-sample-viewer/lut_ggx.png",
@@ -187,7 +187,7 @@ TEST(Outputs, BakeForEngineTargets) {
   EXPECT_NE(run.output.find("32x32 per face, 6 levels"), std::string::npos) << run.output;
   // A contradiction: nothing written.
   run = runIbl("bake " + input + " --size 32 --target gltf-sample-viewer --mapping frostbite -o " +
-               quote(dir / "bad") + kSmallBake);
+               quote(dir / "bad") + kQuietBake);
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.output.find("--mapping linear"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(dir / "bad"));
@@ -325,7 +325,7 @@ TEST(Outputs, ChecksRunBeforeTheInputIsRead) {
 TEST(Outputs, StaleTemporariesOfDeadProcessesAreRemoved) {
   TempDir dir;
   const fs::path out = dir / "out";
-  ASSERT_EQ(runIbl("bake -o " + quote(out) + kSmallBake + " --size 16").status, 0);
+  ASSERT_EQ(runIbl("bake -o " + quote(out) + kQuietBake + " --size 16").status, 0);
   const long dead = deadPid();
   const long live = static_cast<long>(::getpid());  // this test: alive
   const auto name = [](const std::string& file, long pid, const char* tag) {
@@ -338,7 +338,7 @@ TEST(Outputs, StaleTemporariesOfDeadProcessesAreRemoved) {
   std::ofstream(out / name("source.ktx2", dead, "old")) << "replaced";
   fs::create_directories(dir / fmt::format(".out.ibl-staging-{}", dead) / "sub");
   fs::create_directories(dir / fmt::format(".out.ibl-staging-{}", live));
-  const CliRun r = runIbl("bake -o " + quote(out) + kSmallBake + " --size 16 --force");
+  const CliRun r = runIbl("bake -o " + quote(out) + kQuietBake + " --size 16 --force");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_FALSE(fs::exists(out / name("specular.ktx2", dead, "tmp")));
   EXPECT_FALSE(fs::exists(out / name("source.ktx2", dead, "old")));  // its file is there
@@ -357,7 +357,7 @@ TEST(Outputs, InterruptsRemoveTheProcesssTemporaries) {
   for (const bool existing : {false, true}) {
     const fs::path out = dir / (existing ? "existing" : "new");
     if (existing) {
-      ASSERT_EQ(runIbl("bake -o " + quote(out) + kSmallBake + " --size 16").status, 0);
+      ASSERT_EQ(runIbl("bake -o " + quote(out) + kQuietBake + " --size 16").status, 0);
     }
     const pid_t child = ::fork();
     ASSERT_GE(child, 0);
@@ -462,7 +462,7 @@ TEST(Outputs, UnwritableOutputsFailBeforeTheWork) {
             0);
   EXPECT_TRUE(fs::is_regular_file(dir / "c" / "s.exr"));
   EXPECT_TRUE(fs::is_regular_file(dir / "d" / "e" / "sun.json"));
-  ASSERT_EQ(runIbl("bake sky:elevation=30 --size 16" + kSmallBake + " -o " +
+  ASSERT_EQ(runIbl("bake sky:elevation=30 --size 16" + kQuietBake + " -o " +
                    quote(dir / "f" / "g" / "bake"))
                 .status,
             0);

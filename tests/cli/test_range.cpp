@@ -12,13 +12,12 @@
 #include "ibl/math/color.hpp"
 #include "support/exr_writer.hpp"
 #include "support/helpers.hpp"
+#include "support/numbers.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // A 64x32 panorama: a sky of radiance 1 and a 2x2-pixel sun of 2e6 (real captures reach 1e5
 // and more), as a float EXR.

@@ -29,7 +29,7 @@ struct Misuse {
 
 // The long options `ibl COMMAND --help` lists (each "--name" that starts an option's line, and
 // a "!--no-name" negation).
-std::set<std::string> optionsInHelp(const std::string& command) {
+std::set<std::string> longOptionsInHelp(const std::string& command) {
   const CliRun help = runIbl(command + " --help");
   std::set<std::string> options;
   const std::regex line(R"(^\s+(?:-\w,)?(--[\w-]+)(?:,!(--[\w-]+))?)");
@@ -70,7 +70,7 @@ void expectMisuses(const std::string& command, const std::string& base,
       if (e.path().filename() != "park.exr") left.push_back(e.path().filename().string());
     EXPECT_TRUE(left.empty()) << command << " " << m.args << " wrote " << left.front();
   }
-  for (const std::string& option : optionsInHelp(command))
+  for (const std::string& option : longOptionsInHelp(command))
     EXPECT_TRUE(covered.count(option)) << command << " " << option << " has no misuse in the table";
 }
 
@@ -280,6 +280,11 @@ TEST(Usage, Render) {
                         {"--exr-exposed", "-o out.exr --exr-exposed=maybe", 2, "--exr-exposed"},
                         {"--seed", "-o out.png --seed -1", 2, "--seed"},
                         {"--device", "-o out.png --mode reference --device tpu", 2, "--device"},
+                        {"--volume", "-o out.png --volume nosuch", 1, "nosuch: no such directory"},
+                        {"--volume-update-frames", "-o out.png --volume-update-frames 3", 2,
+                         "--volume-update-frames: updates the volume of --volume"},
+                        {"--volume-update-frames", "-o out.png --volume-update-frames -1", 2,
+                         "--volume-update-frames: must be from 0 to"},
                         {"--device", "-o out.png --device gpu", 2,
                          "--device: gpu runs the reference: add --mode reference"},
                         {"--noise", "-o out.png --mode reference --device gpu --noise 0.1", 2,
@@ -309,6 +314,7 @@ TEST(Usage, View) {
                "ray-cast ambient occlusion is `ibl render`'s alone"},
               {"--shadows", "--screenshot out.png --shadows ray", 2,
                "--shadows: ray is `ibl render`'s alone"},
+              {"--volume", "--screenshot out.png --volume nosuch", 1, "nosuch: no such directory"},
           });
 }
 
@@ -355,6 +361,15 @@ TEST(Usage, Probe) {
           {"--diffuse", "grid --at 0,0,0 -o out --diffuse oren-nayar", 2, "--diffuse"},
           {"--specular-micro-occlusion", "grid --at 0,0,0 -o out --specular-micro-occlusion=maybe",
            2, "--specular-micro-occlusion"},
+          {"--volume", "grid --at 0,0,0 --volume 2,2,2 -o out", 2, "--at: contradicts --volume"},
+          {"--volume-size", "grid --at 0,0,0 -o out --volume-size 3", 2,
+           "--volume-size: must be from 4 to 256, not 3"},
+          {"--volume-texels", "grid --at 0,0,0 -o out --volume-texels 64", 2,
+           "--volume-texels: must be from 2 to 32, not 64"},
+          {"--normal-bias", "grid --at 0,0,0 -o out --normal-bias -1", 2,
+           "--normal-bias: must be from 0 to 1, not -1"},
+          {"--view-bias", "grid --at 0,0,0 -o out --view-bias 0.5", 2,
+           "--view-bias: sets the irradiance volume, which needs --volume"},
           {"--exclude", "grid --at 0,0,0 -o out --exclude chair", 2,
            "--exclude: no node or mesh of the scene is named 'chair'"},
       });

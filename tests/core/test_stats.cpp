@@ -54,6 +54,55 @@ TEST(Stats, ComparisonFiguresAreTheirDefinitions) {
   EXPECT_TRUE(std::isinf(masked.overall.psnr));
 }
 
+// Two 4 x 4 blocks of gray (luminance = the gray value): the reference 1 on the left, 2 on the
+// right; a has one pixel at 3 on the left, one at 0.5 and one at 5 on the right. Frame error
+// (2 + 1.5 + 3) / (16 + 32); block errors 2 / 16 and 1.5 / 32, their median the mean of the two;
+// 3 of 32 pixels off by 2x or more. Masked to the left block: that block's figures alone.
+TEST(Stats, FrameErrorsAreTheirDefinitions) {
+  Image b(8, 4), a(8, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x) a.at(x, y) = b.at(x, y) = glm::vec3(x < 4 ? 1.0f : 2.0f);
+  a.at(1, 2) = glm::vec3(3.0f);
+  a.at(5, 0) = glm::vec3(0.5f);
+  a.at(7, 3) = glm::vec3(5.0f);
+  const FrameErrors f = compareImages(a, b).frame;
+  EXPECT_NEAR(f.frameError, 6.5 / 48.0, 1e-6);
+  EXPECT_NEAR(f.medianBlockError, (2.0 / 16.0 + 1.5 / 32.0) / 2.0, 1e-6);
+  EXPECT_NEAR(f.offBy2x, 3.0 / 32.0, 1e-12);
+  EXPECT_EQ(f.blocks, 2u);
+  EXPECT_EQ(f.blackBlocks, 0u);
+  std::vector<float> mask(32, 0.0f);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) mask[static_cast<std::size_t>(y * 8 + x)] = 1.0f;
+  const FrameErrors m = frameErrors(a, b, &mask);
+  EXPECT_NEAR(m.frameError, 2.0 / 16.0, 1e-6);
+  EXPECT_NEAR(m.medianBlockError, 2.0 / 16.0, 1e-6);
+  EXPECT_NEAR(m.offBy2x, 1.0 / 16.0, 1e-12);
+  EXPECT_EQ(m.blocks, 1u);
+}
+
+// 9 x 1 pixels make blocks of 4, 4 and 1 pixels; block errors 0, 1.5 and 0.5: the median 0.5.
+// A black reference pixel is off by 2x where a is not black; a black block is left out of the
+// median, and a frame whose reference is black has no frame error.
+TEST(Stats, FrameErrorsOfPartialAndBlackBlocks) {
+  Image b(9, 1, glm::vec3(1.0f)), a(9, 1, glm::vec3(1.0f));
+  for (int x = 4; x < 8; ++x) a.at(x, 0) = glm::vec3(2.5f);
+  a.at(8, 0) = glm::vec3(1.5f);
+  const FrameErrors f = frameErrors(a, b);
+  EXPECT_NEAR(f.medianBlockError, 0.5, 1e-6);
+  EXPECT_NEAR(f.frameError, 6.5 / 9.0, 1e-6);
+  EXPECT_NEAR(f.offBy2x, 4.0 / 9.0, 1e-12);
+  EXPECT_EQ(f.blocks, 3u);
+  Image black(2, 1), lit(2, 1);
+  lit.at(1, 0) = glm::vec3(0.25f);
+  const FrameErrors d = frameErrors(lit, black);
+  EXPECT_EQ(d.frameError, 0.0);
+  EXPECT_EQ(d.medianBlockError, 0.0);
+  EXPECT_DOUBLE_EQ(d.offBy2x, 0.5);
+  EXPECT_EQ(d.blocks, 0u);
+  EXPECT_EQ(d.blackBlocks, 1u);
+}
+
 // The brightest pixel's direction is its center's; a black image has none.
 TEST(Stats, BrightestDirectionIsThePixelCenters) {
   Image img(8, 4, glm::vec3(0.1f));

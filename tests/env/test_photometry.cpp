@@ -14,15 +14,12 @@
 #include "ibl/env/resample.hpp"
 #include "ibl/math/color.hpp"
 #include "support/helpers.hpp"
+#include "support/numbers.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
-namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-}  // namespace
+namespace {}  // namespace
 
 // A constant environment L lights an upward plane with pi L: on a panorama and on cubes of even
 // and odd sizes (whose side faces have a row of texels across the horizon).

@@ -16,7 +16,7 @@ using namespace ibl::test;
 
 namespace {
 
-glm::vec3 smoothSky(glm::vec3 d) {
+glm::vec3 gradientSky(glm::vec3 d) {
   return glm::vec3(1.0f + 0.5f * d.x, 2.0f + d.y * d.y, 1.0f + 0.3f * d.z + 0.2f * d.x * d.y);
 }
 
@@ -62,7 +62,7 @@ TEST(Resample, FaceOrientationWithAxisMarkers) {
 }
 
 TEST(Resample, EquirectCubeEquirectRoundTrip) {
-  const Image src = equirectFromFunction(512, smoothSky);
+  const Image src = equirectFromFunction(512, gradientSky);
   const CubeMap cube = resampleToCube(equirectEnvironment(src), 128);
   const Image back = resampleToEquirect(cubeEnvironment(cube), 512);
   EXPECT_LT(relativeRmse(back, src), 2e-3);
@@ -125,7 +125,7 @@ TEST(Resample, RotationAboutY) {
   EXPECT_LT(glm::distance(cube.levels[0][5].at(16, 16) / 10.0f, glm::vec3(1, 0, 0)), 0.02f);
   EXPECT_LT(glm::distance(cube.levels[0][2].at(16, 16) / 10.0f, glm::vec3(0, 0, 1)), 0.02f);
   // A full turn changes nothing.
-  const Image src = equirectFromFunction(256, smoothSky);
+  const Image src = equirectFromFunction(256, gradientSky);
   const Image turned = resampleToEquirect(equirectEnvironment(src), 256, 360.0f);
   EXPECT_LT(relativeRmse(turned, src), 1e-3);
 }
@@ -153,7 +153,7 @@ TEST(Resample, CrossLayoutsRoundTripExactly) {
 
 TEST(Resample, CrossNeighboursShareEdges) {
   // In the horizontal cross, the right column of +Z continues into the left column of +X.
-  const CubeMap cube = cubeFromFunction(16, smoothSky);
+  const CubeMap cube = cubeFromFunction(16, gradientSky);
   const Image cross = crossFromCube(cube, 0, false);
   for (int y = 16; y < 32; ++y)
     EXPECT_LT(glm::distance(cross.at(31, y), cross.at(32, y)), 0.1f);  // +Z | +X

@@ -13,14 +13,13 @@
 #include "ibl/env/sky.hpp"
 #include "ibl/math/color.hpp"
 #include "ibl/shared/sky.h"
+#include "support/numbers.hpp"
 #include "support/sky.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // The sky's photometric radiance toward `d` as linear Rec.709, cd/m^2.
 glm::vec3 skyRgb(const SkyModel& sky, glm::vec3 d) {

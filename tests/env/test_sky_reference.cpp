@@ -9,14 +9,13 @@
 
 #include "ibl/env/sky.hpp"
 #include "ibl/math/color.hpp"
+#include "support/numbers.hpp"
 #include "support/sky.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // The sky's horizontal illuminance (lux) by the model and by the path-traced reference over the
 // same n x n directions, stratified and cosine-distributed (Malley: uniform points of the unit

@@ -14,16 +14,15 @@
 #include "ibl/render/scene.hpp"
 #include "support/helpers.hpp"
 #include "support/light_scenes.hpp"
+#include "support/numbers.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // A smooth sky (bluer up, a gradient around) without any compact source.
-glm::vec3 smoothSky(glm::vec3 d) {
+glm::vec3 skyWithoutSun(glm::vec3 d) {
   return {400.0f + 300.0f * d.y * d.y + 100.0f * d.x, 700.0f + 50.0f * d.z,
           1200.0f + 400.0f * std::max(d.y, 0.0f)};
 }
@@ -37,7 +36,7 @@ struct SyntheticSun {
 // The smooth sky plus a uniform disk carrying `sun.irradiance`, each pixel's coverage
 // supersampled 16 x 16 (written here, independently of the extraction's fill and moments).
 Image skyWithSun(int width, const SyntheticSun& sun) {
-  Image img = equirectFromFunction(width, smoothSky);
+  Image img = equirectFromFunction(width, skyWithoutSun);
   const double omega = 2.0 * kPi * (1.0 - std::cos(0.5 * sun.diameter));
   const glm::vec3 radiance = sun.irradiance / static_cast<float>(omega);
   const float cosRadius = std::cos(0.5f * sun.diameter);
@@ -79,7 +78,7 @@ TEST(SunExtraction, FindsAKnownSun) {
   Image img = skyWithSun(512, truth);
   // The illuminance actually painted (the pixel grid's quadrature of the disk).
   glm::dvec3 painted(0.0);
-  const Image sky = equirectFromFunction(512, smoothSky);
+  const Image sky = equirectFromFunction(512, skyWithoutSun);
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x)
       painted += glm::dvec3(img.at(x, y) - sky.at(x, y)) * equirectPixelSolidAngle(y, 512, 256);
@@ -117,7 +116,7 @@ TEST(SunExtraction, DimSunLeavesTheSkyBehindIt) {
   for (const float ratio : {40.0f, 100.0f}) {
     SyntheticSun truth;
     const double omega = 2.0 * kPi * (1.0 - std::cos(0.5 * truth.diameter));
-    const glm::vec3 radiance = ratio * smoothSky(truth.direction);
+    const glm::vec3 radiance = ratio * skyWithoutSun(truth.direction);
     truth.irradiance = radiance * static_cast<float>(omega);
     const Image original = skyWithSun(512, truth);
     Image desunned = original;
@@ -144,7 +143,7 @@ TEST(SunExtraction, DimSunLeavesTheSkyBehindIt) {
 }
 
 TEST(SunExtraction, NoCompactSourceLeavesTheImage) {
-  Image img = equirectFromFunction(256, smoothSky);
+  Image img = equirectFromFunction(256, skyWithoutSun);
   const Image before = img;
   EXPECT_FALSE(extractSun(img).has_value());
   EXPECT_EQ(img.pixels, before.pixels);

@@ -101,7 +101,7 @@ bool onItsTriangle(const gpu::Bvh& bvh, const shared::BvhHit& h, const TestRay& 
 }
 
 // Counts over a batch of rays; `mismatches` holds the first few descriptions.
-struct Comparison {
+struct EmbreeComparison {
   int rays = 0, hits = 0, grazing = 0, ties = 0, occluded = 0;
   std::vector<std::string> mismatches;
   int mismatchCount = 0;
@@ -120,11 +120,11 @@ std::string describe(const TestRay& r, float tMax) {
 // Nearest hits (every third ray with a finite tMax) and any-hit occlusion (tMax around the
 // nearest hit) of `view` over `bvh`, against Embree over `reference`; `meshMap` maps the BVH's
 // mesh ids to the reference scene's.
-Comparison compareWithEmbree(const gpu::Bvh& bvh, const shared::BvhView& view,
-                             const Scene& reference, const std::vector<TestRay>& rays,
-                             const std::vector<int>& meshMap) {
+EmbreeComparison compareWithEmbree(const gpu::Bvh& bvh, const shared::BvhView& view,
+                                   const Scene& reference, const std::vector<TestRay>& rays,
+                                   const std::vector<int>& meshMap) {
   const RayTracer tracer(reference);
-  Comparison c;
+  EmbreeComparison c;
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -178,7 +178,7 @@ Comparison compareWithEmbree(const gpu::Bvh& bvh, const shared::BvhView& view,
   return c;
 }
 
-void expectAgreement(const Comparison& c) {
+void expectAgreement(const EmbreeComparison& c) {
   EXPECT_EQ(c.mismatchCount, 0);
   for (const std::string& m : c.mismatches) ADD_FAILURE() << m;
   EXPECT_LT(c.grazing, c.rays / 100) << "rays near edges, left out";

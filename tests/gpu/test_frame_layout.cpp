@@ -56,13 +56,13 @@ TEST(FrameLayout, SetBindsEachNameOnce) {
   for (std::uint32_t b = 0; b < count; ++b) EXPECT_EQ(seen[b], 1) << "binding " << b;
 }
 
-// frame.glsl: the Frame block is a uniform buffer, Lights, Probes, ShadowRecords, ShadowDepths
-// and LightClusters are buffers, the rest samplers; the vertex shaders read the block and the
-// shadow records (view/shadow.vert).
+// frame.glsl: the Frame block is a uniform buffer, Lights, Probes, ShadowRecords, ShadowDepths,
+// LightClusters and VolumeProbes are buffers, the rest samplers; the vertex shaders read the block
+// and the shadow records (view/shadow.vert).
 TEST(FrameLayout, SetTypesAndStagesFollowFrameGlsl) {
-  const std::vector<FrameBinding> buffers{FrameBinding::Lights, FrameBinding::Probes,
+  const std::vector<FrameBinding> buffers{FrameBinding::Lights,        FrameBinding::Probes,
                                           FrameBinding::ShadowRecords, FrameBinding::ShadowDepths,
-                                          FrameBinding::LightClusters};
+                                          FrameBinding::LightClusters, FrameBinding::VolumeProbes};
   for (const VkDescriptorSetLayoutBinding& b : gpu::frameSetBindings()) {
     const auto name = static_cast<FrameBinding>(b.binding);
     bool buffer = false;
@@ -102,7 +102,11 @@ TEST(FrameUniforms, Std140OffsetsFollowFrameGlsl) {
   EXPECT_EQ(offsetof(FrameUniforms, projection), 448u);
   EXPECT_EQ(offsetof(FrameUniforms, reflectionMarch), 464u);
   EXPECT_EQ(offsetof(FrameUniforms, reflectionLobe), 480u);
-  EXPECT_EQ(sizeof(FrameUniforms), 496u);
+  EXPECT_EQ(offsetof(FrameUniforms, volumeOrigin), 496u);
+  EXPECT_EQ(offsetof(FrameUniforms, volumeSpacing), 512u);
+  EXPECT_EQ(offsetof(FrameUniforms, volumeCounts), 528u);
+  EXPECT_EQ(offsetof(FrameUniforms, volumeTexels), 544u);
+  EXPECT_EQ(sizeof(FrameUniforms), 560u);
 }
 
 // A point anywhere on the ray through a pixel lands on that pixel (Vulkan: y down), in front of
@@ -197,6 +201,22 @@ TEST(FrameUniforms, SwitchesAndStateGoWhereFrameGlslReadsThem) {
   EXPECT_EQ(u.ambientOcclusion, glm::vec4(0.0f));
   EXPECT_EQ(u.reflectionMarch, glm::vec4(0.0f));
   EXPECT_EQ(u.reflectionLobe, glm::vec4(0.0f));
+  EXPECT_EQ(u.volumeTexels, glm::ivec4(0));  // no irradiance volume
+  shared::VolumeGrid g{};
+  g.origin = glm::vec3(-1.0f, 0.5f, 2.0f);
+  g.spacing = glm::vec3(0.5f, 0.25f, 1.0f);
+  g.counts = glm::ivec3(3, 2, 4);
+  g.normalBias = 0.05f;
+  g.viewBias = 0.2f;
+  g.irradianceTexels = 8;
+  g.distanceTexels = 16;
+  g.rules = shared::kVolumeVisibility;
+  s.volume = g;
+  const FrameUniforms v = gpu::packFrameUniforms(camera, o, s);
+  EXPECT_EQ(v.volumeOrigin, glm::vec4(-1.0f, 0.5f, 2.0f, 0.05f));
+  EXPECT_EQ(v.volumeSpacing, glm::vec4(0.5f, 0.25f, 1.0f, 0.2f));
+  EXPECT_EQ(v.volumeCounts, glm::ivec4(3, 2, 4, shared::kVolumeVisibility));
+  EXPECT_EQ(v.volumeTexels, glm::ivec4(8, 16, 1, 0));
   o.screenAmbientOcclusion.enabled = true;
   o.screenReflections.enabled = true;
   const FrameUniforms on = gpu::packFrameUniforms(camera, o, s);

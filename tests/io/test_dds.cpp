@@ -38,13 +38,13 @@ TEST(Dds, Dx10CubeWithMipsFollowsTheSpecification) {
   const std::size_t faceTexels = 64 + 16 + 4 + 1;
   EXPECT_EQ(b.size(), 148 + 6 * faceTexels * 8);
   const std::size_t at = 148 + 8 * (3 * faceTexels + 64 + 16 + (1 + 1 * 2));  // texel (1, 1)
-  const auto half = [&](std::size_t i) {
+  const auto halfAt = [&](std::size_t i) {
     return halfToFloat(static_cast<std::uint16_t>(b[i] | (b[i + 1] << 8)));
   };
-  EXPECT_EQ(half(at), 4.0f);              // face + 1
-  EXPECT_EQ(half(at + 2), 2.5f);          // level + 0.5
-  EXPECT_EQ(half(at + 4), 0.25f * 3.0f);  // (x + 2 y) / 4
-  EXPECT_EQ(half(at + 6), 1.0f);          // alpha
+  EXPECT_EQ(halfAt(at), 4.0f);              // face + 1
+  EXPECT_EQ(halfAt(at + 2), 2.5f);          // level + 0.5
+  EXPECT_EQ(halfAt(at + 4), 0.25f * 3.0f);  // (x + 2 y) / 4
+  EXPECT_EQ(halfAt(at + 6), 1.0f);          // alpha
 
   const DdsTexture back = decodeDds(b, "t.dds");
   ASSERT_EQ(back.levels.size(), 4u);

@@ -8,15 +8,12 @@
 #include "ibl/core/error.hpp"
 #include "ibl/io/image_io.hpp"
 #include "support/helpers.hpp"
+#include "support/text_file.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
-
-std::vector<std::uint8_t> bytesOf(const std::string& s) {
-  return {s.begin(), s.end()};
-}
 
 // A flat (uncompressed) RGBE file whose pixel i of the file order has mantissa i + 10 and
 // exponent 129 (value (i + 10.5) / 128).

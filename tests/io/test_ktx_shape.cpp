@@ -10,23 +10,15 @@
 #include "../../src/io/ktx_shape.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/core/image.hpp"
+#include "support/helpers.hpp"
 
 namespace {
 
 using ibl::KtxShape;
+using ibl::test::errorOf;
 
 const ibl::KtxFieldNames kKtx1Names{"numberOfFaces", "numberOfMipmapLevels"};
 const ibl::KtxFieldNames kKtx2Names{"faceCount", "levelCount"};
-
-// The message of the Error that f throws ("" when it throws none).
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ibl::Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 std::string shapeError(const KtxShape& shape, const ibl::KtxFieldNames& names) {
   return errorOf([&] { ibl::checkKtxShape("f.ktx", shape, names); });

@@ -10,16 +10,10 @@
 #include <gtest/gtest.h>
 
 #include "../../src/io/text_codecs.hpp"
+#include "support/text_file.hpp"
 
 using namespace ibl;
-
-namespace {
-
-std::vector<std::uint8_t> bytesOf(std::string_view s) {
-  return {s.begin(), s.end()};
-}
-
-}  // namespace
+using ibl::test::bytesOf;
 
 // RFC 4648 section 10: BASE64("") = "", BASE64("f") = "Zg==", ... BASE64("foobar") = "Zm9vYmFy";
 // decoded with or without the padding, and sized without decoding.

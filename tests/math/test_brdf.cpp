@@ -9,11 +9,12 @@
 
 #include "ibl/bake/dfg.hpp"
 #include "ibl/math/brdf.hpp"
+#include "support/numbers.hpp"
 
 using namespace ibl;
 
 namespace {
-constexpr double kPi = std::numbers::pi;
+using ibl::test::kPi;
 }
 
 TEST(Brdf, GgxIsNormalized) {

@@ -12,12 +12,13 @@
 #include "ibl/render/ambient_occlusion.hpp"
 #include "ibl/render/view_buffers.hpp"
 #include "ibl/shared/split_sum.h"
+#include "support/numbers.hpp"
 
 using namespace ibl;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ibl::test::kPi;
 
 struct PlaneHit {
   float t;

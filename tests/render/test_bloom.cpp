@@ -94,10 +94,10 @@ TEST(Bloom, TheThresholdFollowsTheExposure) {
   // At one exposure the threshold is what it says: at EV100 2 and EC 2, luminance 2. A bright
   // left half just below it leaves the dark right half dark; just above it, light crosses over.
   for (float level : {1.98f, 2.02f}) {
-    Image half(32, 32);
+    Image halfLit(32, 32);
     for (int y = 0; y < 32; ++y)
-      for (int x = 0; x < 16; ++x) half.at(x, y) = glm::vec3(level);
-    const float crossed = applyBloom(half, 2.0f, 2.0f).at(17, 16).x;
+      for (int x = 0; x < 16; ++x) halfLit.at(x, y) = glm::vec3(level);
+    const float crossed = applyBloom(halfLit, 2.0f, 2.0f).at(17, 16).x;
     if (level < 2.0f) {
       EXPECT_EQ(crossed, 0.0f);
     } else {

@@ -16,7 +16,7 @@ using namespace ibl::test;
 namespace {
 
 // Small cubes and tables, for speed: a specular cube and a DFG table of 16 texels.
-BakeOptions smallBake() {
+BakeOptions smallBakeOptions() {
   BakeOptions o;
   o.specular.size = o.dfgSize = 16;
   o.irradianceSize = 8;
@@ -48,7 +48,7 @@ void expectSameCube(const CubeMap& a, const CubeMap& b) {
 }  // namespace
 
 TEST(EnvironmentLighting, BakesTheFullSourceChainAndKeepsTheSun) {
-  const EnvironmentLighting l = bakeEnvironmentLighting(gradient(), {sun()}, smallBake());
+  const EnvironmentLighting l = bakeEnvironmentLighting(gradient(), {sun()}, smallBakeOptions());
   // The source cube's mips go down to 1 texel: log2(16) + 1 = 5 levels.
   EXPECT_EQ(l.bake.source.size(), 16);
   EXPECT_EQ(l.bake.source.levels.size(), 5u);
@@ -62,7 +62,7 @@ TEST(EnvironmentLighting, BakesTheFullSourceChainAndKeepsTheSun) {
 }
 
 TEST(EnvironmentLighting, AWrittenBakeReadsBackTheSameData) {
-  BakeOptions options = smallBake();
+  BakeOptions options = smallBakeOptions();
   options.sheen = true;
   options.sheenVisibility = SheenVisibility::Neubelt;
   const EnvironmentLighting baked = bakeEnvironmentLighting(gradient(), {sun()}, options);
@@ -93,7 +93,7 @@ TEST(EnvironmentLighting, AWrittenBakeReadsBackTheSameData) {
 }
 
 TEST(EnvironmentLighting, ABakeWithoutASheenTableKeepsTheAskedVisibility) {
-  const EnvironmentLighting baked = bakeEnvironmentLighting(gradient(), {}, smallBake());
+  const EnvironmentLighting baked = bakeEnvironmentLighting(gradient(), {}, smallBakeOptions());
   TempDir dir;
   BakeOutputOptions output;
   output.preview = false;
@@ -107,7 +107,7 @@ TEST(EnvironmentLighting, ABakeWithoutASheenTableKeepsTheAskedVisibility) {
 }
 
 TEST(EnvironmentLighting, WithoutAnEnvironmentABlackOneIsBakedSmall) {
-  BakeOptions options = smallBake();
+  BakeOptions options = smallBakeOptions();
   options.specular.size = 256;  // replaced: 16
   options.irradianceSize = 32;  // replaced: 8
   options.sheen = true;
@@ -128,7 +128,7 @@ TEST(EnvironmentLighting, IlluminanceAndItsScale) {
   // the sun adds 1000 lx x 0.6 (the cosine of its direction with the vertical).
   EnvironmentLighting l = bakeEnvironmentLighting(
       equirectEnvironment(equirectFromFunction(32, [](glm::vec3) { return glm::vec3(1.0f); })),
-      {sun()}, smallBake());
+      {sun()}, smallBakeOptions());
   const double expected = std::numbers::pi + 600.0;
   EXPECT_NEAR(horizontalIlluminance(l), expected, 1e-4 * expected);
   const Image dfg = l.bake.dfg;

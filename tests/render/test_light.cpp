@@ -14,12 +14,13 @@
 #include "ibl/math/color.hpp"
 #include "ibl/render/light.hpp"
 #include "ibl/shared/lights.h"
+#include "support/numbers.hpp"
 
 using namespace ibl;
 
 namespace {
 
-constexpr float kPi = std::numbers::pi_v<float>;
+using ibl::test::kPiF;
 
 std::vector<Light> parse(const std::string& lights) {
   return parseLights(R"({"lights": [)" + lights + "]}", "lights.json", ".");
@@ -68,14 +69,14 @@ double powerFromFarField(const Light& light) {
   for (int i = 0; i < n; ++i) {
     const double c = -1.0 + 2.0 * (i + 0.5) / n, sn = std::sqrt(1.0 - c * c);
     for (int j = 0; j < n; ++j) {
-      const double phi = 2.0 * kPi * (j + 0.5) / n;
+      const double phi = 2.0 * kPiF * (j + 0.5) / n;
       const glm::vec3 w =
           glm::normalize(static_cast<float>(sn * std::cos(phi)) * x +
                          static_cast<float>(sn * std::sin(phi)) * y + static_cast<float>(c) * z);
       sum += farIntensity(light, w);
     }
   }
-  return sum * (2.0 / n) * (2.0 * kPi / n);
+  return sum * (2.0 / n) * (2.0 * kPiF / n);
 }
 
 }  // namespace
@@ -108,7 +109,7 @@ TEST(LightsFile, EveryTypeAndUnit) {
                              LightType::Sun,   LightType::Sphere, LightType::Disk,
                              LightType::Tube,  LightType::Rect,   LightType::Spot};
   for (std::size_t i = 0; i < l.size(); ++i) EXPECT_EQ(l[i].type, types[i]) << i;
-  const double pi = kPi, rectColor = luminance(glm::vec3(1, 0.5f, 0.25f));
+  const double pi = kPiF, rectColor = luminance(glm::vec3(1, 0.5f, 0.25f));
   // Lumens: the far field over the sphere gives them back (within 1e-3: the quadrature, and the
   // far field at 200 m of lights up to 2 m wide).
   std::vector<double> power(l.size(), 0.0);

@@ -13,13 +13,12 @@
 #include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
 #include "support/light_scenes.hpp"
+#include "support/numbers.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // A white Lambert plane (diffuse only: radiance = E / pi exactly) lit by the lights.
 Scene whitePlane(const std::vector<Light>& lights) {
@@ -95,10 +94,10 @@ TEST(LightRender, SunIlluminanceGivesRadianceEOverPi) {
 // A spot's lumens, converted the physical way, all land inside its cone: integrating E over
 // the lit disk of the plane below gives them back.
 TEST(LightRender, SpotLumensAllReachThePlane) {
-  const std::string json = R"({"lights": [{"type": "spot", "position": [0, 1, 0],
+  const std::string spotLights = R"({"lights": [{"type": "spot", "position": [0, 1, 0],
       "direction": [0, -1, 0], "inner_angle": 30, "outer_angle": 30, "intensity": 1000,
       "unit": "lm"}]})";
-  const std::vector<Light> lights = parseLights(json, "spot.json", ".");
+  const std::vector<Light> lights = parseLights(spotLights, "spot.json", ".");
   const Camera camera = topDownCamera(glm::vec3(0.0f), 1.4f, 256);
   const RenderResult r = renderScene(whitePlane(lights), camera, sharedBake().result,
                                      sharedBake().options, lambertOnly(RenderMode::SplitSum, 4));
@@ -107,7 +106,8 @@ TEST(LightRender, SpotLumensAllReachThePlane) {
   for (const glm::vec3& c : r.color.pixels) flux += kPi * c.x * pixelArea;
   EXPECT_NEAR(flux, 1000.0, 10.0);
   // Frostbite's conversion keeps the intensity of a 1 sr... of I = phi / pi instead.
-  const std::vector<Light> frostbite = parseLights(json, "spot.json", ".", SpotLumens::Frostbite);
+  const std::vector<Light> frostbite =
+      parseLights(spotLights, "spot.json", ".", SpotLumens::Frostbite);
   EXPECT_NEAR(frostbite[0].intensity, 1000.0 / kPi, 1e-3);
 }
 

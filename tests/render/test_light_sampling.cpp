@@ -13,13 +13,14 @@
 
 #include "ibl/math/sampling.hpp"
 #include "ibl/render/light_sampling.hpp"
+#include "support/numbers.hpp"
 #include "support/quadrature.hpp"
 
 using namespace ibl;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ibl::test::kPi;
 
 using ibl::test::completeFrame;
 

@@ -12,6 +12,7 @@
 
 #include "ibl/render/ltc.hpp"
 #include "ibl/shared/ltc.h"
+#include "support/numbers.hpp"
 #include "support/quadrature.hpp"
 
 namespace s = ibl::shared;
@@ -22,7 +23,7 @@ using ibl::test::rectToward;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ibl::test::kPi;
 
 // The GGX lobe times the cosine (no Fresnel) at the origin, normal +z, view v, in double.
 double ggxLobe(glm::dvec3 v, glm::dvec3 l, double alpha) {

@@ -70,7 +70,7 @@ TEST(PathTracer, ClosedLambertianFurnace) {
 namespace {
 
 // A patch of a box wall: corner, edges, inward normal, and what it emits and reflects.
-struct Patch {
+struct WallPatch {
   glm::vec3 corner, u, v, normal;
   glm::vec3 emission, albedo;
   float area() const { return glm::length(glm::cross(u, v)); }
@@ -89,7 +89,7 @@ TEST(PathTracer, CornellBoxAgreesWithRadiosity) {
   constexpr int n = 8, q = 4;
   const glm::vec3 white(0.73f), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.09f);
   const glm::vec3 le(1.0f);
-  std::vector<Patch> patches;
+  std::vector<WallPatch> patches;
   Scene scene;
   const glm::vec3 center(0.5f);
   for (int wall = 0; wall < 6; ++wall) {
@@ -106,12 +106,12 @@ TEST(PathTracer, CornellBoxAgreesWithRadiosity) {
       for (int j = 0; j < n; ++j) {
         // The ceiling (+Y) emits but for its outer ring of patches.
         const bool lamp = wall == 3 && i > 0 && i < n - 1 && j > 0 && j < n - 1;
-        Patch p{origin + static_cast<float>(i) * u + static_cast<float>(j) * v,
-                u,
-                v,
-                normal,
-                lamp ? le : glm::vec3(0.0f),
-                albedo};
+        WallPatch p{origin + static_cast<float>(i) * u + static_cast<float>(j) * v,
+                    u,
+                    v,
+                    normal,
+                    lamp ? le : glm::vec3(0.0f),
+                    albedo};
         patches.push_back(p);
         Material m;
         m.baseColor = albedo;
@@ -134,7 +134,7 @@ TEST(PathTracer, CornellBoxAgreesWithRadiosity) {
   for (std::size_t i = 0; i < count; ++i)
     for (std::size_t j = 0; j < count; ++j) {
       if (i == j || patches[i].normal == patches[j].normal) continue;  // coplanar: 0
-      const Patch &a = patches[i], &b = patches[j];
+      const WallPatch &a = patches[i], &b = patches[j];
       double sum = 0.0;
       for (int s = 0; s < q * q; ++s)
         for (int t = 0; t < q * q; ++t) {
@@ -174,7 +174,7 @@ TEST(PathTracer, CornellBoxAgreesWithRadiosity) {
   const RenderResult traced = renderRays(
       scene, static_cast<int>(count), 1,
       [&](glm::vec2 pixel) {
-        const Patch& p = patches[std::min(static_cast<std::size_t>(pixel.x), count - 1)];
+        const WallPatch& p = patches[std::min(static_cast<std::size_t>(pixel.x), count - 1)];
         const float fu = pixel.x - std::floor(pixel.x), fv = pixel.y - std::floor(pixel.y);
         return Ray{center, glm::normalize(p.corner + fu * p.u + fv * p.v - center)};
       },

@@ -45,7 +45,7 @@ struct Bake {
   BakeResult result;
 };
 
-Bake bakeOf(const RadianceFn& f, int size) {
+Bake probeBakeOf(const RadianceFn& f, int size) {
   Bake b;
   b.options.specular.size = size;
   b.options.irradianceSize = 16;
@@ -91,7 +91,7 @@ TEST(Probes, NestedProbesComposeSmallestFirst) {
   const glm::vec3 red(1.0f, 0.25f, 0.125f), blue(0.125f, 0.25f, 1.0f);  // exact in half floats
   const auto writeProbe = [&](const char* name, glm::vec3 color, const ProbeVolume& influence,
                               float fade) {
-    const Bake b = bakeOf([color](glm::vec3) { return color; }, 8);
+    const Bake b = probeBakeOf([color](glm::vec3) { return color; }, 8);
     ProbePlacement p;
     p.position = influence.center;
     p.influence = influence;
@@ -200,7 +200,7 @@ TEST(Probes, ParallaxIsExactForAMirrorInABoxRoom) {
       glm::vec3(1.0f, 1.0f, 0.2f), glm::vec3(0.2f, 1.0f, 1.0f), glm::vec3(1.0f, 0.2f, 1.0f)};
   for (int w = 0; w < 6; ++w) room.walls[w] = {emitting(colors[w]), emitting(0.3f * colors[w])};
   const Scene empty = makeRoom(room);
-  const Bake black = bakeOf([](glm::vec3) { return glm::vec3(0.0f); }, 16);
+  const Bake black = probeBakeOf([](glm::vec3) { return glm::vec3(0.0f); }, 16);
   CaptureOptions capture;
   capture.size = 128;
   capture.spp = 4;
@@ -264,7 +264,7 @@ TEST(Probes, BoxCorrectionBeatsTheDistantEnvironmentInARoom) {
   lamp.radius = 0.4f;
   lamp.intensity = 20.0f;  // nit
   empty.lights.push_back(lamp);
-  const Bake sky = bakeOf(
+  const Bake sky = probeBakeOf(
       [](glm::vec3 d) { return glm::vec3(0.4f, 0.6f, 1.0f) * (1.0f + 2.0f * std::max(d.y, 0.0f)); },
       32);
   CaptureOptions capture;
@@ -350,7 +350,7 @@ TEST(Probes, RayCastAmbientOcclusionMatchesTheWallFormula) {
   scene.materials.push_back(white);
   addQuad(scene, {-50, 0, -50}, {100, 0, 0}, {0, 0, 100}, 0, {0, 1, 0});  // the floor, y = 0
   addQuad(scene, {0, 0, -50}, {0, 100, 0}, {0, 0, 100}, 0, {-1, 50, 0});  // the wall, x = 0
-  const Bake sky = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
+  const Bake sky = probeBakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
   Camera camera;
   camera.perspective = false;
   camera.from = glm::vec3(-0.55f, 5.0f, 0.0f);
@@ -485,7 +485,7 @@ TEST(Probes, CaptureSeesAMetalAsADiffuseSurfaceOfAlbedoF0) {
   metal.metallic = 1.0f;
   metal.roughness = 0.2f;
   const Scene scene = floorScene(metal);
-  const Bake env = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
+  const Bake env = probeBakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
   CaptureOptions capture;
   capture.size = 8;
   capture.spp = 256;
@@ -503,13 +503,13 @@ TEST(Probes, CaptureSeesAMetalAsADiffuseSurfaceOfAlbedoF0) {
   EXPECT_EQ(faceCenter(c.radiance, up), glm::vec3(0.0f));
   // Half metallic: the diffuse albedo (1 - m) base plus the metal's share of F0,
   // m mix(0.04, base, m) = 0.75 base + 0.01 (a plain dielectric would be the base color).
-  Material half = metal;
-  half.metallic = 0.5f;
-  const ProbeCapture h =
-      captureProbe(floorScene(half), glm::vec3(0.0f, 0.5f, 0.0f), env.result, env.options, capture);
+  Material halfMetal = metal;
+  halfMetal.metallic = 0.5f;
+  const ProbeCapture h = captureProbe(floorScene(halfMetal), glm::vec3(0.0f, 0.5f, 0.0f),
+                                      env.result, env.options, capture);
   const glm::vec3 seen = faceCenter(h.radiance, down);
   for (int k = 0; k < 3; ++k)
-    EXPECT_NEAR(seen[k] / (0.75f * half.baseColor[k] + 0.01f), 1.0f, 0.03f) << k;
+    EXPECT_NEAR(seen[k] / (0.75f * halfMetal.baseColor[k] + 0.01f), 1.0f, 0.03f) << k;
 }
 
 TEST(Probes, TheDistantEnvironmentFillsWhatACaptureDoesNotCover) {
@@ -518,7 +518,7 @@ TEST(Probes, TheDistantEnvironmentFillsWhatACaptureDoesNotCover) {
   // filled by the distant environment: the same as without the probe), one facing down the floor
   // (0.5 of the sky's value, where the distant environment alone would give the sky's 1).
   const Scene scene = floorScene(diffuse(glm::vec3(0.5f)));
-  const Bake env = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
+  const Bake env = probeBakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
   CaptureOptions capture;
   capture.size = 16;
   capture.spp = 64;

@@ -259,8 +259,8 @@ TEST(Render, PixelSamplesCoverThePixelAtAnyCount) {
         (y < n / 2 ? top : bottom) += a;
         (x < n / 2 ? left : right) += a;
       }
-    for (double half : {top, bottom, left, right})
-      EXPECT_NEAR(half / halfDisk, 1.0, 0.02) << "spp " << spp;
+    for (double side : {top, bottom, left, right})
+      EXPECT_NEAR(side / halfDisk, 1.0, 0.02) << "spp " << spp;
   }
 }
 

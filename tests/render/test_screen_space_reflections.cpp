@@ -28,7 +28,7 @@ struct Box {
 };
 const Box kBoxes[] = {{{-0.6f, 0.4f, 0.0f}, {0.3f, 0.4f, 0.3f}, {4.0f, 0.4f, 0.2f}},
                       {{0.7f, 0.3f, -0.5f}, {0.25f, 0.3f, 0.25f}, {0.2f, 0.6f, 3.0f}}};
-constexpr float kSky = 0.5f;
+constexpr float kSkyRadiance = 0.5f;
 
 // The distance along the ray to the box (slabs) and the face's outward normal there.
 std::optional<std::pair<float, glm::vec3>> hitBox(const Box& b, glm::vec3 o, glm::vec3 d) {
@@ -105,7 +105,7 @@ Camera floorView() {
 }
 
 const Baked& uniformSky() {
-  static const Baked b = bakeOf([](glm::vec3) { return glm::vec3(kSky); }, 32);
+  static const Baked b = bakeOf([](glm::vec3) { return glm::vec3(kSkyRadiance); }, 32);
   return b;
 }
 
@@ -175,7 +175,7 @@ TEST(ScreenSpaceReflections, TheProbesShareTakesTheSpecularOcclusionOfAlpha) {
   // is 1 and with ao = 0 it is 0, so per pixel (c(ao) - c(0)) / (c(1) - c(0)) is so(ao) itself,
   // whatever R, w, P and the scale are.
   const float roughness = 0.2f, ao = 0.3f;
-  const RenderResult open = renderOccludedFloor(0.0f), half = renderOccludedFloor(1.0f - ao),
+  const RenderResult open = renderOccludedFloor(0.0f), partial = renderOccludedFloor(1.0f - ao),
                      closed = renderOccludedFloor(1.0f);
   const Camera camera = floorView();
   const Scene scene = mirrorFloorScene(roughness);
@@ -197,8 +197,8 @@ TEST(ScreenSpaceReflections, TheProbesShareTakesTheSpecularOcclusionOfAlpha) {
       const Traced seen = trace(ray.origin, ray.direction);
       if (seen.t < 0.0f || seen.box >= 0) continue;
       const double span = closed.color.at(x, y).x - open.color.at(x, y).x;
-      if (std::abs(span) < 0.02 * kSky) continue;  // the probes' share is too small to read
-      const double measured = (half.color.at(x, y).x - closed.color.at(x, y).x) /
+      if (std::abs(span) < 0.02 * kSkyRadiance) continue;  // the probes' share is too small to read
+      const double measured = (partial.color.at(x, y).x - closed.color.at(x, y).x) /
                               (open.color.at(x, y).x - closed.color.at(x, y).x);
       const double NoV = std::max(static_cast<double>(-ray.direction.y), 1e-4);
       const double expected =
@@ -244,8 +244,8 @@ TEST(ScreenSpaceReflections, MirrorFloorShowsWhatTheTracedReflectionMeets) {
         if (std::max({w.x, w.y, w.z}) <= tolerance) ++withoutMatched;
       } else if (target == -1) {
         ++sky;
-        const glm::vec3 d = glm::abs(c - glm::vec3(kSky));
-        if (std::max({d.x, d.y, d.z}) <= 0.02f * kSky) ++skyMatched;
+        const glm::vec3 d = glm::abs(c - glm::vec3(kSkyRadiance));
+        if (std::max({d.x, d.y, d.z}) <= 0.02f * kSkyRadiance) ++skyMatched;
         if (traced.reflection[static_cast<std::size_t>(y) * camera.width + x].w < 0.02f)
           ++skyMissed;
       }
@@ -272,12 +272,12 @@ TEST(ScreenSpaceReflections, RoughLobesFadeToTheProbes) {
   ScreenReflectionSettings settings;
   settings.quality = ReflectionQuality::High;
   const shared::ReflectionParameters p = reflectionParameters(settings, 8.0f);
-  const ScreenReflections half = screenSpaceReflections(buffers, lit, camera, p);
+  const ScreenReflections halfRough = screenSpaceReflections(buffers, lit, camera, p);
   std::fill(buffers.roughness.begin(), buffers.roughness.end(), 0.02f);
   const ScreenReflections sharp = screenSpaceReflections(buffers, lit, camera, p);
   float halfMax = 0.0f, sharpMax = 0.0f;
-  for (std::size_t i = 0; i < half.reflection.size(); ++i) {
-    halfMax = std::max(halfMax, half.reflection[i].w);
+  for (std::size_t i = 0; i < halfRough.reflection.size(); ++i) {
+    halfMax = std::max(halfMax, halfRough.reflection[i].w);
     sharpMax = std::max(sharpMax, sharp.reflection[i].w);
     // Radiance 1 everywhere on the lit frame: the premultiplied rgb is the alpha.
     ASSERT_NEAR(sharp.reflection[i].x, sharp.reflection[i].w, 1e-5f);

@@ -38,14 +38,14 @@ TEST(ViewBuffers, PixelsHoldTheFirstPointTheirRayMeets) {
       const Ray r = camera.generateRay(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
       // |o + t d - c|^2 = radius^2, the nearer root.
       const glm::vec3 o = r.origin - center;
-      const float half = glm::dot(o, r.direction), c = glm::dot(o, o) - radius * radius;
+      const float halfB = glm::dot(o, r.direction), c = glm::dot(o, o) - radius * radius;
       const std::size_t i = static_cast<std::size_t>(y) * camera.width + x;
-      if (half * half - c < 0.0f) {
+      if (halfB * halfB - c < 0.0f) {
         EXPECT_EQ(b.positions[i].z, 0.0f) << x << " " << y;
         continue;
       }
       ++hits;
-      const glm::vec3 p = r.origin + (-half - std::sqrt(half * half - c)) * r.direction;
+      const glm::vec3 p = r.origin + (-halfB - std::sqrt(halfB * halfB - c)) * r.direction;
       EXPECT_LT(glm::distance(b.positions[i], toView(p - camera.from)), 1e-4f) << x << " " << y;
       EXPECT_LT(glm::distance(b.normals[i], toView((p - center) / radius)), 1e-3f) << x << " " << y;
       EXPECT_EQ(b.roughness[i], 0.3f);

@@ -12,13 +12,14 @@
 
 #include <gtest/gtest.h>
 
+#include "support/helpers.hpp"
 #include "support/text_file.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kRoot = fs::path(IBL_TEST_DIR).parent_path();
+using ibl::test::repositoryRoot;
 
 using ibl::test::readText;
 
@@ -26,7 +27,7 @@ using ibl::test::readText;
 std::set<std::string> sharedFunctionNames() {
   std::set<std::string> names;
   const std::regex fn(R"(IBL_FN\s+\w+\s+(\w+)\s*\()");
-  for (const auto& e : fs::directory_iterator(kRoot / "include/ibl/shared")) {
+  for (const auto& e : fs::directory_iterator(repositoryRoot() / "include/ibl/shared")) {
     const std::string text = readText(e.path());
     for (std::sregex_iterator it(text.begin(), text.end(), fn), end; it != end; ++it)
       names.insert((*it)[1].str());
@@ -61,7 +62,7 @@ std::vector<Definition> redefinitions(const std::set<std::string>& names) {
   std::vector<Definition> found;
   std::vector<fs::path> files;
   for (const char* dir : {"shaders", "src", "include/ibl"})
-    for (const auto& e : fs::recursive_directory_iterator(kRoot / dir))
+    for (const auto& e : fs::recursive_directory_iterator(repositoryRoot() / dir))
       if (e.is_regular_file() && e.path().parent_path().filename() != "shared") files.push_back(e);
   for (const auto& file : files) {
     const std::string text = readText(file);
@@ -71,7 +72,7 @@ std::vector<Definition> redefinitions(const std::set<std::string>& names) {
       if (!names.count(name)) continue;
       const std::size_t open = static_cast<std::size_t>(it->position(0) + it->length(0) - 1);
       if (bodyAt(text, open).find("shared::" + name + "(") != std::string::npos) continue;
-      found.push_back({fs::relative(file, kRoot).string(), name});
+      found.push_back({fs::relative(file, repositoryRoot()).string(), name});
     }
   }
   return found;

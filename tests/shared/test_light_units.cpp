@@ -9,12 +9,13 @@
 
 #include "ibl/shared/light_units.h"
 #include "ibl/shared/lights_frostbite.h"
+#include "support/numbers.hpp"
 
 namespace s = ibl::shared;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ibl::test::kPi;
 
 }  // namespace
 

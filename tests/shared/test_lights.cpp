@@ -10,13 +10,14 @@
 #include <glm/vec3.hpp>
 
 #include "ibl/shared/lights.h"
+#include "support/numbers.hpp"
 #include "support/quadrature.hpp"
 
 namespace s = ibl::shared;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using ibl::test::kPi;
 
 using ibl::test::direction;
 

@@ -15,16 +15,16 @@
 #include "ibl/shared/lights_frostbite.h"
 #include "ibl/shared/lights_ltc.h"
 #include "ibl/shared/ltc.h"
+#include "support/numbers.hpp"
 #include "support/quadrature.hpp"
 
 namespace s = ibl::shared;
 using ibl::test::completeFrame;
 using ibl::test::direction;
+using ibl::test::kCosine;
+using ibl::test::kPi;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-const glm::vec4 kCosine(1.0f, 0.0f, 0.0f, 1.0f);
 
 // The integral of f over the surface of the capsule (segment c +- hl d, radius r) seen from the
 // origin, f(l) times the cosine at the light over the squared distance (the solid angle's

@@ -5,19 +5,15 @@
 #include <glm/vec4.hpp>
 
 #include "ibl/shared/ltc.h"
+#include "support/numbers.hpp"
 #include "support/quadrature.hpp"
 
 namespace s = ibl::shared;
 using ibl::test::direction;
+using ibl::test::kCosine;
+using ibl::test::kPi;
 using ibl::test::Rect;
 using ibl::test::rectToward;
-
-namespace {
-
-constexpr double kPi = std::numbers::pi;
-const glm::vec4 kCosine(1.0f, 0.0f, 0.0f, 1.0f);
-
-}  // namespace
 
 // With the cosine itself (the identity entry) the clipped polygon's vector is the irradiance
 // vector of Arvo 1995, (1 / pi) times the integral of w over the polygon's part above the

@@ -15,6 +15,7 @@
 #include "ibl/math/sampling.hpp"
 #include "ibl/render/renderer.hpp"
 #include "support/helpers.hpp"
+#include "support/numbers.hpp"
 #include "support/sphere_renders.hpp"
 
 using namespace ibl;
@@ -22,9 +23,9 @@ using namespace ibl::test;
 
 namespace {
 
-constexpr float kPi = std::numbers::pi_v<float>;
+using ibl::test::kPiF;
 
-glm::vec3 direction(float cosTheta, float phi) {
+glm::vec3 walkDirection(float cosTheta, float phi) {
   const float s = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
   return {s * std::cos(phi), s * std::sin(phi), cosTheta};
 }
@@ -79,7 +80,7 @@ Estimate walkAlbedo(const MicrofacetWalk& walk, glm::vec3 wi, float alpha, int n
     const glm::vec3 h = glm::normalize(wi + wo);
     const float pdf =
         0.5f * smithGgxMasking(wi.z, alpha) * ggxDistribution(h.z, alpha) / (4.0f * wi.z) +
-        0.5f * wo.z / kPi;
+        0.5f * wo.z / kPiF;
     acc.add(walk.evaluate(wi, wo, sampler, minOrder, maxOrder) / pdf);
   }
   return acc.estimate();
@@ -93,7 +94,8 @@ glm::dvec3 singleScatteringAlbedoByQuadrature(glm::vec3 wi, float alpha, glm::ve
     const double theta = (t + 0.5) * (std::numbers::pi / 2) / nt;
     for (int p = 0; p < np; ++p) {
       const double phi = (p + 0.5) * 2.0 * std::numbers::pi / np;
-      const glm::vec3 wo = direction(static_cast<float>(std::cos(theta)), static_cast<float>(phi));
+      const glm::vec3 wo =
+          walkDirection(static_cast<float>(std::cos(theta)), static_cast<float>(phi));
       sum += glm::dvec3(singleScattering(wi, wo, alpha, f0, f90)) * std::sin(theta);
     }
   }
@@ -108,7 +110,7 @@ TEST(MicrofacetWalk, LambdaAndMaskingAreGgxs) {
   for (float r : {0.2f, 0.6f, 1.0f}) {
     const float alpha = alphaFromRoughness(r);
     for (float c : {0.05f, 0.3f, 0.7f, 0.95f}) {
-      const glm::vec3 w = direction(c, 0.4f);
+      const glm::vec3 w = walkDirection(c, 0.4f);
       EXPECT_NEAR(1.0f / (1.0f + ggxLambda(w, alpha)), smithGgxMasking(c, alpha), 1e-5f);
       EXPECT_NEAR(ggxLambda(-w, alpha), -1.0f - ggxLambda(w, alpha), 1e-5f);
       EXPECT_NEAR(ggxMaskingAtHeight(w, 1.0f, alpha), 1.0f, 1e-6f);
@@ -127,7 +129,7 @@ TEST(MicrofacetWalk, WhiteFurnaceReflectsEverything) {
     const float alpha = alphaFromRoughness(r);
     const MicrofacetWalk walk(alpha, glm::vec3(1.0f), 1.0f);
     for (float NoV : {1.0f, 0.5f, 0.1f}) {
-      const glm::vec3 wi = direction(NoV, 0.0f);
+      const glm::vec3 wi = walkDirection(NoV, 0.0f);
       const Estimate all = walkAlbedo(walk, wi, alpha, 200000, 1, MicrofacetWalk::kMaxOrder, 1);
       const Estimate single = walkAlbedo(walk, wi, alpha, 200000, 1, 1, 2);
       std::printf("white furnace r %.1f n.v %.1f: walk %.4f +- %.4f, single %.4f\n", r, NoV,
@@ -152,10 +154,10 @@ TEST(MicrofacetWalk, SingleScatteringIsAnalyticGgx) {
   for (float r : {0.3f, 0.7f, 1.0f}) {
     const float alpha = alphaFromRoughness(r);
     const MicrofacetWalk walk(alpha, f0, 1.0f);
-    const glm::vec3 wi = direction(0.6f, 0.0f);
+    const glm::vec3 wi = walkDirection(0.6f, 0.0f);
     Sampler sampler(3, 1);
-    for (const glm::vec3 wo : {direction(0.6f, kPi), direction(0.9f, 2.0f), direction(0.2f, 3.0f),
-                               direction(0.4f, 0.5f)}) {
+    for (const glm::vec3 wo : {walkDirection(0.6f, kPiF), walkDirection(0.9f, 2.0f),
+                               walkDirection(0.2f, 3.0f), walkDirection(0.4f, 0.5f)}) {
       Accumulator acc;
       for (int i = 0; i < 100000; ++i) acc.add(walk.evaluate(wi, wo, sampler, 1, 1));
       const Estimate e = acc.estimate();
@@ -180,7 +182,7 @@ TEST(MicrofacetWalk, SampleAgreesWithEvaluate) {
   for (float r : {0.4f, 1.0f}) {
     const float alpha = alphaFromRoughness(r);
     const MicrofacetWalk walk(alpha, f0, 1.0f);
-    const glm::vec3 wi = direction(0.5f, 0.0f);
+    const glm::vec3 wi = walkDirection(0.5f, 0.0f);
     std::vector<Accumulator> sampled(nz * nphi);
     Sampler sampler(5, 3);
     const int n = 400000;
@@ -188,7 +190,7 @@ TEST(MicrofacetWalk, SampleAgreesWithEvaluate) {
       const MicrofacetWalk::Sample s = walk.sample(wi, sampler);
       const int bz = std::min(static_cast<int>(s.wo.z * nz), nz - 1);
       const float phi = std::abs(std::atan2(s.wo.y, s.wo.x));
-      const int bp = std::min(static_cast<int>(phi / kPi * nphi), nphi - 1);
+      const int bp = std::min(static_cast<int>(phi / kPiF * nphi), nphi - 1);
       for (int b = 0; b < nz * nphi; ++b)
         sampled[static_cast<std::size_t>(b)].add(b == bz * nphi + bp ? s.weight : glm::vec3(0.0f));
       ASSERT_GT(s.wo.z, 0.0f);
@@ -196,14 +198,14 @@ TEST(MicrofacetWalk, SampleAgreesWithEvaluate) {
     for (int bz = 0; bz < nz; ++bz)
       for (int bp = 0; bp < nphi; ++bp) {
         // Both halves of phi: the bin is the union of phi in [a, b] and [-b, -a].
-        const float solidAngle = 2.0f * (1.0f / nz) * (kPi / nphi);
+        const float solidAngle = 2.0f * (1.0f / nz) * (kPiF / nphi);
         Accumulator evaluated;
         for (int i = 0; i < 20000; ++i) {
           const glm::vec2 xi = sampler.uniform2();
           const float z = (static_cast<float>(bz) + xi.x) / nz;
-          float phi = (static_cast<float>(bp) + xi.y) / nphi * kPi;
+          float phi = (static_cast<float>(bp) + xi.y) / nphi * kPiF;
           if (sampler.uniform() < 0.5f) phi = -phi;
-          evaluated.add(walk.evaluate(wi, direction(z, phi), sampler) * solidAngle);
+          evaluated.add(walk.evaluate(wi, walkDirection(z, phi), sampler) * solidAngle);
         }
         const Estimate a = sampled[static_cast<std::size_t>(bz * nphi + bp)].estimate();
         const Estimate b = evaluated.estimate();
@@ -223,9 +225,9 @@ TEST(MicrofacetWalk, IsReciprocal) {
     const float alpha = alphaFromRoughness(r);
     const MicrofacetWalk walk(alpha, f0, 1.0f);
     Sampler sampler(9, 2);
-    for (const auto& [a, b] : {std::pair{direction(0.9f, 0.0f), direction(0.3f, 2.5f)},
-                               std::pair{direction(0.2f, 0.0f), direction(0.5f, 1.0f)},
-                               std::pair{direction(0.7f, 0.0f), direction(0.15f, 3.1f)}}) {
+    for (const auto& [a, b] : {std::pair{walkDirection(0.9f, 0.0f), walkDirection(0.3f, 2.5f)},
+                               std::pair{walkDirection(0.2f, 0.0f), walkDirection(0.5f, 1.0f)},
+                               std::pair{walkDirection(0.7f, 0.0f), walkDirection(0.15f, 3.1f)}}) {
       for (int minOrder : {1, 2}) {
         Accumulator ab, ba;
         for (int i = 0; i < 200000; ++i) {
@@ -256,8 +258,8 @@ TEST(MicrofacetWalk, EnergyNearTheScaledLobeInAnotherShape) {
         const glm::vec3 dfg = integrateDfg(NoV, r, 16384);
         const float e = dfg.x + dfg.y;
         const float scaled = (f * dfg.x + dfg.y) * (1.0f + f * (1.0f / e - 1.0f));
-        const Estimate w =
-            walkAlbedo(walk, direction(NoV, 0.0f), alpha, 200000, 1, MicrofacetWalk::kMaxOrder, 6);
+        const Estimate w = walkAlbedo(walk, walkDirection(NoV, 0.0f), alpha, 200000, 1,
+                                      MicrofacetWalk::kMaxOrder, 6);
         std::printf("albedo r %.1f F0 %.2f n.v %.1f: walk %.4f +- %.4f, scale %.4f (%+.1f %%)\n", r,
                     f, NoV, w.mean.x, w.error.x, scaled, 100.0 * (scaled / w.mean.x - 1.0));
         EXPECT_NEAR(w.mean.x / scaled, 1.0, 0.1) << "r " << r << " F0 " << f << " n.v " << NoV;
@@ -269,7 +271,7 @@ TEST(MicrofacetWalk, EnergyNearTheScaledLobeInAnotherShape) {
   // 0.099 of the walk, whose higher orders spread nearer a cosine (0.09).
   const float alpha = 1.0f;
   const MicrofacetWalk walk(alpha, glm::vec3(1.0f), 1.0f);
-  const glm::vec3 wi = direction(0.5f, 0.0f);
+  const glm::vec3 wi = walkDirection(0.5f, 0.0f);
   Sampler sampler(11, 4);
   double walkGrazing = 0.0, walkTotal = 0.0, scaleGrazing = 0.0, scaleTotal = 0.0;
   for (int i = 0; i < 400000; ++i) {

@@ -12,6 +12,7 @@
 
 #include "ibl/io/file_io.hpp"
 #include "ibl/shared/view_bindings.h"
+#include "support/helpers.hpp"
 
 using namespace ibl;
 
@@ -19,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kRoot = fs::path(IBL_TEST_DIR).parent_path();
+using ibl::test::repositoryRoot;
 
 std::string textOf(const fs::path& path) {
   const std::vector<std::uint8_t> bytes = readFileBytes(path);
@@ -28,7 +29,7 @@ std::string textOf(const fs::path& path) {
 
 // The header's IBL_<macro>(Name, number) lines, by name.
 std::map<std::string, int> declaredNumbers(const std::string& macro) {
-  const std::string text = textOf(kRoot / "include/ibl/shared/view_bindings.h");
+  const std::string text = textOf(repositoryRoot() / "include/ibl/shared/view_bindings.h");
   const std::regex line("\\n" + macro + R"(\((\w+), (\d+)\))");
   std::map<std::string, int> numbers;
   for (std::sregex_iterator it(text.begin(), text.end(), line), end; it != end; ++it)
@@ -39,7 +40,7 @@ std::map<std::string, int> declaredNumbers(const std::string& macro) {
 // How often `shader` declares `layout(... set = <set>, binding = <prefix><name>)`, by name.
 std::map<std::string, int> shaderUses(const std::string& shader, int set,
                                       const std::string& prefix) {
-  const std::string text = textOf(kRoot / "shaders/view" / shader);
+  const std::string text = textOf(repositoryRoot() / "shaders/view" / shader);
   const std::regex use("set = " + std::to_string(set) + ", binding = " + prefix + R"((\w+)\))");
   std::map<std::string, int> uses;
   for (std::sregex_iterator it(text.begin(), text.end(), use), end; it != end; ++it)
@@ -82,7 +83,7 @@ TEST(ViewBindings, ShadersDeclareEachNameOnce) {
   // No literal numbers in the sets the names cover, in the shaders of the frame set (the
   // window's tone map and the bloom have sets of their own).
   const std::regex literal(R"(set = [01], binding = \d)");
-  for (const auto& e : fs::directory_iterator(kRoot / "shaders/view")) {
+  for (const auto& e : fs::directory_iterator(repositoryRoot() / "shaders/view")) {
     const std::string text = textOf(e.path());
     const std::string name = e.path().filename().string();
     const bool frameSet = name == "frame.glsl" || name == "material.glsl" ||

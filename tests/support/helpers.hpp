@@ -31,6 +31,10 @@ inline std::filesystem::path dataDir() {
 inline std::filesystem::path hdriPath(const std::string& name) {
   return dataDir() / "hdri" / (name + ".exr");
 }
+// The repository's root: the folder above data/ (and tests/).
+inline std::filesystem::path repositoryRoot() {
+  return dataDir().parent_path();
+}
 
 // A fresh, empty directory under the system temp directory, removed by the destructor.
 class TempDir {

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace ibl::test {
 
@@ -42,6 +43,9 @@ inline glm::dvec3 direction(double thetaDegrees, double phiDegrees = 0.0) {
                p = phiDegrees * std::numbers::pi / 180.0;
   return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }
+
+// The LTC table entry of the clamped cosine itself (Lambert): the identity transform.
+inline const glm::vec4 kCosine(1.0f, 0.0f, 0.0f, 1.0f);
 
 // A rect centered at c (relative to the shaded point), emitting along m, of w x h.
 struct Rect {

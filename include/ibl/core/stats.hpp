@@ -39,12 +39,29 @@ struct ChannelErrors {
   double maxError = 0.0;           // max |a - b|
   double psnr = 0.0;               // dB, peak = the reference's maximum; +inf when a equals b
 };
+// Whole-frame figures on the Rec.709 luminance L of a against the reference's Lr, over the
+// pixels inside the mask (docs/probes.md, "Measured against the reference").
+struct FrameErrors {
+  double frameError = 0.0;  // sum |L - Lr| / sum Lr (0 when sum Lr is 0)
+  // Median over the 4 x 4 pixel blocks (from the top left; the last row and column of blocks
+  // may be smaller) of |mean L - mean Lr| / mean Lr over the block's pixels in the mask; blocks
+  // whose reference mean is 0 are left out (counted in blackBlocks). 0 when no block counts.
+  double medianBlockError = 0.0;
+  // The share of pixels off by 2x or more: L >= 2 Lr or Lr >= 2 L (a black reference pixel
+  // counts when L > 0; two black pixels agree).
+  double offBy2x = 0.0;
+  std::size_t blocks = 0;       // blocks in the median
+  std::size_t blackBlocks = 0;  // blocks with pixels in the mask and a black reference
+};
 struct ImageComparison {
   ChannelErrors channel[3];  // R, G, B
   ChannelErrors overall;     // over all three channels
-  std::size_t pixels = 0;    // compared (inside the mask)
+  FrameErrors frame;
+  std::size_t pixels = 0;  // compared (inside the mask)
 };
 // mask: one value per pixel of a (null: every pixel). Never throws.
+FrameErrors frameErrors(const Image& a, const Image& b, const std::vector<float>* mask = nullptr);
+// All the figures above. mask: one value per pixel of a (null: every pixel). Never throws.
 ImageComparison compareImages(const Image& a, const Image& b,
                               const std::vector<float>* mask = nullptr);
 

@@ -12,6 +12,7 @@
 #include "ibl/bake/bake.hpp"
 #include "ibl/gpu/compute.hpp"
 #include "ibl/render/camera.hpp"
+#include "ibl/render/irradiance_volume.hpp"
 #include "ibl/render/probe.hpp"
 #include "ibl/render/renderer.hpp"
 #include "ibl/render/scene.hpp"
@@ -26,8 +27,13 @@ class SceneRenderer {
   // irradiance, source cubes, DFG table and SH9. The context needs a graphics queue
   // (ContextOptions::graphics).
   // probes: local light probes (loadProbes order), all of one size and level count.
+  // volume: an irradiance volume (loadVolume), composed as the CPU split sum composes
+  // RenderOptions::volume (null: none; the frames then read no volume whatever options.volume
+  // says, as they read the probes given here and not options.probes). Throws Error when the
+  // device's 2D images are smaller than its atlases.
   SceneRenderer(Context& context, const Scene& scene, const BakeResult& bake,
-                const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes = {});
+                const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes = {},
+                const IrradianceVolume* volume = nullptr);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -158,8 +164,10 @@ Image bloomOnDevice(Context& context, const Image& linear, float ev100, float co
 // and outside the real-time view the view's name, the reference's samples per pixel and its
 // estimated noise (PathTracer::noise, in percent). Throws Error("window: ...") without a
 // display.
+// probes and volume: as SceneRenderer's.
 WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
                             const BakeOptions& bakeOptions, const WindowOptions& options,
-                            const std::vector<LocalProbe>& probes = {});
+                            const std::vector<LocalProbe>& probes = {},
+                            const IrradianceVolume* volume = nullptr);
 
 }  // namespace ibl::gpu

@@ -91,6 +91,16 @@ CaptureSite inspectCaptureSite(const Scene& scene, glm::vec3 position, int rays 
 // names the probe in the message.
 std::string unusableCaptureReason(const CaptureSite& site, const ProbeCapture* capture);
 
+// The reference's options for a capture with `options`, lit by a bake made with `bakeOptions`:
+// the camera does not see the lights (the split sum adds them), nor, unless options.specular,
+// the surfaces' specular.
+RenderOptions captureRenderOptions(const CaptureOptions& options, const BakeOptions& bakeOptions);
+
+// The manifests' "capture" record (a JSON object as text) and back; a record without the
+// shading's fields gets the defaults it was captured with. `name` names the file in errors.
+std::string captureRecordJson(const CaptureOptions& capture, double captureMilliseconds);
+CaptureOptions parseCaptureRecord(const std::string& json, const std::string& name);
+
 // The manifest's "probe" record (a JSON object as text) and back; `name` names the file in
 // errors. `capture` receives the capture's options (its shading; a record from before they were
 // written gets the defaults it was captured with).
@@ -127,8 +137,13 @@ LocalProbe bakeProbe(const ProbeCapture& capture, const ProbePlacement& placemen
 // probes.json), sorted from the smallest influence volume to the largest.
 std::vector<LocalProbe> loadProbes(const std::vector<std::string>& paths);
 
-// Throws, naming the probe, when a probe was captured with another shading than `render`'s
-// (captureShadingMismatch); with `force`, warns through `warn` instead.
+// Throws, naming `name` (the file it was read from), when a capture (a probe's, an irradiance
+// volume's) was made with another shading than `render`'s (captureShadingMismatch); with
+// `force`, warns through `warn` instead.
+void checkCaptureShading(const CaptureOptions& capture, const std::string& name,
+                         const RenderOptions& render, bool force,
+                         const std::function<void(const std::string&)>& warn);
+// checkCaptureShading for each probe, naming it.
 void checkProbeShading(const std::vector<LocalProbe>& probes, const RenderOptions& render,
                        bool force, const std::function<void(const std::string&)>& warn);
 

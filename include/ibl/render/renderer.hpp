@@ -17,7 +17,8 @@
 
 namespace ibl {
 
-struct LocalProbe;  // probe.hpp
+struct LocalProbe;        // probe.hpp
+struct IrradianceVolume;  // irradiance_volume.hpp
 
 enum class RenderMode { SplitSum, Reference };
 enum class DiffuseModel { Disney, Lambert };
@@ -82,6 +83,10 @@ struct RenderOptions {
   const std::vector<LocalProbe>* probes = nullptr;
   bool parallaxCorrection = true;
   bool distanceRoughness = true;
+  // Split sum: an irradiance volume (irradiance_volume.hpp). Where it covers, it gives the
+  // diffuse light, and the specular of the probes and the distant environment is scaled by the
+  // ratio of its irradiance to theirs (ibl/shared/irradiance_volume.h, volumeSpecularScale).
+  const IrradianceVolume* volume = nullptr;
   // Split sum: ambient occlusion by casting this many rays per pixel over the hemisphere (up to
   // aoDistance; 0: a tenth of the scene's size) where the material has no occlusion texture.
   int aoRays = 0;

@@ -30,6 +30,7 @@
 #include <glm/trigonometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/ext/vector_int3.hpp>
 #include <glm/vec4.hpp>
 
 #define IBL_FN [[gnu::always_inline]] inline
@@ -41,6 +42,7 @@
 namespace ibl::shared {
 using uint = std::uint32_t;
 using glm::ivec2;
+using glm::ivec3;
 using glm::mat3;
 using glm::vec2;
 using glm::vec3;
@@ -59,6 +61,7 @@ using glm::dot;
 using glm::exp;
 using glm::exp2;
 using glm::floor;
+using glm::fract;
 using glm::length;
 using glm::log;
 using glm::max;
