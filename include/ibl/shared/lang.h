@@ -30,7 +30,6 @@
 #include <glm/trigonometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
-#include <glm/ext/vector_int3.hpp>
 #include <glm/vec4.hpp>
 
 #define IBL_FN [[gnu::always_inline]] inline
