@@ -83,14 +83,19 @@ TEST(IrradianceVolumeMath, OctahedralDecodeInvertsEncode) {
 }
 
 TEST(IrradianceVolumeMath, BorderTexelsContinueTheMapAcrossItsEdges) {
-  // A border texel stands for the texel beyond the tile's edge, which on the sphere is the
-  // map's neighbour across the fold: its source must lie next to the interior texel it borders
-  // (within two texels' angle), everywhere along the four edges and at the corners.
+  // The octahedral map continues past its square by mirroring: across the edge u = +-1, (u, v)
+  // is the direction of (+-2 - u, -v); across v = +-1, of (-u, +-2 - v) (the two halves of an
+  // edge fold onto each other). A border texel's center, taken back into the square that way,
+  // must be the direction of the interior texel it copies.
+  const auto unfold = [](glm::vec2 p) {
+    if (std::abs(p.x) > 1.0f) p = {(p.x > 0.0f ? 2.0f : -2.0f) - p.x, -p.y};
+    if (std::abs(p.y) > 1.0f) p = {-p.x, (p.y > 0.0f ? 2.0f : -2.0f) - p.y};
+    return p;
+  };
   for (const int texels : {6, 8, 16}) {
-    const float texelAngle = 3.14159265f / static_cast<float>(texels);  // about 180 deg / n
-    const auto direction = [&](glm::ivec2 t) {
-      const glm::vec2 uv = (glm::vec2(t) - 0.5f) / static_cast<float>(texels) * 2.0f - 1.0f;
-      return octahedralDecode(uv);
+    // The center of tile texel t (the interior is [1, texels]) in the map's coordinates.
+    const auto center = [&](glm::ivec2 t) {
+      return (glm::vec2(t) - 0.5f) / static_cast<float>(texels) * 2.0f - 1.0f;
     };
     for (int y = 0; y < texels + 2; ++y)
       for (int x = 0; x < texels + 2; ++x) {
@@ -102,8 +107,8 @@ TEST(IrradianceVolumeMath, BorderTexelsContinueTheMapAcrossItsEdges) {
           continue;
         }
         ASSERT_TRUE(s.x >= 1 && s.x <= texels && s.y >= 1 && s.y <= texels);
-        const glm::ivec2 inside = glm::clamp(t, glm::ivec2(1), glm::ivec2(texels));
-        EXPECT_LT(angleBetween(direction(s), direction(inside)), 2.0f * texelAngle)
+        EXPECT_LT(angleBetween(octahedralDecode(unfold(center(t))), octahedralDecode(center(s))),
+                  1e-3f)
             << texels << ": border texel " << x << "," << y << " copies " << s.x << "," << s.y;
       }
   }
