@@ -90,8 +90,7 @@ RenderedImage renderImage(const RenderCliOptions& o, const GlobalOptions& global
   Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
-  if (o.scene.volumeUpdateFrames > 0 && o.scene.volume.empty())
-    failUsage("--volume-update-frames", "updates the volume of --volume, which is not given");
+  checkVolumeUpdateFrames(o.scene);
   std::optional<IrradianceVolume> volume =
       o.scene.volume.empty() ? std::nullopt : std::optional(loadVolume(o.scene.volume));
   const LoadedBake baked = loadOrBake(o.scene, global, hasSheen(scene));
@@ -162,10 +161,6 @@ CLI::App* addRenderOptions(CLI::App& app, RenderCliOptions& o) {
       app.add_subcommand("render", "Render a glTF model or a built-in scene lit by an environment");
   addSceneOptions(cmd, opts->scene);
   addVolumeOption(cmd, opts->scene);
-  cmd->add_option("--volume-update-frames", opts->scene.volumeUpdateFrames,
-                  "Run this many frames of the volume's live update (rays from every probe, "
-                  "blended with hysteresis 0.9) before rendering")
-      ->check(numberIn(0, 100000));
   cmd->add_option("-o,--output", opts->output,
                   "Output image: .exr (linear radiance + alpha) or .png; missing folders are "
                   "created")

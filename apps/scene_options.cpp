@@ -42,6 +42,15 @@ void addVolumeOption(CLI::App* cmd, SceneCliOptions& o) {
                   "Split sum: an irradiance volume (a directory written by `ibl probe --volume`) "
                   "giving the diffuse light where it covers, the probes' and environment's "
                   "specular normalized by it");
+  cmd->add_option("--volume-update-frames", o.volumeUpdateFrames,
+                  "Run this many frames of the volume's live update (rays from every probe, "
+                  "blended with hysteresis 0.9) before rendering")
+      ->check(numberIn(0, 100000));
+}
+
+void checkVolumeUpdateFrames(const SceneCliOptions& o) {
+  if (o.volumeUpdateFrames > 0 && o.volume.empty())
+    failUsage("--volume-update-frames", "updates the volume of --volume, which is not given");
 }
 
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {

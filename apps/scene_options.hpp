@@ -88,8 +88,12 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o);
 // `ibl probe` calls it alone) and reads the choice.
 void addMultipleScatteringOptions(CLI::App* cmd, SceneCliOptions& o);
 MultipleScattering multipleScatteringChoice(const SceneCliOptions& o);
-// Registers --volume DIR, the irradiance volume of `ibl probe --volume` (`ibl render`).
+// Registers --volume DIR, the irradiance volume of `ibl probe --volume`, and
+// --volume-update-frames N, the frames of its live update run before rendering (`ibl render`,
+// `ibl view`).
 void addVolumeOption(CLI::App* cmd, SceneCliOptions& o);
+// A usage error for --volume-update-frames without --volume.
+void checkVolumeUpdateFrames(const SceneCliOptions& o);
 
 glm::vec3 parseVec3(const std::string& text, const char* option);
 // --size as (width, height), 1 to 16384 each.

@@ -1,5 +1,6 @@
 // `ibl view`: the real-time viewer (Vulkan), in a window or headless to a screenshot.
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -35,12 +36,29 @@ struct ViewCliOptions {
   float skyboxMip = 0.0f;
   std::string reference;  // the view: reference, difference or split (empty: real time)
   std::optional<int> referenceSpp;
+  std::string volumeUpdate;  // on or off (empty: on)
 };
 
 // The reference's samples per pixel of a screenshot unless --reference-spp says otherwise.
 constexpr int kScreenshotReferenceSpp = 64;
 // The reference's samples per dispatch of a screenshot (a device may stop a long one).
 constexpr int kScreenshotReferenceBatch = 16;
+
+// --volume-update-frames N: the volume's live update run N frames on the device before a
+// screenshot, timed.
+void updateVolumeBeforeScreenshot(gpu::SceneRenderer& renderer, const Camera& camera,
+                                  const RenderOptions& shading, const SceneCliOptions& o,
+                                  const GlobalOptions& global) {
+  if (o.volumeUpdateFrames <= 0) return;
+  const auto start = std::chrono::steady_clock::now();
+  renderer.updateVolume(camera, shading, o.volumeUpdateFrames);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!global.quiet)
+    fmt::print(stderr, "volume updated over {} frames in {:.2f} s ({:.1f} ms per frame on {})\n",
+               o.volumeUpdateFrames, seconds, 1000.0 * seconds / o.volumeUpdateFrames,
+               renderer.context().device().name);
+}
 
 gpu::ViewMode viewMode(const std::string& name) {
   return name == "reference"    ? gpu::ViewMode::Reference
@@ -108,6 +126,14 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   Scene scene = loadScene(o.scene, global);
   const Camera camera = frameCamera(o.scene, scene, width, height);  // checked before the bake
   const std::vector<LocalProbe> probes = loadProbes(o.scene.probes);
+  checkVolumeUpdateFrames(o.scene);
+  if (!o.volumeUpdate.empty() && o.scene.volume.empty())
+    failUsage("--volume-update", "updates the volume of --volume, which is not given");
+  if (o.volumeUpdate == "off" && o.scene.volumeUpdateFrames > 0)
+    failUsage("--volume-update-frames", "contradicts --volume-update off");
+  if (o.screenshot.empty() && o.scene.volumeUpdateFrames > 0)
+    failUsage("--volume-update-frames",
+              "runs before a --screenshot; the window updates the volume every frame");
   std::optional<IrradianceVolume> loadedVolume;
   if (!o.scene.volume.empty()) loadedVolume = loadVolume(o.scene.volume);
   const IrradianceVolume* volume = loadedVolume ? &*loadedVolume : nullptr;
@@ -155,6 +181,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     RenderResult realTime;
     if (view != gpu::ViewMode::Reference) {
       gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume);
+      updateVolumeBeforeScreenshot(renderer, camera, shading, o.scene, global);
       realTime = renderer.render(camera, shading, o.skyboxMip);
     }
     // Exposed for the reference, as `ibl render --mode reference` exposes it.
@@ -175,6 +202,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     co.graphics = true;
     const auto context = gpu::Context::create(co);
     gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume);
+    updateVolumeBeforeScreenshot(renderer, camera, shading, o.scene, global);
     RenderResult result = renderer.render(camera, shading, o.skyboxMip);
     if (renderer.samples() < shading.spp && !global.quiet)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
@@ -203,6 +231,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   w.title = "ibl view " + o.scene.scene;
   w.view = view;
   w.referenceSpp = o.referenceSpp.value_or(0);
+  w.volumeUpdate = o.volumeUpdate != "off";
   w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve, gpu::ViewMode shown) {
     const std::string path = unusedScreenshotName();
     writeView(path, result, shown, ev100, curve, o.scene);
@@ -264,7 +293,12 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
   CLI::App* cmd = app.add_subcommand(
       "view", "Real-time viewer (Vulkan): a window, or a headless screenshot with --screenshot");
   addSceneOptions(cmd, opts->scene);
-  addVolumeOption(cmd, opts->scene);  // baked: read as captured, not updated live
+  addVolumeOption(cmd, opts->scene);
+  cmd->add_option("--volume-update", opts->volumeUpdate,
+                  "Window: on (default) runs a frame of the volume's live update before every "
+                  "frame (rays traced on the device), so that the sun, the sky and the lights "
+                  "relight it; off keeps the volume as baked")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd->add_option("--screenshot", opts->screenshot,
                   "Render offscreen to this image (.png or .exr) and exit, without a window; "
                   "missing folders are created");

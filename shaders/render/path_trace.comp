@@ -7,37 +7,8 @@
 // scene from its buffers, the environment's and the emitters' tables, and the loop.
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std430, binding = 0) readonly buffer Parameters {
-  vec4 cameraPosition;  // w: 1 perspective, 0 orthographic
-  vec4 cameraForward;
-  vec4 cameraRight;  // scaled to the image's half width (perspective: at distance 1)
-  vec4 cameraUp;     // scaled to its half height
-  vec4 background;   // rgb: the background without the environment
-  uvec4 image;       // width, height, first sample index, samples
-  uvec4 counts;      // lights, spheres, emitters, the environment's cube size
-  uvec4 offsets;     // in sceneData: vertices, materials, textures, lights
-  uvec4 offsets2;    // in sceneData: spheres, emitters; in words: texels, emitter entries
-  ivec4 shading;     // PathShading: diffuse, multiple scattering, micro-occlusion, sheen
-  ivec4 path;        // bounces, lobes, flags (kFlag...), seed
-} params;
-// The BVH (src/gpu/bvh.hpp): nodes, then triangles.
-layout(std430, binding = 1) readonly buffer Nodes {
-  vec4 nodes[];
-};
-layout(std430, binding = 2) readonly buffer Triangles {
-  vec4 bvhTriangles[];
-};
-// Meshes (one vec4 of uint bits each: first vertex, first index, material, flags), vertices
-// (three each), materials (six), textures (one), lights (five), spheres (two), emitters (one):
-// uploadScene in src/gpu/path_tracer.cpp.
-layout(std430, binding = 3) readonly buffer SceneData {
-  vec4 sceneData[];
-};
-// The meshes' indices, then the textures' texels (RGBA8), then per emissive mesh and primitive
-// its emitter's entry (or ~0).
-layout(std430, binding = 4) readonly buffer Words {
-  uint words[];
-};
+#include "render/scene_buffers.glsl"
+
 // The environment: the source cube's level 0 (what cube_buffer.glsl reads).
 layout(std430, binding = 5) readonly buffer EnvironmentTexels {
   vec4 texels[];
@@ -76,215 +47,14 @@ float albedoTableNode(int table, int index) {
   return tables[6 * n + 6 * n * n + table * 33 * 33 + index];
 }
 
-#include "ibl/shared/lang.h"
 #include "ibl/shared/cube.h"
-#include "ibl/shared/light_record.h"
 #include "ibl/shared/light_sampling.h"
-#include "ibl/shared/material.h"
 #include "ibl/shared/path_brdf.h"
-#include "ibl/shared/bvh.h"
 #include "env/cube_buffer.glsl"
-
-uint bitsAt(vec4 v, int c) {
-  return floatBitsToUint(v[c]);
-}
-
-// --- Textures (Texture::sample in src/render/scene.cpp) ---
-
-vec4 texelAt(uvec4 t, int x, int y, bool srgb) {
-  int w = int(t.y), h = int(t.z);
-  int wx = wrapTexel(x, w, int(t.w & 3u)), wy = wrapTexel(y, h, int((t.w >> 2u) & 3u));
-  uint packed = words[params.offsets2.z + t.x + uint(wy * w + wx)];
-  vec4 c = vec4(float(packed & 255u), float((packed >> 8u) & 255u), float((packed >> 16u) & 255u),
-                float(packed >> 24u)) / 255.0;
-  if (srgb) c.rgb = srgbToLinear(c.rgb);
-  return c;
-}
-
-vec4 sampleTexture(int index, vec2 uv, bool srgb) {
-  vec4 r = sceneData[params.offsets.z + uint(index)];
-  uvec4 t = uvec4(bitsAt(r, 0), bitsAt(r, 1), bitsAt(r, 2), bitsAt(r, 3));
-  float fx = uv.x * float(t.y), fy = uv.y * float(t.z);
-  if ((t.w & 16u) != 0u) return texelAt(t, int(floor(fx)), int(floor(fy)), srgb);
-  float flx = floor(fx - 0.5), fly = floor(fy - 0.5);
-  float wx = fx - 0.5 - flx, wy = fy - 0.5 - fly;
-  int x0 = int(flx), y0 = int(fly);
-  return (texelAt(t, x0, y0, srgb) * (1.0 - wx) + texelAt(t, x0 + 1, y0, srgb) * wx) * (1.0 - wy) +
-         (texelAt(t, x0, y0 + 1, srgb) * (1.0 - wx) + texelAt(t, x0 + 1, y0 + 1, srgb) * wx) * wy;
-}
-
-// --- Meshes and materials ---
-
-struct MeshRecord {
-  uint firstVertex, firstIndex, material, flags;  // flags: 1 tangents, 2 uv0, 4 uv1, 8 emitters
-};
-MeshRecord meshAt(uint mesh) {
-  vec4 r = sceneData[mesh];
-  return MeshRecord(bitsAt(r, 0), bitsAt(r, 1), bitsAt(r, 2), bitsAt(r, 3));
-}
-uvec3 triangleVertices(MeshRecord m, uint primitive) {
-  uint i = m.firstIndex + 3u * primitive;
-  return m.firstVertex + uvec3(words[i], words[i + 1u], words[i + 2u]);
-}
-// A vertex: (position, uv0.x), (normal, uv0.y), tangent, (uv1, 0, 0).
-vec4 vertexAt(uint v, int k) {
-  return sceneData[params.offsets.x + 4u * v + uint(k)];
-}
-vec4 materialAt(uint material, int k) {
-  return sceneData[params.offsets.y + 6u * material + uint(k)];
-}
-// A texture slot: (texture index, texCoord) or texture -1.
-ivec2 slotOf(float encoded) {
-  int e = int(encoded);
-  return e < 0 ? ivec2(-1, 0) : ivec2(e >> 1, e & 1);
-}
-// The UV of a slot at barycentrics (w0, u, v), or false when the mesh lacks its set.
-bool slotUv(MeshRecord m, uvec3 tri, ivec2 slot, vec3 w, out vec2 uv) {
-  uv = vec2(0.0);
-  if (slot.x < 0) return false;
-  if (slot.y == 0 && (m.flags & 2u) == 0u) return false;
-  if (slot.y == 1 && (m.flags & 4u) == 0u) return false;
-  for (int k = 0; k < 3; ++k)
-    uv += w[k] * (slot.y == 0 ? vec2(vertexAt(tri[k], 0).w, vertexAt(tri[k], 1).w)
-                              : vertexAt(tri[k], 3).xy);
-  return true;
-}
-
-bool bvhCovers(int triangle, float u, float v, vec3 origin, vec3 dir) {
-  uint mesh = floatBitsToUint(bvhTriangles[3 * triangle].w);
-  uint primitive = floatBitsToUint(bvhTriangles[3 * triangle + 1].w);
-  MeshRecord m = meshAt(mesh);
-  vec4 m3 = materialAt(m.material, 3);
-  int mode = int(m3.z);
-  if (mode == 0) return true;
-  float alpha = materialAt(m.material, 0).w;
-  ivec2 slot = slotOf(materialAt(m.material, 4).x);
-  vec2 uv;
-  if (slotUv(m, triangleVertices(m, primitive), slot, vec3(1.0 - u - v, u, v), uv))
-    alpha *= sampleTexture(slot.x, uv, false).a;
-  return alphaCovers(mode, alpha, m3.w, rayBlendThreshold(origin, dir, primitive));
-}
-vec4 bvhNodeAt(int i) {
-  return nodes[i];
-}
-vec4 bvhTriangleAt(int i) {
-  return bvhTriangles[i];
-}
-
-// --- The scene's surfaces (RayTracer and surfaceAt in src/render/ray_tracer.cpp) ---
-
-struct SceneHit {
-  bool found;
-  float t;
-  bool sphere;
-  uint mesh;       // or the sphere
-  uint primitive;
-  float u, v;
-};
-
-SceneHit intersectScene(vec3 origin, vec3 dir, float tMax, bool anyHit) {
-  SceneHit h = SceneHit(false, tMax, false, 0u, 0u, 0.0, 0.0);
-  BvhHit b = bvhIntersect(origin, dir, tMax, anyHit);
-  if (b.found) {
-    h = SceneHit(true, b.t, false, floatBitsToUint(bvhTriangles[3 * b.triangle].w),
-                 floatBitsToUint(bvhTriangles[3 * b.triangle + 1].w), b.u, b.v);
-    if (anyHit) return h;
-  }
-  for (uint s = 0u; s < params.counts.y; ++s) {
-    vec4 sphere = sceneData[params.offsets2.x + 2u * s];
-    float t = raySphereDistance(origin, dir, sphere.xyz, sphere.w);
-    if (t > 0.0 && t < h.t) {
-      h = SceneHit(true, t, true, s, 0u, 0.0, 0.0);
-      if (anyHit) return h;
-    }
-  }
-  return h;
-}
-
-bool occluded(vec3 origin, vec3 dir, float maxDistance) {
-  return intersectScene(origin, dir, maxDistance, true).found;
-}
-
-struct Surface {
-  vec3 position, normal;
-  vec3 baseColor;
-  float metallic, roughness;
-  vec3 emissive;
-  vec3 sheenColor;
-  float sheenRoughness;
-};
-
-Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
-  Surface p;
-  p.position = origin + hit.t * dir;
-  vec3 n;
-  uint material;
-  if (hit.sphere) {
-    vec4 sphere = sceneData[params.offsets2.x + 2u * hit.mesh];
-    n = normalize(p.position - sphere.xyz);
-    material = floatBitsToUint(sceneData[params.offsets2.x + 2u * hit.mesh + 1u].x);
-  } else {
-    MeshRecord m = meshAt(hit.mesh);
-    material = m.material;
-    uvec3 tri = triangleVertices(m, hit.primitive);
-    vec3 w = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
-    n = normalize(vertexAt(tri.x, 1).xyz * w.x + vertexAt(tri.y, 1).xyz * w.y +
-                  vertexAt(tri.z, 1).xyz * w.z);
-    vec4 m0 = materialAt(material, 0), m1 = materialAt(material, 1), m2 = materialAt(material, 2),
-         m3 = materialAt(material, 3), m4 = materialAt(material, 4), m5 = materialAt(material, 5);
-    vec3 base = m0.rgb;
-    float metallic = m1.w, roughness = m3.x;
-    vec3 emissive = m1.rgb;
-    vec2 uv;
-    if (slotUv(m, tri, slotOf(m4.x), w, uv)) base *= sampleTexture(slotOf(m4.x).x, uv, true).rgb;
-    if (slotUv(m, tri, slotOf(m4.y), w, uv)) {
-      vec2 mr = applyMetallicRoughnessTexel(metallic, roughness,
-                                            sampleTexture(slotOf(m4.y).x, uv, false));
-      metallic = mr.x;
-      roughness = mr.y;
-    }
-    if (slotUv(m, tri, slotOf(m4.w), w, uv))
-      emissive *= sampleTexture(slotOf(m4.w).x, uv, true).rgb;
-    p.sheenColor = m2.rgb;
-    p.sheenRoughness = m2.w;
-    if (slotUv(m, tri, slotOf(m5.x), w, uv))
-      p.sheenColor *= sampleTexture(slotOf(m5.x).x, uv, true).rgb;
-    if (slotUv(m, tri, slotOf(m5.y), w, uv))
-      p.sheenRoughness *= sampleTexture(slotOf(m5.y).x, uv, false).a;
-    p.sheenRoughness = clamp(p.sheenRoughness, 0.0, 1.0);
-    if ((m.flags & 1u) != 0u && slotUv(m, tri, slotOf(m4.z), w, uv)) {
-      vec4 t4 = vertexAt(tri.x, 2) * w.x + vertexAt(tri.y, 2) * w.y + vertexAt(tri.z, 2) * w.z;
-      n = applyNormalMap(n, t4, sampleTexture(slotOf(m4.z).x, uv, false), m3.y);
-    }
-    p.baseColor = base;
-    p.metallic = clamp(metallic, 0.0, 1.0);
-    p.roughness = clamp(roughness, 0.0, 1.0);
-    p.emissive = emissive;
-  }
-  if (hit.sphere) {
-    vec4 m0 = materialAt(material, 0), m1 = materialAt(material, 1), m2 = materialAt(material, 2);
-    p.baseColor = m0.rgb;
-    p.metallic = m1.w;
-    p.roughness = materialAt(material, 3).x;
-    p.emissive = m1.rgb;
-    p.sheenColor = m2.rgb;
-    p.sheenRoughness = m2.w;
-  }
-  // Shade the side the ray sees.
-  if (dot(n, dir) > 0.0) n = -n;
-  p.normal = n;
-  return p;
-}
-
-bool materialEmits(SceneHit hit) {
-  uint material = hit.sphere ? floatBitsToUint(sceneData[params.offsets2.x + 2u * hit.mesh + 1u].x)
-                             : meshAt(hit.mesh).material;
-  return materialAt(material, 1).rgb != vec3(0.0);
-}
 
 // --- Lights ---
 
-// Light i's record (ibl/shared/light_record.h; uploadScene in src/gpu/path_tracer.cpp).
+// Light i's record (ibl/shared/light_record.h; uploadSceneBuffers in src/gpu/scene_buffers.cpp).
 LightRecord lightRecordAt(uint i) {
   uint b = params.offsets.w + uint(kLightRecordVec4s) * i;
   return LightRecord(sceneData[b], sceneData[b + 1u], sceneData[b + 2u], sceneData[b + 3u],
@@ -474,8 +244,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     bool captured = depth == 0 && !flag(kFlagCameraSeesSpecular);
     int lobes = captured ? kLobesDiffuse : params.path.y;
     if (captured && flag(kFlagCaptureMetalsAsDiffuse)) {
-      vec3 f0 = mix(vec3(0.04), p.baseColor, p.metallic);
-      p.baseColor = p.baseColor * (1.0 - p.metallic) + p.metallic * f0;
+      p.baseColor = metalAsDiffuseColor(p.baseColor, p.metallic);
       p.metallic = 0.0;
     }
     PathBrdf brdf = pathBrdfOf(p.baseColor, p.metallic, p.roughness, p.sheenColor,

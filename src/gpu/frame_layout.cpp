@@ -38,7 +38,9 @@ VkDescriptorType descriptorTypeOf(FrameBinding binding) {
 }  // namespace
 
 std::vector<VkDescriptorSetLayoutBinding> frameSetBindings() {
-  const VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
+  // The fragment shaders read them all, and so does the irradiance volume's update
+  // (view/volume_trace.comp).
+  const VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
   const VkShaderStageFlags both = VK_SHADER_STAGE_VERTEX_BIT | fragment;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (std::uint32_t b = 0; b < bindingNumber(FrameBinding::Count); ++b) {

@@ -149,4 +149,8 @@ void FrameSet::bind(VkCommandBuffer cmd) const {
                           nullptr);
 }
 
+void FrameSet::bindCompute(VkCommandBuffer cmd, VkPipelineLayout layout) const {
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set_, 0, nullptr);
+}
+
 }  // namespace ibl::gpu

@@ -37,7 +37,11 @@ class FrameSet {
   // Binds the frame set for the graphics pipelines of the commands that follow.
   void bind(VkCommandBuffer cmd) const;
 
+  // Binds the frame set as set 0 of a compute pipeline whose layout starts with frameLayout().
+  void bindCompute(VkCommandBuffer cmd, VkPipelineLayout layout) const;
+
   VkPipelineLayout pipelineLayout() const { return pipelineLayout_; }
+  VkDescriptorSetLayout frameLayout() const { return frameLayout_; }
   VkDescriptorSetLayout materialLayout() const { return materialLayout_; }
   // Cube maps: trilinear over their levels; tables and screen images: bilinear on level 0; both
   // clamped to the edge.

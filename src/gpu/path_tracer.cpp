@@ -14,33 +14,15 @@
 #include <glm/geometric.hpp>
 
 #include "gpu/buffers.hpp"
-#include "gpu/bvh.hpp"
+#include "gpu/scene_buffers.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/math/color.hpp"
-#include "ibl/shared/light_record.h"
-#include "render/emissive_triangles.hpp"
 #include "render/path_tracer.hpp"
-#include "render/ray_tracer.hpp"
 
 namespace ibl::gpu {
 
 namespace {
 
-constexpr std::uint32_t kNone = 0xffffffffu;
-
-float bitsOf(std::uint32_t u) {
-  return std::bit_cast<float>(u);
-}
-glm::vec4 bitsOf(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
-  return {bitsOf(a), bitsOf(b), bitsOf(c), bitsOf(d)};
-}
-
-// The shader's Parameters block (std430).
-struct Parameters {
-  glm::vec4 cameraPosition, cameraForward, cameraRight, cameraUp, background;
-  glm::uvec4 image, counts, offsets, offsets2;
-  glm::ivec4 shading, path;
-};
 enum Flag : int {
   kFlagVisibility = 1,
   kFlagEnvironmentLight = 2,
@@ -51,32 +33,13 @@ enum Flag : int {
   kFlagPixelCenter = 64,
 };
 
-// An IES light's intensity (candela x its scale) tabulated over (vertical, horizontal) angles at
-// kIesStep degrees, the shader's bilinear lookup standing in for IesProfile::intensity's
-// bicubic one (docs/render.md measures the difference).
-constexpr float kIesStep = 0.5f;
-constexpr int kIesRows = 361;     // 0 .. 180 degrees
-constexpr int kIesColumns = 721;  // 0 .. 360 degrees
-
-void appendIesTable(const Light& light, std::vector<float>& out) {
-  for (int row = 0; row < kIesRows; ++row)
-    for (int column = 0; column < kIesColumns; ++column)
-      out.push_back(light.iesScale * light.ies->intensity(kIesStep * static_cast<float>(row),
-                                                          kIesStep * static_cast<float>(column)));
-}
-
-// A texture slot as the shader reads it: texture index x 2 + texCoord, or -1.
-float slotOf(const TextureRef& ref) {
-  return ref.index < 0 ? -1.0f : static_cast<float>(ref.index * 2 + (ref.texCoord == 1 ? 1 : 0));
-}
-
 }  // namespace
 
 struct PathTracer::Impl {
   Context& context;
-  std::unique_ptr<Buffer> parametersBuffer, nodes, triangles, sceneData, words, texels, levels,
-      tables, accumulation;
-  Parameters parameters{};
+  SceneBuffers scene;
+  std::unique_ptr<Buffer> parametersBuffer, texels, levels, tables, accumulation;
+  SceneParameters parameters{};
   std::vector<float> tableHost;  // what `tables` holds
   std::size_t iesFloats = 0;     // at its end: the IES lights' tables
   int albedoVisibility = -1;     // the sheen visibility whose albedo tables `tables` holds
@@ -95,121 +58,12 @@ PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& b
   if (bake.source.levels.empty()) fail("render", "the bake has no source cube");
   preparePathTracer();
 
-  // The triangles' hierarchy.
-  const Bvh bvh = buildBvh(scene);
-  r.nodes = std::make_unique<Buffer>(Buffer::of(context, bvh.nodes));
-  std::vector<glm::vec4> triangleData = bvh.triangles;
-  if (triangleData.empty()) triangleData.assign(3, glm::vec4(0.0f));
-  r.triangles = std::make_unique<Buffer>(Buffer::of(context, triangleData));
-
-  // Meshes, vertices, materials, textures, lights, spheres, emitters; indices and texels.
-  std::vector<glm::vec4> data;
-  std::vector<std::uint32_t> wordData;
-  std::vector<glm::uvec2> meshStarts;  // first vertex, first index
-  std::uint32_t vertexCount = 0;
-  for (const Mesh& m : scene.meshes) {
-    meshStarts.push_back({vertexCount, static_cast<std::uint32_t>(wordData.size())});
-    for (std::uint32_t i : m.indices) wordData.push_back(i);
-    vertexCount += static_cast<std::uint32_t>(m.positions.size());
-  }
-  const RayTracer tracer(scene);
-  const EmissiveTriangles emitters(scene, tracer);
-  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-    const Mesh& m = scene.meshes[i];
-    const std::uint32_t flags =
-        (m.tangents.empty() ? 0u : 1u) | (m.uvs.empty() ? 0u : 2u) | (m.uvs1.empty() ? 0u : 4u);
-    data.push_back(
-        bitsOf(meshStarts[i].x, meshStarts[i].y, static_cast<std::uint32_t>(m.material), flags));
-  }
-  r.parameters.offsets.x = static_cast<std::uint32_t>(data.size());
-  for (const Mesh& m : scene.meshes)
-    for (std::size_t v = 0; v < m.positions.size(); ++v) {
-      const glm::vec2 uv0 = m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[v];
-      const glm::vec2 uv1 = m.uvs1.empty() ? glm::vec2(0.0f) : m.uvs1[v];
-      data.push_back(glm::vec4(m.positions[v], uv0.x));
-      data.push_back(glm::vec4(m.normals[v], uv0.y));
-      data.push_back(m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[v]);
-      data.push_back(glm::vec4(uv1, 0.0f, 0.0f));
-    }
-  r.parameters.offsets.y = static_cast<std::uint32_t>(data.size());
-  for (const Material& mat : scene.materials) {
-    data.push_back(glm::vec4(mat.baseColor, mat.baseColorAlpha));
-    data.push_back(glm::vec4(mat.emissive, mat.metallic));
-    data.push_back(glm::vec4(mat.sheenColor, mat.sheenRoughness));
-    data.push_back(glm::vec4(mat.roughness, mat.normalScale,
-                             static_cast<float>(static_cast<int>(mat.alphaMode)), mat.alphaCutoff));
-    data.push_back(glm::vec4(slotOf(mat.baseColorTexture), slotOf(mat.metallicRoughnessTexture),
-                             slotOf(mat.normalTexture), slotOf(mat.emissiveTexture)));
-    data.push_back(
-        glm::vec4(slotOf(mat.sheenColorTexture), slotOf(mat.sheenRoughnessTexture), 0.0f, 0.0f));
-  }
-  r.parameters.offsets.z = static_cast<std::uint32_t>(data.size());
-  r.parameters.offsets2.z = static_cast<std::uint32_t>(wordData.size());
-  std::uint32_t texelCount = 0;
-  for (const Texture& t : scene.textures) {
-    const std::uint32_t flags = static_cast<std::uint32_t>(t.sampler.wrapS) |
-                                (static_cast<std::uint32_t>(t.sampler.wrapT) << 2u) |
-                                (t.sampler.nearest ? 16u : 0u);
-    const bool empty = t.empty();
-    data.push_back(bitsOf(texelCount, empty ? 1u : static_cast<std::uint32_t>(t.width),
-                          empty ? 1u : static_cast<std::uint32_t>(t.height), flags));
-    if (empty) {
-      wordData.push_back(0xffffffffu);  // Texture::sample's white
-      ++texelCount;
-      continue;
-    }
-    const std::vector<std::uint8_t>& rgba = *t.rgba;
-    for (std::size_t i = 0; i + 3 < rgba.size(); i += 4)
-      wordData.push_back(static_cast<std::uint32_t>(rgba[i]) |
-                         (static_cast<std::uint32_t>(rgba[i + 1]) << 8u) |
-                         (static_cast<std::uint32_t>(rgba[i + 2]) << 16u) |
-                         (static_cast<std::uint32_t>(rgba[i + 3]) << 24u));
-    texelCount += static_cast<std::uint32_t>(rgba.size() / 4);
-  }
-  r.parameters.offsets.w = static_cast<std::uint32_t>(data.size());
-  std::vector<float> iesTables;
-  for (const Light& light : scene.lights) {
-    const shared::ShadingLight l = shadingLightOf(light);
-    float ies = -1.0f;  // the IES table's index, or none
-    if (light.ies && (light.type == LightType::Point || light.type == LightType::Spot)) {
-      ies = static_cast<float>(iesTables.size() / (kIesRows * kIesColumns));
-      appendIesTable(light, iesTables);
-    }
-    data.resize(data.size() + shared::kLightRecordVec4s);
-    shared::storeLightRecord(shared::packLight(l, ies),
-                             &data[data.size() - shared::kLightRecordVec4s]);
-  }
-  r.parameters.offsets2.x = static_cast<std::uint32_t>(data.size());
-  for (const Sphere& s : scene.spheres) {
-    data.push_back(glm::vec4(s.center, s.radius));
-    data.push_back(bitsOf(static_cast<std::uint32_t>(s.material), 0u, 0u, 0u));
-  }
-  r.parameters.offsets2.y = static_cast<std::uint32_t>(data.size());
-  const auto& cumulative = emitters.cumulative();
-  for (std::size_t i = 0; i < emitters.triangles().size(); ++i) {
-    const EmissiveTriangles::Triangle& t = emitters.triangles()[i];
-    data.push_back(
-        glm::vec4(bitsOf(t.mesh), bitsOf(t.primitive), t.area, static_cast<float>(cumulative[i])));
-  }
-  // Per mesh, where its primitives' emitter entries start (relative to this table), or none.
-  r.parameters.offsets2.w = static_cast<std::uint32_t>(wordData.size());
-  const auto& entryOf = emitters.entryOf();
-  std::vector<std::uint32_t> table(scene.meshes.size(), kNone);
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    if (m >= entryOf.size() || entryOf[m].empty()) continue;
-    table[m] = static_cast<std::uint32_t>(table.size());
-    for (std::int32_t e : entryOf[m])
-      table.push_back(e < 0 ? kNone : static_cast<std::uint32_t>(e));
-  }
-  wordData.insert(wordData.end(), table.begin(), table.end());
-  if (data.empty()) data.push_back(glm::vec4(0.0f));
-  if (wordData.empty()) wordData.push_back(0u);
-  r.sceneData = std::make_unique<Buffer>(Buffer::of(context, data));
-  r.words = std::make_unique<Buffer>(Buffer::of(context, wordData));
-  r.parameters.counts = {static_cast<std::uint32_t>(scene.lights.size()),
-                         static_cast<std::uint32_t>(scene.spheres.size()),
-                         static_cast<std::uint32_t>(emitters.triangles().size()), 0u};
-
+  // The scene, then what the reference adds: the environment and its tables.
+  r.scene = uploadSceneBuffers(context, scene);
+  r.parameters.counts = r.scene.counts;
+  r.parameters.offsets = r.scene.offsets;
+  r.parameters.offsets2 = r.scene.offsets2;
+  const std::vector<float>& iesTables = r.scene.iesTables;
   // The environment: level 0 of the source cube, its sampling tables, the albedo tables.
   const auto& level = bake.source.levels[0];
   const int n = level[0].width;
@@ -231,16 +85,17 @@ PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& b
   tableData.insert(tableData.end(), iesTables.begin(), iesTables.end());
   r.tables = std::make_unique<Buffer>(Buffer::of(context, tableData));
   r.tableHost = std::move(tableData);
-  r.parametersBuffer = std::make_unique<Buffer>(context, sizeof(Parameters));
+  r.parametersBuffer = std::make_unique<Buffer>(context, sizeof(SceneParameters));
   // The pipeline is compiled here, by an empty dispatch, so that the first batch's time is its
   // own (a driver without a warm shader cache takes seconds: lavapipe about 40).
   const auto start = std::chrono::steady_clock::now();
   r.accumulation = std::make_unique<Buffer>(context, 2 * sizeof(glm::vec4));
   r.parameters.image = {1u, 1u, 0u, 0u};
-  r.parametersBuffer->upload(&r.parameters, sizeof(Parameters));
+  r.parametersBuffer->upload(&r.parameters, sizeof(SceneParameters));
   dispatch(context, "path_trace",
-           {r.parametersBuffer.get(), r.nodes.get(), r.triangles.get(), r.sceneData.get(),
-            r.words.get(), r.texels.get(), r.levels.get(), r.tables.get(), r.accumulation.get()},
+           {r.parametersBuffer.get(), r.scene.nodes.get(), r.scene.triangles.get(),
+            r.scene.sceneData.get(), r.scene.words.get(), r.texels.get(), r.levels.get(),
+            r.tables.get(), r.accumulation.get()},
            {}, 1, 1);
   r.compileMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -256,7 +111,7 @@ void PathTracer::reset(const Camera& camera, const RenderOptions& o) {
   Impl& r = *impl_;
   if (camera.width < 1 || camera.height < 1)
     fail("render", fmt::format("an image of {} x {} pixels is empty", camera.width, camera.height));
-  Parameters& p = r.parameters;
+  SceneParameters& p = r.parameters;
   const CameraFrame f = camera.frame();
   const float aspect = static_cast<float>(camera.width) / static_cast<float>(camera.height);
   if (camera.perspective) {
@@ -326,10 +181,11 @@ void PathTracer::accumulate(int samples) {
     const int n = std::min(perDispatch, samples - done);
     r.parameters.image.z = static_cast<std::uint32_t>(r.spp + done);
     r.parameters.image.w = static_cast<std::uint32_t>(n);
-    r.parametersBuffer->upload(&r.parameters, sizeof(Parameters));
+    r.parametersBuffer->upload(&r.parameters, sizeof(SceneParameters));
     dispatch(r.context, "path_trace",
-             {r.parametersBuffer.get(), r.nodes.get(), r.triangles.get(), r.sceneData.get(),
-              r.words.get(), r.texels.get(), r.levels.get(), r.tables.get(), r.accumulation.get()},
+             {r.parametersBuffer.get(), r.scene.nodes.get(), r.scene.triangles.get(),
+              r.scene.sceneData.get(), r.scene.words.get(), r.texels.get(), r.levels.get(),
+              r.tables.get(), r.accumulation.get()},
              {}, groups(static_cast<std::size_t>(r.width), 8),
              groups(static_cast<std::size_t>(r.height), 8));
     done += n;

@@ -112,7 +112,11 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& sceneData, const BakeResult& 
       sceneVert(device, c.impl().shaderModule("scene_vert")),
       sceneFrag(device, c.impl().shaderModule("scene_frag")),
       fullscreenVert(device, c.impl().shaderModule("fullscreen_vert")),
-      skyboxFrag(device, c.impl().shaderModule("skybox_frag")) {}
+      skyboxFrag(device, c.impl().shaderModule("skybox_frag")) {
+  if (irradianceVolume)
+    volumeUpdate = std::make_unique<VolumeUpdate>(c, frame, volume, sceneData, *irradianceVolume,
+                                                  VolumeUpdateOptions{});
+}
 
 SceneRenderer::Impl::~Impl() {
   vkDeviceWaitIdle(device);
@@ -235,7 +239,7 @@ FrameState SceneRenderer::Impl::frameState(float skyboxLod, bool shadowed) const
 }
 
 void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& o,
-                                 float skyboxLod) {
+                                 float skyboxLod, bool updateVolume) {
   scene.checkSheen(o);
   const bool shadowed = shadows.prepare(camera, o, scene.lights(), bounds);
   if (!scene.lights().empty()) clusters.prepare(camera, scene.lights(), bounds);
@@ -246,6 +250,7 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   if (reflected) prepareScreenReflections();
   const Targets& t = *targets;
   frame.setUniforms(packFrameUniforms(camera, o, frameState(skyboxLod, shadowed)));
+  if (updateVolume && volumeUpdate) volumeUpdate->record(cmd, o);
   if (shadowed) shadows.record(cmd, scene);  // none pending when traced on the CPU
   if (occluded || reflected) t.viewBuffers->record(cmd, scene);
   if (occluded) t.occlusion->record(cmd);
@@ -317,6 +322,23 @@ SceneRenderer::~SceneRenderer() = default;
 void SceneRenderer::setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                                    const std::vector<Light>& lights) {
   impl_->setEnvironment(bake, bakeOptions, lights);
+}
+
+void SceneRenderer::updateVolume(const Camera& camera, const RenderOptions& options, int frames) {
+  Impl& r = *impl_;
+  if (!r.volumeUpdate) fail("view", "there is no irradiance volume to update (--volume)");
+  checkCamera(camera);
+  r.prepare(camera.width, camera.height, r.supportedSamples(std::max(options.spp, 1)));
+  for (int i = 0; i < frames; ++i)
+    r.context.impl().submitAndWait([&](VkCommandBuffer cmd) {
+      r.frame.setUniforms(packFrameUniforms(camera, options, r.frameState(0.0f, false)));
+      r.volumeUpdate->record(cmd, options);
+    });
+}
+
+std::pair<Image, Image> SceneRenderer::volumeAtlases() const {
+  if (!impl_->volumeUpdate) fail("view", "there is no irradiance volume (--volume)");
+  return impl_->volumeUpdate->atlases();
 }
 
 Context& SceneRenderer::context() {

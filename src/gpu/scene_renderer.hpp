@@ -16,6 +16,7 @@
 #include "gpu/scene_upload.hpp"
 #include "gpu/shadow_pass.hpp"
 #include "gpu/view_buffer_pass.hpp"
+#include "gpu/volume_update.hpp"
 #include "gpu/volume_upload.hpp"
 #include "gpu/vulkan.hpp"
 #include "ibl/gpu/viewer.hpp"
@@ -31,6 +32,7 @@ struct SceneRenderer::Impl {
   FrameSet frame;
   SceneUpload scene;
   VolumeUpload volume;
+  std::unique_ptr<VolumeUpdate> volumeUpdate;  // with a volume: its live update
   ShadowPass shadows;
   ClusterUpload clusters;
   // The scene pass's shaders: the meshes' (view/scene.vert and .frag) and the skybox's.
@@ -69,15 +71,18 @@ struct SceneRenderer::Impl {
   void prepare(int width, int height, int samples);
   // The meshes' pipeline for these switches (made on first use).
   VkPipeline scenePipeline(bool shadowed, bool ltcAreaLights);
-  // Records the frame into `cmd`; the output image ends shader-readable.
+  // Records the frame into `cmd`, after a frame of the volume's live update when `updateVolume`
+  // (and a volume) is there; the output image ends shader-readable.
   void record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& options,
-              float skyboxLod);
+              float skyboxLod, bool updateVolume = false);
   const DeviceImage& output() const { return *targets->resolved; }
   // SceneRenderer::shadowMaps: the maps as the device holds them (depths read back).
   ShadowMaps readShadowMaps(const Camera& camera, const RenderOptions& options);
   // SceneRenderer::setEnvironment.
   void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                       const std::vector<Light>& lights);
+  // What the frame's uniforms say besides the camera and the options.
+  FrameState frameState(float skyboxLod, bool shadowed) const;
 
  private:
   // The screen-space passes for the current size (each made once, after waiting for the device
@@ -85,8 +90,6 @@ struct SceneRenderer::Impl {
   void prepareViewBuffers();
   void prepareScreenOcclusion();
   void prepareScreenReflections();
-  // What the frame's uniforms say besides the camera and the options.
-  FrameState frameState(float skyboxLod, bool shadowed) const;
   // Records the scene's pass (skybox and meshes) into `framebuffer` as part `pass` of the frame.
   void recordScenePass(VkCommandBuffer cmd, VkFramebuffer framebuffer, VkPipeline meshPipeline,
                        ScenePass pass) const;

@@ -74,7 +74,8 @@ std::vector<std::uint8_t> volumeAtlasTexels(const Image& atlas, VkFormat format)
 }
 
 VolumeUpload::VolumeUpload(Context& context, FrameSet& frame, const IrradianceVolume* volume,
-                           VkFormat format) {
+                           VkFormat format)
+    : format_(format) {
   irradiance_ = uploadAtlas(context, volume ? &volume->irradiance : nullptr, format, "irradiance");
   distance_ = uploadAtlas(context, volume ? &volume->distance : nullptr, format, "distance");
   // One record per probe (a buffer is never empty: one zero record without a volume).

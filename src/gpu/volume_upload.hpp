@@ -41,7 +41,14 @@ class VolumeUpload {
   // Sets the volume's part of `state` (its grid, or none).
   void describe(FrameState& state) const;
 
+  // What the frame set points at (VolumeUpdate rewrites the atlases).
+  const DeviceImage& irradiance() const { return *irradiance_; }
+  const DeviceImage& distance() const { return *distance_; }
+  const Buffer& probes() const { return *probes_; }
+  VkFormat format() const { return format_; }
+
  private:
+  VkFormat format_;
   std::unique_ptr<DeviceImage> irradiance_, distance_;
   std::unique_ptr<Buffer> probes_;
   std::optional<shared::VolumeGrid> grid_;

@@ -652,7 +652,8 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(r.cmd, &begin), "vkBeginCommandBuffer");
-    if (view == ViewMode::RealTime) renderer.record(r.cmd, camera, shading, state.skyboxLod);
+    if (view == ViewMode::RealTime)
+      renderer.record(r.cmd, camera, shading, state.skyboxLod, o.volumeUpdate);
     const DeviceImage& frame = view == ViewMode::RealTime ? renderer.output() : *r.shown;
     const bool bloomed = r.bloom && !difference;
     if (bloomed) r.bloom->record(r.cmd, frame, ev100 - state.compensation, *o.bloom);

@@ -26,16 +26,6 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-// The paper's power of the cosine lobe that filters the distances (Majercik et al. 2019,
-// section 4.1: sharper than the irradiance's cosine, so that walls keep their edges).
-constexpr float kDistanceSharpness = 50.0f;
-
-glm::vec3 gridPosition(const VolumeGrid& g, int index) {
-  const int nx = g.counts.x, ny = g.counts.y;
-  const glm::ivec3 c(index % nx, index / nx % ny, index / (nx * ny));
-  return g.origin + g.spacing * glm::vec3(c);
-}
-
 glm::ivec2 atlasSize(const VolumeGrid& g, int texels) {
   return {g.counts.x * g.counts.y * (texels + 2), g.counts.z * (texels + 2)};
 }
@@ -153,7 +143,7 @@ int volumeProbeCount(const VolumeGrid& g) {
 }
 
 glm::vec3 volumeProbePosition(const VolumeGrid& g, int index) {
-  return gridPosition(g, index);
+  return shared::volumeGridPosition(g, index);
 }
 
 namespace {
@@ -197,8 +187,8 @@ std::vector<ProbeRelocation> relocateProbes(const Scene& scene, const VolumeGrid
   const RayTracer tracer(scene);
   std::vector<ProbeRelocation> out(which.size());
   parallelFor(0, static_cast<int>(which.size()), [&](int i) {
-    out[static_cast<std::size_t>(i)] =
-        relocateWith(tracer, gridPosition(grid, which[static_cast<std::size_t>(i)]), grid.spacing);
+    out[static_cast<std::size_t>(i)] = relocateWith(
+        tracer, shared::volumeGridPosition(grid, which[static_cast<std::size_t>(i)]), grid.spacing);
   });
   return out;
 }
@@ -312,8 +302,8 @@ void captureVolumeProbes(const Scene& scene, IrradianceVolume& volume,
   o.backgroundEnvironment = true;
   std::size_t done = 0;
   for (const int probe : which) {
-    const glm::vec3 position =
-        gridPosition(g, probe) + volume.probes[static_cast<std::size_t>(probe)].offset;
+    const glm::vec3 position = shared::volumeGridPosition(g, probe) +
+                               volume.probes[static_cast<std::size_t>(probe)].offset;
     // Radiance: the octahedral map path traced, each texel's samples spread over its area.
     const RayGenerator rayOf = [&](glm::vec2 pixel) {
       return Ray{position, shared::octahedralDecode(2.0f * pixel / static_cast<float>(n) - 1.0f)};
@@ -372,7 +362,8 @@ void captureVolumeProbes(const Scene& scene, IrradianceVolume& volume,
       for (std::size_t i = 0; i < directions.size(); ++i) {
         const float c = glm::dot(normal, directions[i]);
         if (c <= 0.0f) continue;
-        const double w = std::pow(static_cast<double>(c), kDistanceSharpness) * solidAngles[i];
+        const double w =
+            std::pow(static_cast<double>(c), shared::kVolumeDistanceSharpness) * solidAngles[i];
         m += w * glm::dvec2(moments[i]);
         total += w;
       }
@@ -423,7 +414,7 @@ void writeVolume(const IrradianceVolume& volume, const fs::path& dir, const std:
   for (std::size_t i = 0; i < volume.probes.size(); ++i) {
     const ProbeRelocation& r = volume.probes[i];
     Json p = {{"linear", i},
-              {"position", vec3Json(gridPosition(g, static_cast<int>(i)) + r.offset)},
+              {"position", vec3Json(shared::volumeGridPosition(g, static_cast<int>(i)) + r.offset)},
               {"offset", vec3Json(r.offset)},
               {"on", r.on},
               {"captured", static_cast<bool>(volume.captured[i])}};

@@ -19,12 +19,17 @@ namespace ibl {
 
 namespace {
 
-// The paper's power of the distances' cosine lobe (as the capture's).
-constexpr double kSharpness = 50.0;
+struct RayResult {
+  glm::vec3 direction{0.0f};
+  glm::vec3 radiance{0.0f};
+  float distance = 0.0f;
+};
 
-// A rotation drawn uniformly for a frame (Shoemake 1992, "Uniform Random Rotations", Graphics
-// Gems III: a unit quaternion from three uniform numbers).
-glm::mat3 frameRotation(unsigned seed, unsigned frame) {
+}  // namespace
+
+// A unit quaternion from three uniform numbers (Shoemake 1992, "Uniform Random Rotations",
+// Graphics Gems III).
+glm::mat3 volumeFrameRotation(unsigned seed, unsigned frame) {
   Sampler sampler(seed, 0x9E3779B9u + frame);
   sampler.startSample(0);
   const glm::vec2 a = sampler.uniform2();
@@ -35,21 +40,13 @@ glm::mat3 frameRotation(unsigned seed, unsigned frame) {
   return glm::mat3_cast(glm::normalize(q));
 }
 
-struct RayResult {
-  glm::vec3 direction{0.0f};
-  glm::vec3 radiance{0.0f};
-  float distance = 0.0f;
-};
-
-}  // namespace
-
 void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult& bake,
                   const BakeOptions& bakeOptions, const RenderOptions& shading,
                   const VolumeUpdateOptions& options, unsigned frame) {
   const VolumeGrid& g = volume.grid;
   const int count = volumeProbeCount(g);
   const int rays = std::max(1, options.raysPerProbe);
-  const glm::mat3 rotation = frameRotation(volume.capture.seed, frame);
+  const glm::mat3 rotation = volumeFrameRotation(volume.capture.seed, frame);
   const float farthest = 2.0f * glm::length(g.spacing);
   const RayTracer tracer(scene);
   // The hits are lit by the volume as it was before this frame.
@@ -110,7 +107,7 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
           for (int i = 0; i < rays; ++i) {
             const double c = glm::dot(n, probeRays[i].direction);
             if (c <= 0.0) continue;
-            const double w = distances ? std::pow(c, kSharpness) : c;
+            const double w = distances ? std::pow(c, double{shared::kVolumeDistanceSharpness}) : c;
             const glm::dvec3 value =
                 distances ? glm::dvec3(probeRays[i].distance,
                                        double(probeRays[i].distance) * probeRays[i].distance, 0.0)

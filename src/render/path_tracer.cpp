@@ -8,6 +8,7 @@
 #include "ibl/core/parallel.hpp"
 #include "ibl/math/brdf.hpp"
 #include "ibl/math/sampling.hpp"
+#include "ibl/shared/material.h"
 #include "ibl/shared/path_brdf.h"
 #include "ibl/shared/split_sum.h"
 
@@ -152,8 +153,7 @@ void preparePathTracer() {
 // sees, so a metal (no diffuse lobe) would be black; it is seen as a diffuse surface whose albedo
 // is its F0 instead.
 SurfacePoint metalAsDiffuse(SurfacePoint p) {
-  const glm::vec3 f0 = glm::mix(glm::vec3(0.04f), p.baseColor, p.metallic);
-  p.baseColor = p.baseColor * (1.0f - p.metallic) + p.metallic * f0;
+  p.baseColor = shared::metalAsDiffuseColor(p.baseColor, p.metallic);
   p.metallic = 0.0f;
   return p;
 }

@@ -315,6 +315,17 @@ TEST(Usage, View) {
               {"--shadows", "--screenshot out.png --shadows ray", 2,
                "--shadows: ray is `ibl render`'s alone"},
               {"--volume", "--screenshot out.png --volume nosuch", 1, "nosuch: no such directory"},
+              {"--volume-update", "--screenshot out.png --volume-update on", 2,
+               "--volume-update: updates the volume of --volume"},
+              {"--volume-update", "--screenshot out.png --volume-update sometimes", 2,
+               "--volume-update"},
+              {"--volume-update-frames", "--screenshot out.png --volume-update-frames 2", 2,
+               "--volume-update-frames: updates the volume of --volume"},
+              {"--volume-update-frames",
+               "--screenshot out.png --volume . --volume-update off --volume-update-frames 2", 2,
+               "--volume-update-frames: contradicts --volume-update off"},
+              {"--volume-update-frames", "--frames 1 --volume . --volume-update-frames 2", 2,
+               "--volume-update-frames: runs before a --screenshot"},
           });
 }
 

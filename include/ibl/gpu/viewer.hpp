@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ibl/bake/bake.hpp"
@@ -68,6 +69,14 @@ class SceneRenderer {
   // illuminance; an IES light keeps its profile). Waits for the device to be idle.
   void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                       const std::vector<Light>& lights);
+  // The irradiance volume's live update (src/gpu/volume_update.hpp): `frames` frames of it,
+  // lit by the lights and the environment with the shading switches of `options`, as
+  // updateVolume runs them on the CPU (the same frames: the same rays); the frames drawn after
+  // read the updated volume. Throws Error("view: ...") without a volume.
+  void updateVolume(const Camera& camera, const RenderOptions& options, int frames);
+  // The volume's atlases as the device holds them now: irradiance, distance (IrradianceVolume's
+  // layout). Throws Error("view: ...") without a volume.
+  std::pair<Image, Image> volumeAtlases() const;
   // The device it draws on (a bake can run there: bakeEnvironment's `device`).
   Context& context();
 
@@ -139,6 +148,10 @@ struct WindowOptions {
   ViewMode view = ViewMode::RealTime;
   std::optional<RenderOptions> reference;
   int referenceSpp = 0;  // the reference stops adding samples at this many per pixel (0: 1 << 20)
+  // With a volume: each real-time frame runs a frame of its live update first
+  // (SceneRenderer::updateVolume), so that the sun, the environment and the lights relight it;
+  // false keeps the volume as baked.
+  bool volumeUpdate = true;
 };
 
 struct WindowStats {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -123,6 +124,10 @@ IrradianceVolume loadVolume(const std::filesystem::path& path, const std::string
 // over frames; metals seen as the capture sees them), or the environment where it leaves; each
 // texel is then blended with volumeBlend (irradiance by the cosine, distances by the cos^50
 // lobe, as a capture filters them).
+// The rotation of frame `frame`'s rays (volumeRayDirection), drawn uniformly from `seed` and the
+// frame: the CPU's update and the viewer's turn the same rays.
+glm::mat3 volumeFrameRotation(unsigned seed, unsigned frame);
+
 struct VolumeUpdateOptions {
   int raysPerProbe = 256;
   float hysteresis = 0.9f;  // the share of a texel kept per frame

@@ -78,6 +78,17 @@ IBL_FN int volumeProbeIndex(VolumeGrid g, ivec3 c) {
   return c.x + g.counts.x * (c.y + g.counts.y * c.z);
 }
 
+// Probe `index`'s place on the grid, before its relocation offset.
+IBL_FN vec3 volumeGridPosition(VolumeGrid g, int index) {
+  int nx = g.counts.x, ny = g.counts.y;
+  ivec3 c = ivec3(index % nx, index / nx % ny, index / (nx * ny));
+  return g.origin + g.spacing * vec3(float(c.x), float(c.y), float(c.z));
+}
+
+// The power of the cosine lobe over which a texel of the distance map averages the distances
+// (section 4.1): sharper than the irradiance's cosine, so that walls keep their edges.
+const float kVolumeDistanceSharpness = 50.0f;
+
 // Where the texel of direction d of a probe's tile lies in an atlas, in texels from the atlas'
 // top-left corner (continuous: texel (x, y) covers [x, x + 1) x [y, y + 1)); `texels` is the
 // tile's interior size. Bilinear filtering at this point stays inside the tile: its border

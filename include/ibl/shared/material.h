@@ -72,6 +72,14 @@ IBL_FN int wrapTexel(int i, int n, int wrap) {
   return i < 0 ? i + n : i;
 }
 
+// The diffuse color a capture gives a metal, whose specular it leaves out (RenderOptions::
+// captureMetalsAsDiffuse): its F0 (glTF 2.0 Appendix B: 0.04 for the dielectric, the base color
+// for the metal) as the albedo of a surface that is then not metallic.
+IBL_FN vec3 metalAsDiffuseColor(vec3 baseColor, float metallic) {
+  vec3 f0 = mix(vec3(0.04f), baseColor, metallic);
+  return baseColor * (1.0f - metallic) + metallic * f0;
+}
+
 IBL_END
 
 #endif

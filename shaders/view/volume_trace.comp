@@ -1,0 +1,117 @@
+#version 450
+// The irradiance volume's live update in the viewer, its rays (gpu::VolumeUpdate in
+// src/gpu/volume_update.cpp; updateVolume in src/render/irradiance_volume_update.cpp on the CPU):
+// ray i of probe p leaves along volumeRayDirection(i, rays, the frame's rotation), meets the
+// scene in the reference's BVH (render/scene_buffers.glsl, set 1), and takes the radiance the
+// hit sends back: the split sum's diffuse of the distant environment and of the volume as it
+// stood before this frame (so that bounces add up over frames), and the lights' with their
+// visibility traced. Its result: (radiance, distance to the hit, at most `farthest`).
+layout(local_size_x = 64) in;
+
+#include "ibl/shared/color.h"
+#include "view/frame.glsl"
+#include "view/shading.glsl"
+#define SCENE_SET 1
+#include "render/scene_buffers.glsl"
+#include "ibl/shared/light_sampling.h"
+#include "ibl/shared/path_sampler.h"
+
+layout(std430, set = 1, binding = 5) writeonly buffer Rays {
+  vec4 rays[];  // per probe, its rays in turn: radiance, distance
+};
+
+layout(push_constant) uniform Update {
+  vec4 rotation0;  // the frame's rotation by columns; w of the first: the farthest distance
+  vec4 rotation1;
+  vec4 rotation2;
+  ivec4 counts;  // rays per probe, probes, flags (1 metals as diffuse)
+  ivec4 keys;    // the capture's seed, the frame
+} update;
+
+const float kFar = 1e30;
+
+// The share of light l's irradiance that reaches p (rayTracedVisibility in
+// src/render/shadows.cpp with one sample): 1 or 0.
+float tracedVisibility(ShadingLight l, vec3 p, vec3 n, vec2 xi) {
+  vec3 direction;
+  float distance;
+  if (l.type == kLightPoint || l.type == kLightSpot) {
+    vec3 d = l.position - p;
+    distance = length(d);
+    direction = d / distance;
+  } else {
+    AreaLightSample s = sampleAreaLight(l, p, xi);
+    if (!(s.pdf > 0.0) || !(luminance(s.radiance) * abs(dot(n, s.direction)) > 0.0)) return 1.0;
+    direction = s.direction;
+    distance = s.distance;
+  }
+  vec3 origin = p + (dot(n, direction) >= 0.0 ? n : -n) * (1e-4 * max(1.0, length(p)));
+  float reach = distance < kSunDistance ? distance * (1.0 - 1e-4) : kFar;
+  return occluded(origin, direction, reach) ? 0.0 : 1.0;
+}
+
+// The radiance a hit p sends back along `view` (shadeSplitSum with --only diffuse plus
+// shadeLightsRealTime, their visibility traced, in src/render/renderer.cpp).
+vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
+  SplitSumSwitches s = frameSwitches();
+  s.terms = 1;  // diffuse
+  SplitSumMaterial m;
+  m.baseColor = p.baseColor;
+  m.metallic = p.metallic;
+  m.roughness = p.roughness;
+  m.occlusion = 1.0;
+  m.emissive = vec3(0.0);
+  vec3 n = p.normal;
+  SplitSumLookup look = splitSumLookup(n, view, m.roughness, s);
+  vec3 dfg = textureLod(dfgLut, vec2(look.NoV, m.roughness), 0.0).rgb;
+  vec3 irradiance = frame.lods.w >= 0.5 ? distantIrradiance(look.diffuseDirection) : vec3(0.0);
+  VolumeGrid g = frameVolumeGrid();
+  float cover = volumeCoverage(g, p.position);
+  if (cover > 0.0)
+    irradiance = mix(irradiance, volumeLookup(g, p.position, n, view, look.diffuseDirection), cover);
+  vec3 color = splitSumRadiance(m, look.NoV, dfg, vec3(0.0), irradiance, s);
+  if (p.sheenColor != vec3(0.0)) {
+    float e = textureLod(sheenDfgLut, vec2(look.NoV, max(p.sheenRoughness, kMinSheenRoughness)),
+                         0.0).r;
+    color *= sheenAlbedoScaling(p.sheenColor, e);
+  }
+  vec4 ltc = s.ltcAreaLights ? ltcTableEntry(m.roughness, look.NoV) : vec4(1.0, 0.0, 0.0, 1.0);
+  for (int i = 0; i < frame.models.w; ++i) {
+    LightRecord record = lightRecordAt(i);
+    ShadingLight l = unpackLight(record);
+    float visible = tracedVisibility(l, p.position, n, pathUniform2(numbers));
+    if (visible <= 0.0) continue;
+    LightIncidence inc = lightIncidence(l, p.position, n, view, m.roughness, s, ltc);
+    float profile = visible * iesProfileFactor(l, lightRecordProfile(record),
+                                               normalize(p.position - l.position));
+    color += l.color * profile * lightRadiance(m, n, view, inc, dfg.xy, s);
+  }
+  return color + p.emissive;
+}
+
+void main() {
+  int ray = int(gl_GlobalInvocationID.x), probe = int(gl_GlobalInvocationID.y);
+  int count = update.counts.x;
+  if (ray >= count || probe >= update.counts.y) return;
+  vec4 record = volumeProbeData[probe];  // relocation offset, 1 when on
+  if (record.w < 0.5) return;
+  VolumeGrid g = frameVolumeGrid();
+  vec3 origin = volumeGridPosition(g, probe) + record.xyz;
+  mat3 rotation = mat3(update.rotation0.xyz, update.rotation1.xyz, update.rotation2.xyz);
+  vec3 dir = volumeRayDirection(ray, count, rotation);
+  float farthest = update.rotation0.w;
+  uint slot = uint(probe * count + ray);
+  SceneHit hit = intersectScene(origin, dir, kFar, false);
+  if (!hit.found) {
+    vec3 sky = frame.lods.w >= 0.5 ? textureLod(sourceMap, dir, 0.0).rgb : vec3(0.0);
+    rays[slot] = vec4(sky, farthest);
+    return;
+  }
+  Surface p = surfaceAt(hit, origin, dir);
+  if ((update.counts.z & 1) != 0) {
+    p.baseColor = metalAsDiffuseColor(p.baseColor, p.metallic);
+    p.metallic = 0.0;
+  }
+  PathSampler numbers = pathSamplerAt(pathSamplerKey(uint(update.keys.x), uint(update.keys.y), slot, 0u), 0u);
+  rays[slot] = vec4(shadeHit(p, -dir, numbers), min(hit.t, farthest));
+}
