@@ -4,7 +4,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -24,8 +23,6 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-constexpr float kPi = std::numbers::pi_v<float>;
-
 glm::ivec2 atlasSize(const VolumeGrid& g, int texels) {
   return {g.counts.x * g.counts.y * (texels + 2), g.counts.z * (texels + 2)};
 }
@@ -42,14 +39,6 @@ glm::vec3 octahedralTexelDirection(float x, float y, int size) {
   return shared::octahedralDecode({2.0f * x / s - 1.0f, 2.0f * y / s - 1.0f});
 }
 
-// Fibonacci directions: even over the sphere without randomness.
-glm::vec3 fibonacciDirection(int i, int count) {
-  const float z = 1.0f - (2.0f * static_cast<float>(i) + 1.0f) / static_cast<float>(count);
-  const float phi = static_cast<float>(i) * kPi * (3.0f - std::sqrt(5.0f));
-  const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  return {s * std::cos(phi), s * std::sin(phi), z};
-}
-
 // What the rays from a point meet: the share that leave through back faces, and the nearest
 // back and front faces.
 struct SiteRays {
@@ -62,7 +51,7 @@ SiteRays traceSite(const RayTracer& tracer, glm::vec3 p, int rays) {
   SiteRays s;
   int back = 0;
   for (int i = 0; i < rays; ++i) {
-    const glm::vec3 d = fibonacciDirection(i, rays);
+    const glm::vec3 d = shared::sphericalFibonacciPoint(i, rays);
     const RayTracer::Hit hit = tracer.intersect(Ray{p, d});
     if (!hit.found) continue;
     if (glm::dot(hit.ng, d) > 0.0f) {
@@ -272,6 +261,21 @@ glm::vec3 sampleVolumeAtlas(const Image& atlas, glm::vec2 texel) {
                   glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), t.x), t.y);
 }
 
+LobeSums cosineLobeSums(glm::vec3 normal, std::span<const glm::vec3> directions,
+                        std::span<const float> weights, std::span<const glm::vec3> values,
+                        double power) {
+  LobeSums s;
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    const double c = glm::dot(normal, directions[i]);
+    if (c <= 0.0) continue;
+    const double w =
+        (weights.empty() ? 1.0 : double{weights[i]}) * (power == 1.0 ? c : std::pow(c, power));
+    s.weighted += w * glm::dvec3(values[i]);
+    s.total += w;
+  }
+  return s;
+}
+
 void captureVolumeProbes(const Scene& scene, IrradianceVolume& volume,
                          const std::vector<int>& which, const BakeResult& bake,
                          const BakeOptions& bakeOptions,
@@ -315,7 +319,7 @@ void captureVolumeProbes(const Scene& scene, IrradianceVolume& volume,
           if (progress) progress((static_cast<float>(done) + f) / static_cast<float>(which.size()));
         });
     // Distances: the mean and mean square over a side x side lattice of rays in each texel.
-    std::vector<glm::vec2> moments(static_cast<std::size_t>(cells));
+    std::vector<glm::vec3> moments(static_cast<std::size_t>(cells));  // mean, mean square, 0
     parallelFor(0, n, [&](int y) {
       for (int x = 0; x < n; ++x) {
         glm::vec2 m(0.0f);
@@ -329,7 +333,8 @@ void captureVolumeProbes(const Scene& scene, IrradianceVolume& volume,
             const float t = hit.found ? std::min(hit.t, farthest) : farthest;
             m += glm::vec2(t, t * t);
           }
-        moments[static_cast<std::size_t>(y) * n + x] = m / static_cast<float>(side * side);
+        moments[static_cast<std::size_t>(y) * n + x] =
+            glm::vec3(m / static_cast<float>(side * side), 0.0f);
       }
     });
     // The stored tiles: irradiance / pi by quadrature over the captured texels, distances by
@@ -342,33 +347,18 @@ void captureVolumeProbes(const Scene& scene, IrradianceVolume& volume,
           octahedralTexelDirection(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, te);
       // The cosine-weighted mean of the radiance over the hemisphere (E / pi); its weights'
       // sum stands for their integral, pi, so that the texels' discretization cancels.
-      glm::dvec3 e(0.0);
-      double total = 0.0;
-      for (std::size_t i = 0; i < directions.size(); ++i) {
-        const float c = glm::dot(normal, directions[i]);
-        if (c <= 0.0f) continue;
-        const double w = static_cast<double>(c * solidAngles[i]);
-        e += glm::dvec3(radiance.color.pixels[i]) * w;
-        total += w;
-      }
-      volume.irradiance.at(oe.x + 1 + x, oe.y + 1 + y) = glm::vec3(e / total);
+      const LobeSums e =
+          cosineLobeSums(normal, directions, solidAngles, radiance.color.pixels, 1.0);
+      volume.irradiance.at(oe.x + 1 + x, oe.y + 1 + y) = glm::vec3(e.weighted / e.total);
     });
     parallelFor(0, td * td, [&](int t) {
       const int x = t % td, y = t / td;
       const glm::vec3 normal =
           octahedralTexelDirection(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, td);
-      glm::dvec2 m(0.0);
-      double total = 0.0;
-      for (std::size_t i = 0; i < directions.size(); ++i) {
-        const float c = glm::dot(normal, directions[i]);
-        if (c <= 0.0f) continue;
-        const double w =
-            std::pow(static_cast<double>(c), shared::kVolumeDistanceSharpness) * solidAngles[i];
-        m += w * glm::dvec2(moments[i]);
-        total += w;
-      }
-      const glm::vec2 mean =
-          total > 0.0 ? glm::vec2(m / total) : glm::vec2(farthest, farthest * farthest);
+      const LobeSums m = cosineLobeSums(normal, directions, solidAngles, moments,
+                                        shared::kVolumeDistanceSharpness);
+      const glm::vec2 mean = m.total > 0.0 ? glm::vec2(m.weighted / m.total)
+                                           : glm::vec2(farthest, farthest * farthest);
       volume.distance.at(od.x + 1 + x, od.y + 1 + y) = glm::vec3(mean, 0.0f);
     });
     // Only this probe's borders: capturing probe by probe stays linear in their number.

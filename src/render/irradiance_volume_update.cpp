@@ -2,6 +2,7 @@
 // every probe, shaded with the split sum's diffuse and the volume itself, blended into the
 // texels with hysteresis. The viewer's update runs the same rules (ibl/shared/irradiance_volume.h).
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -16,16 +17,6 @@
 #include "shadow_rays.hpp"
 
 namespace ibl {
-
-namespace {
-
-struct RayResult {
-  glm::vec3 direction{0.0f};
-  glm::vec3 radiance{0.0f};
-  float distance = 0.0f;
-};
-
-}  // namespace
 
 // A unit quaternion from three uniform numbers (Shoemake 1992, "Uniform Random Rotations",
 // Graphics Gems III).
@@ -58,7 +49,13 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
   o.probes = nullptr;
   o.screenOcclusion = nullptr;
   o.screenReflection = nullptr;
-  std::vector<RayResult> results(static_cast<std::size_t>(count) * rays);
+  // The frame's directions (the same from every probe), and per probe and ray what came back:
+  // the radiance, and the distance's two moments.
+  std::vector<glm::vec3> directions(static_cast<std::size_t>(rays));
+  for (int i = 0; i < rays; ++i)
+    directions[static_cast<std::size_t>(i)] = shared::volumeRayDirection(i, rays, rotation);
+  const std::size_t samples = static_cast<std::size_t>(count) * rays;
+  std::vector<glm::vec3> radiance(samples), moments(samples);
   parallelFor(0, count, [&](int probe) {
     const ProbeRelocation& r = volume.probes[static_cast<std::size_t>(probe)];
     if (!r.on) return;
@@ -66,17 +63,16 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
     Sampler sampler(volume.capture.seed, (static_cast<std::uint64_t>(frame) << 32) + probe);
     std::vector<float> visibility(scene.lights.size());
     for (int i = 0; i < rays; ++i) {
-      RayResult& out = results[static_cast<std::size_t>(probe) * rays + i];
-      out.direction = shared::volumeRayDirection(i, rays, rotation);
-      const Ray ray{origin, out.direction};
+      const std::size_t at = static_cast<std::size_t>(probe) * rays + i;
+      const Ray ray{origin, directions[static_cast<std::size_t>(i)]};
       const RayTracer::Hit hit = tracer.intersect(ray);
+      const float distance = hit.found ? std::min(hit.t, farthest) : farthest;
+      moments[at] = glm::vec3(distance, distance * distance, 0.0f);
       if (!hit.found) {
-        out.distance = farthest;
-        out.radiance =
+        radiance[at] =
             o.environmentLight ? sampleBilinear(bake.source, 0, ray.direction) : glm::vec3(0.0f);
         continue;
       }
-      out.distance = std::min(hit.t, farthest);
       SurfacePoint p = surfaceAt(scene, tracer, hit, ray);
       if (volume.capture.metalsAsDiffuse) p = metalAsDiffuse(p);
       const glm::vec3 view = -ray.direction;
@@ -86,44 +82,34 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
             rayTracedVisibility(tracer, scene.lights[l], p.position, p.normal, 1, sampler);
       const glm::vec2 dfg(
           sampleDfgLut(bake.dfg, std::max(glm::dot(p.normal, view), 1e-4f), p.roughness));
-      out.radiance =
+      radiance[at] =
           shadeSplitSum(p, view, bake, bakeOptions, o) +
           shadeLightsRealTime(p, p.position, view, scene.lights, dfg, o, 1.0f, visibility);
     }
   });
   // Each texel: the frame's weighted mean blended with what it held.
-  const auto blendTiles = [&](Image& atlas, int texels, bool distances) {
+  const auto blendTiles = [&](Image& atlas, int texels, const std::vector<glm::vec3>& values,
+                              double power) {
     parallelFor(0, count, [&](int probe) {
       if (!volume.probes[static_cast<std::size_t>(probe)].on) return;
-      const RayResult* probeRays = &results[static_cast<std::size_t>(probe) * rays];
+      const std::span<const glm::vec3> probeValues(
+          values.data() + static_cast<std::size_t>(probe) * rays, static_cast<std::size_t>(rays));
       const int perRow = g.counts.x * g.counts.y;
       const glm::ivec2 tile = glm::ivec2(probe % perRow, probe / perRow) * (texels + 2);
       for (int y = 0; y < texels; ++y)
         for (int x = 0; x < texels; ++x) {
           const glm::vec2 uv = (glm::vec2(x, y) + 0.5f) / static_cast<float>(texels) * 2.0f - 1.0f;
-          const glm::vec3 n = shared::octahedralDecode(uv);
-          glm::dvec3 sum(0.0);
-          double total = 0.0;
-          for (int i = 0; i < rays; ++i) {
-            const double c = glm::dot(n, probeRays[i].direction);
-            if (c <= 0.0) continue;
-            const double w = distances ? std::pow(c, double{shared::kVolumeDistanceSharpness}) : c;
-            const glm::dvec3 value =
-                distances ? glm::dvec3(probeRays[i].distance,
-                                       double(probeRays[i].distance) * probeRays[i].distance, 0.0)
-                          : glm::dvec3(probeRays[i].radiance);
-            sum += w * value;
-            total += w;
-          }
+          const LobeSums s =
+              cosineLobeSums(shared::octahedralDecode(uv), directions, {}, probeValues, power);
           glm::vec3& texel = atlas.at(tile.x + 1 + x, tile.y + 1 + y);
-          texel = shared::volumeBlend(texel, glm::vec3(sum), static_cast<float>(total),
+          texel = shared::volumeBlend(texel, glm::vec3(s.weighted), static_cast<float>(s.total),
                                       options.hysteresis);
         }
     });
     fillVolumeBorders(atlas, g, texels);
   };
-  blendTiles(volume.irradiance, g.irradianceTexels, false);
-  blendTiles(volume.distance, g.distanceTexels, true);
+  blendTiles(volume.irradiance, g.irradianceTexels, radiance, 1.0);
+  blendTiles(volume.distance, g.distanceTexels, moments, shared::kVolumeDistanceSharpness);
 }
 
 }  // namespace ibl

@@ -12,6 +12,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/json_file.hpp"
+#include "ibl/shared/sampling.h"
 #include "ibl/shared/split_sum.h"
 #include "ray_tracer.hpp"
 
@@ -170,11 +171,7 @@ CaptureSite inspectCaptureSite(const Scene& scene, glm::vec3 position, int rays)
   CaptureSite site;
   int back = 0;
   for (int i = 0; i < rays; ++i) {
-    // A Fibonacci spiral: even over the sphere without randomness.
-    const float z = 1.0f - (2.0f * static_cast<float>(i) + 1.0f) / static_cast<float>(rays);
-    const float phi = static_cast<float>(i) * kPi * (3.0f - std::sqrt(5.0f));
-    const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    const glm::vec3 d(s * std::cos(phi), s * std::sin(phi), z);
+    const glm::vec3 d = shared::sphericalFibonacciPoint(i, rays);
     const RayTracer::Hit hit = tracer.intersect(Ray{position, d});
     if (!hit.found) continue;
     site.nearestHit = std::min(site.nearestHit, hit.t);

@@ -6,6 +6,7 @@
 // ibl/shared/irradiance_volume.h, the file layout docs/probes.md, "Irradiance volumes").
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -124,6 +125,19 @@ IrradianceVolume loadVolume(const std::filesystem::path& path, const std::string
 // over frames; metals seen as the capture sees them), or the environment where it leaves; each
 // texel is then blended with volumeBlend (irradiance by the cosine, distances by the cos^50
 // lobe, as a capture filters them).
+// A texel of direction `normal` as a cosine-lobe filter of samples over the sphere (Majercik et
+// al. 2019, section 4.1): over the samples on normal's side, the sums of w_i cos^power(theta_i)
+// value_i and of w_i cos^power(theta_i), w_i the sample's own weight (a captured texel's solid
+// angle; 1 for every ray when `weights` is empty). The capture and the update divide the one by
+// the other: power 1 gives the irradiance over pi, kVolumeDistanceSharpness the distance moments.
+struct LobeSums {
+  glm::dvec3 weighted{0.0};
+  double total = 0.0;
+};
+LobeSums cosineLobeSums(glm::vec3 normal, std::span<const glm::vec3> directions,
+                        std::span<const float> weights, std::span<const glm::vec3> values,
+                        double power);
+
 // The rotation of frame `frame`'s rays (volumeRayDirection), drawn uniformly from `seed` and the
 // frame: the CPU's update and the viewer's turn the same rays.
 glm::mat3 volumeFrameRotation(unsigned seed, unsigned frame);

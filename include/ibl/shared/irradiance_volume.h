@@ -22,6 +22,7 @@
 #define IBL_SHARED_IRRADIANCE_VOLUME_H
 #include "ibl/shared/color.h"
 #include "ibl/shared/lang.h"
+#include "ibl/shared/sampling.h"
 
 IBL_BEGIN
 
@@ -241,15 +242,11 @@ IBL_FN float volumeCoverage(VolumeGrid g, vec3 p) {
   return s.x * s.y * s.z;
 }
 
-// Direction i of n spread evenly over the sphere (the spherical Fibonacci points: Keinert et al.
-// 2015, "Spherical Fibonacci Mapping", equation 2), turned by `rotation`: the rays one frame of
-// the live update traces from each probe (Majercik et al. 2019, section 5: a new random rotation
-// every frame, so that the frames' rays fill the sphere).
+// Direction i of n spread evenly over the sphere (sphericalFibonacciPoint), turned by
+// `rotation`: the rays one frame of the live update traces from each probe (Majercik et al.
+// 2019, section 5: a new random rotation every frame, so that the frames' rays fill the sphere).
 IBL_FN vec3 volumeRayDirection(int i, int n, mat3 rotation) {
-  float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n);
-  float phi = 2.0f * kPi * fract(float(i) * 0.6180339887f);
-  float s = sqrt(max(0.0f, 1.0f - z * z));
-  return rotation * vec3(s * cos(phi), s * sin(phi), z);
+  return rotation * sphericalFibonacciPoint(i, n);
 }
 
 // A texel after one frame of the update (section 5): the frame's estimate, the weighted mean of

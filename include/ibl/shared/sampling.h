@@ -27,6 +27,16 @@ IBL_FN vec2 hammersley(uint i, uint n) {
   return vec2(float(i) / float(n), radicalInverse2(i));
 }
 
+// Point i of n spread evenly over the unit sphere, without randomness: the spherical Fibonacci
+// points (Keinert et al. 2015, "Spherical Fibonacci Mapping", equation 2), z evenly spaced and
+// the azimuth turning by the golden angle pi (3 - sqrt 5) from one point to the next.
+IBL_FN vec3 sphericalFibonacciPoint(int i, int n) {
+  float z = 1.0f - (2.0f * float(i) + 1.0f) / float(n);
+  float phi = float(i) * kPi * (3.0f - sqrt(5.0f));
+  float s = sqrt(max(0.0f, 1.0f - z * z));
+  return vec3(s * cos(phi), s * sin(phi), z);
+}
+
 // Point of the unit disk, uniform in area: (sqrt(u1) cos 2 pi u2, sqrt(u1) sin 2 pi u2).
 IBL_FN vec2 uniformDiskPoint(vec2 xi) {
   float r = sqrt(xi.x);
