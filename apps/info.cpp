@@ -97,6 +97,7 @@ void runGltfInfo(const InfoOptions& o) {
     j["extensions_required"] = s.extensionsRequired;
     j["scene"] = s.scene >= 0 ? nlohmann::ordered_json(s.scene) : nlohmann::ordered_json(nullptr);
     j["scenes"] = s.scenes;
+    j["variants"] = s.variants;
     j["mesh_instances"] = s.meshInstances;
     j["triangles"] = s.triangles;
     j["vertices"] = s.vertices;
@@ -225,6 +226,9 @@ void runGltfInfo(const InfoOptions& o) {
         m.doubleSided ? ", double-sided" : "", textures.empty() ? "" : ", textures " + textures,
         extensions.empty() ? "" : "; extensions: " + extensions);
   }
+  if (!s.variants.empty())
+    fmt::print("variants    {} (KHR_materials_variants; render one with --variant NAME)\n",
+               list(s.variants));
   fmt::print("textures    {}\n", s.textures.size());
   for (std::size_t i = 0; i < s.textures.size(); ++i) {
     const auto& t = s.textures[i];

@@ -465,6 +465,7 @@ void addProbeCommand(CLI::App& app, const GlobalOptions& global) {
                 "Refuse a scene that ibl would render incompletely: a missing or unreadable "
                 "texture, an extension ibl does not implement, triangle strips (otherwise "
                 "warnings)");
+  addVariantOption(cmd, opts->scene);
   cmd->add_option("--env", opts->scene.env,
                   "Distant environment lighting the scene (default: the bundled sunset.exr); "
                   "'none': the scene's lights and emission alone");

@@ -53,6 +53,12 @@ void checkVolumeUpdateFrames(const SceneCliOptions& o) {
     failUsage("--volume-update-frames", "updates the volume of --volume, which is not given");
 }
 
+void addVariantOption(CLI::App* cmd, SceneCliOptions& o) {
+  cmd->add_option("--variant", o.variant,
+                  "glTF: draw the materials of this KHR_materials_variants variant (`ibl info` "
+                  "lists a file's variants)");
+}
+
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   o.command = cmd;
   cmd->add_option("scene", o.scene, "glTF file (.gltf, .glb), 'sphere' or 'grid'")->required();
@@ -60,6 +66,7 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                 "Refuse a scene that ibl would render incompletely: a missing or unreadable "
                 "texture, an extension ibl does not implement, triangle strips (otherwise "
                 "warnings)");
+  addVariantOption(cmd, o);
   cmd->add_option("--env", o.env,
                   "Environment to bake and light with (default: the bundled sunset.exr); a "
                   "physical sky, sky:elevation=30,azimuth=120 (see ibl sky; its sun is added "
@@ -223,12 +230,20 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {width, height};
 }
 
+namespace {}  // namespace
+
+void checkVariantOption(const SceneCliOptions& o) {
+  if (!o.variant.empty() && (o.scene == "sphere" || o.scene == "grid"))
+    failUsage("--variant", fmt::format("applies to a glTF scene, not the built-in '{}'", o.scene));
+}
+
 namespace {
 
 Scene loadSceneAlone(const SceneCliOptions& o, const GlobalOptions& global) {
   if (o.scene != "sphere" && o.scene != "grid") {
     GltfLoadOptions options;
     options.strict = o.strict;
+    options.variant = o.variant;
     options.warn = [quiet = global.quiet](const std::string& message) {
       if (!quiet) fmt::print(stderr, "ibl: warning: {}\n", message);
     };
@@ -394,6 +409,7 @@ void checkSceneOptions(const SceneCliOptions& o) {
   if (o.scene == "sphere" || o.scene == "grid") parseVec3(o.baseColor, "--base-color");
   if (o.strict && (o.scene == "sphere" || o.scene == "grid"))
     failUsage("--strict", fmt::format("applies to a glTF scene, not the built-in '{}'", o.scene));
+  checkVariantOption(o);
   if (!o.lookFrom.empty()) parsePoint(o.lookFrom, "--look-from");
   if (!o.lookAt.empty()) parsePoint(o.lookAt, "--look-at");
   if (!o.lookFrom.empty() && !o.lookAt.empty() &&

@@ -23,6 +23,7 @@ namespace ibl::cli {
 struct SceneCliOptions {
   std::string scene;
   bool strict = false;  // what a glTF file lacks (a texture, an extension) is an error
+  std::string variant;  // --variant: a KHR_materials_variants variant's name (empty: none)
   std::string env;      // empty: bundled default; "none": lights only
   // The Python module's environment array in place of the file of --env (env then holds the
   // name its messages give it, "(array)"), laid out by its shape.
@@ -82,6 +83,10 @@ struct SceneCliOptions {
 // Whether `option` ("--fov") was on the command line that o.command parsed.
 bool given(const SceneCliOptions& o, const std::string& option);
 
+// Registers --variant NAME (addSceneOptions does; `ibl probe` calls it alone), and the usage
+// error for it with a built-in scene.
+void addVariantOption(CLI::App* cmd, SceneCliOptions& o);
+void checkVariantOption(const SceneCliOptions& o);
 // Registers the shared options on `cmd` (the scene positional argument included).
 void addSceneOptions(CLI::App* cmd, SceneCliOptions& o);
 // Registers --multiscatter walk|scale|off and its alias --no-multiscatter (addSceneOptions does;

@@ -80,6 +80,7 @@ std::vector<Misuse> sceneMisuses() {
       {"--env", "--env nosuch.exr", 1, "nosuch.exr: no such file"},
       {"--env", "--env sky:elevation=100", 2, "elevation"},
       {"--strict", "--strict", 2, "--strict: applies to a glTF scene, not the built-in"},
+      {"--variant", "--variant day", 2, "--variant: applies to a glTF scene, not the built-in"},
       {"--sheen-visibility", "--sheen-visibility ward", 2, "--sheen-visibility"},
       {"--lights", "--lights nosuch.json", 1, "nosuch.json: no such file"},
       {"--spot-lumens", "--spot-lumens lots", 2, "--spot-lumens"},
@@ -335,6 +336,7 @@ TEST(Usage, Probe) {
       {
           {"--env", "grid --at 0,0,0 -o out --env nosuch.exr", 1, "nosuch.exr: no such file"},
           {"--strict", "grid --at 0,0,0 -o out --strict", 2, "--strict: applies to a glTF"},
+          {"--variant", "grid --at 0,0,0 -o out --variant day", 2, "--variant: applies to a glTF"},
           {"--sheen-visibility", "grid --at 0,0,0 -o out --sheen-visibility ward", 2,
            "--sheen-visibility"},
           {"--lights", "grid --at 0,0,0 -o out --lights nosuch.json", 1,

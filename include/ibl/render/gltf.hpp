@@ -27,6 +27,10 @@ struct GltfLoadOptions {
   // and the decoded texels of its textures.
   std::uint64_t maxGeometryBytes = std::uint64_t{8} << 30;  // bytes
   std::uint64_t maxTextureBytes = std::uint64_t{8} << 30;   // bytes
+  // KHR_materials_variants: the variant whose materials the primitives it maps are drawn with
+  // (the others keep their own); empty: every primitive its own material. A name the file does
+  // not have is an Error that lists the names it has.
+  std::string variant;
 };
 
 // Reads a glTF 2.0 file (.gltf with external or embedded buffers, .glb), applying node
@@ -48,6 +52,7 @@ struct GltfSummary {
   std::vector<std::string> extensionsUsed, extensionsRequired;
   int scene = -1;  // -1: the file has no scenes (its root nodes are rendered)
   std::size_t scenes = 0;
+  std::vector<std::string> variants;  // KHR_materials_variants' names, in the file's order
 
   struct Node {
     std::string name;

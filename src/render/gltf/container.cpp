@@ -113,9 +113,9 @@ bool isGlb(std::span<const std::uint8_t> bytes) {
 // Extensions without effect on a still image of the default look, or whose effect is reported
 // where it applies (texture sources without a PNG or JPEG fallback).
 bool harmless(std::string_view ext) {
-  return ext == "KHR_materials_variants" || ext == "KHR_xmp_json_ld" || ext == "KHR_xmp" ||
-         ext == "KHR_animation_pointer" || ext == "KHR_texture_basisu" ||
-         ext == "EXT_texture_webp" || ext == "MSFT_texture_dds" || ext == "EXT_texture_avif";
+  return ext == "KHR_xmp_json_ld" || ext == "KHR_xmp" || ext == "KHR_animation_pointer" ||
+         ext == "KHR_texture_basisu" || ext == "EXT_texture_webp" || ext == "MSFT_texture_dds" ||
+         ext == "EXT_texture_avif";
 }
 
 }  // namespace
@@ -123,8 +123,9 @@ bool harmless(std::string_view ext) {
 // What ibl renders of an extension (the others in extensionsUsed are a warning each).
 bool implemented(std::string_view ext) {
   return ext == "KHR_draco_mesh_compression" || ext == "KHR_materials_emissive_strength" ||
-         ext == "KHR_materials_sheen" || ext == "KHR_mesh_quantization" ||
-         ext == "EXT_meshopt_compression" || ext == "KHR_lights_punctual";
+         ext == "KHR_materials_sheen" || ext == "KHR_materials_variants" ||
+         ext == "KHR_mesh_quantization" || ext == "EXT_meshopt_compression" ||
+         ext == "KHR_lights_punctual";
 }
 
 tinygltf::Model readModel(std::span<const std::uint8_t> bytes, const std::string& path,

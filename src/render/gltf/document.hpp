@@ -26,6 +26,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -171,6 +172,14 @@ class GltfDocument {
   void validateMaterial(std::size_t k);
   void validatePrimitive(std::size_t m, std::size_t p);
 
+  // KHR_materials_variants (variants.cpp): the variants' names and every primitive's mappings
+  // checked (materials and variants in range), and GltfLoadOptions::variant found among them
+  // (an Error naming the file's variants when it is not).
+  void validateVariants();
+  // The material primitive p of mesh m is drawn with: the chosen variant's, else its own (-1:
+  // none).
+  int materialOf(int m, std::size_t p) const;
+
   // Every index a node holds is in range, and the nodes form disjoint trees (glTF 2.0 3.5.1:
   // no node has two parents, no cycles), so the scene is walked once per node.
   void validateNodes();
@@ -303,6 +312,9 @@ class GltfDocument {
   bool warnedStrips_ = false;
   std::vector<std::uint8_t> ownedBytes_;  // the bytes imageBytes read last (a file, a data URI)
   std::map<int, ImageState> imageStates_;
+  std::vector<std::string> variants_;  // KHR_materials_variants' names
+  std::map<std::tuple<int, std::size_t, int>, int> variantMaterials_;  // (mesh, primitive, variant)
+  int variant_ = -1;                                                   // the chosen one (-1: none)
 };
 
 }  // namespace ibl::gltf

@@ -225,8 +225,9 @@ std::vector<ImageSource> takeImages(nlohmann::json& gltf, const std::string& pat
 // Whether ibl reads the extension `name` on an object of `kind` (the key of the array or object
 // holding it; "" for the file's root). EXT_meshopt_compression is read by hideMeshoptFallbacks.
 bool readsExtension(const std::string& kind, const std::string& name) {
-  return (kind.empty() && name == "KHR_lights_punctual") ||
+  return (kind.empty() && (name == "KHR_lights_punctual" || name == "KHR_materials_variants")) ||
          (kind == "nodes" && name == "KHR_lights_punctual") ||
+         (kind == "primitives" && name == "KHR_materials_variants") ||
          (kind == "materials" &&
           (name == "KHR_materials_sheen" || name == "KHR_materials_emissive_strength")) ||
          (kind == "primitives" && name == "KHR_draco_mesh_compression") ||
@@ -276,10 +277,17 @@ void stripUnread(nlohmann::json& v, const std::string& kind, const std::string& 
         ext.value() = nlohmann::json::object();
         continue;
       }
-      // The lights of a file: 16 values at most each (type, color, intensity, range, spot, name).
-      const nlohmann::json* lights = kind.empty() ? member(ext.value(), "lights") : nullptr;
+      // The lights of a file: 16 values at most each (type, color, intensity, range, spot, name);
+      // the variants' names, and a primitive's mappings (a material and the variants it is in).
+      const nlohmann::json* list = !kind.empty() ? nullptr
+                                   : name == "KHR_lights_punctual"
+                                       ? member(ext.value(), "lights")
+                                       : member(ext.value(), "variants");
+      if (kind == "primitives" && name == "KHR_materials_variants")
+        list = member(ext.value(), "mappings");
+      const std::size_t perEntry = name == "KHR_lights_punctual" ? 64 : 256;
       const std::size_t limit =
-          lights && lights->is_array() ? 64 * (lights->size() + 1) : std::size_t{256};
+          list && list->is_array() ? perEntry * (list->size() + 1) : std::size_t{256};
       if (valueCount(ext.value(), limit + 1) > limit)
         fail(path, fmt::format("{}{} holds more values than the extension has",
                                where.empty() ? "" : where + ": ", name));

@@ -80,8 +80,8 @@ Scene GltfDocument::load() {
   const int defaultMaterial = static_cast<int>(scene.materials.size()) - 1;
   for (const Instance& instance : instances_) {
     const int m = nodes()[instance.node].mesh;
-    const auto& prims = model_.meshes[static_cast<std::size_t>(m)].primitives;
-    for (std::size_t p = 0; p < prims.size(); ++p) {
+    const std::size_t prims = model_.meshes[static_cast<std::size_t>(m)].primitives.size();
+    for (std::size_t p = 0; p < prims; ++p) {
       PrimitiveData* data = primitive(m, p);
       if (!data) continue;
       Mesh mesh;
@@ -89,7 +89,8 @@ Scene GltfDocument::load() {
         mesh = std::move(data->mesh);  // its last instance
       else
         mesh = data->mesh;
-      mesh.material = prims[p].material >= 0 ? prims[p].material : defaultMaterial;
+      const int material = materialOf(m, p);
+      mesh.material = material >= 0 ? material : defaultMaterial;
       mesh.names = namesOf(instance.node);
       placeInWorld(mesh, instance.world,
                    scene.materials[static_cast<std::size_t>(mesh.material)].normalTexture);

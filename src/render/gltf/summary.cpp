@@ -19,6 +19,7 @@ GltfSummary GltfDocument::describe() {
   s.extensionsRequired = model_.extensionsRequired;
   s.scene = sceneIndex_;
   s.scenes = model_.scenes.size();
+  s.variants = variants_;
   for (std::size_t n = 0; n < nodes().size(); ++n) {
     const tinygltf::Node& node = nodes()[n];
     s.nodes.push_back(

@@ -42,6 +42,7 @@ void GltfDocument::validate() {
   for (std::size_t k = 0; k < model_.materials.size(); ++k) validateMaterial(k);
   for (std::size_t m = 0; m < model_.meshes.size(); ++m)
     for (std::size_t p = 0; p < model_.meshes[m].primitives.size(); ++p) validatePrimitive(m, p);
+  validateVariants();
   validateNodes();
 }
 
