@@ -16,7 +16,8 @@ layout(local_size_x = 64) in;
 #include "ibl/shared/light_sampling.h"
 #include "ibl/shared/path_sampler.h"
 
-layout(std430, set = 1, binding = 5) writeonly buffer Rays {
+const int kVolumeRaysBinding = 5;  // in the scene's set, after scene_buffers.glsl's five
+layout(std430, set = SCENE_SET, binding = kVolumeRaysBinding) writeonly buffer Rays {
   vec4 rays[];  // per probe, its rays in turn: radiance, distance
 };
 

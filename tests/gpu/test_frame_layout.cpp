@@ -58,7 +58,8 @@ TEST(FrameLayout, SetBindsEachNameOnce) {
 
 // frame.glsl: the Frame block is a uniform buffer, Lights, Probes, ShadowRecords, ShadowDepths,
 // LightClusters and VolumeProbes are buffers, the rest samplers; the vertex shaders read the block
-// and the shadow records (view/shadow.vert).
+// and the shadow records (view/shadow.vert), the fragment shaders and the irradiance volume's
+// update (view/volume_trace.comp) every binding.
 TEST(FrameLayout, SetTypesAndStagesFollowFrameGlsl) {
   const std::vector<FrameBinding> buffers{FrameBinding::Lights,        FrameBinding::Probes,
                                           FrameBinding::ShadowRecords, FrameBinding::ShadowDepths,
@@ -73,7 +74,7 @@ TEST(FrameLayout, SetTypesAndStagesFollowFrameGlsl) {
                                                : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     EXPECT_EQ(b.descriptorType, expected) << b.binding;
     const bool vertex = name == FrameBinding::Uniforms || name == FrameBinding::ShadowRecords;
-    const VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT,
+    const VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT,
                              both = fragment | VK_SHADER_STAGE_VERTEX_BIT;
     EXPECT_EQ(b.stageFlags, vertex ? both : fragment) << b.binding;
   }

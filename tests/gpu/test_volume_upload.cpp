@@ -101,65 +101,6 @@ TEST(Viewer, VolumeMatchesTheCpu) {
   }
 }
 
-namespace {
-
-// Over the switched-on probes' tiles, their borders included: the mean absolute difference of
-// the luminance of a's texels and b's, over the mean luminance of b's.
-double atlasDifference(const IrradianceVolume& v, const Image& a, const Image& b, int texels) {
-  double difference = 0.0, sum = 0.0;
-  const int perRow = v.grid.counts.x * v.grid.counts.y, side = texels + 2;
-  for (int probe = 0; probe < volumeProbeCount(v.grid); ++probe) {
-    if (!v.probes[static_cast<std::size_t>(probe)].on) continue;
-    const int x0 = (probe % perRow) * side, y0 = (probe / perRow) * side;
-    for (int y = 0; y < side; ++y)
-      for (int x = 0; x < side; ++x) {
-        const double lb = luminance(b.at(x0 + x, y0 + y));
-        difference += std::abs(luminance(a.at(x0 + x, y0 + y)) - lb);
-        sum += lb;
-      }
-  }
-  return difference / std::max(sum, 1e-30);
-}
-
-}  // namespace
-
-// The viewer's live update (src/gpu/volume_update.cpp) runs the CPU's (updateVolume): the glTF
-// room's volume, relocated and black, updated three frames on both from the same rotations,
-// under the sunset and the room's lights (their visibility traced: one random point of an area
-// light per ray, drawn differently on each side). The irradiance texels agree within 1 % of
-// their mean (256 rays per probe, each texel a cosine-weighted mean of about 128 of them), the
-// distance moments within 0.5 %; and the frames changed the volume (from black) by far more.
-TEST(Viewer, VolumeUpdateMatchesTheCpu) {
-  const Scene room = loadGltf((dataDir() / "scenes" / "room.gltf").string());
-  const Baked& b = sunsetBake();
-  IrradianceVolume volume = makeVolume({-2.5f, 0.0f, -2.5f}, {2.5f, 3.0f, 2.5f}, {3, 2, 3},
-                                       VolumeOptions{}, CaptureOptions{});
-  for (int i = 0; i < volumeProbeCount(volume.grid); ++i)
-    volume.probes[static_cast<std::size_t>(i)] =
-        relocateProbe(room, volumeProbePosition(volume.grid, i), volume.grid.spacing);
-  const IrradianceVolume black = volume;
-  RenderOptions o;
-  o.spp = 1;
-  o.volume = &volume;
-  gpu::SceneRenderer viewer(graphicsContext(), room, b.bake, b.options, {}, &black);
-  constexpr int kFrames = 3;
-  viewer.updateVolume(lookingAt({0.0f, 1.5f, 2.0f}, 32, 24), o, kFrames);
-  const auto [irradiance, distance] = viewer.volumeAtlases();
-  for (int frame = 0; frame < kFrames; ++frame)
-    updateVolume(room, volume, b.bake, b.options, o, VolumeUpdateOptions{},
-                 static_cast<unsigned>(frame));
-  const double e = atlasDifference(volume, irradiance, volume.irradiance, 8);
-  const double d = atlasDifference(volume, distance, volume.distance, 16);
-  const double changed = atlasDifference(volume, black.irradiance, volume.irradiance, 8);
-  std::printf(
-      "the update on the device against the CPU's after %d frames: irradiance %.5f %%, "
-      "distances %.5f %% (black against the CPU's: %.0f %%)\n",
-      kFrames, 100.0 * e, 100.0 * d, 100.0 * changed);
-  EXPECT_LT(e, 0.01);
-  EXPECT_LT(d, 0.005);
-  EXPECT_GT(changed, 0.5);
-}
-
 // The atlases' texels: RGBA32F as they are with A 1; RGBA16F rounded to the nearest half (a
 // relative error of at most 2^-11) and clamped to the largest half.
 TEST(VolumeUpload, AtlasTexelsInBothFormats) {
