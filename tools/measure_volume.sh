@@ -81,13 +81,14 @@ probe() {  # probe VIEW DIR OPTIONS...
 }
 declare -A COUNTS_1=([skylight]=4,3,4 [window]=4,3,4 [lit]=8,3,4 [open]=12,3,12)
 declare -A COUNTS_05=([skylight]=8,6,8 [window]=8,6,8 [lit]=16,6,8)
+declare -A COUNTS_025=([skylight]=16,12,16 [window]=16,12,16 [lit]=32,12,16)
 for v in skylight window lit open; do
   c=$OUT/${SCENE[$v]}
   probe $v "$c/grid" --grid "${GRID[$v]}" --size 32 --spp 64
   probe $v "$c/vol_1" --volume "${COUNTS_1[$v]}" --volume-size 32 --spp 32
   [ -n "${COUNTS_05[$v]:-}" ] && probe $v "$c/vol_0.5" --volume "${COUNTS_05[$v]}" --volume-size 32 --spp 32
+  [ -n "${COUNTS_025[$v]:-}" ] && probe $v "$c/vol_0.25" --volume "${COUNTS_025[$v]}" --volume-size 16 --spp 32
 done
-probe skylight "$OUT/skylight_room/vol_0.25" --volume 16,12,16 --volume-size 16 --spp 32
 
 # --- the split sum's renders (screen-space AO and reflections off unless named)
 split() {  # split VIEW NAME OPTIONS...
@@ -138,7 +139,7 @@ for v in skylight window lit open; do
   done
 done
 echo "leak into the closed room of two_rooms (mean luminance, cd/m^2; the lit room's reference: $(mean_luminance "$OUT/lit/ref.exr")):"
-for name in ref distant probes vol_1 vol_0.5 vol+probes vol+probes+ssr+ssao; do
+for name in ref distant probes vol_1 vol_0.5 vol_0.25 vol+probes vol+probes+ssr+ssao; do
   [ -e "$OUT/dark/$name.exr" ] && printf "  %-22s %s\n" $name "$(mean_luminance "$OUT/dark/$name.exr")"
 done
 echo "volumes: probes, bake time per probe, atlases (irradiance, distance):"
