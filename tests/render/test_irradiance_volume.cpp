@@ -158,6 +158,52 @@ TEST(IrradianceVolume, DistancesInsideASphereAreItsRadius) {
   }
 }
 
+// The distance texel facing a wall 0.5 m away holds the mean distance over the cos^50 lobe
+// around its direction (Majercik et al. 2019, 4.1): each direction meets the wall at 0.5 / cos
+// or, leaving past it, the farthest distance; the mean is computed here by quadrature over the
+// sphere. Over the cosine lobe instead it would be far larger (grazing rays reach far).
+TEST(IrradianceVolume, DistanceTexelsAverageOverTheSharpLobe) {
+  const VolumeBake env = bakeOfSky([](glm::vec3) { return glm::vec3(1.0f); });
+  Scene scene;
+  addSolidBox(scene, {-50.0f, -50.0f, -0.6f}, {50.0f, 50.0f, -0.5f});
+  VolumeOptions options;
+  options.captureSize = 32;
+  CaptureOptions capture;
+  capture.spp = 1;
+  capture.bounces = 0;
+  IrradianceVolume v = makeVolume({-1, -1, -1}, {1, 1, 1}, {1, 1, 1}, options, capture);
+  captureVolumeProbes(scene, v, {0}, env.result, env.options);
+  const glm::vec3 p = volumeProbePosition(v.grid, 0) + v.probes[0].offset;
+  const float far = 2.0f * glm::length(v.grid.spacing);
+  const int texels = v.grid.distanceTexels;
+  const glm::ivec2 o = tileCorner(v.grid, 0, texels);
+  int checked = 0;
+  for (int y = 0; y < texels; ++y)
+    for (int x = 0; x < texels; ++x) {
+      const glm::vec3 n = texelDirection(x, y, texels);
+      if (n.z > -0.9f) continue;  // the texels facing the wall
+      double sum = 0.0, total = 0.0;
+      constexpr int kTheta = 600, kPhi = 600;
+      for (int i = 0; i < kTheta; ++i)
+        for (int j = 0; j < kPhi; ++j) {
+          const double theta = std::numbers::pi * (i + 0.5) / kTheta;
+          const double phi = 2.0 * std::numbers::pi * (j + 0.5) / kPhi;
+          const glm::dvec3 w(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                             std::cos(theta));
+          const double c = glm::dot(glm::dvec3(n), w);
+          if (c <= 0.0) continue;
+          const double weight = std::pow(c, 50.0) * std::sin(theta);
+          const double d = w.z < 0.0 ? std::min((p.z + 0.5) / -w.z, double{far}) : far;
+          sum += weight * d;
+          total += weight;
+        }
+      const float mean = v.distance.at(o.x + 1 + x, o.y + 1 + y).x;
+      EXPECT_NEAR(mean, sum / total, 0.02 * sum / total) << x << " " << y;
+      ++checked;
+    }
+  EXPECT_GT(checked, 0);
+}
+
 TEST(IrradianceVolume, RelocationMovesAProbeOutOfASolidBox) {
   Scene scene;
   addSolidBox(scene, glm::vec3(-0.5f), glm::vec3(0.5f));
