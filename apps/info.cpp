@@ -126,7 +126,12 @@ void runGltfInfo(const InfoOptions& o) {
            {"double_sided", m.doubleSided},
            {"textures", m.textures},
            {"extensions", m.extensions},
-           {"unsupported_extensions", m.unsupported}});
+           {"unsupported_extensions", m.unsupported},
+           {"ior", m.ior},
+           {"specular", m.specular},
+           {"specular_color", vec(m.specularColor)},
+           {"dielectric_f0", vec(m.dielectricF0)},
+           {"dielectric_f90", m.dielectricF90}});
     for (const auto& t : s.textures)
       j["textures"].push_back({{"image", index(t.image)},
                                {"source", t.source},
@@ -218,11 +223,20 @@ void runGltfInfo(const InfoOptions& o) {
     }
     std::string textures;
     for (int t : m.textures) textures += (textures.empty() ? "" : " ") + std::to_string(t);
+    // The dielectric's Fresnel, where KHR_materials_ior or _specular changes it.
+    const std::string dielectric =
+        m.ior == 1.5f && m.specular == 1.0f && m.specularColor == glm::vec3(1.0f)
+            ? ""
+            : fmt::format(
+                  ", dielectric F0 {:.4g} {:.4g} {:.4g} F90 {:.4g} (ior {:.4g}, "
+                  "specular {:.4g}, specular color {:.4g} {:.4g} {:.4g})",
+                  m.dielectricF0.x, m.dielectricF0.y, m.dielectricF0.z, m.dielectricF90, m.ior,
+                  m.specular, m.specularColor.x, m.specularColor.y, m.specularColor.z);
     fmt::print(
         "  {}{}: base color {:.4g} {:.4g} {:.4g} {:.4g}, metallic {:.4g}, roughness "
-        "{:.4g}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
+        "{:.4g}{}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
         i, quoted(m.name), m.baseColor.x, m.baseColor.y, m.baseColor.z, m.baseColor.w, m.metallic,
-        m.roughness, m.emissive.x, m.emissive.y, m.emissive.z, m.alphaMode,
+        m.roughness, dielectric, m.emissive.x, m.emissive.y, m.emissive.z, m.alphaMode,
         m.doubleSided ? ", double-sided" : "", textures.empty() ? "" : ", textures " + textures,
         extensions.empty() ? "" : "; extensions: " + extensions);
   }

@@ -102,6 +102,16 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--roughness", o.roughness, "Built-in sphere: perceptual roughness")
       ->check(numberIn(0.0f, 1.0f))
       ->capture_default_str();
+  cmd->add_option("--ior", o.ior,
+                  "Built-in scenes: the dielectric's index of refraction (KHR_materials_ior; F0 = "
+                  "((ior - 1) / (ior + 1))^2)")
+      ->check(numberIn(1.0f, 5.0f))
+      ->capture_default_str();
+  cmd->add_option("--specular", o.specular,
+                  "Built-in scenes: the dielectric's specular strength (KHR_materials_specular; "
+                  "0 leaves the diffuse alone)")
+      ->check(numberIn(0.0f, 1.0f))
+      ->capture_default_str();
   cmd->add_option("--diffuse", o.diffuse, "disney (Frostbite renormalized) or lambert")
       ->check(CLI::IsMember({"disney", "lambert"}))
       ->capture_default_str();
@@ -249,10 +259,11 @@ Scene loadSceneAlone(const SceneCliOptions& o, const GlobalOptions& global) {
     };
     return loadGltf(o.scene, options);
   }
-  const glm::vec3 base = parseVec3(o.baseColor, "--base-color");
-  if (o.scene == "grid") return makeSphereGrid(base);
   Material m;
-  m.baseColor = base;
+  m.baseColor = parseVec3(o.baseColor, "--base-color");
+  m.ior = o.ior;
+  m.specular = o.specular;
+  if (o.scene == "grid") return makeSphereGrid(m);
   m.metallic = o.metallic;
   m.roughness = o.roughness;
   return makeSphereScene(m);
@@ -314,12 +325,13 @@ void refuseIgnoredSceneOptions(const SceneCliOptions& o) {
   if (o.orthoWidth && (given(o, "--camera") || builtInScene(o)) && o.camera != "ortho")
     failUsage("--ortho-width", "applies to --camera ortho; --camera perspective's view is --fov");
   // The built-in scenes' material.
-  for (const char* option : {"--base-color", "--metallic", "--roughness"})
+  for (const char* option : {"--base-color", "--metallic", "--roughness", "--ior", "--specular"})
     if (given(o, option) && !builtInScene(o))
       failUsage(option, fmt::format("sets the material of the built-in scenes (sphere, grid); "
                                     "the scene {} has its own",
                                     o.scene));
-    else if (given(o, option) && o.scene == "grid" && option != std::string("--base-color"))
+    else if (given(o, option) && o.scene == "grid" &&
+             (option == std::string("--metallic") || option == std::string("--roughness")))
       failUsage(option,
                 "sets the built-in sphere's material; the grid varies it over its "
                 "spheres");

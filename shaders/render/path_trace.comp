@@ -243,12 +243,11 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     // A probe capture leaves out the view-dependent specular of the surfaces the camera sees.
     bool captured = depth == 0 && !flag(kFlagCameraSeesSpecular);
     int lobes = captured ? kLobesDiffuse : params.path.y;
-    if (captured && flag(kFlagCaptureMetalsAsDiffuse)) {
-      p.baseColor = metalAsDiffuseColor(p.baseColor, p.metallic);
-      p.metallic = 0.0;
-    }
-    PathBrdf brdf = pathBrdfOf(p.baseColor, p.metallic, p.roughness, p.sheenColor,
-                               p.sheenRoughness, v, lobes, pathShading());
+    if (captured && flag(kFlagCaptureMetalsAsDiffuse)) p = metalAsDiffuse(p);
+    PathShading shading = pathShading();
+    PathBrdf brdf = pathBrdfOf(p.baseColor, p.metallic, p.roughness,
+                               surfaceReflectance(p, shading.specularMicroOcclusion), p.sheenColor,
+                               p.sheenRoughness, v, lobes, shading);
     vec3 origin = position + p.normal * 1e-4 * max(1.0, length(position));
     // Next-event estimation: one sample of each light, of the emitters and of the environment.
     for (uint i = 0u; i < params.counts.x; ++i) {

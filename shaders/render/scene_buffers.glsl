@@ -27,7 +27,7 @@ layout(std430, set = SCENE_SET, binding = 2) readonly buffer Triangles {
   vec4 bvhTriangles[];
 };
 // Meshes (one vec4 of uint bits each: first vertex, first index, material, flags), vertices
-// (three each), materials (six), textures (one), lights (five), spheres (two), emitters (one):
+// (three each), materials (kMaterialRecordVec4s), textures (one), lights (five), spheres (two), emitters (one):
 // uploadSceneBuffers in src/gpu/scene_buffers.cpp.
 layout(std430, set = SCENE_SET, binding = 3) readonly buffer SceneData {
   vec4 sceneData[];
@@ -90,7 +90,7 @@ vec4 vertexAt(uint v, int k) {
   return sceneData[params.offsets.x + 4u * v + uint(k)];
 }
 vec4 materialAt(uint material, int k) {
-  return sceneData[params.offsets.y + 6u * material + uint(k)];
+  return sceneData[params.offsets.y + uint(kMaterialRecordVec4s) * material + uint(k)];
 }
 // A texture slot: (texture index, texCoord) or texture -1.
 ivec2 slotOf(float encoded) {
@@ -171,6 +171,8 @@ struct Surface {
   vec3 emissive;
   vec3 sheenColor;
   float sheenRoughness;
+  float ior, specular;  // KHR_materials_ior and _specular (texture applied)
+  vec3 specularColor;
 };
 
 Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
@@ -211,6 +213,12 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     if (slotUv(m, tri, slotOf(m5.y), w, uv))
       p.sheenRoughness *= sampleTexture(slotOf(m5.y).x, uv, false).a;
     p.sheenRoughness = clamp(p.sheenRoughness, 0.0, 1.0);
+    vec4 m6 = materialAt(material, 6);
+    p.specularColor = m6.rgb;
+    p.specular = m6.w;
+    if (slotUv(m, tri, slotOf(m5.z), w, uv)) p.specular *= sampleTexture(slotOf(m5.z).x, uv, false).a;
+    if (slotUv(m, tri, slotOf(m5.w), w, uv))
+      p.specularColor *= sampleTexture(slotOf(m5.w).x, uv, true).rgb;
     if ((m.flags & 1u) != 0u && slotUv(m, tri, slotOf(m4.z), w, uv)) {
       vec4 t4 = vertexAt(tri.x, 2) * w.x + vertexAt(tri.y, 2) * w.y + vertexAt(tri.z, 2) * w.z;
       n = applyNormalMap(n, t4, sampleTexture(slotOf(m4.z).x, uv, false), m3.y);
@@ -228,10 +236,27 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     p.emissive = m1.rgb;
     p.sheenColor = m2.rgb;
     p.sheenRoughness = m2.w;
+    p.specularColor = materialAt(material, 6).rgb;
+    p.specular = materialAt(material, 6).w;
   }
+  p.ior = materialAt(material, 7).x;
   // Shade the side the ray sees.
   if (dot(n, dir) > 0.0) n = -n;
   p.normal = n;
+  return p;
+}
+
+// The Fresnel reflectance of the surface's material (specularReflectance, ibl/shared/material.h).
+SpecularReflectance surfaceReflectance(Surface p, bool microOcclusion) {
+  return specularReflectance(p.baseColor, p.metallic, p.ior, p.specular, p.specularColor,
+                             microOcclusion);
+}
+
+// A probe capture's view of a metal (RenderOptions::captureMetalsAsDiffuse): a diffuse surface
+// of its F0.
+Surface metalAsDiffuse(Surface p) {
+  p.baseColor = metalAsDiffuseColor(p.baseColor, p.metallic, surfaceReflectance(p, false).f0);
+  p.metallic = 0.0;
   return p;
 }
 

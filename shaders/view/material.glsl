@@ -5,7 +5,7 @@
 #include "ibl/shared/material.h"
 #include "ibl/shared/view_bindings.h"
 
-// Base color, emission and sheen color have sRGB formats: linear here.
+// Base color, emission, sheen color and specular color have sRGB formats: linear here.
 layout(set = 1, binding = kMaterialBaseColor) uniform sampler2D baseColorTexture;
 layout(set = 1, binding = kMaterialMetallicRoughness) uniform sampler2D metallicRoughnessTexture;
 layout(set = 1, binding = kMaterialNormal) uniform sampler2D normalTexture;
@@ -13,15 +13,18 @@ layout(set = 1, binding = kMaterialOcclusion) uniform sampler2D occlusionTexture
 layout(set = 1, binding = kMaterialEmissive) uniform sampler2D emissiveTexture;
 layout(set = 1, binding = kMaterialSheenColor) uniform sampler2D sheenColorTexture;
 layout(set = 1, binding = kMaterialSheenRoughness) uniform sampler2D sheenRoughnessTexture;  // A
+layout(set = 1, binding = kMaterialSpecular) uniform sampler2D specularTexture;  // A
+layout(set = 1, binding = kMaterialSpecularColor) uniform sampler2D specularColorTexture;
 layout(push_constant) uniform Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
-  vec4 scales;       // normal scale, occlusion strength
+  vec4 scales;       // normal scale, occlusion strength, KHR_materials_ior's ior
   vec4 sphere;       // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
   vec4 alpha;        // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
   vec4 sheen;        // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
+  vec4 specular;     // KHR_materials_specular: specularColorFactor, specularFactor
   uint textureMask;   // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive,
-                      // 32 sheen color, 64 sheen roughness
+                      // 32 sheen color, 64 sheen roughness, 128 specular, 256 specular color
   uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
   int shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
   int scenePass;  // 0 the frame's only scene pass; with screen-space reflections 1 the lit frame

@@ -93,6 +93,9 @@ ShadedSurface fragmentSurface(int samples) {
   vec4 sheen = material.sheen;
   if ((mask & 32u) != 0u) sheen.rgb *= texture(sheenColorTexture, texCoordOf(32u)).rgb;
   if ((mask & 64u) != 0u) sheen.w *= texture(sheenRoughnessTexture, texCoordOf(64u)).a;
+  vec4 specular = material.specular;
+  if ((mask & 128u) != 0u) specular.w *= texture(specularTexture, texCoordOf(128u)).a;
+  if ((mask & 256u) != 0u) specular.rgb *= texture(specularColorTexture, texCoordOf(256u)).rgb;
   if ((mask & 4u) != 0u)
     n = applyNormalMap(n, worldTangent, texture(normalTexture, texCoordOf(4u)), material.scales.x);
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
@@ -105,6 +108,9 @@ ShadedSurface fragmentSurface(int samples) {
   m.roughness = clamp(roughness, 0.0, 1.0);
   m.occlusion = occlusion;
   m.emissive = emissive;
+  m.ior = material.scales.z;
+  m.specular = specular.w;
+  m.specularColor = specular.rgb;
   surface.position = position;
   surface.normal = n;
   surface.view = -ray;

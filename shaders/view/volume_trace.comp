@@ -62,6 +62,9 @@ vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
   m.roughness = p.roughness;
   m.occlusion = 1.0;
   m.emissive = vec3(0.0);
+  m.ior = p.ior;
+  m.specular = p.specular;
+  m.specularColor = p.specularColor;
   vec3 n = p.normal;
   SplitSumLookup look = splitSumLookup(n, view, m.roughness, s);
   vec3 dfg = textureLod(dfgLut, vec2(look.NoV, m.roughness), 0.0).rgb;
@@ -109,10 +112,7 @@ void main() {
     return;
   }
   Surface p = surfaceAt(hit, origin, dir);
-  if ((update.counts.z & 1) != 0) {
-    p.baseColor = metalAsDiffuseColor(p.baseColor, p.metallic);
-    p.metallic = 0.0;
-  }
+  if ((update.counts.z & 1) != 0) p = metalAsDiffuse(p);
   PathSampler numbers = pathSamplerAt(pathSamplerKey(uint(update.keys.x), uint(update.keys.y), slot, 0u), 0u);
   rays[slot] = vec4(shadeHit(p, -dir, numbers), min(hit.t, farthest));
 }

@@ -78,7 +78,7 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
       data.push_back(glm::vec4(uv1, 0.0f, 0.0f));
     }
   out.offsets.y = static_cast<std::uint32_t>(data.size());
-  for (const Material& mat : scene.materials) {
+  for (const Material& mat : scene.materials) {  // shared::kMaterialRecordVec4s each
     data.push_back(glm::vec4(mat.baseColor, mat.baseColorAlpha));
     data.push_back(glm::vec4(mat.emissive, mat.metallic));
     data.push_back(glm::vec4(mat.sheenColor, mat.sheenRoughness));
@@ -86,8 +86,10 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
                              static_cast<float>(static_cast<int>(mat.alphaMode)), mat.alphaCutoff));
     data.push_back(glm::vec4(slotOf(mat.baseColorTexture), slotOf(mat.metallicRoughnessTexture),
                              slotOf(mat.normalTexture), slotOf(mat.emissiveTexture)));
-    data.push_back(
-        glm::vec4(slotOf(mat.sheenColorTexture), slotOf(mat.sheenRoughnessTexture), 0.0f, 0.0f));
+    data.push_back(glm::vec4(slotOf(mat.sheenColorTexture), slotOf(mat.sheenRoughnessTexture),
+                             slotOf(mat.specularTexture), slotOf(mat.specularColorTexture)));
+    data.push_back(glm::vec4(mat.specularColor, mat.specular));
+    data.push_back(glm::vec4(mat.ior, 0.0f, 0.0f, 0.0f));
   }
   out.offsets.z = static_cast<std::uint32_t>(data.size());
   out.offsets2.z = static_cast<std::uint32_t>(wordData.size());

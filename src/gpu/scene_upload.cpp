@@ -282,7 +282,7 @@ VkSampler SceneUpload::samplerFor(const TextureSampler& kind) {
 
 void SceneUpload::uploadMaterials(const Scene& scene) {
   // Their push constants, and per texture slot the scene's texture (sRGB for base color,
-  // emission and sheen color) and its sampler, or white.
+  // emission, sheen color and specular color) and its sampler, or white.
   const std::vector<Material> sceneMaterials =
       scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
   std::vector<std::array<VkDescriptorImageInfo, kMaterialTextures>> materialImages;
@@ -291,22 +291,24 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
     MaterialConstants mc{};
     mc.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
     mc.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
-    mc.scales = glm::vec4(mat.normalScale, mat.occlusionStrength, 0.0f, 0.0f);
+    mc.scales = glm::vec4(mat.normalScale, mat.occlusionStrength, mat.ior, 0.0f);
     mc.alpha =
         glm::vec4(mat.baseColorAlpha, static_cast<float>(mat.alphaMode), mat.alphaCutoff, 0.0f);
     mc.sheen = glm::vec4(mat.sheenColor, mat.sheenRoughness);
+    mc.specular = glm::vec4(mat.specularColor, mat.specular);
     if (mat.sheenColor != glm::vec3(0.0f)) sceneHasSheen_ = true;
     // In MaterialBinding's order.
     const std::array<TextureRef, kMaterialTextures> slots{
-        mat.baseColorTexture,     mat.metallicRoughnessTexture, mat.normalTexture,
-        mat.occlusionTexture,     mat.emissiveTexture,          mat.sheenColorTexture,
-        mat.sheenRoughnessTexture};
+        mat.baseColorTexture,      mat.metallicRoughnessTexture, mat.normalTexture,
+        mat.occlusionTexture,      mat.emissiveTexture,          mat.sheenColorTexture,
+        mat.sheenRoughnessTexture, mat.specularTexture,          mat.specularColorTexture};
     std::array<VkDescriptorImageInfo, kMaterialTextures> images{};
     for (std::size_t b = 0; b < kMaterialTextures; ++b) {
       const int i = slots[b].index;
       const auto slot = static_cast<MaterialBinding>(b);
       const bool srgb = slot == MaterialBinding::BaseColor || slot == MaterialBinding::Emissive ||
-                        slot == MaterialBinding::SheenColor;
+                        slot == MaterialBinding::SheenColor ||
+                        slot == MaterialBinding::SpecularColor;
       const bool valid = i >= 0 && static_cast<std::size_t>(i) < scene.textures.size() &&
                          !scene.textures[i].empty();
       images[b] = {samplerFor(TextureSampler{}), frame_.white().view(), readable};

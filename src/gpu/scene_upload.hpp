@@ -64,9 +64,11 @@ inline constexpr VkShaderStageFlags kMaterialStages =
 
 // The push constants of shaders/view/material.glsl: a material, and the sphere a mesh bounds.
 struct MaterialConstants {
+  // scales: normal scale, occlusion strength, KHR_materials_ior's ior.
   glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
   glm::vec4 alpha;            // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff
   glm::vec4 sheen;            // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
+  glm::vec4 specular;         // KHR_materials_specular: specularColorFactor, specularFactor
   std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
   std::int32_t shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
@@ -76,10 +78,11 @@ struct MaterialConstants {
 // reflections, the lit frame (the surfaces without the area lights in front of them: what the
 // view buffers hold, so that no reflection meets a light) or the pass that composes them.
 enum ScenePass : std::int32_t { kOnlyScenePass = 0, kLitFramePass = 1, kReflectedPass = 2 };
-static_assert(offsetof(MaterialConstants, shadowLayer) == 104,
-              "view/shadow.vert reads the layer at offset 104");
-static_assert(offsetof(MaterialConstants, scenePass) == 108,
-              "view/material.glsl reads the scene pass's part at offset 108");
+static_assert(offsetof(MaterialConstants, shadowLayer) == 120,
+              "view/shadow.vert reads the layer at offset 120");
+static_assert(sizeof(MaterialConstants) <= 128, "Vulkan guarantees 128 bytes of push constants");
+static_assert(offsetof(MaterialConstants, scenePass) == 124,
+              "view/material.glsl reads the scene pass's part at offset 124");
 
 class SceneUpload {
  public:

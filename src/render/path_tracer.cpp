@@ -61,6 +61,12 @@ float maxComponent(glm::vec3 c) {
   return std::max(c.x, std::max(c.y, c.z));
 }
 
+// The Fresnel reflectance of the material at p (KHR_materials_ior and _specular).
+shared::SpecularReflectance reflectanceOf(const SurfacePoint& p, bool microOcclusion) {
+  return shared::specularReflectance(p.baseColor, p.metallic, p.ior, p.specular, p.specularColor,
+                                     microOcclusion);
+}
+
 // The material at one point (ibl/shared/path_brdf.h, which the GPU reference evaluates too).
 struct Brdf {
   shared::PathBrdf b;
@@ -69,7 +75,8 @@ struct Brdf {
   // The material at p seen from local direction v; `only` selects lobes.
   static Brdf of(const SurfacePoint& p, glm::vec3 v, ShadingTerms only, const RenderOptions& o) {
     const shared::AlbedoTables tables = referenceAlbedoTables(o.sheenVisibility);
-    return {shared::pathBrdfOf(tables, p.baseColor, p.metallic, p.roughness, p.sheenColor,
+    return {shared::pathBrdfOf(tables, p.baseColor, p.metallic, p.roughness,
+                               reflectanceOf(p, o.specularMicroOcclusion), p.sheenColor,
                                p.sheenRoughness, v, static_cast<int>(only), pathShading(o)),
             tables};
   }
@@ -153,7 +160,7 @@ void preparePathTracer() {
 // sees, so a metal (no diffuse lobe) would be black; it is seen as a diffuse surface whose albedo
 // is its F0 instead.
 SurfacePoint metalAsDiffuse(SurfacePoint p) {
-  p.baseColor = shared::metalAsDiffuseColor(p.baseColor, p.metallic);
+  p.baseColor = shared::metalAsDiffuseColor(p.baseColor, p.metallic, reflectanceOf(p, false).f0);
   p.metallic = 0.0f;
   return p;
 }

@@ -119,6 +119,8 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.emissive = mat->emissive;
     p.sheenColor = mat->sheenColor;
     p.sheenRoughness = mat->sheenRoughness;
+    p.specular = mat->specular;
+    p.specularColor = mat->specularColor;
   } else {
     const Mesh& m = scene.meshes[hit.geometry];
     mat = &scene.materials[m.material];
@@ -154,6 +156,10 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     if (lookup(mat->sheenColorTexture, true, t)) p.sheenColor *= glm::vec3(t);
     if (lookup(mat->sheenRoughnessTexture, false, t)) p.sheenRoughness *= t.w;
     p.sheenRoughness = std::clamp(p.sheenRoughness, 0.0f, 1.0f);
+    p.specular = mat->specular;
+    p.specularColor = mat->specularColor;
+    if (lookup(mat->specularTexture, false, t)) p.specular *= t.w;
+    if (lookup(mat->specularColorTexture, true, t)) p.specularColor *= glm::vec3(t);
     if (!m.tangents.empty() && lookup(mat->normalTexture, false, t)) {
       const glm::vec4 t4 = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
       n = shared::applyNormalMap(n, t4, t, mat->normalScale);
@@ -166,6 +172,7 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
   p.position = ray.origin + hit.t * ray.direction;
   // Shade the side the ray sees.
   if (glm::dot(n, ray.direction) > 0.0f) n = -n;
+  p.ior = mat->ior;
   p.normal = n;
   return p;
 }

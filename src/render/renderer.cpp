@@ -63,6 +63,24 @@ shared::SplitSumSwitches splitSumSwitches(const RenderOptions& o) {
   return s;
 }
 
+namespace {
+
+// The point's material as the shared formulas take it (emission added by the caller).
+shared::SplitSumMaterial splitSumMaterial(const SurfacePoint& p, float occlusion) {
+  shared::SplitSumMaterial m;
+  m.baseColor = p.baseColor;
+  m.metallic = p.metallic;
+  m.roughness = p.roughness;
+  m.occlusion = occlusion;
+  m.emissive = glm::vec3(0.0f);
+  m.ior = p.ior;
+  m.specular = p.specular;
+  m.specularColor = p.specularColor;
+  return m;
+}
+
+}  // namespace
+
 glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult& bake,
                         const BakeOptions& bakeOptions, const RenderOptions& o) {
   // The formulas are ibl/shared/split_sum.h (the viewer's shader calls the same); only the
@@ -111,12 +129,7 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
       irradiance = glm::mix(irradiance, volume, cover);
     }
   }
-  shared::SplitSumMaterial m;
-  m.baseColor = p.baseColor;
-  m.metallic = p.metallic;
-  m.roughness = p.roughness;
-  m.occlusion = p.occlusion;
-  m.emissive = glm::vec3(0.0f);
+  const shared::SplitSumMaterial m = splitSumMaterial(p, p.occlusion);
   shared::SplitSumSwitches composed = s;
   if (p.screenReflection != glm::vec4(0.0f) && o.only != ShadingTerms::Diffuse) {
     // Lagarde & de Rousiers 2014, 4.9.5: the screen's reflection first, the probes for the rest.
@@ -157,12 +170,8 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
                               const RenderOptions& o, float belowScale,
                               const std::vector<float>& visibility) {
   const shared::SplitSumSwitches s = splitSumSwitches(o);
-  shared::SplitSumMaterial m;
-  m.baseColor = p.baseColor;
-  m.metallic = p.metallic;
-  m.roughness = p.roughness;
-  m.occlusion = 1.0f;  // ambient occlusion darkens indirect light only
-  m.emissive = glm::vec3(0.0f);
+  // Ambient occlusion darkens indirect light only.
+  const shared::SplitSumMaterial m = splitSumMaterial(p, 1.0f);
   const glm::vec4 ltc = s.ltcAreaLights
                             ? ltcTableLookup(p.roughness, std::max(glm::dot(p.normal, view), 1e-4f))
                             : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);

@@ -120,11 +120,16 @@ Scene makeSphereScene(const Material& material) {
 }
 
 Scene makeSphereGrid(glm::vec3 baseColor, int columns) {
+  Material base;
+  base.baseColor = baseColor;
+  return makeSphereGrid(base, columns);
+}
+
+Scene makeSphereGrid(const Material& base, int columns) {
   Scene s;
   for (int row = 0; row < 2; ++row)
     for (int c = 0; c < columns; ++c) {
-      Material m;
-      m.baseColor = baseColor;
+      Material m = base;
       m.metallic = row == 0 ? 1.0f : 0.0f;
       m.roughness = columns > 1 ? static_cast<float>(c) / static_cast<float>(columns - 1) : 0.5f;
       s.materials.push_back(m);

@@ -103,6 +103,8 @@ std::vector<Misuse> sceneMisuses() {
       {"--base-color", "--base-color nan,1,1", 2, "--base-color: 'nan,1,1' is not finite"},
       {"--metallic", "--metallic 2", 2, "--metallic: must be from 0 to 1, not 2"},
       {"--roughness", "--roughness -1", 2, "--roughness: must be from 0 to 1, not -1"},
+      {"--ior", "--ior 0.5", 2, "--ior: must be from 1 to 5, not 0.5"},
+      {"--specular", "--specular 2", 2, "--specular: must be from 0 to 1, not 2"},
       {"--diffuse", "--diffuse oren-nayar", 2, "--diffuse"},
       {"--only", "--only glossy", 2, "--only"},
       {"--multiscatter", "--multiscatter=maybe", 2, "--multiscatter"},
@@ -515,6 +517,8 @@ TEST(Usage, OptionsThatOthersMakeMeaninglessNameBoth) {
       {"render " + gltf + " --metallic 1" + png, {"--metallic:", "built-in scenes"}},
       {"render " + gltf + " --base-color 1,0,0" + png, {"--base-color:", "built-in scenes"}},
       {"render grid --roughness 0.2" + png, {"--roughness:", "built-in sphere"}},
+      {"render " + gltf + " --ior 1.33" + png, {"--ior:", "built-in scenes"}},
+      {"render " + gltf + " --specular 0.5" + png, {"--specular:", "built-in scenes"}},
       // Settings of what is off.
       {"render sphere --ssao-quality high" + png, {"--ssao-quality:", "add --ssao on"}},
       {"render " + gltf + " --ssao off --ssao-radius 0.5" + png, {"--ssao-radius:", "--ssao off"}},

@@ -130,9 +130,15 @@ void expectAgreement(const Agreement& a) {
 #define REQUIRE_DEVICE() \
   if (!device()) GTEST_SKIP() << "no Vulkan device"
 
+// The dielectrics with KHR_materials_ior and a colored KHR_materials_specular layer.
 TEST(GpuReference, SphereGridWithTheWalkEqualsTheCpu) {
   REQUIRE_DEVICE();
-  const Scene scene = makeSphereGrid(glm::vec3(0.9f, 0.6f, 0.3f));
+  Material base;
+  base.baseColor = glm::vec3(0.9f, 0.6f, 0.3f);
+  base.ior = 2.0f;
+  base.specular = 0.7f;
+  base.specularColor = glm::vec3(0.4f, 1.0f, 3.0f);
+  const Scene scene = makeSphereGrid(base);
   Camera camera;
   camera.from = glm::vec3(0.0f, 0.0f, 14.0f);
   camera.at = glm::vec3(0.0f);
@@ -171,6 +177,10 @@ Scene texturedScene() {
   floor.roughness = 0.3f;
   floor.baseColorTexture.index = 0;
   Material mask = floor;
+  // KHR_materials_specular's textures (color from RGB, sRGB; strength from A) on the floor.
+  floor.ior = 1.8f;
+  floor.specularColorTexture.index = 0;
+  floor.specularTexture.index = 1;
   mask.alphaMode = AlphaMode::Mask;
   mask.baseColorTexture.index = 1;
   mask.metallic = 1.0f;

@@ -1,13 +1,14 @@
 // The scene as the device's ray tracers read it (src/gpu/scene_buffers.cpp, read by
 // shaders/render/scene_buffers.glsl): the offsets follow the layout the shader documents (meshes,
-// then 4 vec4 per vertex, 6 per material, 1 per texture, kLightRecordVec4s per light, 2 per
-// sphere), and the records read back at them hold the scene's values.
+// then 4 vec4 per vertex, kMaterialRecordVec4s per material, 1 per texture, kLightRecordVec4s per
+// light, 2 per sphere), and the records read back at them hold the scene's values.
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "../../src/gpu/scene_buffers.hpp"
 #include "ibl/shared/light_record.h"
+#include "ibl/shared/material.h"
 #include "support/gpu_context.hpp"
 #include "support/helpers.hpp"
 
@@ -32,16 +33,17 @@ TEST(SceneBuffers, RecordsLieWhereTheShaderReadsThem) {
   const auto materials = static_cast<unsigned>(scene.materials.size());
   EXPECT_EQ(b.counts, glm::uvec4(lights, spheres, 0u, 0u));
   const glm::uvec4 o = b.offsets, o2 = b.offsets2;
-  EXPECT_EQ(o.x, 1u);                                         // one mesh record
-  EXPECT_EQ(o.y, o.x + 4u * 4u);                              // four vertices
-  EXPECT_EQ(o.z, o.y + 6u * materials);                       // the materials
-  EXPECT_EQ(o.w, o.z);                                        // no textures
-  EXPECT_EQ(o2.x, o.w + lights * shared::kLightRecordVec4s);  // the lights
-  EXPECT_EQ(o2.y, o2.x + 2u * spheres);                       // the spheres, then no emitters
+  EXPECT_EQ(o.x, 1u);                                              // one mesh record
+  EXPECT_EQ(o.y, o.x + 4u * 4u);                                   // four vertices
+  EXPECT_EQ(o.z, o.y + shared::kMaterialRecordVec4s * materials);  // the materials
+  EXPECT_EQ(o.w, o.z);                                             // no textures
+  EXPECT_EQ(o2.x, o.w + lights * shared::kLightRecordVec4s);       // the lights
+  EXPECT_EQ(o2.y, o2.x + 2u * spheres);                            // the spheres, then no emitters
   const std::vector<glm::vec4> data = b.sceneData->read<glm::vec4>(o2.y);
   EXPECT_EQ(glm::vec3(data[o.x + 4u * 2u]), quad.positions[2]);  // vertex 2's position
   for (unsigned m = 0; m < materials; ++m)
-    EXPECT_EQ(glm::vec3(data[o.y + 6u * m]), scene.materials[m].baseColor) << m;
+    EXPECT_EQ(glm::vec3(data[o.y + shared::kMaterialRecordVec4s * m]), scene.materials[m].baseColor)
+        << m;
   for (unsigned s = 0; s < spheres; ++s)
     EXPECT_EQ(data[o2.x + 2u * s], glm::vec4(scene.spheres[s].center, scene.spheres[s].radius))
         << s;

@@ -146,6 +146,39 @@ TEST(Viewer, SheenMatchesTheCpu) {
   }
 }
 
+// KHR_materials_ior and KHR_materials_specular: factors and textures on a quad, and a grid of
+// colored specular layers under the environment and a point light.
+TEST(Viewer, IorAndSpecularMatchTheCpu) {
+  TempDir dir;
+  QuadMaterial m;
+  m.baseColorFactor = glm::vec3(0.3f);
+  m.metallicFactor = 0.0f;
+  m.roughnessFactor = 0.3f;
+  m.ior = 2.0f;
+  m.specularFactor = 0.8f;
+  m.specularColorFactor = glm::vec3(1.0f, 2.0f, 200.0f);
+  m.specularAlphaCode = 128;
+  m.specularColorCodes = {255, 128, 64};
+  writeMaterialQuad(dir / "specular.gltf", m);
+  RenderOptions o;
+  o.spp = 1;
+  Comparison c = renderBoth(loadGltf((dir / "specular.gltf").string()),
+                            lookingAt({0.3f, 0.2f, 3.0f}, 64, 64), o);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  Material base;
+  base.baseColor = glm::vec3(0.5f, 0.3f, 0.2f);
+  base.ior = 1.33f;
+  base.specular = 0.6f;
+  base.specularColor = glm::vec3(1.0f, 0.5f, 4.0f);
+  Scene grid = makeSphereGrid(base);
+  Light l = viewerTestLight(LightType::Point, {-6, 9, 4}, {0, -1, 0}, 2000.0f, 1.0f);
+  l.range = 30.0f;
+  grid.lights.push_back(l);
+  c = renderBoth(grid, lookingAt({0, 0, 20}, 320, 160), o);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  EXPECT_LT(c.fractionOver1, 5e-3);
+}
+
 TEST(Viewer, TexturedAndCompressedMeshesMatchTheCpu) {
   TempDir dir;
   writeTexturedQuad(dir / "quad.gltf");

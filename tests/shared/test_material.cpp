@@ -2,6 +2,7 @@
 // computed independently of the code under test: sRGB base color, alpha modes, the
 // metallic-roughness channels, emission, the normal map's frame. Each test fails if its rule
 // changes.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -9,7 +10,9 @@
 
 #include "ibl/render/gltf.hpp"
 #include "ibl/render/renderer.hpp"
+#include "ibl/shared/material.h"
 #include "support/gltf_writer.hpp"
+#include "support/quadrature.hpp"
 #include "support/synthetic_bake.hpp"
 
 using namespace ibl;
@@ -114,6 +117,36 @@ TEST(ShadingRules, MetallicRoughnessChannels) {
               5.0f * (0.04f + 0.96f * 0.2f) + 0.8f, 1e-4f);
 }
 
+// KHR_materials_specular's textures: specularTexture's A multiplies specularFactor,
+// specularColorTexture's RGB (sRGB) multiplies specularColorFactor, and with KHR_materials_ior
+// they make F0 = min(((ior - 1) / (ior + 1))^2 color, 1) specular and F90 = specular, which the
+// split sum weighs by the DFG table's A and B (here the constants 0.7 and 0.2).
+TEST(ShadingRules, SpecularTexturesScaleTheDielectricsFresnel) {
+  TempDir dir;
+  QuadMaterial m;
+  m.baseColorFactor = glm::vec3(0.0f);
+  m.metallicFactor = 0.0f;
+  m.ior = 2.0f;
+  m.specularFactor = 0.8f;
+  m.specularColorFactor = glm::vec3(1.0f, 2.0f, 200.0f);
+  m.specularAlphaCode = 128;
+  m.specularColorCodes = {255, 128, 64};
+  writeMaterialQuad(dir / "q.gltf", m);
+  const SyntheticBake s = syntheticBake(
+      2, [](int, glm::vec3) { return glm::vec3(1.0f); }, [](glm::vec3) { return glm::vec3(0.0f); },
+      glm::vec3(0.7f, 0.2f, 1.0f), 8);
+  RenderOptions o;
+  o.only = ShadingTerms::Specular;
+  o.multipleScattering = MultipleScattering::Off;
+  const glm::vec3 c = centerPixel(loadGltf((dir / "q.gltf").string()), s, o);
+  const float specular = 0.8f * 128.0f / 255.0f, r0 = 1.0f / 9.0f;      // ((2 - 1) / (2 + 1))^2
+  const glm::vec3 color(1.0f, 2.0f * 0.2158605f, 200.0f * 0.0512695f);  // sRGB 128, 64
+  for (int k = 0; k < 3; ++k) {
+    const float f0 = std::min(r0 * color[k], 1.0f) * specular;  // blue: clamped
+    EXPECT_NEAR(c[k], 0.7f * f0 + 0.2f * specular, 1e-4f) << k;
+  }
+}
+
 // Emission: emissiveFactor times the sRGB-decoded emissiveTexture, in both modes, added to the
 // reflected light (none here: a black environment).
 TEST(ShadingRules, Emission) {
@@ -156,4 +189,20 @@ TEST(ShadingRules, NormalMapBitangentSign) {
     EXPECT_NEAR(r.y, w, 0.01f) << "w = " << w;
     EXPECT_NEAR(r.x, 0.0f, 0.02f);
   }
+}
+
+// KHR_materials_ior: F0 is Fresnel's reflectance at normal incidence (the s and p equations at
+// 0.001 rad, not the formula), 1 for ior 0 (the specular-glossiness mode); the specular layer
+// scales the dielectric alone, its color clamped before the factor, and metallic mixes.
+TEST(Reflectance, DielectricF0IsFresnelsAtNormalIncidence) {
+  for (float ior : {1.0f, 1.33f, 1.5f, 1.76f, 2.42f, 4.0f})
+    EXPECT_NEAR(shared::dielectricF0FromIor(ior), fresnelDielectric(std::cos(1e-3), ior), 1e-6)
+        << ior;
+  EXPECT_FLOAT_EQ(shared::dielectricF0FromIor(0.0f), 1.0f);
+  const shared::SpecularReflectance r = shared::specularReflectance(
+      glm::vec3(0.9f, 0.5f, 0.1f), 0.25f, 1.5f, 0.5f, glm::vec3(1.0f, 0.5f, 50.0f), false);
+  const glm::vec3 dielectric(0.04f * 0.5f, 0.02f * 0.5f, 1.0f * 0.5f);  // 0.04 x 50 clamped
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(r.f0[k], 0.75f * dielectric[k] + 0.25f * glm::vec3(0.9f, 0.5f, 0.1f)[k], 1e-6f);
+  EXPECT_NEAR(r.f90, 0.75f * 0.5f + 0.25f, 1e-6f);
 }

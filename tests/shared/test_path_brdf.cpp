@@ -31,13 +31,22 @@ shared::PathShading singleScattering(int diffuseModel) {
   return o;
 }
 
+// The Fresnel reflectance of glTF's material without KHR_materials_ior or _specular.
+shared::SpecularReflectance gltfDefaultReflectance(glm::vec3 baseColor, float metallic) {
+  shared::SpecularReflectance r;
+  r.f0 = glm::mix(glm::vec3(0.04f), baseColor, metallic);
+  r.f90 = 1.0f;
+  return r;
+}
+
 }  // namespace
 
 TEST(PathBrdf, LambertianSamplesWeighTheAlbedo) {
   const glm::vec3 v = glm::normalize(glm::vec3(0.3f, 0.2f, 0.9f));
   const glm::vec3 albedo(0.2f, 0.5f, 0.8f);
-  const shared::PathBrdf b = shared::pathBrdfOf(kTables, albedo, 0.0f, 0.7f, glm::vec3(0.0f), 0.0f,
-                                                v, shared::kLobesDiffuse, singleScattering(1));
+  const shared::PathBrdf b =
+      shared::pathBrdfOf(kTables, albedo, 0.0f, 0.7f, gltfDefaultReflectance(albedo, 0.0f),
+                         glm::vec3(0.0f), 0.0f, v, shared::kLobesDiffuse, singleScattering(1));
   const std::uint32_t key = shared::pathSamplerKey(1u, 0u, 2u, 0u);
   for (std::uint32_t i = 0; i < 64; ++i) {
     shared::PathSampler numbers = shared::pathSamplerAt(key, i);
@@ -51,9 +60,9 @@ TEST(PathBrdf, LambertianSamplesWeighTheAlbedo) {
 
 TEST(PathBrdf, DensityIntegratesToTheShareOfSamplesAboveTheHorizon) {
   const glm::vec3 v = glm::normalize(glm::vec3(0.6f, 0.0f, 0.8f));
-  const shared::PathBrdf b =
-      shared::pathBrdfOf(kTables, glm::vec3(0.5f), 0.3f, 0.6f, glm::vec3(0.0f), 0.0f, v,
-                         shared::kLobesAll, singleScattering(0));
+  const shared::PathBrdf b = shared::pathBrdfOf(
+      kTables, glm::vec3(0.5f), 0.3f, 0.6f, gltfDefaultReflectance(glm::vec3(0.5f), 0.3f),
+      glm::vec3(0.0f), 0.0f, v, shared::kLobesAll, singleScattering(0));
   // Over the hemisphere in (cos theta, phi), where d omega = d cos d phi: 512 x 512 cells.
   constexpr int kCells = 512;
   double integral = 0.0;

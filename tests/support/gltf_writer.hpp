@@ -136,7 +136,25 @@ struct QuadMaterial {
   std::string alphaMode;
   float alphaCutoff = 0.5f, baseColorAlpha = 1.0f;
   glm::ivec2 alphaCodes{-1, 0};
+  // KHR_materials_ior (negative: not written) and KHR_materials_specular (written when the
+  // factor is not negative): the factors, specularTexture's A code (RGB 255) and
+  // specularColorTexture's RGB codes (sRGB-encoded; negative first: none).
+  float ior = -1.0f;
+  float specularFactor = -1.0f;
+  glm::vec3 specularColorFactor{1.0f};
+  int specularAlphaCode = -1;
+  glm::ivec3 specularColorCodes{-1, 0, 0};
 };
+
+// A 1 x 1 RGBA PNG holding exactly `codes`.
+inline std::vector<std::uint8_t> rgbaPng(glm::ivec4 codes) {
+  const std::vector<std::uint8_t> texel = {
+      static_cast<std::uint8_t>(codes.x), static_cast<std::uint8_t>(codes.y),
+      static_cast<std::uint8_t>(codes.z), static_cast<std::uint8_t>(codes.w)};
+  std::vector<std::uint8_t> png;
+  stbi_write_png_to_func(appendToVector, &png, 1, 1, 4, texel.data(), 4);
+  return png;
+}
 
 // A 2 x 1 RGBA PNG, white, with alpha codes (left, right).
 inline std::vector<std::uint8_t> alphaPng(glm::ivec2 codes) {
@@ -196,6 +214,22 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
   if (!m.alphaMode.empty()) {
     material["alphaMode"] = m.alphaMode;
     material["alphaCutoff"] = m.alphaCutoff;
+  }
+  if (m.ior >= 0.0f) material["extensions"]["KHR_materials_ior"] = {{"ior", m.ior}};
+  if (m.specularFactor >= 0.0f) {
+    nlohmann::json specular = {
+        {"specularFactor", m.specularFactor},
+        {"specularColorFactor",
+         {m.specularColorFactor.x, m.specularColorFactor.y, m.specularColorFactor.z}}};
+    if (m.specularAlphaCode >= 0) {
+      images.push_back({{"uri", "data:image/png;base64," +
+                                    base64(rgbaPng({255, 255, 255, m.specularAlphaCode}))}});
+      textures.push_back({{"source", images.size() - 1}});
+      specular["specularTexture"] = {{"index", textures.size() - 1}};
+    }
+    if (m.specularColorCodes.x >= 0)
+      specular["specularColorTexture"] = texture(m.specularColorCodes);
+    material["extensions"]["KHR_materials_specular"] = specular;
   }
   nlohmann::json j = {
       {"asset", {{"version", "2.0"}}},
@@ -341,7 +375,8 @@ inline void writeMeshoptMesh(const std::filesystem::path& path, const Mesh& mesh
 
 // A scene's meshes (and its spheres, tessellated) as a glTF file: positions, normals and
 // indices in one embedded buffer, one node per mesh, the metallic-roughness materials with their
-// emission (past 1 through KHR_materials_emissive_strength). Textures and lights are left out.
+// emission (past 1 through KHR_materials_emissive_strength), sheen, IOR and specular layer.
+// Textures and lights are left out.
 inline void writeSceneAsGltf(const Scene& scene, const std::filesystem::path& path) {
   std::vector<Mesh> meshes = scene.meshes;
   for (const Sphere& sphere : scene.spheres) {
@@ -401,6 +436,11 @@ inline void writeSceneAsGltf(const Scene& scene, const std::filesystem::path& pa
       material["extensions"]["KHR_materials_sheen"] = {
           {"sheenColorFactor", {m.sheenColor.x, m.sheenColor.y, m.sheenColor.z}},
           {"sheenRoughnessFactor", m.sheenRoughness}};
+    if (m.ior != 1.5f) material["extensions"]["KHR_materials_ior"] = {{"ior", m.ior}};
+    if (m.specular != 1.0f || m.specularColor != glm::vec3(1.0f))
+      material["extensions"]["KHR_materials_specular"] = {
+          {"specularFactor", m.specular},
+          {"specularColorFactor", {m.specularColor.x, m.specularColor.y, m.specularColor.z}}};
     materials.push_back(material);
   }
   nlohmann::json sceneNodes = nlohmann::json::array();

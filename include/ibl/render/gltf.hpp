@@ -77,6 +77,12 @@ struct GltfSummary {
     std::vector<int> textures;  // the textures its slots read, in slot order, without repeats
     std::vector<std::string> extensions;   // every extension on it
     std::vector<std::string> unsupported;  // those of them ibl does not render
+    // KHR_materials_ior and KHR_materials_specular (their defaults when absent), and the
+    // dielectric's Fresnel reflectance they make (shared::specularReflectance at metallic 0).
+    float ior = 1.5f, specular = 1.0f;
+    glm::vec3 specularColor{1.0f};
+    glm::vec3 dielectricF0{0.04f};
+    float dielectricF90 = 1.0f;
   };
   struct Texture {
     int image = -1;      // -1: none that ibl can read

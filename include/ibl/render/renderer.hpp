@@ -168,6 +168,9 @@ struct SurfacePoint {
   glm::vec3 emissive{0.0f};    // linear radiance, the output's units
   glm::vec3 sheenColor{0.0f};  // KHR_materials_sheen (0: no sheen layer)
   float sheenRoughness = 0.0f;
+  float ior = 1.5f;               // KHR_materials_ior
+  float specular = 1.0f;          // KHR_materials_specular, texture applied
+  glm::vec3 specularColor{1.0f};  // KHR_materials_specular, texture applied
 };
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
 // viewer's frame uniforms carry the same.

@@ -74,6 +74,14 @@ struct Material {
   TextureRef sheenColorTexture;      // sRGB; RGB multiplies sheenColor
   float sheenRoughness = 0.0f;       // perceptual
   TextureRef sheenRoughnessTexture;  // A multiplies sheenRoughness
+  // KHR_materials_ior: the dielectric's index of refraction (>= 1, or 0: infinite).
+  float ior = 1.5f;
+  // KHR_materials_specular: the dielectric's specular strength and F0 color (shared::
+  // specularReflectance).
+  float specular = 1.0f;
+  TextureRef specularTexture;       // A multiplies specular
+  glm::vec3 specularColor{1.0f};    // linear; may exceed 1
+  TextureRef specularColorTexture;  // sRGB; RGB multiplies specularColor
 };
 
 // Triangles in world space.
@@ -128,7 +136,10 @@ Scene withoutObjects(const Scene& scene, const std::vector<std::string>& names,
 // One sphere of radius 1 at the origin, with `material` (no lights, no camera).
 Scene makeSphereScene(const Material& material);
 // Spheres of roughness 0..1 (columns, left to right) x metallic 1 (top row) and 0 (bottom),
-// radius 1, 2.5 apart, centered on the origin in the XY plane. baseColor: linear, 0 to 1.
+// radius 1, 2.5 apart, centered on the origin in the XY plane, each with `base`'s other
+// parameters (base color, ior, specular, sheen).
+Scene makeSphereGrid(const Material& base, int columns = 6);
+// The grid of spheres of one base color (linear, 0 to 1) and glTF's other defaults.
 Scene makeSphereGrid(glm::vec3 baseColor, int columns = 6);
 
 // A sphere as triangles for a rasterizer: `segments` around, segments / 2 from pole to pole,

@@ -37,6 +37,8 @@
 #define IBL_END }
 #define IBL_INOUT(T) T&
 #define IBL_FLOAT_BITS(x) std::bit_cast<std::uint32_t>(x)
+// A struct member's default value: C++ only (GLSL's structs have none; shaders set each member).
+#define IBL_DEFAULT(x) = x
 
 namespace ibl::shared {
 using uint = std::uint32_t;
@@ -77,6 +79,7 @@ using glm::sqrt;
 #define IBL_END
 #define IBL_INOUT(T) inout T
 #define IBL_FLOAT_BITS(x) floatBitsToUint(x)
+#define IBL_DEFAULT(x)
 #endif
 
 IBL_BEGIN

@@ -61,7 +61,7 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
                           SplitSumSwitches s) {
   float alpha = max(alphaFromRoughness(m.roughness), 1e-3f);
   vec3 diffuseColor = m.baseColor * (1.0f - m.metallic);
-  vec3 f0 = mix(vec3(0.04f), m.baseColor, m.metallic);
+  SpecularReflectance r = splitSumReflectance(m, s);
   float NoV = max(dot(n, v), 1e-4f);
   vec3 color = vec3(0.0f);
   if (s.terms != 2 && inc.diffuseIlluminance > 0.0f) {
@@ -75,9 +75,8 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
   if (s.terms != 1 && inc.specularLobeFraction > 0.0f) {
     // The LTC's fraction of the lobe, times the lobe's directional albedo with Schlick's Fresnel
     // (the DFG table's F0 A + B, as the split sum scales the prefiltered map).
-    vec3 specular = (f0 * dfg.x + vec3(fresnelF90(f0, s.specularMicroOcclusion) * dfg.y)) *
-                    inc.specularLobeFraction;
-    if (s.multipleScattering) specular *= multipleScatteringCompensation(f0, dfg);
+    vec3 specular = (r.f0 * dfg.x + vec3(r.f90 * dfg.y)) * inc.specularLobeFraction;
+    if (s.multipleScattering) specular *= multipleScatteringCompensation(r.f0, dfg);
     color += specular;
   } else if (s.terms != 1 && inc.specularIlluminance > 0.0f) {
     vec3 l = inc.specularDirection;
@@ -86,9 +85,8 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
     float dv = ggxDistribution(clamp(dot(n, h), 0.0f, 1.0f), alpha) * inc.specularNormalization *
                smithGgxCorrelatedVisibility(NoV, NoL, alpha);
     vec3 specular =
-        dv * fresnelSchlick(f0, fresnelF90(f0, s.specularMicroOcclusion), max(dot(v, h), 0.0f)) *
-        inc.specularIlluminance;
-    if (s.multipleScattering) specular *= multipleScatteringCompensation(f0, dfg);
+        dv * fresnelSchlick(r.f0, r.f90, max(dot(v, h), 0.0f)) * inc.specularIlluminance;
+    if (s.multipleScattering) specular *= multipleScatteringCompensation(r.f0, dfg);
     color += specular;
   }
   return color;

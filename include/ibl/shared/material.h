@@ -4,6 +4,7 @@
 // lang.h): surfaceAt in src/render/renderer.cpp and shaders/view/scene.frag both call these.
 #ifndef IBL_SHARED_MATERIAL_H
 #define IBL_SHARED_MATERIAL_H
+#include "ibl/shared/brdf.h"
 #include "ibl/shared/lang.h"
 
 IBL_BEGIN
@@ -72,11 +73,45 @@ IBL_FN int wrapTexel(int i, int n, int wrap) {
   return i < 0 ? i + n : i;
 }
 
+// The vec4s of a material's record in the GPU path tracer's scene buffer (written by
+// src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl).
+const int kMaterialRecordVec4s = 8;
+
+// KHR_materials_ior: the Fresnel reflectance at normal incidence of a dielectric of index `ior`
+// in air, ((ior - 1) / (ior + 1))^2: 0.04 at glTF's default 1.5. ior = 0, the specification's
+// specular-glossiness mode (an infinite index), gives 1.
+IBL_FN float dielectricF0FromIor(float ior) {
+  float r = (ior - 1.0f) / (ior + 1.0f);
+  return r * r;
+}
+
+// The Fresnel term's reflectance at normal incidence (f0) and at grazing angles (f90).
+struct SpecularReflectance {
+  vec3 f0;
+  float f90;
+};
+
+// The reflectance of glTF 2.0's metallic-roughness material with KHR_materials_ior and
+// KHR_materials_specular (their "Implementation" sections): the dielectric's
+//   f0 = min(F0(ior) specularColor, 1) specular,   f90 = specular,
+// the metal's f0 = baseColor and f90 = 1, mixed by metallic. specular and specularColor: the
+// factors times their textures' A and RGB. With every default (ior 1.5, specular 1, color 1):
+// f0 = mix(0.04, baseColor, metallic), f90 = 1. microOcclusion scales f90 by Schlick's
+// specular micro-occlusion (fresnelF90 in brdf.h).
+IBL_FN SpecularReflectance specularReflectance(vec3 baseColor, float metallic, float ior,
+                                               float specular, vec3 specularColor,
+                                               bool microOcclusion) {
+  vec3 dielectric = min(dielectricF0FromIor(ior) * specularColor, vec3(1.0f)) * specular;
+  SpecularReflectance r;
+  r.f0 = mix(dielectric, baseColor, metallic);
+  r.f90 = mix(specular, 1.0f, metallic) * fresnelF90(r.f0, microOcclusion);
+  return r;
+}
+
 // The diffuse color a capture gives a metal, whose specular it leaves out (RenderOptions::
-// captureMetalsAsDiffuse): its F0 (glTF 2.0 Appendix B: 0.04 for the dielectric, the base color
-// for the metal) as the albedo of a surface that is then not metallic.
-IBL_FN vec3 metalAsDiffuseColor(vec3 baseColor, float metallic) {
-  vec3 f0 = mix(vec3(0.04f), baseColor, metallic);
+// captureMetalsAsDiffuse): its F0 (specularReflectance's) as the albedo of a surface that is
+// then not metallic.
+IBL_FN vec3 metalAsDiffuseColor(vec3 baseColor, float metallic, vec3 f0) {
   return baseColor * (1.0f - metallic) + metallic * f0;
 }
 

@@ -11,6 +11,7 @@
 #include "ibl/shared/brdf.h"
 #include "ibl/shared/color.h"
 #include "ibl/shared/lang.h"
+#include "ibl/shared/material.h"
 #include "ibl/shared/microfacet_walk.h"
 #include "ibl/shared/path_sampler.h"
 #include "ibl/shared/sampling.h"
@@ -113,16 +114,17 @@ IBL_FN float pathSheenScaling(IBL_ALBEDO_TABLES PathBrdf b, float c) {
                             albedoTableLookup(IBL_ALBEDO_ARG 1, max(c, 1e-4f), b.sheenRoughness));
 }
 
-// The material of base color, metallic, roughness (perceptual) and sheen, seen from v.
+// The material of base color, metallic, roughness (perceptual), Fresnel reflectance
+// (specularReflectance in material.h, with o.specularMicroOcclusion) and sheen, seen from v.
 IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, float roughness,
-                           vec3 sheenColor, float sheenRoughness, vec3 v, int lobes,
-                           PathShading o) {
+                           SpecularReflectance reflectance, vec3 sheenColor, float sheenRoughness,
+                           vec3 v, int lobes, PathShading o) {
   PathBrdf b;
   b.diffuseColor = baseColor * (1.0f - metallic);
-  b.f0 = mix(vec3(0.04f), baseColor, metallic);
+  b.f0 = reflectance.f0;
   b.alpha = max(alphaFromRoughness(roughness), kMinPathAlpha);
   b.roughness = roughness;
-  b.f90 = fresnelF90(b.f0, o.specularMicroOcclusion);
+  b.f90 = reflectance.f90;
   b.diffuseModel = o.diffuseModel;
   b.lobes = lobes;
   b.multipleScattering = vec3(1.0f);

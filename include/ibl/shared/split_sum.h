@@ -14,6 +14,7 @@
 #define IBL_SHARED_SPLIT_SUM_H
 #include "ibl/shared/brdf.h"
 #include "ibl/shared/lang.h"
+#include "ibl/shared/material.h"
 
 IBL_BEGIN
 
@@ -37,7 +38,18 @@ struct SplitSumMaterial {
   float roughness;
   float occlusion;  // ambient occlusion, 1 = none
   vec3 emissive;
+  // KHR_materials_ior and KHR_materials_specular, their textures applied (specularReflectance
+  // in material.h).
+  float ior IBL_DEFAULT(1.5f);
+  float specular IBL_DEFAULT(1.0f);
+  vec3 specularColor IBL_DEFAULT(vec3(1.0f));
 };
+
+// The material's Fresnel reflectance (specularReflectance) under the switches' micro-occlusion.
+IBL_FN SpecularReflectance splitSumReflectance(SplitSumMaterial m, SplitSumSwitches s) {
+  return specularReflectance(m.baseColor, m.metallic, m.ior, m.specular, m.specularColor,
+                             s.specularMicroOcclusion);
+}
 
 // Mip level of the prefiltered specular map that holds a roughness: level m of L holds
 // r = m / (L - 1) (linear mapping) or r = (m / (L - 1))^2 (Frostbite's, lod = sqrt(r) (L - 1)).
@@ -118,11 +130,12 @@ IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefi
                              vec3 irradiance, SplitSumSwitches s) {
   float alpha = alphaFromRoughness(m.roughness);
   vec3 diffuseColor = m.baseColor * (1.0f - m.metallic);
-  vec3 f0 = mix(vec3(0.04f), m.baseColor, m.metallic);
+  SpecularReflectance r = splitSumReflectance(m, s);
   vec3 color = m.emissive;
   if (s.terms != 1) {
-    vec3 specular = prefiltered * (f0 * dfg.x + fresnelF90(f0, s.specularMicroOcclusion) * dfg.y);
-    if (s.multipleScattering) specular *= multipleScatteringCompensation(f0, vec2(dfg.x, dfg.y));
+    // The DFG table's scale and bias: F0 A + F90 B (Karis 2013).
+    vec3 specular = prefiltered * (r.f0 * dfg.x + r.f90 * dfg.y);
+    if (s.multipleScattering) specular *= multipleScatteringCompensation(r.f0, vec2(dfg.x, dfg.y));
     if (s.specularOcclusion && m.occlusion < 1.0f)
       specular *= specularOcclusion(NoV, m.occlusion, alpha);
     color += specular;

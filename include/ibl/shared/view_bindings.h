@@ -65,6 +65,8 @@ IBL_MATERIAL_BINDING(Occlusion, 3)
 IBL_MATERIAL_BINDING(Emissive, 4)       // an sRGB format
 IBL_MATERIAL_BINDING(SheenColor, 5)     // an sRGB format
 IBL_MATERIAL_BINDING(SheenRoughness, 6)
+IBL_MATERIAL_BINDING(Specular, 7)       // KHR_materials_specular: its A
+IBL_MATERIAL_BINDING(SpecularColor, 8)  // an sRGB format
 #ifdef __cplusplus
 Count
 };

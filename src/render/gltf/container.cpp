@@ -124,6 +124,7 @@ bool harmless(std::string_view ext) {
 bool implemented(std::string_view ext) {
   return ext == "KHR_draco_mesh_compression" || ext == "KHR_materials_emissive_strength" ||
          ext == "KHR_materials_sheen" || ext == "KHR_materials_variants" ||
+         ext == "KHR_materials_ior" || ext == "KHR_materials_specular" ||
          ext == "KHR_mesh_quantization" || ext == "EXT_meshopt_compression" ||
          ext == "KHR_lights_punctual";
 }

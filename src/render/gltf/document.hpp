@@ -119,6 +119,12 @@ std::optional<int> extensionIndex(const tinygltf::Value& o, const char* key,
 std::vector<SlotRef> materialSlots(const tinygltf::Material& m, const std::string& path,
                                    const std::string& where);
 
+// The factors of the material extensions ibl renders (KHR_materials_sheen, _ior, _specular),
+// written into `mat` (textures left as they are). Throws Error naming `path` and `where` for a
+// factor outside the range its specification allows.
+void readExtensionFactors(const tinygltf::Material& m, const std::string& path,
+                          const std::string& where, Material& mat);
+
 // The document: the model, checked, and what is read from it.
 class GltfDocument {
  public:

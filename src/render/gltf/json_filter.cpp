@@ -229,7 +229,8 @@ bool readsExtension(const std::string& kind, const std::string& name) {
          (kind == "nodes" && name == "KHR_lights_punctual") ||
          (kind == "primitives" && name == "KHR_materials_variants") ||
          (kind == "materials" &&
-          (name == "KHR_materials_sheen" || name == "KHR_materials_emissive_strength")) ||
+          (name == "KHR_materials_sheen" || name == "KHR_materials_emissive_strength" ||
+           name == "KHR_materials_ior" || name == "KHR_materials_specular")) ||
          (kind == "primitives" && name == "KHR_draco_mesh_compression") ||
          ((kind == "bufferViews" || kind == "buffers") && name == "EXT_meshopt_compression");
 }

@@ -1,5 +1,7 @@
-// Materials: glTF's metallic-roughness model, KHR_materials_emissive_strength and
-// KHR_materials_sheen, their texture slots pointing at the textures images.cpp read.
+// Materials: glTF's metallic-roughness model, KHR_materials_emissive_strength,
+// KHR_materials_sheen, KHR_materials_ior and KHR_materials_specular, their texture slots
+// pointing at the textures images.cpp read.
+#include <cmath>
 #include <map>
 
 #include <fmt/format.h>
@@ -18,17 +20,64 @@ std::vector<SlotRef> materialSlots(const tinygltf::Material& m, const std::strin
       {"normalTexture", m.normalTexture.index, m.normalTexture.texCoord},
       {"occlusionTexture", m.occlusionTexture.index, m.occlusionTexture.texCoord},
       {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord}};
-  const auto sheen = m.extensions.find("KHR_materials_sheen");
-  if (sheen != m.extensions.end())
-    for (const char* name : {"sheenColorTexture", "sheenRoughnessTexture"}) {
-      if (!sheen->second.IsObject() || !sheen->second.Has(name)) continue;
-      const tinygltf::Value& t = sheen->second.Get(name);
-      const std::string at = where + ": KHR_materials_sheen " + name;
+  const std::pair<const char*, std::vector<const char*>> extensionSlots[] = {
+      {"KHR_materials_sheen", {"sheenColorTexture", "sheenRoughnessTexture"}},
+      {"KHR_materials_specular", {"specularTexture", "specularColorTexture"}}};
+  for (const auto& [extension, names] : extensionSlots) {
+    const auto x = m.extensions.find(extension);
+    if (x == m.extensions.end()) continue;
+    for (const char* name : names) {
+      if (!x->second.IsObject() || !x->second.Has(name)) continue;
+      const tinygltf::Value& t = x->second.Get(name);
+      const std::string at = fmt::format("{}: {} {}", where, extension, name);
       slots.push_back({name, extensionIndex(t, "index", path, at).value_or(-1),
                        extensionIndex(t, "texCoord", path, at).value_or(0)});
     }
+  }
   return slots;
 }
+
+namespace {
+
+// The extension object `extension` of material m (null: absent or not an object).
+const tinygltf::Value* materialExtension(const tinygltf::Material& m, const char* extension) {
+  const auto x = m.extensions.find(extension);
+  return x != m.extensions.end() && x->second.IsObject() ? &x->second : nullptr;
+}
+
+// The number v, `at` naming it. Throws Error naming the file when v is not a number within
+// [lo, hi].
+float numberWithin(const tinygltf::Value& v, double lo, double hi, const std::string& path,
+                   const std::string& at) {
+  const double d = v.IsNumber() ? v.GetNumberAsDouble() : std::nan("");
+  if (!(d >= lo && d <= hi))
+    fail(path,
+         fmt::format("{}: {}, where the specification allows {} to {}", at,
+                     v.IsNumber() ? fmt::format("{}", d) : std::string("not a number"), lo, hi));
+  return static_cast<float>(d);
+}
+
+// A number of an extension's object within [lo, hi]; `fallback` when absent.
+float extensionNumber(const tinygltf::Value& x, const char* name, float fallback, double lo,
+                      double hi, const std::string& path, const std::string& at) {
+  return x.Has(name) ? numberWithin(x.Get(name), lo, hi, path, at + " " + name) : fallback;
+}
+
+// Three numbers of an extension's object (a color factor), each within [lo, hi].
+glm::vec3 extensionColor(const tinygltf::Value& x, const char* name, glm::vec3 fallback, double lo,
+                         double hi, const std::string& path, const std::string& at) {
+  if (!x.Has(name)) return fallback;
+  const tinygltf::Value& v = x.Get(name);
+  if (!v.IsArray() || v.ArrayLen() != 3)
+    fail(path, fmt::format("{} {}: not an array of 3 numbers", at, name));
+  glm::vec3 c;
+  for (int i = 0; i < 3; ++i)
+    c[i] = numberWithin(v.Get(static_cast<std::size_t>(i)), lo, hi, path,
+                        fmt::format("{} {}[{}]", at, name, i));
+  return c;
+}
+
+}  // namespace
 
 glm::vec3 GltfDocument::emissiveOf(const tinygltf::Material& m) {
   glm::vec3 e(0.0f);
@@ -42,6 +91,33 @@ glm::vec3 GltfDocument::emissiveOf(const tinygltf::Material& m) {
       strength->second.Get("emissiveStrength").IsNumber())
     e *= static_cast<float>(strength->second.Get("emissiveStrength").GetNumberAsDouble());
   return e;
+}
+
+void readExtensionFactors(const tinygltf::Material& m, const std::string& path,
+                          const std::string& where, Material& mat) {
+  // KHR_materials_sheen: sheenColorFactor and sheenRoughnessFactor in [0, 1] (default 0: no
+  // sheen); the color's texture in RGB (sRGB), the roughness's in A.
+  if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_sheen")) {
+    const std::string at = where + ": KHR_materials_sheen";
+    mat.sheenColor = extensionColor(*x, "sheenColorFactor", glm::vec3(0.0f), 0.0, 1.0, path, at);
+    mat.sheenRoughness = extensionNumber(*x, "sheenRoughnessFactor", 0.0f, 0.0, 1.0, path, at);
+  }
+  // KHR_materials_ior: ior >= 1, or 0 (the specular-glossiness mode, an infinite index).
+  if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_ior")) {
+    const std::string at = where + ": KHR_materials_ior";
+    mat.ior = extensionNumber(*x, "ior", 1.5f, 0.0, 1e6, path, at);
+    if (mat.ior > 0.0f && mat.ior < 1.0f)
+      fail(path,
+           fmt::format("{} ior: {}, where the specification allows 0 or 1 and above", at, mat.ior));
+  }
+  // KHR_materials_specular: specularFactor in [0, 1] (its texture's A), specularColorFactor
+  // >= 0 (its texture's RGB, sRGB); the color may exceed 1, the F0 it makes is clamped.
+  if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_specular")) {
+    const std::string at = where + ": KHR_materials_specular";
+    mat.specular = extensionNumber(*x, "specularFactor", 1.0f, 0.0, 1.0, path, at);
+    mat.specularColor =
+        extensionColor(*x, "specularColorFactor", glm::vec3(1.0f), 0.0, 1e6, path, at);
+  }
 }
 
 std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& textures) {
@@ -83,18 +159,11 @@ std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& te
     mat.emissiveTexture = refs["emissiveTexture"];
     // KHR_materials_sheen: sheenColorFactor (default 0: no sheen), sheenRoughnessFactor
     // (default 0), and their textures (color in RGB, sRGB; roughness in A).
-    const auto sheen = m.extensions.find("KHR_materials_sheen");
-    if (sheen != m.extensions.end() && sheen->second.IsObject()) {
-      const tinygltf::Value& x = sheen->second;
-      if (x.Has("sheenColorFactor") && x.Get("sheenColorFactor").ArrayLen() == 3)
-        for (int c = 0; c < 3; ++c)
-          mat.sheenColor[c] = static_cast<float>(
-              x.Get("sheenColorFactor").Get(static_cast<std::size_t>(c)).GetNumberAsDouble());
-      if (x.Has("sheenRoughnessFactor"))
-        mat.sheenRoughness = static_cast<float>(x.Get("sheenRoughnessFactor").GetNumberAsDouble());
-      mat.sheenColorTexture = refs["sheenColorTexture"];
-      mat.sheenRoughnessTexture = refs["sheenRoughnessTexture"];
-    }
+    readExtensionFactors(m, path_, materialLabel(k), mat);
+    mat.sheenColorTexture = refs["sheenColorTexture"];
+    mat.sheenRoughnessTexture = refs["sheenRoughnessTexture"];
+    mat.specularTexture = refs["specularTexture"];
+    mat.specularColorTexture = refs["specularColorTexture"];
     materials.push_back(mat);
   }
   Material fallback;

@@ -8,6 +8,7 @@
 #include <glm/common.hpp>
 
 #include "document.hpp"
+#include "ibl/shared/material.h"
 
 namespace ibl::gltf {
 
@@ -96,6 +97,15 @@ GltfSummary GltfDocument::describe() {
       if (slot.index >= 0 &&
           std::find(info.textures.begin(), info.textures.end(), slot.index) == info.textures.end())
         info.textures.push_back(slot.index);
+    Material factors;
+    readExtensionFactors(m, path_, materialLabel(k), factors);
+    info.ior = factors.ior;
+    info.specular = factors.specular;
+    info.specularColor = factors.specularColor;
+    const shared::SpecularReflectance dielectric = shared::specularReflectance(
+        glm::vec3(0.0f), 0.0f, factors.ior, factors.specular, factors.specularColor, false);
+    info.dielectricF0 = dielectric.f0;
+    info.dielectricF90 = dielectric.f90;
     for (const auto& [name, value] : m.extensions) {
       info.extensions.push_back(name);
       if (!implemented(name)) info.unsupported.push_back(name);
