@@ -147,6 +147,36 @@ TEST(ShadingRules, SpecularTexturesScaleTheDielectricsFresnel) {
   }
 }
 
+// KHR_materials_unlit: the quad shows baseColorFactor times its sRGB-decoded texture whatever
+// lights it (a bright environment and a sun here), in both modes; its other properties (a
+// rough white metal) reflect nothing.
+TEST(ShadingRules, UnlitShowsItsBaseColor) {
+  TempDir dir;
+  QuadMaterial m;
+  m.baseColorFactor = glm::vec3(0.5f, 1.0f, 0.25f);
+  m.baseColorCodes = {128, 64, 255};
+  m.metallicFactor = 1.0f;
+  m.roughnessFactor = 0.5f;
+  m.unlit = true;
+  writeMaterialQuad(dir / "q.gltf", m);
+  Scene scene = loadGltf((dir / "q.gltf").string());
+  Light sun;
+  sun.type = LightType::Sun;
+  sun.direction = glm::vec3(0.0f, 0.0f, 1.0f);  // toward the sun, in front of the quad
+  sun.intensity = 100.0f;
+  scene.lights.push_back(sun);
+  const SyntheticBake s = syntheticBake(
+      2, [](int, glm::vec3) { return glm::vec3(3.0f); }, [](glm::vec3) { return glm::vec3(3.0f); },
+      glm::vec3(0.7f, 0.2f, 1.0f), 8);
+  const glm::vec3 expected(0.5f * 0.2158605f, 1.0f * 0.0512695f, 0.25f * 1.0f);
+  for (RenderMode mode : {RenderMode::SplitSum, RenderMode::Reference}) {
+    RenderOptions o;
+    o.mode = mode;
+    const glm::vec3 c = centerPixel(scene, s, o);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], expected[k], 1e-4f) << k;
+  }
+}
+
 // Emission: emissiveFactor times the sRGB-decoded emissiveTexture, in both modes, added to the
 // reflected light (none here: a black environment).
 TEST(ShadingRules, Emission) {

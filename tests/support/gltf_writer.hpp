@@ -144,6 +144,7 @@ struct QuadMaterial {
   glm::vec3 specularColorFactor{1.0f};
   int specularAlphaCode = -1;
   glm::ivec3 specularColorCodes{-1, 0, 0};
+  bool unlit = false;  // KHR_materials_unlit
 };
 
 // A 1 x 1 RGBA PNG holding exactly `codes`.
@@ -216,6 +217,7 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
     material["alphaCutoff"] = m.alphaCutoff;
   }
   if (m.ior >= 0.0f) material["extensions"]["KHR_materials_ior"] = {{"ior", m.ior}};
+  if (m.unlit) material["extensions"]["KHR_materials_unlit"] = nlohmann::json::object();
   if (m.specularFactor >= 0.0f) {
     nlohmann::json specular = {
         {"specularFactor", m.specularFactor},

@@ -230,7 +230,8 @@ bool readsExtension(const std::string& kind, const std::string& name) {
          (kind == "primitives" && name == "KHR_materials_variants") ||
          (kind == "materials" &&
           (name == "KHR_materials_sheen" || name == "KHR_materials_emissive_strength" ||
-           name == "KHR_materials_ior" || name == "KHR_materials_specular")) ||
+           name == "KHR_materials_ior" || name == "KHR_materials_specular" ||
+           name == "KHR_materials_unlit")) ||
          (kind == "primitives" && name == "KHR_draco_mesh_compression") ||
          ((kind == "bufferViews" || kind == "buffers") && name == "EXT_meshopt_compression");
 }

@@ -1,6 +1,6 @@
 // Materials: glTF's metallic-roughness model, KHR_materials_emissive_strength,
-// KHR_materials_sheen, KHR_materials_ior and KHR_materials_specular, their texture slots
-// pointing at the textures images.cpp read.
+// KHR_materials_sheen, KHR_materials_ior, KHR_materials_specular and KHR_materials_unlit, their
+// texture slots pointing at the textures images.cpp read.
 #include <cmath>
 #include <map>
 
@@ -75,6 +75,20 @@ glm::vec3 extensionColor(const tinygltf::Value& x, const char* name, glm::vec3 f
     c[i] = numberWithin(v.Get(static_cast<std::size_t>(i)), lo, hi, path,
                         fmt::format("{} {}[{}]", at, name, i));
   return c;
+}
+
+// KHR_materials_unlit: the surface shows its base color (factor times texture; glTF's vertex
+// colors are not read) whatever the light. As every path shades it: an emitter of that radiance
+// that reflects nothing (black, no specular layer, no sheen), its alpha coverage kept. In the
+// reference it lights what it faces, as any emissive surface does.
+Material unlit(Material m) {
+  m.emissive = m.baseColor;
+  m.emissiveTexture = m.baseColorTexture;  // sRGB, as the base color's; its A still covers
+  m.baseColor = glm::vec3(0.0f);
+  m.metallic = 0.0f;
+  m.specular = 0.0f;
+  m.sheenColor = glm::vec3(0.0f);
+  return m;
 }
 
 }  // namespace
@@ -164,6 +178,7 @@ std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& te
     mat.sheenRoughnessTexture = refs["sheenRoughnessTexture"];
     mat.specularTexture = refs["specularTexture"];
     mat.specularColorTexture = refs["specularColorTexture"];
+    if (materialExtension(m, "KHR_materials_unlit")) mat = unlit(mat);
     materials.push_back(mat);
   }
   Material fallback;
