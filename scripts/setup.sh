@@ -11,6 +11,7 @@ packages=(
   # libraries
   libopenexr-dev libimath-dev libstb-dev libpng-dev libglm-dev libcli11-dev libfmt-dev
   nlohmann-json3-dev libtbb-dev libtinygltf-dev libembree-dev libdraco-dev libmeshoptimizer-dev
+  libwebp-dev
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers libglfw3-dev
   # the viewer's window in tests, on a virtual X display
   xvfb xauth

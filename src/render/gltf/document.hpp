@@ -220,6 +220,10 @@ class GltfDocument {
   // Why texture `texture` has no image ibl reads ("no image", or the extensions it has).
   std::string noSourceProblem(int texture) const;
 
+  // The image texture `texture` shows: EXT_texture_webp's source where the texture has one (the
+  // core `source` is then its fallback), else its `source` (-1: none).
+  int textureImage(int texture) const;
+
   // The textures, one per glTF texture; those the materials read decoded (with `decode`) or
   // only checked. A missing or unreadable image is a warning and its textures are empty.
   std::vector<Texture> readTextures(bool decode);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 #include <stb_image.h>
+#include <webp/decode.h>
 
 #include "document.hpp"
 #include "ibl/io/file_io.hpp"
@@ -20,6 +21,12 @@ namespace fs = std::filesystem;
 
 std::uint32_t readBe32(const std::uint8_t* p) {
   return (static_cast<std::uint32_t>(p[0]) << 24) | (p[1] << 16) | (p[2] << 8) | p[3];
+}
+
+// Whether the bytes are a WebP file: a RIFF container of form type WEBP.
+bool isWebp(std::span<const std::uint8_t> b) {
+  return b.size() >= 12 && std::memcmp(b.data(), "RIFF", 4) == 0 &&
+         std::memcmp(b.data() + 8, "WEBP", 4) == 0;
 }
 
 // The smallest number of bytes a PNG or JPEG of its declared size can hold, so that a header
@@ -91,7 +98,26 @@ ImageProbe probeImage(std::span<const std::uint8_t> b) {
     r.height = h;
     return r;
   }
-  r.problem = "not a PNG or JPEG image (glTF 2.0 images are one or the other)";
+  // WebP (EXT_texture_webp): its header through libwebp. No size bound holds here (a lossless
+  // WebP of one color takes a few bytes at any size): the pixel limits and the textures' byte
+  // limit bound the decoding.
+  if (isWebp(b)) {
+    int w = 0, h = 0;
+    if (!WebPGetInfo(b.data(), b.size(), &w, &h)) {
+      r.problem = "a WebP whose header cannot be read";
+      return r;
+    }
+    const u64 pixels = static_cast<u64>(w) * static_cast<u64>(h);
+    if (w > kMaxImageDimension || h > kMaxImageDimension || pixels > kMaxImagePixels) {
+      r.problem = fmt::format("a WebP of {}x{} pixels (ibl reads up to {}x{}, {} pixels)", w, h,
+                              kMaxImageDimension, kMaxImageDimension, kMaxImagePixels);
+      return r;
+    }
+    r.width = w;
+    r.height = h;
+    return r;
+  }
+  r.problem = "not a PNG, JPEG or WebP image";
   return r;
 }
 
@@ -169,7 +195,17 @@ std::string GltfDocument::noSourceProblem(int texture) const {
   const tinygltf::Texture& g = model_.textures[static_cast<std::size_t>(texture)];
   std::string others;
   for (const auto& [name, value] : g.extensions) others += (others.empty() ? "" : ", ") + name;
-  return others.empty() ? "no image" : "no PNG or JPEG image (only " + others + ")";
+  return others.empty() ? "no image" : "no PNG, JPEG or WebP image (only " + others + ")";
+}
+
+int GltfDocument::textureImage(int texture) const {
+  const tinygltf::Texture& g = model_.textures[static_cast<std::size_t>(texture)];
+  const auto webp = g.extensions.find("EXT_texture_webp");
+  if (webp != g.extensions.end() && webp->second.IsObject())
+    if (const auto source = extensionIndex(webp->second, "source", path_,
+                                           fmt::format("texture {}: EXT_texture_webp", texture)))
+      return *source;
+  return g.source;
 }
 
 std::vector<Texture> GltfDocument::readTextures(bool decode) {
@@ -184,11 +220,11 @@ std::vector<Texture> GltfDocument::readTextures(bool decode) {
     Texture tex;
     tex.sampler = samplerOf(g.sampler);
     const bool used = usedTextures_.count(static_cast<int>(t)) > 0;
-    if (used && g.source < 0) {
+    const int k = textureImage(static_cast<int>(t));
+    if (used && k < 0) {
       warn(fmt::format("texture {} has {}", t, noSourceProblem(static_cast<int>(t))),
            "rendering without it");
     } else if (used) {
-      const int k = g.source;
       const ImageState& st = imageState(k);
       if (st.missing || !st.probe.problem.empty()) {
         if (warned.insert(k).second)
@@ -230,6 +266,19 @@ std::vector<Texture> GltfDocument::readTextures(bool decode) {
 std::shared_ptr<const std::vector<std::uint8_t>> GltfDocument::decodeImage(
     int image, std::span<const std::uint8_t> bytes, const ImageProbe& probe) {
   int w = 0, h = 0, comp = 0;
+  if (isWebp(bytes)) {
+    std::uint8_t* webp = WebPDecodeRGBA(bytes.data(), bytes.size(), &w, &h);
+    if (!webp || w != probe.width || h != probe.height) {
+      WebPFree(webp);
+      warn(fmt::format("{} cannot be decoded (a damaged WebP)", imageLabel(image)),
+           "rendering without it");
+      return std::make_shared<const std::vector<std::uint8_t>>();
+    }
+    auto out = std::make_shared<std::vector<std::uint8_t>>(
+        webp, webp + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
+    WebPFree(webp);
+    return out;
+  }
   unsigned char* px =
       stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &w, &h, &comp, 4);
   if (!px || w != probe.width || h != probe.height) {

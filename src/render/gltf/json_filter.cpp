@@ -233,6 +233,7 @@ bool readsExtension(const std::string& kind, const std::string& name) {
            name == "KHR_materials_ior" || name == "KHR_materials_specular" ||
            name == "KHR_materials_unlit")) ||
          (kind == "primitives" && name == "KHR_draco_mesh_compression") ||
+         (kind == "textures" && name == "EXT_texture_webp") ||
          ((kind == "bufferViews" || kind == "buffers") && name == "EXT_meshopt_compression");
 }
 

@@ -114,7 +114,7 @@ GltfSummary GltfDocument::describe() {
   }
   for (std::size_t t = 0; t < model_.textures.size(); ++t) {
     GltfSummary::Texture info;
-    info.image = model_.textures[t].source;
+    info.image = textureImage(static_cast<int>(t));
     info.used = usedTextures_.count(static_cast<int>(t)) > 0;
     if (info.image >= 0) {
       const ImageSource& src = images_[static_cast<std::size_t>(info.image)];

@@ -35,6 +35,10 @@ void GltfDocument::validate() {
     const tinygltf::Texture& g = model_.textures[t];
     if (g.source != -1 && !inRange(g.source, images_.size()))
       error(fmt::format("texture {}: {}", t, outOfRange("image", g.source, images_.size())));
+    if (const int webp = textureImage(static_cast<int>(t));
+        webp != -1 && !inRange(webp, images_.size()))
+      error(fmt::format("texture {}: EXT_texture_webp source: {}", t,
+                        outOfRange("image", webp, images_.size())));
     if (g.sampler != -1 && !inRange(g.sampler, model_.samplers.size()))
       error(fmt::format("texture {}: {}", t,
                         outOfRange("sampler", g.sampler, model_.samplers.size())));

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <gtest/gtest.h>
+#include <webp/encode.h>
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
@@ -122,8 +123,7 @@ TEST(GltfHostile, MissingAndUnreadableTexturesAreWarnings) {
     std::string warning;
   } cases[] = {
       {{{"uri", "data:image/png;base64," + base64({'G', 'I', 'F', '8', '9', 'a', 0, 0})}},
-       "texture image 0 (data URI) is not a PNG or JPEG image (glTF 2.0 images are one or the "
-       "other)"},
+       "texture image 0 (data URI) is not a PNG, JPEG or WebP image"},
       {{{"uri", "data:image/png;base64," + base64(png)}},
        fmt::format("texture image 0 (data URI) is a PNG whose {} bytes of image data cannot "
                    "hold 16000x16000 pixels",
@@ -180,4 +180,44 @@ TEST(GltfHostile, TexturesAreCountedAgainstTheirLimit) {
   writeFileAtomic(glb, glbOf(j, bin));
   const Scene twice = loadGltf(glb);
   EXPECT_EQ(twice.textures[0].rgba, twice.textures[1].rgba);
+}
+
+// EXT_texture_webp: the texture's WebP source is read (lossless here: every texel comes back) and
+// its core source is only the fallback; a damaged WebP is a warning naming the image, and the
+// material renders without it.
+TEST(Gltf, WebpTexturesAreDecoded) {
+  TempDir dir;
+  const std::vector<std::uint8_t> texels = {255, 0,  0,   255, 0,   128, 0,  200,
+                                            10,  20, 200, 100, 255, 255, 64, 1};
+  std::uint8_t* encoded = nullptr;
+  const std::size_t size = WebPEncodeLosslessRGBA(texels.data(), 2, 2, 8, &encoded);
+  ASSERT_GT(size, 0u);
+  const std::vector<std::uint8_t> webp(encoded, encoded + size);
+  WebPFree(encoded);
+  json j = baseGltf();
+  j["images"].push_back({{"uri", "data:image/webp;base64," + base64(webp)}});
+  j["textures"][0]["extensions"]["EXT_texture_webp"] = {{"source", 1}};
+  j["extensionsUsed"].push_back("EXT_texture_webp");
+  std::vector<std::string> warnings;
+  GltfLoadOptions options;
+  options.warn = [&](const std::string& w) { warnings.push_back(w); };
+  const Scene s = loadGltf(write(dir, "webp.gltf", j), options);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  ASSERT_EQ(s.textures.size(), 1u);
+  ASSERT_EQ(s.textures[0].width, 2);
+  ASSERT_EQ(s.textures[0].height, 2);
+  EXPECT_EQ(*s.textures[0].rgba, texels);
+  // `ibl info` names the WebP as the texture's image.
+  const CliRun info = runIbl("info " + quote(dir / "webp.gltf") + " --json");
+  ASSERT_EQ(info.status, 0) << info.output;
+  EXPECT_EQ(json::parse(info.output)["textures"][0]["image"], 1);
+  // Truncated: the header reads, the data does not.
+  std::vector<std::uint8_t> damaged(webp.begin(),
+                                    webp.begin() + static_cast<long>(webp.size() - 6));
+  j["images"][1]["uri"] = "data:image/webp;base64," + base64(damaged);
+  warnings.clear();
+  const Scene broken = loadGltf(write(dir, "damaged.gltf", j), options);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("texture image 1 (data URI)"), std::string::npos) << warnings[0];
+  EXPECT_EQ(broken.materials[0].baseColorTexture.index, -1);
 }
