@@ -110,6 +110,11 @@ def parse_args():
     p.add_argument("--spp", type=int, default=256)
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--roughness", type=float, default=0.5)
+    p.add_argument("--dielectric-f0", type=float, default=None,
+                   help="--scene sphere: a black dielectric of this F0 (Principled BSDF, "
+                   "Specular = F0 / 0.08, Specular Tint 0) instead of the white metal")
+    p.add_argument("--multiscatter", action="store_true",
+                   help="with --dielectric-f0: Cycles' multiple-scattering GGX")
     p.add_argument("--fov", type=float, default=40.0, help="vertical field of view, degrees")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--bounces", type=int, default=None,
@@ -153,6 +158,28 @@ def make_material(roughness):
     out = nt.nodes.new("ShaderNodeOutputMaterial")
     out.target = "CYCLES"
     nt.links.new(g.outputs["BSDF"], out.inputs["Surface"])
+    return m
+
+
+def make_dielectric(f0, roughness, multiscatter):
+    """A black dielectric whose specular lobe has F0 `f0`: Cycles 3.4's Principled BSDF takes F0 =
+    0.08 x Specular (KHR_materials_specular's conversion table names the same)."""
+    m = bpy.data.materials.new("dielectric")
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.clear()
+    b = nt.nodes.new("ShaderNodeBsdfPrincipled")
+    b.distribution = "MULTI_GGX" if multiscatter else "GGX"
+    b.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    b.inputs["Metallic"].default_value = 0.0
+    b.inputs["Specular"].default_value = f0 / 0.08
+    b.inputs["Specular Tint"].default_value = 0.0
+    b.inputs["Roughness"].default_value = roughness
+    b.inputs["Sheen"].default_value = 0.0
+    b.inputs["Clearcoat"].default_value = 0.0
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    out.target = "CYCLES"
+    nt.links.new(b.outputs["BSDF"], out.inputs["Surface"])
     return m
 
 
@@ -472,7 +499,8 @@ def main():
     clear_scene()
     s = bpy.context.scene
     s.render.engine = "CYCLES"
-    material = make_material(a.roughness)
+    material = (make_material(a.roughness) if a.dielectric_f0 is None else
+                make_dielectric(a.dielectric_f0, a.roughness, a.multiscatter))
     make_sphere(a.geometry, material)
     make_world(a.env, a.env_rotate_z, a.env_mirror, a.clamp_negative)
     distance = make_camera(a.fov)
