@@ -127,18 +127,24 @@ void expectAgreement(const Agreement& a) {
   EXPECT_LT(a.sameSeedMedian, 1e-3);
 }
 
-#define REQUIRE_DEVICE() \
-  if (!device()) GTEST_SKIP() << "no Vulkan device"
-
-TEST(GpuReference, SphereGridWithTheWalkEqualsTheCpu) {
-  REQUIRE_DEVICE();
-  const Scene scene = makeSphereGrid(glm::vec3(0.9f, 0.6f, 0.3f));
+// The sphere grid from +Z, 48 x 24 pixels.
+Camera gridCamera() {
   Camera camera;
   camera.from = glm::vec3(0.0f, 0.0f, 14.0f);
   camera.at = glm::vec3(0.0f);
   camera.yfovDegrees = 30.0f;
   camera.width = 48;
   camera.height = 24;
+  return camera;
+}
+
+#define REQUIRE_DEVICE() \
+  if (!device()) GTEST_SKIP() << "no Vulkan device"
+
+TEST(GpuReference, SphereGridWithTheWalkEqualsTheCpu) {
+  REQUIRE_DEVICE();
+  const Scene scene = makeSphereGrid(glm::vec3(0.9f, 0.6f, 0.3f));
+  const Camera camera = gridCamera();
   RenderOptions o;
   o.multipleScattering = MultipleScattering::Walk;
   o.bounces = 4;
@@ -178,12 +184,7 @@ TEST(GpuReference, IorAndSpecularLayersEqualTheCpu) {
   wall.indices = {0, 1, 2, 0, 2, 3};
   wall.material = static_cast<int>(scene.materials.size()) - 1;
   scene.meshes.push_back(wall);
-  Camera camera;
-  camera.from = glm::vec3(0.0f, 0.0f, 14.0f);
-  camera.at = glm::vec3(0.0f);
-  camera.yfovDegrees = 30.0f;
-  camera.width = 48;
-  camera.height = 24;
+  const Camera camera = gridCamera();
   RenderOptions o;
   o.bounces = 1;
   const Agreement a = compare(scene, camera, skyBake().result, skyBake().options, o, 64);

@@ -150,15 +150,8 @@ TEST(Viewer, SheenMatchesTheCpu) {
 // colored specular layers under the environment and a point light.
 TEST(Viewer, IorAndSpecularMatchTheCpu) {
   TempDir dir;
-  QuadMaterial m;
-  m.baseColorFactor = glm::vec3(0.3f);
-  m.metallicFactor = 0.0f;
+  QuadMaterial m = specularLayerQuad(glm::vec3(0.3f));
   m.roughnessFactor = 0.3f;
-  m.ior = 2.0f;
-  m.specularFactor = 0.8f;
-  m.specularColorFactor = glm::vec3(1.0f, 2.0f, 200.0f);
-  m.specularAlphaCode = 128;
-  m.specularColorCodes = {255, 128, 64};
   writeMaterialQuad(dir / "specular.gltf", m);
   RenderOptions o;
   o.spp = 1;

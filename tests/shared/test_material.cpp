@@ -123,15 +123,7 @@ TEST(ShadingRules, MetallicRoughnessChannels) {
 // split sum weighs by the DFG table's A and B (here the constants 0.7 and 0.2).
 TEST(ShadingRules, SpecularTexturesScaleTheDielectricsFresnel) {
   TempDir dir;
-  QuadMaterial m;
-  m.baseColorFactor = glm::vec3(0.0f);
-  m.metallicFactor = 0.0f;
-  m.ior = 2.0f;
-  m.specularFactor = 0.8f;
-  m.specularColorFactor = glm::vec3(1.0f, 2.0f, 200.0f);
-  m.specularAlphaCode = 128;
-  m.specularColorCodes = {255, 128, 64};
-  writeMaterialQuad(dir / "q.gltf", m);
+  writeMaterialQuad(dir / "q.gltf", specularLayerQuad(glm::vec3(0.0f)));
   const SyntheticBake s = syntheticBake(
       2, [](int, glm::vec3) { return glm::vec3(1.0f); }, [](glm::vec3) { return glm::vec3(0.0f); },
       glm::vec3(0.7f, 0.2f, 1.0f), 8);

@@ -147,6 +147,22 @@ struct QuadMaterial {
   bool unlit = false;  // KHR_materials_unlit
 };
 
+// A dielectric of `baseColor` whose specular layer uses every part of KHR_materials_ior and
+// KHR_materials_specular: ior 2, specularFactor 0.8 times specularTexture's A (code 128), and
+// specularColorFactor (1, 2, 200) times specularColorTexture's sRGB codes (255, 128, 64), whose
+// blue F0 is clamped to 1.
+inline QuadMaterial specularLayerQuad(glm::vec3 baseColor) {
+  QuadMaterial m;
+  m.baseColorFactor = baseColor;
+  m.metallicFactor = 0.0f;
+  m.ior = 2.0f;
+  m.specularFactor = 0.8f;
+  m.specularColorFactor = glm::vec3(1.0f, 2.0f, 200.0f);
+  m.specularAlphaCode = 128;
+  m.specularColorCodes = {255, 128, 64};
+  return m;
+}
+
 // A 1 x 1 RGBA PNG holding exactly `codes`.
 inline std::vector<std::uint8_t> rgbaPng(glm::ivec4 codes) {
   const std::vector<std::uint8_t> texel = {

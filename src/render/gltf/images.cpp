@@ -29,6 +29,17 @@ bool isWebp(std::span<const std::uint8_t> b) {
          std::memcmp(b.data() + 8, "WEBP", 4) == 0;
 }
 
+// Whether an image of `kind` ("PNG", ...) and w x h pixels is within ibl's limits; if not,
+// r.problem says why.
+bool withinPixelLimits(const char* kind, u64 w, u64 h, ImageProbe& r) {
+  if (w > 0 && h > 0 && w <= kMaxImageDimension && h <= kMaxImageDimension &&
+      w * h <= kMaxImagePixels)
+    return true;
+  r.problem = fmt::format("a {} of {}x{} pixels (ibl reads up to {}x{}, {} pixels)", kind, w, h,
+                          kMaxImageDimension, kMaxImageDimension, kMaxImagePixels);
+  return false;
+}
+
 // The smallest number of bytes a PNG or JPEG of its declared size can hold, so that a header
 // claiming a large image over a few bytes of data is refused before the decoder allocates for it.
 // PNG: deflate expands at most 1032 times, and the filtered rows take height x (1 + row bytes).
@@ -54,12 +65,7 @@ ImageProbe probeImage(std::span<const std::uint8_t> b) {
       r.problem = "a PNG of an invalid color type or bit depth";
       return r;
     }
-    if (width == 0 || height == 0 || width > kMaxImageDimension || height > kMaxImageDimension ||
-        width * height > kMaxImagePixels) {
-      r.problem = fmt::format("a PNG of {}x{} pixels (ibl reads up to {}x{}, {} pixels)", width,
-                              height, kMaxImageDimension, kMaxImageDimension, kMaxImagePixels);
-      return r;
-    }
+    if (!withinPixelLimits("PNG", width, height, r)) return r;
     u64 idat = 0;
     for (std::size_t at = 8; at + 8 <= b.size();) {
       const u64 length = readBe32(b.data() + at);
@@ -84,12 +90,8 @@ ImageProbe probeImage(std::span<const std::uint8_t> b) {
       r.problem = fmt::format("a JPEG whose header cannot be read ({})", stbi_failure_reason());
       return r;
     }
+    if (!withinPixelLimits("JPEG", static_cast<u64>(w), static_cast<u64>(h), r)) return r;
     const u64 pixels = static_cast<u64>(w) * static_cast<u64>(h);
-    if (w > kMaxImageDimension || h > kMaxImageDimension || pixels > kMaxImagePixels) {
-      r.problem = fmt::format("a JPEG of {}x{} pixels (ibl reads up to {}x{}, {} pixels)", w, h,
-                              kMaxImageDimension, kMaxImageDimension, kMaxImagePixels);
-      return r;
-    }
     if (pixels > 4096 * u64{b.size()}) {
       r.problem = fmt::format("a JPEG whose {} bytes cannot hold {}x{} pixels", b.size(), w, h);
       return r;
@@ -107,12 +109,7 @@ ImageProbe probeImage(std::span<const std::uint8_t> b) {
       r.problem = "a WebP whose header cannot be read";
       return r;
     }
-    const u64 pixels = static_cast<u64>(w) * static_cast<u64>(h);
-    if (w > kMaxImageDimension || h > kMaxImageDimension || pixels > kMaxImagePixels) {
-      r.problem = fmt::format("a WebP of {}x{} pixels (ibl reads up to {}x{}, {} pixels)", w, h,
-                              kMaxImageDimension, kMaxImageDimension, kMaxImagePixels);
-      return r;
-    }
+    if (!withinPixelLimits("WebP", static_cast<u64>(w), static_cast<u64>(h), r)) return r;
     r.width = w;
     r.height = h;
     return r;
