@@ -131,7 +131,9 @@ void runGltfInfo(const InfoOptions& o) {
            {"specular", m.specular},
            {"specular_color", vec(m.specularColor)},
            {"dielectric_f0", vec(m.dielectricF0)},
-           {"dielectric_f90", m.dielectricF90}});
+           {"dielectric_f90", m.dielectricF90},
+           {"clearcoat", m.clearcoat},
+           {"clearcoat_roughness", m.clearcoatRoughness}});
     for (const auto& t : s.textures)
       j["textures"].push_back({{"image", index(t.image)},
                                {"source", t.source},
@@ -232,11 +234,15 @@ void runGltfInfo(const InfoOptions& o) {
                   "specular {:.4g}, specular color {:.4g} {:.4g} {:.4g})",
                   m.dielectricF0.x, m.dielectricF0.y, m.dielectricF0.z, m.dielectricF90, m.ior,
                   m.specular, m.specularColor.x, m.specularColor.y, m.specularColor.z);
+    const std::string coat = m.clearcoat > 0.0f
+                                 ? fmt::format(", clear coat {:.4g} (roughness {:.4g})",
+                                               m.clearcoat, m.clearcoatRoughness)
+                                 : "";
     fmt::print(
         "  {}{}: base color {:.4g} {:.4g} {:.4g} {:.4g}, metallic {:.4g}, roughness "
-        "{:.4g}{}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
+        "{:.4g}{}{}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
         i, quoted(m.name), m.baseColor.x, m.baseColor.y, m.baseColor.z, m.baseColor.w, m.metallic,
-        m.roughness, dielectric, m.emissive.x, m.emissive.y, m.emissive.z, m.alphaMode,
+        m.roughness, dielectric, coat, m.emissive.x, m.emissive.y, m.emissive.z, m.alphaMode,
         m.doubleSided ? ", double-sided" : "", textures.empty() ? "" : ", textures " + textures,
         extensions.empty() ? "" : "; extensions: " + extensions);
   }

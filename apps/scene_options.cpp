@@ -112,6 +112,15 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "0 leaves the diffuse alone)")
       ->check(numberIn(0.0f, 1.0f))
       ->capture_default_str();
+  cmd->add_option("--clearcoat", o.clearcoat,
+                  "Built-in scenes: a clear coat's strength (KHR_materials_clearcoat: a GGX layer "
+                  "of IOR 1.5 over the material)")
+      ->check(numberIn(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--clearcoat-roughness", o.clearcoatRoughness,
+                  "Built-in scenes: the clear coat's perceptual roughness")
+      ->check(numberIn(0.0f, 1.0f))
+      ->capture_default_str();
   cmd->add_option("--diffuse", o.diffuse, "disney (Frostbite renormalized) or lambert")
       ->check(CLI::IsMember({"disney", "lambert"}))
       ->capture_default_str();
@@ -263,6 +272,8 @@ Scene loadSceneAlone(const SceneCliOptions& o, const GlobalOptions& global) {
   m.baseColor = parseVec3(o.baseColor, "--base-color");
   m.ior = o.ior;
   m.specular = o.specular;
+  m.clearcoat = o.clearcoat;
+  m.clearcoatRoughness = o.clearcoatRoughness;
   if (o.scene == "grid") return makeSphereGrid(m);
   m.metallic = o.metallic;
   m.roughness = o.roughness;
@@ -325,7 +336,8 @@ void refuseIgnoredSceneOptions(const SceneCliOptions& o) {
   if (o.orthoWidth && (given(o, "--camera") || builtInScene(o)) && o.camera != "ortho")
     failUsage("--ortho-width", "applies to --camera ortho; --camera perspective's view is --fov");
   // The built-in scenes' material.
-  for (const char* option : {"--base-color", "--metallic", "--roughness", "--ior", "--specular"})
+  for (const char* option : {"--base-color", "--metallic", "--roughness", "--ior", "--specular",
+                             "--clearcoat", "--clearcoat-roughness"})
     if (given(o, option) && !builtInScene(o))
       failUsage(option, fmt::format("sets the material of the built-in scenes (sphere, grid); "
                                     "the scene {} has its own",

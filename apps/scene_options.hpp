@@ -41,8 +41,10 @@ struct SceneCliOptions {
   std::string baseColor = "1,1,1";
   float metallic = 0.0f;
   float roughness = 0.5f;
-  float ior = 1.5f;       // KHR_materials_ior of the built-in scenes' material
-  float specular = 1.0f;  // KHR_materials_specular's factor
+  float ior = 1.5f;                 // KHR_materials_ior of the built-in scenes' material
+  float specular = 1.0f;            // KHR_materials_specular's factor
+  float clearcoat = 0.0f;           // KHR_materials_clearcoat's factor
+  float clearcoatRoughness = 0.0f;  // and roughness
   std::string diffuse = "disney";
   std::string only;
   std::string multiscatter = "walk";  // --multiscatter walk|scale|off

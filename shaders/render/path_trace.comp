@@ -248,6 +248,8 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     PathBrdf brdf = pathBrdfOf(p.baseColor, p.metallic, p.roughness,
                                surfaceReflectance(p, shading.specularMicroOcclusion), p.sheenColor,
                                p.sheenRoughness, v, lobes, shading);
+    if (p.clearcoat > 0.0)
+      brdf = withClearcoat(brdf, p.clearcoat, p.clearcoatRoughness, toLocal * p.clearcoatNormal, v);
     vec3 origin = position + p.normal * 1e-4 * max(1.0, length(position));
     // Next-event estimation: one sample of each light, of the emitters and of the environment.
     for (uint i = 0u; i < params.counts.x; ++i) {

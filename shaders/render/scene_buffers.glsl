@@ -173,13 +173,18 @@ struct Surface {
   float sheenRoughness;
   float ior, specular;  // KHR_materials_ior and _specular (texture applied)
   vec3 specularColor;
+  // KHR_materials_clearcoat (textures applied; 0: none), the coat's normal on the normal's side;
+  // the emission above is what the coat lets through toward the ray's origin.
+  float clearcoat, clearcoatRoughness;
+  vec3 clearcoatNormal;
 };
 
 Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
   Surface p;
   p.position = origin + hit.t * dir;
-  vec3 n;
+  vec3 n, coatNormal;
   uint material;
+  vec4 m7;
   if (hit.sphere) {
     vec4 sphere = sceneData[params.offsets2.x + 2u * hit.mesh];
     n = normalize(p.position - sphere.xyz);
@@ -219,9 +224,24 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     if (slotUv(m, tri, slotOf(m5.z), w, uv)) p.specular *= sampleTexture(slotOf(m5.z).x, uv, false).a;
     if (slotUv(m, tri, slotOf(m5.w), w, uv))
       p.specularColor *= sampleTexture(slotOf(m5.w).x, uv, true).rgb;
-    if ((m.flags & 1u) != 0u && slotUv(m, tri, slotOf(m4.z), w, uv)) {
+    vec4 m8 = materialAt(material, 8);
+    m7 = materialAt(material, 7);
+    p.clearcoat = m7.y;
+    p.clearcoatRoughness = m7.z;
+    if (slotUv(m, tri, slotOf(m8.x), w, uv))
+      p.clearcoat *= sampleTexture(slotOf(m8.x).x, uv, false).r;
+    if (slotUv(m, tri, slotOf(m8.y), w, uv))
+      p.clearcoatRoughness *= sampleTexture(slotOf(m8.y).x, uv, false).g;
+    p.clearcoat = clamp(p.clearcoat, 0.0, 1.0);
+    p.clearcoatRoughness = clamp(p.clearcoatRoughness, 0.0, 1.0);
+    // The coat's normal: the interpolated one, unless it has a normal map of its own.
+    coatNormal = n;
+    if ((m.flags & 1u) != 0u) {
       vec4 t4 = vertexAt(tri.x, 2) * w.x + vertexAt(tri.y, 2) * w.y + vertexAt(tri.z, 2) * w.z;
-      n = applyNormalMap(n, t4, sampleTexture(slotOf(m4.z).x, uv, false), m3.y);
+      if (slotUv(m, tri, slotOf(m8.z), w, uv))
+        coatNormal = applyNormalMap(n, t4, sampleTexture(slotOf(m8.z).x, uv, false), m7.w);
+      if (slotUv(m, tri, slotOf(m4.z), w, uv))
+        n = applyNormalMap(n, t4, sampleTexture(slotOf(m4.z).x, uv, false), m3.y);
     }
     p.baseColor = base;
     p.metallic = clamp(metallic, 0.0, 1.0);
@@ -238,11 +258,21 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     p.sheenRoughness = m2.w;
     p.specularColor = materialAt(material, 6).rgb;
     p.specular = materialAt(material, 6).w;
+    m7 = materialAt(material, 7);
+    p.clearcoat = m7.y;
+    p.clearcoatRoughness = m7.z;
+    coatNormal = n;
   }
-  p.ior = materialAt(material, 7).x;
-  // Shade the side the ray sees.
-  if (dot(n, dir) > 0.0) n = -n;
+  p.ior = m7.x;
+  // Shade the side the ray sees (the coat's normal on the same side).
+  if (dot(n, dir) > 0.0) {
+    n = -n;
+    coatNormal = -coatNormal;
+  }
   p.normal = n;
+  p.clearcoatNormal = coatNormal;
+  // The coat lies over the emission too (KHR_materials_clearcoat, "Emission").
+  if (p.clearcoat > 0.0) p.emissive *= 1.0 - clearcoatWeight(p.clearcoat, dot(coatNormal, -dir));
   return p;
 }
 

@@ -15,16 +15,23 @@ layout(set = 1, binding = kMaterialSheenColor) uniform sampler2D sheenColorTextu
 layout(set = 1, binding = kMaterialSheenRoughness) uniform sampler2D sheenRoughnessTexture;  // A
 layout(set = 1, binding = kMaterialSpecular) uniform sampler2D specularTexture;  // A
 layout(set = 1, binding = kMaterialSpecularColor) uniform sampler2D specularColorTexture;
+layout(set = 1, binding = kMaterialClearcoat) uniform sampler2D clearcoatTexture;  // R
+layout(set = 1, binding = kMaterialClearcoatRoughness) uniform sampler2D clearcoatRoughnessTexture;
+layout(set = 1, binding = kMaterialClearcoatNormal) uniform sampler2D clearcoatNormalTexture;
 layout(push_constant) uniform Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
-  vec4 scales;       // normal scale, occlusion strength, KHR_materials_ior's ior
+  vec4 scales;       // normal scale, occlusion strength, KHR_materials_ior's ior, the clear
+                     // coat's normal scale
   vec4 sphere;       // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
-  vec4 alpha;        // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
+  vec3 alpha;        // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
+  uint clearcoat;    // KHR_materials_clearcoat's factor and roughness, packHalf2x16 (the 128
+                     // bytes are full)
   vec4 sheen;        // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   vec4 specular;     // KHR_materials_specular: specularColorFactor, specularFactor
   uint textureMask;   // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive,
-                      // 32 sheen color, 64 sheen roughness, 128 specular, 256 specular color
+                      // 32 sheen color, 64 sheen roughness, 128 specular, 256 specular color,
+                      // 512 clear coat, 1024 its roughness, 2048 its normal
   uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
   int shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
   int scenePass;  // 0 the frame's only scene pass; with screen-space reflections 1 the lit frame

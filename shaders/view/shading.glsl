@@ -197,11 +197,20 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
   float belowScale = sheenOnly ? 0.0 : (hasSheen ? sheenAlbedoScaling(sheen.rgb, sheenE) : 1.0);
   vec3 prefiltered = vec3(0.0), irradiance = vec3(0.0);
   vec3 lit = vec3(0.0);
+  // KHR_materials_clearcoat: the coat's lobe at its own normal and roughness over the rest, which
+  // it scales by belowCoat (its emission already attenuated by fragmentSurface).
+  bool coat = m.clearcoat > 0.0 && !sheenOnly;
+  float belowCoat = coat ? 1.0 - clearcoatWeight(m.clearcoat, dot(m.clearcoatNormal, view)) : 1.0;
+  SplitSumLookup coatLook = splitSumLookup(m.clearcoatNormal, view, m.clearcoatRoughness, s);
+  vec2 coatDfg =
+      coat ? textureLod(dfgLut, vec2(coatLook.NoV, m.clearcoatRoughness), 0.0).rg : vec2(0.0);
   if (frame.models.w > 0) {
     SplitSumMaterial direct = m;
     direct.occlusion = 1.0;
     vec4 ltc = vec4(1.0, 0.0, 0.0, 1.0);
+    vec4 coatLtc = vec4(1.0, 0.0, 0.0, 1.0);
     if (s.ltcAreaLights) ltc = ltcTableEntry(m.roughness, look.NoV);
+    if (s.ltcAreaLights && coat) coatLtc = ltcTableEntry(m.clearcoatRoughness, coatLook.NoV);
     float sheenAlpha = alphaFromRoughness(sheenRoughness);
     uvec2 list = clusterLights(pixel, position);
     for (uint k = list.x; k < list.x + list.y; ++k) {
@@ -217,6 +226,11 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
       vec3 radiance = belowScale * lightRadiance(direct, n, view, inc, dfg.xy, s);
       if (shadeSheen)
         radiance += sheenLightRadiance(sheen.rgb, sheenAlpha, s.sheenVisibility, n, view, inc);
+      if (coat) {
+        LightIncidence coatInc = lightIncidence(l, position, m.clearcoatNormal, view,
+                                                m.clearcoatRoughness, s, coatLtc);
+        radiance = belowCoat * radiance + clearcoatLightRadiance(m, view, coatInc, coatDfg, s);
+      }
       lit += l.color * profile * radiance;
     }
   }
@@ -233,6 +247,7 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
   }
   if (frame.lods.w >= 0.5 && distants.y > 0.0 && s.terms != 2)
     irradiance += distants.y * distantIrradiance(look.diffuseDirection);
+  float specularScale = 1.0;
   if (frame.volumeTexels.z != 0) {
     // The irradiance volume gives the diffuse light where it covers, and normalizes the specular
     // of what it replaces by its irradiance (shadeSplitSum; ibl/shared/irradiance_volume.h).
@@ -244,7 +259,8 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
       // environment's.
       vec3 source = s.terms != 2 ? irradiance
                     : (frame.lods.w >= 0.5 ? distantIrradiance(look.diffuseDirection) : vec3(0.0));
-      prefiltered *= volumeSpecularScale(volume, source, cover);
+      specularScale = volumeSpecularScale(volume, source, cover);
+      prefiltered *= specularScale;
       irradiance = mix(irradiance, volume, cover);
     }
   }
@@ -263,6 +279,21 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
     float lod = specularLodForRoughness(sheenRoughness, frame.lods.x, frame.lods.y > 0.5);
     vec3 prefilteredSheen = distant * textureLod(sheenMap, n, lod).rgb;
     color += sheenRadiance(sheen.rgb, sheenE, prefilteredSheen) * m.occlusion;
+  }
+  if (coat) {
+    // The coat reads the same light as the base (probes, then the distant environment, the
+    // volume's scale) at its reflection and roughness; the screen-space reflection is the base's.
+    vec3 light = vec3(0.0), unused;
+    float rest = 1.0;
+    if (frame.probes.x > 0.0)
+      rest -= localProbes(position, coatLook.specularDirection, coatLook.specularDirection,
+                          m.clearcoatRoughness, 2, light, unused)
+                  .x;
+    if (frame.lods.w >= 0.5 && rest > 0.0 && s.terms != 1) {
+      float lod = specularLodForRoughness(m.clearcoatRoughness, frame.lods.x, frame.lods.y > 0.5);
+      light += rest * textureLod(specularMap, coatLook.specularDirection, lod).rgb;
+    }
+    color = belowCoat * color + clearcoatRadiance(m, coatLook.NoV, coatDfg, specularScale * light, s);
   }
   return lit + color + emissive;
 }

@@ -96,11 +96,25 @@ ShadedSurface fragmentSurface(int samples) {
   vec4 specular = material.specular;
   if ((mask & 128u) != 0u) specular.w *= texture(specularTexture, texCoordOf(128u)).a;
   if ((mask & 256u) != 0u) specular.rgb *= texture(specularColorTexture, texCoordOf(256u)).rgb;
+  vec2 coat = unpackHalf2x16(material.clearcoat);  // KHR_materials_clearcoat: factor, roughness
+  if ((mask & 512u) != 0u) coat.x *= texture(clearcoatTexture, texCoordOf(512u)).r;
+  if ((mask & 1024u) != 0u) coat.y *= texture(clearcoatRoughnessTexture, texCoordOf(1024u)).g;
+  // The coat's normal: the interpolated one, unless it has a normal map of its own.
+  vec3 coatNormal = n;
+  if ((mask & 2048u) != 0u)
+    coatNormal = applyNormalMap(n, worldTangent, texture(clearcoatNormalTexture, texCoordOf(2048u)),
+                                material.scales.w);
   if ((mask & 4u) != 0u)
     n = applyNormalMap(n, worldTangent, texture(normalTexture, texCoordOf(4u)), material.scales.x);
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
                                            : normalize(position - frame.cameraPosition.xyz);
-  if (dot(n, ray) > 0.0) n = -n;  // shade the side the camera sees
+  if (dot(n, ray) > 0.0) {  // shade the side the camera sees (the coat's normal alike)
+    n = -n;
+    coatNormal = -coatNormal;
+  }
+  coat = clamp(coat, 0.0, 1.0);
+  // The coat lies over the emission too (KHR_materials_clearcoat, "Emission").
+  if (coat.x > 0.0) emissive *= 1.0 - clearcoatWeight(coat.x, dot(coatNormal, -ray));
   ShadedSurface surface;
   SplitSumMaterial m;
   m.baseColor = baseColor;
@@ -111,6 +125,9 @@ ShadedSurface fragmentSurface(int samples) {
   m.ior = material.scales.z;
   m.specular = specular.w;
   m.specularColor = specular.rgb;
+  m.clearcoat = coat.x;
+  m.clearcoatRoughness = coat.y;
+  m.clearcoatNormal = coatNormal;
   surface.position = position;
   surface.normal = n;
   surface.view = -ray;

@@ -65,6 +65,12 @@ vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
   m.ior = p.ior;
   m.specular = p.specular;
   m.specularColor = p.specularColor;
+  m.clearcoat = p.clearcoat;
+  m.clearcoatRoughness = p.clearcoatRoughness;
+  m.clearcoatNormal = p.clearcoatNormal;
+  // What a clear coat lets through of the diffuse below it (its own lobe is specular).
+  float belowCoat =
+      p.clearcoat > 0.0 ? 1.0 - clearcoatWeight(p.clearcoat, dot(p.clearcoatNormal, view)) : 1.0;
   vec3 n = p.normal;
   SplitSumLookup look = splitSumLookup(n, view, m.roughness, s);
   vec3 dfg = textureLod(dfgLut, vec2(look.NoV, m.roughness), 0.0).rgb;
@@ -79,6 +85,7 @@ vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
                          0.0).r;
     color *= sheenAlbedoScaling(p.sheenColor, e);
   }
+  color *= belowCoat;
   vec4 ltc = s.ltcAreaLights ? ltcTableEntry(m.roughness, look.NoV) : vec4(1.0, 0.0, 0.0, 1.0);
   for (int i = 0; i < frame.models.w; ++i) {
     LightRecord record = lightRecordAt(i);
@@ -88,7 +95,7 @@ vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
     LightIncidence inc = lightIncidence(l, p.position, n, view, m.roughness, s, ltc);
     float profile = visible * iesProfileFactor(l, lightRecordProfile(record),
                                                normalize(p.position - l.position));
-    color += l.color * profile * lightRadiance(m, n, view, inc, dfg.xy, s);
+    color += l.color * (profile * belowCoat) * lightRadiance(m, n, view, inc, dfg.xy, s);
   }
   return color + p.emissive;
 }

@@ -89,7 +89,10 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
     data.push_back(glm::vec4(slotOf(mat.sheenColorTexture), slotOf(mat.sheenRoughnessTexture),
                              slotOf(mat.specularTexture), slotOf(mat.specularColorTexture)));
     data.push_back(glm::vec4(mat.specularColor, mat.specular));
-    data.push_back(glm::vec4(mat.ior, 0.0f, 0.0f, 0.0f));
+    data.push_back(
+        glm::vec4(mat.ior, mat.clearcoat, mat.clearcoatRoughness, mat.clearcoatNormalScale));
+    data.push_back(glm::vec4(slotOf(mat.clearcoatTexture), slotOf(mat.clearcoatRoughnessTexture),
+                             slotOf(mat.clearcoatNormalTexture), 0.0f));
   }
   out.offsets.z = static_cast<std::uint32_t>(data.size());
   out.offsets2.z = static_cast<std::uint32_t>(wordData.size());

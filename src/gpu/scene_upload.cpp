@@ -9,6 +9,7 @@
 #include <span>
 
 #include <fmt/format.h>
+#include <glm/packing.hpp>
 
 #include "gpu/frame_set.hpp"
 #include "ibl/core/error.hpp"
@@ -291,17 +292,19 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
     MaterialConstants mc{};
     mc.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
     mc.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
-    mc.scales = glm::vec4(mat.normalScale, mat.occlusionStrength, mat.ior, 0.0f);
-    mc.alpha =
-        glm::vec4(mat.baseColorAlpha, static_cast<float>(mat.alphaMode), mat.alphaCutoff, 0.0f);
+    mc.scales =
+        glm::vec4(mat.normalScale, mat.occlusionStrength, mat.ior, mat.clearcoatNormalScale);
+    mc.alpha = glm::vec3(mat.baseColorAlpha, static_cast<float>(mat.alphaMode), mat.alphaCutoff);
+    mc.clearcoat = glm::packHalf2x16(glm::vec2(mat.clearcoat, mat.clearcoatRoughness));
     mc.sheen = glm::vec4(mat.sheenColor, mat.sheenRoughness);
     mc.specular = glm::vec4(mat.specularColor, mat.specular);
     if (mat.sheenColor != glm::vec3(0.0f)) sceneHasSheen_ = true;
     // In MaterialBinding's order.
     const std::array<TextureRef, kMaterialTextures> slots{
-        mat.baseColorTexture,      mat.metallicRoughnessTexture, mat.normalTexture,
-        mat.occlusionTexture,      mat.emissiveTexture,          mat.sheenColorTexture,
-        mat.sheenRoughnessTexture, mat.specularTexture,          mat.specularColorTexture};
+        mat.baseColorTexture,      mat.metallicRoughnessTexture,  mat.normalTexture,
+        mat.occlusionTexture,      mat.emissiveTexture,           mat.sheenColorTexture,
+        mat.sheenRoughnessTexture, mat.specularTexture,           mat.specularColorTexture,
+        mat.clearcoatTexture,      mat.clearcoatRoughnessTexture, mat.clearcoatNormalTexture};
     std::array<VkDescriptorImageInfo, kMaterialTextures> images{};
     for (std::size_t b = 0; b < kMaterialTextures; ++b) {
       const int i = slots[b].index;

@@ -64,12 +64,15 @@ inline constexpr VkShaderStageFlags kMaterialStages =
 
 // The push constants of shaders/view/material.glsl: a material, and the sphere a mesh bounds.
 struct MaterialConstants {
-  // scales: normal scale, occlusion strength, KHR_materials_ior's ior.
+  // scales: normal scale, occlusion strength, KHR_materials_ior's ior, the coat's normal scale.
   glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
-  glm::vec4 alpha;            // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff
-  glm::vec4 sheen;            // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
-  glm::vec4 specular;         // KHR_materials_specular: specularColorFactor, specularFactor
-  std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
+  glm::vec3 alpha;  // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff
+  // KHR_materials_clearcoat's factor and roughness as two halves (glm::packHalf2x16: the 128
+  // bytes are full; halves hold [0, 1] within 5e-4).
+  std::uint32_t clearcoat;
+  glm::vec4 sheen;             // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
+  glm::vec4 specular;          // KHR_materials_specular: specularColorFactor, specularFactor
+  std::uint32_t textureMask;   // the textures the material has, bit b for set 1 binding b
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
   std::int32_t shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
   std::int32_t scenePass;      // the scene pass's part: ScenePass
@@ -78,6 +81,8 @@ struct MaterialConstants {
 // reflections, the lit frame (the surfaces without the area lights in front of them: what the
 // view buffers hold, so that no reflection meets a light) or the pass that composes them.
 enum ScenePass : std::int32_t { kOnlyScenePass = 0, kLitFramePass = 1, kReflectedPass = 2 };
+static_assert(offsetof(MaterialConstants, clearcoat) == 76,
+              "view/material.glsl reads the coat's factors after the vec3 alpha");
 static_assert(offsetof(MaterialConstants, shadowLayer) == 120,
               "view/shadow.vert reads the layer at offset 120");
 static_assert(sizeof(MaterialConstants) <= 128, "Vulkan guarantees 128 bytes of push constants");

@@ -80,11 +80,9 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
       for (std::size_t l = 0; l < scene.lights.size(); ++l)
         visibility[l] =
             rayTracedVisibility(tracer, scene.lights[l], p.position, p.normal, 1, sampler);
-      const glm::vec2 dfg(
-          sampleDfgLut(bake.dfg, std::max(glm::dot(p.normal, view), 1e-4f), p.roughness));
       radiance[at] =
           shadeSplitSum(p, view, bake, bakeOptions, o) +
-          shadeLightsRealTime(p, p.position, view, scene.lights, dfg, o, 1.0f, visibility);
+          shadeLightsRealTime(p, p.position, view, scene.lights, bake.dfg, o, 1.0f, visibility);
     }
   });
   // Each texel: the frame's weighted mean blended with what it held.

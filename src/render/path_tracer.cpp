@@ -72,13 +72,17 @@ struct Brdf {
   shared::PathBrdf b;
   shared::AlbedoTables tables;
 
-  // The material at p seen from local direction v; `only` selects lobes.
-  static Brdf of(const SurfacePoint& p, glm::vec3 v, ShadingTerms only, const RenderOptions& o) {
+  // The material at p seen from local direction v, its coat's normal `coatNormal` (local);
+  // `only` selects lobes.
+  static Brdf of(const SurfacePoint& p, glm::vec3 v, glm::vec3 coatNormal, ShadingTerms only,
+                 const RenderOptions& o) {
     const shared::AlbedoTables tables = referenceAlbedoTables(o.sheenVisibility);
-    return {shared::pathBrdfOf(tables, p.baseColor, p.metallic, p.roughness,
-                               reflectanceOf(p, o.specularMicroOcclusion), p.sheenColor,
-                               p.sheenRoughness, v, static_cast<int>(only), pathShading(o)),
-            tables};
+    shared::PathBrdf b = shared::pathBrdfOf(
+        tables, p.baseColor, p.metallic, p.roughness, reflectanceOf(p, o.specularMicroOcclusion),
+        p.sheenColor, p.sheenRoughness, v, static_cast<int>(only), pathShading(o));
+    if (p.clearcoat > 0.0f)
+      b = shared::withClearcoat(b, p.clearcoat, p.clearcoatRoughness, coatNormal, v);
+    return {b, tables};
   }
   // f(v, l) (n.l), with n = +Z of the local frame (with the walk, an unbiased estimate drawn
   // from a branch of the sampler, which it does not advance).
@@ -184,7 +188,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     const bool captured = depth == 0 && !o.cameraSeesSpecular;
     const ShadingTerms only = captured ? ShadingTerms::Diffuse : o.only;
     if (captured && o.captureMetalsAsDiffuse) p = metalAsDiffuse(p);
-    const Brdf brdf = Brdf::of(p, v, only, o);
+    const Brdf brdf = Brdf::of(p, v, toLocal * p.clearcoatNormal, only, o);
     const glm::vec3 origin = position + p.normal * 1e-4f * std::max(1.0f, glm::length(position));
     const auto unoccluded = [&](glm::vec3 w, float distance) {
       // Stop short of an area light's surface: the lights are not in the ray tracer.

@@ -108,7 +108,7 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
                        const Ray& ray) {
   SurfacePoint p{};
   const Material* mat;
-  glm::vec3 n;
+  glm::vec3 n, coatNormal;
   if (tracer.isSphere(hit.geometry)) {
     const Sphere& s = scene.spheres[hit.primitive];
     n = glm::normalize(ray.origin + hit.t * ray.direction - s.center);
@@ -121,6 +121,9 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.sheenRoughness = mat->sheenRoughness;
     p.specular = mat->specular;
     p.specularColor = mat->specularColor;
+    p.clearcoat = mat->clearcoat;
+    p.clearcoatRoughness = mat->clearcoatRoughness;
+    coatNormal = n;
   } else {
     const Mesh& m = scene.meshes[hit.geometry];
     mat = &scene.materials[m.material];
@@ -160,9 +163,21 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.specularColor = mat->specularColor;
     if (lookup(mat->specularTexture, false, t)) p.specular *= t.w;
     if (lookup(mat->specularColorTexture, true, t)) p.specularColor *= glm::vec3(t);
-    if (!m.tangents.empty() && lookup(mat->normalTexture, false, t)) {
+    p.clearcoat = mat->clearcoat;
+    p.clearcoatRoughness = mat->clearcoatRoughness;
+    if (lookup(mat->clearcoatTexture, false, t)) p.clearcoat *= t.x;
+    if (lookup(mat->clearcoatRoughnessTexture, false, t)) p.clearcoatRoughness *= t.y;
+    p.clearcoat = std::clamp(p.clearcoat, 0.0f, 1.0f);
+    p.clearcoatRoughness = std::clamp(p.clearcoatRoughness, 0.0f, 1.0f);
+    // The coat's normal: the interpolated one, unless it has a normal map of its own (not the
+    // base's: KHR_materials_clearcoat).
+    coatNormal = n;
+    if (!m.tangents.empty()) {
       const glm::vec4 t4 = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
-      n = shared::applyNormalMap(n, t4, t, mat->normalScale);
+      if (lookup(mat->clearcoatNormalTexture, false, t))
+        coatNormal = shared::applyNormalMap(n, t4, t, mat->clearcoatNormalScale);
+      if (lookup(mat->normalTexture, false, t))
+        n = shared::applyNormalMap(n, t4, t, mat->normalScale);
     }
     p.baseColor = base;
     p.metallic = std::clamp(metallic, 0.0f, 1.0f);
@@ -170,10 +185,17 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.emissive = emissive;
   }
   p.position = ray.origin + hit.t * ray.direction;
-  // Shade the side the ray sees.
-  if (glm::dot(n, ray.direction) > 0.0f) n = -n;
+  // Shade the side the ray sees (the coat's normal on the same side).
+  if (glm::dot(n, ray.direction) > 0.0f) {
+    n = -n;
+    coatNormal = -coatNormal;
+  }
   p.ior = mat->ior;
   p.normal = n;
+  p.clearcoatNormal = coatNormal;
+  // The coat lies over the emission too (KHR_materials_clearcoat, "Emission").
+  if (p.clearcoat > 0.0f)
+    p.emissive *= 1.0f - shared::clearcoatWeight(p.clearcoat, glm::dot(coatNormal, -ray.direction));
   return p;
 }
 

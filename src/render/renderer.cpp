@@ -76,7 +76,17 @@ shared::SplitSumMaterial splitSumMaterial(const SurfacePoint& p, float occlusion
   m.ior = p.ior;
   m.specular = p.specular;
   m.specularColor = p.specularColor;
+  m.clearcoat = p.clearcoat;
+  m.clearcoatRoughness = p.clearcoatRoughness;
+  m.clearcoatNormal = p.clearcoatNormal;
   return m;
+}
+
+// What a clear coat (KHR_materials_clearcoat) lets through of the layers below it toward `view`.
+float belowCoat(const SurfacePoint& p, glm::vec3 view) {
+  return p.clearcoat > 0.0f
+             ? 1.0f - shared::clearcoatWeight(p.clearcoat, glm::dot(p.clearcoatNormal, view))
+             : 1.0f;
 }
 
 }  // namespace
@@ -90,21 +100,36 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   if (p.bentNormal != glm::vec3(0.0f))
     look = shared::bendDiffuseLookup(look, p.bentNormal, view, p.roughness, s);
   const glm::vec3 dfg = sampleDfgLut(bake.dfg, look.NoV, p.roughness);
-  glm::vec3 prefiltered(0.0f), irradiance(0.0f);
+  glm::vec3 irradiance(0.0f);
   // Local probes first (smallest influence first), the distant environment for the rest.
   float distant = 1.0f, distantDiffuse = 1.0f;
+  // The prefiltered light along `direction` at `roughness` (the coat's lobe reads it too);
+  // `local` receives the probes' lighting when there are probes.
+  const auto prefilteredLight = [&](glm::vec3 direction, glm::vec3 diffuseDirection,
+                                    float roughness, ProbeLighting* local) {
+    glm::vec3 light(0.0f);
+    float rest = 1.0f;
+    if (o.probes && !o.probes->empty()) {
+      const ProbeLighting l =
+          lookupProbes(*o.probes, p.position, direction, diffuseDirection, roughness, o);
+      light = l.prefiltered;
+      rest = 1.0f - l.coverage;
+      if (local) *local = l;
+    }
+    if (o.environmentLight && rest > 0.0f && o.only != ShadingTerms::Diffuse) {
+      const float lod = specularLodForRoughness(roughness, bake.specular.levelCount(),
+                                                bakeOptions.specular.mapping);
+      light += rest * sampleTrilinear(bake.specular, lod, direction);
+    }
+    return light;
+  };
+  ProbeLighting local{};
+  glm::vec3 prefiltered =
+      prefilteredLight(look.specularDirection, look.diffuseDirection, p.roughness, &local);
   if (o.probes && !o.probes->empty()) {
-    const ProbeLighting local = lookupProbes(*o.probes, p.position, look.specularDirection,
-                                             look.diffuseDirection, p.roughness, o);
-    prefiltered = local.prefiltered;
     irradiance = local.irradiance;
     distant = 1.0f - local.coverage;
     distantDiffuse = 1.0f - local.diffuseCoverage;
-  }
-  if (o.environmentLight && distant > 0.0f && o.only != ShadingTerms::Diffuse) {
-    const float lod = specularLodForRoughness(p.roughness, bake.specular.levelCount(),
-                                              bakeOptions.specular.mapping);
-    prefiltered += distant * sampleTrilinear(bake.specular, lod, look.specularDirection);
   }
   const auto distantIrradiance = [&] {
     return o.irradiance == IrradianceSource::Cube
@@ -113,6 +138,7 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   };
   if (o.environmentLight && distantDiffuse > 0.0f && o.only != ShadingTerms::Specular)
     irradiance += distantDiffuse * distantIrradiance();
+  float specularScale = 1.0f;
   if (o.volume) {
     // The volume gives the diffuse light where it covers, and normalizes the specular of what
     // it replaces by its irradiance (ibl/shared/irradiance_volume.h).
@@ -125,7 +151,8 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
       const glm::vec3 source = o.only == ShadingTerms::Specular
                                    ? (o.environmentLight ? distantIrradiance() : glm::vec3(0.0f))
                                    : irradiance;
-      prefiltered *= shared::volumeSpecularScale(volume, source, cover);
+      specularScale = shared::volumeSpecularScale(volume, source, cover);
+      prefiltered *= specularScale;
       irradiance = glm::mix(irradiance, volume, cover);
     }
   }
@@ -162,14 +189,36 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
       below += shared::sheenRadiance(p.sheenColor, e, prefilteredSheen) * p.occlusion;
     }
   }
+  if (p.clearcoat > 0.0f && o.only != ShadingTerms::Sheen) {
+    // The coat over all of it (its emission already attenuated by surfaceAt): its lobe reads the
+    // same light at its own normal and roughness; the screen-space reflection is the base's alone.
+    const shared::SplitSumLookup coat =
+        shared::splitSumLookup(p.clearcoatNormal, view, p.clearcoatRoughness, s);
+    const glm::vec3 coatDfg = sampleDfgLut(bake.dfg, coat.NoV, p.clearcoatRoughness);
+    const glm::vec3 light =
+        specularScale * prefilteredLight(coat.specularDirection, coat.specularDirection,
+                                         p.clearcoatRoughness, nullptr);
+    below = belowCoat(p, view) * below +
+            shared::clearcoatRadiance(m, coat.NoV, glm::vec2(coatDfg), light, s);
+  }
   return below + p.emissive;
 }
 
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
-                              const std::vector<Light>& lights, glm::vec2 dfg,
+                              const std::vector<Light>& lights, const Image& dfgTable,
                               const RenderOptions& o, float belowScale,
                               const std::vector<float>& visibility) {
   const shared::SplitSumSwitches s = splitSumSwitches(o);
+  const glm::vec2 dfg(
+      sampleDfgLut(dfgTable, std::max(glm::dot(p.normal, view), 1e-4f), p.roughness));
+  // KHR_materials_clearcoat: the coat's lobe at its normal and roughness, over the rest.
+  const bool coat = p.clearcoat > 0.0f && o.only != ShadingTerms::Sheen;
+  const float coatNoV = std::max(glm::dot(p.clearcoatNormal, view), 1e-4f);
+  const glm::vec2 coatDfg =
+      coat ? glm::vec2(sampleDfgLut(dfgTable, coatNoV, p.clearcoatRoughness)) : glm::vec2(0.0f);
+  const glm::vec4 coatLtc = coat && s.ltcAreaLights ? ltcTableLookup(p.clearcoatRoughness, coatNoV)
+                                                    : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+  const float below = belowCoat(p, view);
   // Ambient occlusion darkens indirect light only.
   const shared::SplitSumMaterial m = splitSumMaterial(p, 1.0f);
   const glm::vec4 ltc = s.ltcAreaLights
@@ -195,6 +244,13 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
     if (sheen)
       radiance += shared::sheenLightRadiance(p.sheenColor, sheenAlpha, s.sheenVisibility, p.normal,
                                              view, inc);
+    if (coat)
+      radiance =
+          below * radiance + shared::clearcoatLightRadiance(
+                                 m, view,
+                                 shared::lightIncidence(sl, position, p.clearcoatNormal, view,
+                                                        p.clearcoatRoughness, s, coatLtc),
+                                 coatDfg, s);
     sum += sl.color * (profile * visible) * radiance;
   }
   return sum;
@@ -361,7 +417,6 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
             if (!scene.lights.empty()) {
               // The layer below the sheen is scaled as for the environment.
               const float NoV = std::max(glm::dot(p.normal, -ray.direction), 1e-4f);
-              const glm::vec3 dfg = sampleDfgLut(bake.dfg, NoV, p.roughness);
               const float scaling =
                   p.sheenColor == glm::vec3(0.0f) || !bake.sheenDfg
                       ? 1.0f
@@ -379,7 +434,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                           : shared::shadowVisibility(shadowView, maps->casters[i], position,
                                                      p.normal);
               }
-              c += shadeLightsRealTime(p, position, -ray.direction, scene.lights, glm::vec2(dfg), o,
+              c += shadeLightsRealTime(p, position, -ray.direction, scene.lights, bake.dfg, o,
                                        scaling, visibility);
             }
           } else {

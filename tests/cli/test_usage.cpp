@@ -105,6 +105,9 @@ std::vector<Misuse> sceneMisuses() {
       {"--roughness", "--roughness -1", 2, "--roughness: must be from 0 to 1, not -1"},
       {"--ior", "--ior 0.5", 2, "--ior: must be from 1 to 5, not 0.5"},
       {"--specular", "--specular 2", 2, "--specular: must be from 0 to 1, not 2"},
+      {"--clearcoat", "--clearcoat 1.5", 2, "--clearcoat: must be from 0 to 1, not 1.5"},
+      {"--clearcoat-roughness", "--clearcoat-roughness -0.5", 2,
+       "--clearcoat-roughness: must be from 0 to 1, not -0.5"},
       {"--diffuse", "--diffuse oren-nayar", 2, "--diffuse"},
       {"--only", "--only glossy", 2, "--only"},
       {"--multiscatter", "--multiscatter=maybe", 2, "--multiscatter"},
@@ -519,6 +522,7 @@ TEST(Usage, OptionsThatOthersMakeMeaninglessNameBoth) {
       {"render grid --roughness 0.2" + png, {"--roughness:", "built-in sphere"}},
       {"render " + gltf + " --ior 1.33" + png, {"--ior:", "built-in scenes"}},
       {"render " + gltf + " --specular 0.5" + png, {"--specular:", "built-in scenes"}},
+      {"render " + gltf + " --clearcoat 1" + png, {"--clearcoat:", "built-in scenes"}},
       // Settings of what is off.
       {"render sphere --ssao-quality high" + png, {"--ssao-quality:", "add --ssao on"}},
       {"render " + gltf + " --ssao off --ssao-radius 0.5" + png, {"--ssao-radius:", "--ssao off"}},

@@ -145,6 +145,13 @@ struct QuadMaterial {
   int specularAlphaCode = -1;
   glm::ivec3 specularColorCodes{-1, 0, 0};
   bool unlit = false;  // KHR_materials_unlit
+  // KHR_materials_clearcoat (written when the factor is not negative): the factors, one texture
+  // (linear codes) for both clearcoatTexture (R) and clearcoatRoughnessTexture (G), and a
+  // clearcoatNormalTexture with its scale (negative first codes: none).
+  float clearcoatFactor = -1.0f, clearcoatRoughnessFactor = 0.0f;
+  glm::ivec3 clearcoatCodes{-1, 0, 0};
+  glm::ivec3 clearcoatNormalCodes{-1, 0, 0};
+  float clearcoatNormalScale = 1.0f;
 };
 
 // A dielectric of `baseColor` whose specular layer uses every part of KHR_materials_ior and
@@ -248,6 +255,19 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
     if (m.specularColorCodes.x >= 0)
       specular["specularColorTexture"] = texture(m.specularColorCodes);
     material["extensions"]["KHR_materials_specular"] = specular;
+  }
+  if (m.clearcoatFactor >= 0.0f) {
+    nlohmann::json coat = {{"clearcoatFactor", m.clearcoatFactor},
+                           {"clearcoatRoughnessFactor", m.clearcoatRoughnessFactor}};
+    if (m.clearcoatCodes.x >= 0) {
+      coat["clearcoatTexture"] = texture(m.clearcoatCodes);
+      coat["clearcoatRoughnessTexture"] = coat["clearcoatTexture"];
+    }
+    if (m.clearcoatNormalCodes.x >= 0) {
+      coat["clearcoatNormalTexture"] = texture(m.clearcoatNormalCodes);
+      coat["clearcoatNormalTexture"]["scale"] = m.clearcoatNormalScale;
+    }
+    material["extensions"]["KHR_materials_clearcoat"] = coat;
   }
   nlohmann::json j = {
       {"asset", {{"version", "2.0"}}},
@@ -459,6 +479,9 @@ inline void writeSceneAsGltf(const Scene& scene, const std::filesystem::path& pa
       material["extensions"]["KHR_materials_specular"] = {
           {"specularFactor", m.specular},
           {"specularColorFactor", {m.specularColor.x, m.specularColor.y, m.specularColor.z}}};
+    if (m.clearcoat > 0.0f)
+      material["extensions"]["KHR_materials_clearcoat"] = {
+          {"clearcoatFactor", m.clearcoat}, {"clearcoatRoughnessFactor", m.clearcoatRoughness}};
     materials.push_back(material);
   }
   nlohmann::json sceneNodes = nlohmann::json::array();

@@ -83,6 +83,8 @@ struct GltfSummary {
     glm::vec3 specularColor{1.0f};
     glm::vec3 dielectricF0{0.04f};
     float dielectricF90 = 1.0f;
+    // KHR_materials_clearcoat's factors (0 when absent: no coat).
+    float clearcoat = 0.0f, clearcoatRoughness = 0.0f;
   };
   struct Texture {
     int image = -1;      // -1: none that ibl can read

@@ -171,6 +171,12 @@ struct SurfacePoint {
   float ior = 1.5f;               // KHR_materials_ior
   float specular = 1.0f;          // KHR_materials_specular, texture applied
   glm::vec3 specularColor{1.0f};  // KHR_materials_specular, texture applied
+  // KHR_materials_clearcoat, textures applied (clearcoat 0: none); the coat's unit normal (the
+  // interpolated normal, or its own normal map's), on the side of `normal`. The emission above
+  // is already what the coat lets through toward the ray's origin.
+  float clearcoat = 0.0f;
+  float clearcoatRoughness = 0.0f;
+  glm::vec3 clearcoatNormal{0.0f, 0.0f, 1.0f};
 };
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
 // viewer's frame uniforms carry the same.
@@ -184,12 +190,13 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
                         const BakeOptions& bakeOptions, const RenderOptions& options);
 // The real-time shading of a point at `position` (world) by the scene's lights, seen from unit
 // direction `view` (toward the eye); radiance in cd/m^2 (ibl/shared/lights.h,
-// IES profiles applied on the CPU); dfg: the DFG table's A, B at the point's n.v (the LTC table
-// is looked up here, once for all the lights). A sheen layer adds its lobe
-// (shared::sheenLightRadiance) and scales the layer below by `belowScale` (its albedo scaling).
-// visibility: the share of each light that reaches the point (its shadow; empty: all of it).
+// IES profiles applied on the CPU); dfgTable: the bake's DFG table (read at the point's n.v and
+// roughness, and the clear coat's; the LTC table is looked up here, once for all the lights). A
+// sheen layer adds its lobe (shared::sheenLightRadiance) and scales the layer below by `belowScale`
+// (its albedo scaling). visibility: the share of each light that reaches the point (its shadow;
+// empty: all of it).
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
-                              const std::vector<Light>& lights, glm::vec2 dfg,
+                              const std::vector<Light>& lights, const Image& dfgTable,
                               const RenderOptions& options, float belowScale = 1.0f,
                               const std::vector<float>& visibility = {});
 

@@ -82,6 +82,14 @@ struct Material {
   TextureRef specularTexture;       // A multiplies specular
   glm::vec3 specularColor{1.0f};    // linear; may exceed 1
   TextureRef specularColorTexture;  // sRGB; RGB multiplies specularColor
+  // KHR_materials_clearcoat: a second GGX lobe of IOR 1.5 over everything else (the emission
+  // included), which it attenuates by its Fresnel (shared::clearcoatWeight). clearcoat 0: none.
+  float clearcoat = 0.0f;                // 0 to 1
+  TextureRef clearcoatTexture;           // R multiplies clearcoat
+  float clearcoatRoughness = 0.0f;       // perceptual, 0 to 1
+  TextureRef clearcoatRoughnessTexture;  // G multiplies clearcoatRoughness
+  TextureRef clearcoatNormalTexture;     // none: the coat follows the unmapped normal
+  float clearcoatNormalScale = 1.0f;     // as normalScale
 };
 
 // Triangles in world space.

@@ -53,6 +53,23 @@ IBL_FN vec3 sheenLightRadiance(vec3 sheenColor, float sheenAlpha, int visibility
                        sheenVisibility(visibility, NoV, NoL, sheenAlpha) * inc.diffuseIlluminance);
 }
 
+// A GGX lobe of Fresnel reflectance (f0, f90) and roughness alpha at normal n lit by a light's
+// incidence, toward v, per unit of the light's color: the LTC's fraction of the lobe times the
+// lobe's directional albedo with Schlick's Fresnel (the DFG table's F0 A + F90 B at n.v, as the
+// split sum scales the prefiltered map), or D V F at the representative point.
+IBL_FN vec3 specularLightRadiance(vec3 f0, float f90, float alpha, vec3 n, vec3 v,
+                                  LightIncidence inc, vec2 dfg) {
+  if (inc.specularLobeFraction > 0.0f)
+    return (f0 * dfg.x + vec3(f90 * dfg.y)) * inc.specularLobeFraction;
+  if (inc.specularIlluminance <= 0.0f) return vec3(0.0f);
+  vec3 l = inc.specularDirection;
+  vec3 h = normalize(v + l);
+  float NoV = max(dot(n, v), 1e-4f), NoL = max(dot(n, l), 1e-4f);
+  float dv = ggxDistribution(clamp(dot(n, h), 0.0f, 1.0f), alpha) * inc.specularNormalization *
+             smithGgxCorrelatedVisibility(NoV, NoL, alpha);
+  return dv * fresnelSchlick(f0, f90, max(dot(v, h), 0.0f)) * inc.specularIlluminance;
+}
+
 // The radiance the standard material (the BRDF of the IBL path) reflects toward v from a light's
 // incidence, per unit of the light's color: diffuse (Disney or Lambert) x the diffuse
 // illuminance, GGX x the specular illuminance, with the multiple-scattering compensation of the
@@ -72,24 +89,25 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
                                      m.roughness);
     color += diffuseColor * (fd / kPi * inc.diffuseIlluminance);
   }
-  if (s.terms != 1 && inc.specularLobeFraction > 0.0f) {
-    // The LTC's fraction of the lobe, times the lobe's directional albedo with Schlick's Fresnel
-    // (the DFG table's F0 A + B, as the split sum scales the prefiltered map).
-    vec3 specular = (r.f0 * dfg.x + vec3(r.f90 * dfg.y)) * inc.specularLobeFraction;
-    if (s.multipleScattering) specular *= multipleScatteringCompensation(r.f0, dfg);
-    color += specular;
-  } else if (s.terms != 1 && inc.specularIlluminance > 0.0f) {
-    vec3 l = inc.specularDirection;
-    vec3 h = normalize(v + l);
-    float NoL = max(dot(n, l), 1e-4f);
-    float dv = ggxDistribution(clamp(dot(n, h), 0.0f, 1.0f), alpha) * inc.specularNormalization *
-               smithGgxCorrelatedVisibility(NoV, NoL, alpha);
-    vec3 specular =
-        dv * fresnelSchlick(r.f0, r.f90, max(dot(v, h), 0.0f)) * inc.specularIlluminance;
+  if (s.terms != 1) {
+    vec3 specular = specularLightRadiance(r.f0, r.f90, alpha, n, v, inc, dfg);
     if (s.multipleScattering) specular *= multipleScatteringCompensation(r.f0, dfg);
     color += specular;
   }
   return color;
+}
+
+// KHR_materials_clearcoat's lobe lit by one light, per unit of the light's color: GGX of the
+// coat's roughness at its normal, without Fresnel (F0 = F90 = 1), times clearcoatWeight; `inc`
+// is the light's incidence at the coat's normal and roughness, dfg the DFG table's (A, B) at the
+// coat's n.v. The caller scales the rest by 1 - the weight.
+IBL_FN float clearcoatLightRadiance(SplitSumMaterial m, vec3 v, LightIncidence inc, vec2 dfg,
+                                    SplitSumSwitches s) {
+  if (s.terms == 1 || m.clearcoat <= 0.0f) return 0.0f;
+  vec3 nc = m.clearcoatNormal;
+  float alpha = max(alphaFromRoughness(m.clearcoatRoughness), 1e-3f);
+  return clearcoatWeight(m.clearcoat, dot(nc, v)) *
+         specularLightRadiance(vec3(1.0f), 1.0f, alpha, nc, v, inc, dfg).x;
 }
 
 IBL_END

@@ -75,7 +75,7 @@ IBL_FN int wrapTexel(int i, int n, int wrap) {
 
 // The vec4s of a material's record in the GPU path tracer's scene buffer (written by
 // src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl).
-const int kMaterialRecordVec4s = 8;
+const int kMaterialRecordVec4s = 9;
 
 // KHR_materials_ior: the Fresnel reflectance at normal incidence of a dielectric of index `ior`
 // in air, ((ior - 1) / (ior + 1))^2: 0.04 at glTF's default 1.5. ior = 0, the specification's
@@ -106,6 +106,18 @@ IBL_FN SpecularReflectance specularReflectance(vec3 baseColor, float metallic, f
   r.f0 = mix(dielectric, baseColor, metallic);
   r.f90 = mix(specular, 1.0f, metallic) * fresnelF90(r.f0, microOcclusion);
   return r;
+}
+
+// KHR_materials_clearcoat's layering (the specification's fresnel_coat): the coat's BRDF (GGX
+// with the height-correlated Smith term, its own normal and roughness, no Fresnel of its own)
+// is mixed over everything below it, emission included, by clearcoat x Fc, where Fc is
+// Schlick's Fresnel of an IOR 1.5 layer at the coat normal's n.v:
+//   f = (1 - clearcoat Fc) f_below + clearcoat Fc f_coat.
+// clearcoatWeight returns clearcoat Fc; what lies below is scaled by 1 - clearcoatWeight.
+const float kClearcoatIor = 1.5f;
+IBL_FN float clearcoatWeight(float clearcoat, float NcoV) {
+  float f0 = dielectricF0FromIor(kClearcoatIor);
+  return clearcoat * (f0 + (1.0f - f0) * schlickWeight(abs(NcoV)));
 }
 
 // The diffuse color a capture gives a metal, whose specular it leaves out (RenderOptions::

@@ -5,7 +5,8 @@
 // split sum's compensation, or Heitz et al. 2016's walk: microfacet_walk.h), the
 // KHR_materials_sheen layer, and how a path samples it: the lobe chosen by its weight, visible
 // normals for GGX (Heitz 2018), cosines for the others, with the pdf that multiple importance
-// sampling weighs (Veach 1997, section 9.2). C++ and GLSL (see lang.h).
+// sampling weighs (Veach 1997, section 9.2); the KHR_materials_clearcoat layer over all of it.
+// C++ and GLSL (see lang.h).
 #ifndef IBL_SHARED_PATH_BRDF_H
 #define IBL_SHARED_PATH_BRDF_H
 #include "ibl/shared/brdf.h"
@@ -92,6 +93,11 @@ struct PathBrdf {
   float sheenAlpha;
   float sheenScaleV;
   int sheenVisibility;
+  // KHR_materials_clearcoat (withClearcoat): f = (1 - w) f_below + w f_coat, w = clearcoat Fc
+  // (clearcoatWeight at the coat normal's n.v), f_coat GGX of coatAlpha at coatNormal (local).
+  float coatWeight;  // 0: no coat
+  float coatAlpha;
+  vec3 coatNormal;
 };
 
 // Whether the material has a sheen layer, and which lobes b.lobes asks to shade.
@@ -146,7 +152,43 @@ IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, flo
   b.sheenAlpha = alphaFromRoughness(b.sheenRoughness);
   b.sheenScaleV = 1.0f;
   if (pathHasSheen(b)) b.sheenScaleV = pathSheenScaling(IBL_ALBEDO_ARG b, v.z);
+  b.coatWeight = 0.0f;
+  b.coatAlpha = kMinPathAlpha;
+  b.coatNormal = vec3(0.0f, 0.0f, 1.0f);
   return b;
+}
+
+// The material b under a clear coat of strength `clearcoat`, perceptual roughness `roughness`
+// and unit normal `coatNormal` (local frame), seen from v.
+IBL_FN PathBrdf withClearcoat(PathBrdf b, float clearcoat, float roughness, vec3 coatNormal,
+                              vec3 v) {
+  b.coatWeight = clearcoatWeight(clearcoat, dot(coatNormal, v));
+  b.coatAlpha = max(alphaFromRoughness(roughness), kMinPathAlpha);
+  b.coatNormal = coatNormal;
+  return b;
+}
+
+// Whether the coat's lobe is shaded (a coat, and b.lobes asks for specular lobes).
+IBL_FN bool pathCoatLobe(PathBrdf b) {
+  return b.coatWeight > 0.0f && pathSpecularLobe(b);
+}
+
+// The coat's lobe f_coat (n_c.l), without its weight: D V at the coat's normal (F = 1).
+IBL_FN float pathCoatReflection(PathBrdf b, vec3 v, vec3 l) {
+  float NcoL = dot(b.coatNormal, l);
+  if (NcoL <= 0.0f) return 0.0f;
+  float NcoV = max(dot(b.coatNormal, v), 1e-4f);
+  vec3 h = normalize(v + l);
+  return ggxDistribution(max(dot(b.coatNormal, h), 0.0f), b.coatAlpha) *
+         smithGgxCorrelatedVisibility(NcoV, NcoL, b.coatAlpha) * NcoL;
+}
+
+// The density of the coat's visible-normal sample (see samplePathBrdf) at l.
+IBL_FN float pathCoatPdf(PathBrdf b, vec3 v, vec3 l) {
+  float NcoV = max(dot(b.coatNormal, v), 1e-4f);
+  vec3 h = normalize(v + l);
+  return smithGgxMasking(NcoV, b.coatAlpha) *
+         ggxDistribution(max(dot(b.coatNormal, h), 0.0f), b.coatAlpha) / (4.0f * NcoV);
 }
 
 IBL_FN Microsurface pathMicrosurface(PathBrdf b) {
@@ -163,9 +205,10 @@ IBL_FN vec3 walkView(vec3 v) {
   return v.z >= 1e-4f ? v : normalize(vec3(v.x, v.y, 1e-4f));
 }
 
-// f(v, l) (n.l). With the walk, an unbiased estimate, drawn from a branch of `numbers` (the
-// walk draws as many numbers as it takes bounces: from a stream of its own, so that the path's
-// later numbers keep their dimensions); withSpecular = false leaves the specular lobe out.
+// f(v, l) (n.l) (the coat's lobe: f_coat (n_c.l)). With the walk, an unbiased estimate, drawn
+// from a branch of `numbers` (the walk draws as many numbers as it takes bounces: from a stream of
+// its own, so that the path's later numbers keep their dimensions); withSpecular = false leaves
+// the specular lobe and the coat's out (the coat's attenuation stays).
 IBL_FN vec3 evaluatePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v, vec3 l, PathSampler numbers,
                              bool withSpecular) {
   float NoV = max(v.z, 1e-4f), NoL = l.z;
@@ -196,7 +239,18 @@ IBL_FN vec3 evaluatePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v, vec3 l, PathS
       result += b.sheenColor * (charlieDistribution(h.z, b.sheenAlpha) *
                                 sheenVisibility(b.sheenVisibility, NoV, NoL, b.sheenAlpha));
   }
-  return result * NoL;
+  result *= NoL;
+  if (b.coatWeight > 0.0f) {
+    result *= 1.0f - b.coatWeight;
+    if (pathCoatLobe(b) && withSpecular) result += vec3(b.coatWeight * pathCoatReflection(b, v, l));
+  }
+  return result;
+}
+
+// The probability of sampling the coat's lobe.
+IBL_FN float pathCoatProbability(PathBrdf b) {
+  if (!pathCoatLobe(b)) return 0.0f;
+  return clamp(2.0f * b.coatWeight, 0.1f, 0.5f);
 }
 
 // The probability of sampling the sheen lobe (cosine-distributed: the Charlie lobe is broad).
@@ -229,7 +283,17 @@ IBL_FN float pathBrdfPdf(PathBrdf b, vec3 v, vec3 l) {
     // Visible normals, reflected: pdf(l) = G1(v) D(h) / (4 n.v).
     p += ps * smithGgxMasking(NoV, b.alpha) * ggxDistribution(h.z, b.alpha) / (4.0f * NoV);
   }
-  return pSheen * l.z / kPi + (1.0f - pSheen) * p;
+  p = pSheen * l.z / kPi + (1.0f - pSheen) * p;
+  float pCoat = pathCoatProbability(b);
+  if (pCoat > 0.0f) p = mix(p, pathCoatPdf(b, v, l), pCoat);
+  return p;
+}
+
+// The coat's lobe sampled: visible normals of its GGX about its normal, v reflected.
+IBL_FN vec3 samplePathCoat(PathBrdf b, vec3 v, vec2 xi) {
+  mat3 frame = tangentFrame(b.coatNormal);
+  vec3 h = frame * sampleGgxVisibleNormal(walkView(transpose(frame) * v), xi, b.coatAlpha);
+  return 2.0f * dot(v, h) * h - v;
 }
 
 // A direction l and its weight f(v, l) (n.l) / p(l).
@@ -244,7 +308,23 @@ IBL_FN PathBrdfSample samplePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v,
   float choose = pathUniform(numbers);
   float pSheen = pathSheenProbability(b);
   PathBrdfSample s;
+  // The coat first: chosen with its probability, `choose` rescaled for the lobes below.
+  float pCoat = pathCoatProbability(b);
+  bool coat = choose < pCoat;
+  choose = coat ? 0.0f : (choose - pCoat) / (1.0f - pCoat);
+  if (b.walk && coat) {
+    // With the walk each lobe is estimated alone (below): the coat's by f cos / p over the
+    // probability of choosing it.
+    s.direction = samplePathCoat(b, v, xi);
+    float p = pathCoatPdf(b, v, s.direction);
+    s.weight = vec3(0.0f);
+    if (s.direction.z > 0.0f && p > 0.0f)
+      s.weight = vec3(b.coatWeight * pathCoatReflection(b, v, s.direction) / (pCoat * p));
+    return s;
+  }
   if (b.walk) {
+    // The lobes below the coat, taken with probability 1 - pCoat, under its attenuation.
+    float below = (1.0f - b.coatWeight) / (1.0f - pCoat);
     // The walk's directions have no pdf to evaluate: one lobe is estimated at a time, the
     // specular by the walk's sample (weight: its f cos / p, the Fresnel of its bounces, times the
     // sheen layer's scaling) over the probability of choosing it, the others (sheen and diffuse,
@@ -259,18 +339,20 @@ IBL_FN PathBrdfSample samplePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v,
       PathSampler walkNumbers = pathSamplerBranch(numbers);  // as in evaluatePathBrdf
       WalkSample w = sampleMicrofacetWalk(pathMicrosurface(b), walkView(v), walkNumbers);
       s.direction = w.wo;
-      s.weight = w.weight / specular;
+      s.weight = w.weight * below / specular;
       if (pathHasSheen(b))
         s.weight *= min(b.sheenScaleV, pathSheenScaling(IBL_ALBEDO_ARG b, w.wo.z));
       return s;
     }
     s.direction = sampleCosineHemisphere(xi);
-    float p = (1.0f - specular) * s.direction.z / kPi;
+    float p = (1.0f - pCoat) * (1.0f - specular) * s.direction.z / kPi;
     s.weight = p > 0.0f ? evaluatePathBrdf(IBL_ALBEDO_ARG b, v, s.direction, numbers, false) / p
                         : vec3(0.0f);
     return s;
   }
-  if (choose < pSheen) {
+  if (coat) {
+    s.direction = samplePathCoat(b, v, xi);
+  } else if (choose < pSheen) {
     s.direction = sampleCosineHemisphere(xi);
   } else {
     choose = (choose - pSheen) / (1.0f - pSheen);

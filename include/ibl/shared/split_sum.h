@@ -43,6 +43,11 @@ struct SplitSumMaterial {
   float ior IBL_DEFAULT(1.5f);
   float specular IBL_DEFAULT(1.0f);
   vec3 specularColor IBL_DEFAULT(vec3(1.0f));
+  // KHR_materials_clearcoat, its textures applied: the coat's strength (0: none), perceptual
+  // roughness and unit normal (world; the unmapped normal unless the coat has a normal map).
+  float clearcoat IBL_DEFAULT(0.0f);
+  float clearcoatRoughness IBL_DEFAULT(0.0f);
+  vec3 clearcoatNormal IBL_DEFAULT(vec3(0.0f, 0.0f, 1.0f));
 };
 
 // The material's Fresnel reflectance (specularReflectance) under the switches' micro-occlusion.
@@ -147,6 +152,22 @@ IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefi
     color += diffuseColor * irradiance * fd * occlusion;
   }
   return color;
+}
+
+// KHR_materials_clearcoat over the split sum: the coat's lobe, looked up as the base's is but at
+// its own normal and roughness (splitSumLookup(m.clearcoatNormal, v, m.clearcoatRoughness)):
+// dfg = the DFG table's (A, B) at (NcoV, clearcoatRoughness), prefiltered = the specular map at
+// the coat's reflection and roughness. The lobe has no Fresnel of its own (F0 = F90 = 1, so its
+// albedo is A + B); clearcoatWeight (material.h) weighs it, and the caller scales everything
+// below, emission included, by 1 - that weight. Specular occlusion as the base's; the
+// multiple-scattering compensation is left out, as the specification's single-scattering coat.
+IBL_FN vec3 clearcoatRadiance(SplitSumMaterial m, float NcoV, vec2 dfg, vec3 prefiltered,
+                              SplitSumSwitches s) {
+  if (s.terms == 1 || m.clearcoat <= 0.0f) return vec3(0.0f);
+  vec3 coat = clearcoatWeight(m.clearcoat, NcoV) * (dfg.x + dfg.y) * prefiltered;
+  if (s.specularOcclusion && m.occlusion < 1.0f)
+    coat *= specularOcclusion(NcoV, m.occlusion, alphaFromRoughness(m.clearcoatRoughness));
+  return coat;
 }
 
 // KHR_materials_sheen over the split sum: the layer below is scaled by the sheen's albedo

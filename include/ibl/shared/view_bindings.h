@@ -67,6 +67,9 @@ IBL_MATERIAL_BINDING(SheenColor, 5)     // an sRGB format
 IBL_MATERIAL_BINDING(SheenRoughness, 6)
 IBL_MATERIAL_BINDING(Specular, 7)       // KHR_materials_specular: its A
 IBL_MATERIAL_BINDING(SpecularColor, 8)  // an sRGB format
+IBL_MATERIAL_BINDING(Clearcoat, 9)      // KHR_materials_clearcoat: its R
+IBL_MATERIAL_BINDING(ClearcoatRoughness, 10)  // its G
+IBL_MATERIAL_BINDING(ClearcoatNormal, 11)
 #ifdef __cplusplus
 Count
 };

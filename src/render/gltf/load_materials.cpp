@@ -1,5 +1,5 @@
 // Materials: glTF's metallic-roughness model, KHR_materials_emissive_strength,
-// KHR_materials_sheen, KHR_materials_ior, KHR_materials_specular and KHR_materials_unlit, their
+// KHR_materials_sheen, _ior, _specular, _clearcoat and _unlit, their
 // texture slots pointing at the textures images.cpp read.
 #include <cmath>
 #include <map>
@@ -22,7 +22,9 @@ std::vector<SlotRef> materialSlots(const tinygltf::Material& m, const std::strin
       {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord}};
   const std::pair<const char*, std::vector<const char*>> extensionSlots[] = {
       {"KHR_materials_sheen", {"sheenColorTexture", "sheenRoughnessTexture"}},
-      {"KHR_materials_specular", {"specularTexture", "specularColorTexture"}}};
+      {"KHR_materials_specular", {"specularTexture", "specularColorTexture"}},
+      {"KHR_materials_clearcoat",
+       {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}}};
   for (const auto& [extension, names] : extensionSlots) {
     const auto x = m.extensions.find(extension);
     if (x == m.extensions.end()) continue;
@@ -88,6 +90,7 @@ Material unlit(Material m) {
   m.metallic = 0.0f;
   m.specular = 0.0f;
   m.sheenColor = glm::vec3(0.0f);
+  m.clearcoat = 0.0f;
   return m;
 }
 
@@ -131,6 +134,18 @@ void readExtensionFactors(const tinygltf::Material& m, const std::string& path,
     mat.specular = extensionNumber(*x, "specularFactor", 1.0f, 0.0, 1.0, path, at);
     mat.specularColor =
         extensionColor(*x, "specularColorFactor", glm::vec3(1.0f), 0.0, 1e6, path, at);
+  }
+  // KHR_materials_clearcoat: clearcoatFactor and clearcoatRoughnessFactor in [0, 1] (default 0:
+  // no coat), the factor's texture in R, the roughness's in G (both linear); the coat's normal
+  // map has a scale as normalTexture's.
+  if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_clearcoat")) {
+    const std::string at = where + ": KHR_materials_clearcoat";
+    mat.clearcoat = extensionNumber(*x, "clearcoatFactor", 0.0f, 0.0, 1.0, path, at);
+    mat.clearcoatRoughness =
+        extensionNumber(*x, "clearcoatRoughnessFactor", 0.0f, 0.0, 1.0, path, at);
+    if (x->Has("clearcoatNormalTexture") && x->Get("clearcoatNormalTexture").IsObject())
+      mat.clearcoatNormalScale = extensionNumber(x->Get("clearcoatNormalTexture"), "scale", 1.0f,
+                                                 -1e6, 1e6, path, at + " clearcoatNormalTexture");
   }
 }
 
@@ -178,6 +193,9 @@ std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& te
     mat.sheenRoughnessTexture = refs["sheenRoughnessTexture"];
     mat.specularTexture = refs["specularTexture"];
     mat.specularColorTexture = refs["specularColorTexture"];
+    mat.clearcoatTexture = refs["clearcoatTexture"];
+    mat.clearcoatRoughnessTexture = refs["clearcoatRoughnessTexture"];
+    mat.clearcoatNormalTexture = refs["clearcoatNormalTexture"];
     if (materialExtension(m, "KHR_materials_unlit")) mat = unlit(mat);
     materials.push_back(mat);
   }

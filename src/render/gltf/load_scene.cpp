@@ -37,6 +37,12 @@ glm::mat4 nodeTransform(const tinygltf::Node& node) {
   return t * r * s;
 }
 
+// The normal map whose UV set gives a mesh of material m its tangents: normalTexture, else
+// KHR_materials_clearcoat's (which the specification asks a tangent space for too).
+const TextureRef& tangentSource(const Material& m) {
+  return m.normalTexture.index >= 0 ? m.normalTexture : m.clearcoatNormalTexture;
+}
+
 // Moves a mesh to world space; generates the normals it lacks, and the tangents it lacks when
 // it has a normal map (normalTexture.index >= 0), from the UV set that map reads.
 void placeInWorld(Mesh& mesh, const glm::mat4& world, const TextureRef& normalTexture) {
@@ -93,7 +99,7 @@ Scene GltfDocument::load() {
       mesh.material = material >= 0 ? material : defaultMaterial;
       mesh.names = namesOf(instance.node);
       placeInWorld(mesh, instance.world,
-                   scene.materials[static_cast<std::size_t>(mesh.material)].normalTexture);
+                   tangentSource(scene.materials[static_cast<std::size_t>(mesh.material)]));
       checkFinite(mesh, m, p, instance.node);
       if (!mesh.indices.empty()) scene.meshes.push_back(std::move(mesh));
     }

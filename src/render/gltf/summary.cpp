@@ -102,6 +102,8 @@ GltfSummary GltfDocument::describe() {
     info.ior = factors.ior;
     info.specular = factors.specular;
     info.specularColor = factors.specularColor;
+    info.clearcoat = factors.clearcoat;
+    info.clearcoatRoughness = factors.clearcoatRoughness;
     const shared::SpecularReflectance dielectric = shared::specularReflectance(
         glm::vec3(0.0f), 0.0f, factors.ior, factors.specular, factors.specularColor, false);
     info.dielectricF0 = dielectric.f0;
