@@ -166,6 +166,18 @@ void BM_ViewerFrameWithOcclusion(benchmark::State& state) {
                std::string(", screen-space occlusion ") + names[state.range(0) + 1]);
 }
 
+// A frame (1 sample per pixel) of the sphere grid, its spheres under a clear coat
+// (KHR_materials_clearcoat, r = 0.1) or not (0): the coat's second lookup of the maps, the DFG
+// table and each light.
+void BM_ViewerFrameWithClearcoat(benchmark::State& state) {
+  ibl::Material base;
+  base.baseColor = glm::vec3(1.0f);
+  base.clearcoat = static_cast<float>(state.range(0));
+  base.clearcoatRoughness = 0.1f;
+  viewerFrames(state, ibl::makeSphereGrid(base), frameShading(1),
+               state.range(0) ? ", clear coat" : ", no clear coat");
+}
+
 // A frame (1 sample per pixel) of the sphere grid standing on a glossy metal floor (roughness
 // 0.05) that fills the lower half of the view, with screen-space reflections: -1 none, 0 low
 // (1 ray x 48 steps of 4 pixels), 1 medium (4 x 96 x 2), 2 high (8 x 192 x 1); the view
@@ -343,6 +355,10 @@ BENCHMARK(BM_ViewerFrameWithOcclusion)
     ->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithReflections)
     ->DenseRange(-1, 2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_ViewerFrameWithClearcoat)
+    ->DenseRange(0, 1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithLights)

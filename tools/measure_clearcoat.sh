@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# KHR_materials_clearcoat: the split sum against the path-traced reference (docs/materials.md,
+# "Clear coat", "Measured"). A red dielectric sphere (base color 0.6 0.05 0.05, r = 0.5, the
+# paint) without a coat, then under one that sweeps its roughness at full strength and at half
+# strength, under two HDRIs (park, sunset) and one analytic light (a point light, no
+# environment); prints
+# `ibl compare`'s frame error and median 4 x 4 block error for each. Outputs already present are
+# kept (delete OUT to start over).
+# Environment: IBL (default build-dev/ibl), OUT (default out/clearcoat), SIZE (128x128),
+# REF_SPP (1024).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+IBL=${IBL:-build-dev/ibl}
+OUT=${OUT:-out/clearcoat}
+SIZE=${SIZE:-128x128}
+REF_SPP=${REF_SPP:-1024}
+mkdir -p "$OUT"
+cat > "$OUT/point.json" <<'JSON'
+{"lights": [{"type": "point", "position": [2, 3, 4], "intensity": 600, "unit": "cd"}]}
+JSON
+figures() {  # figures IMAGE REFERENCE: frame error, median block error
+  "$IBL" -q compare "$1" "$2" --json | python3 -c '
+import json, sys; f = json.load(sys.stdin)["frame"]
+print("".join(f"{100 * f[k]:8.2f} %" for k in ("frame_error", "median_block_error")))'
+}
+printf '%-8s %-10s %-10s %10s %10s\n' light clearcoat roughness frame median
+for light in park sunset point; do
+  case $light in
+    point) lighting=(--env none --lights "$OUT/point.json") ;;
+    *) lighting=(--env "data/hdri/$light.exr") ;;
+  esac
+  for coat in "0 0" "1 0" "1 0.1" "1 0.3" "1 0.6" "0.5 0.1"; do
+    read -r strength rc <<< "$coat"
+    name="$OUT/$light-c$strength-r$rc"
+    args=(sphere "${lighting[@]}" --size "$SIZE" --base-color 0.6,0.05,0.05 --metallic 0
+          --roughness 0.5 --clearcoat "$strength" --clearcoat-roughness "$rc" --background 0,0,0
+          --quiet)
+    [ -f "$name-ref.exr" ] || "$IBL" render "${args[@]}" --mode reference --spp "$REF_SPP" \
+      -o "$name-ref.exr"
+    [ -f "$name-rt.exr" ] || "$IBL" render "${args[@]}" --spp 16 -o "$name-rt.exr"
+    printf '%-8s %-10s %-10s %s\n' "$light" "$strength" "$rc" "$(figures "$name-rt.exr" "$name-ref.exr")"
+  done
+done
