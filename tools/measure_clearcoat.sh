@@ -3,26 +3,14 @@
 # "Clear coat", "Measured"). A red dielectric sphere (base color 0.6 0.05 0.05, r = 0.5, the
 # paint) without a coat, then under one that sweeps its roughness at full strength and at half
 # strength, under two HDRIs (park, sunset) and one analytic light (a point light, no
-# environment); prints
-# `ibl compare`'s frame error and median 4 x 4 block error for each. Outputs already present are
-# kept (delete OUT to start over).
+# environment); prints `ibl compare`'s frame error and median 4 x 4 block error for each.
+# Outputs already present are kept (delete OUT to start over).
 # Environment: IBL (default build-dev/ibl), OUT (default out/clearcoat), SIZE (128x128),
 # REF_SPP (1024).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-IBL=${IBL:-build-dev/ibl}
 OUT=${OUT:-out/clearcoat}
-SIZE=${SIZE:-128x128}
-REF_SPP=${REF_SPP:-1024}
-mkdir -p "$OUT"
-cat > "$OUT/point.json" <<'JSON'
-{"lights": [{"type": "point", "position": [2, 3, 4], "intensity": 600, "unit": "cd"}]}
-JSON
-figures() {  # figures IMAGE REFERENCE: frame error, median block error
-  "$IBL" -q compare "$1" "$2" --json | python3 -c '
-import json, sys; f = json.load(sys.stdin)["frame"]
-print("".join(f"{100 * f[k]:8.2f} %" for k in ("frame_error", "median_block_error")))'
-}
+source tools/measure_common.sh
 printf '%-8s %-10s %-10s %10s %10s\n' light clearcoat roughness frame median
 for light in park sunset point; do
   case $light in

@@ -9,19 +9,8 @@
 # REF_SPP (1024).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-IBL=${IBL:-build-dev/ibl}
 OUT=${OUT:-out/specular}
-SIZE=${SIZE:-128x128}
-REF_SPP=${REF_SPP:-1024}
-mkdir -p "$OUT"
-cat > "$OUT/point.json" <<'JSON'
-{"lights": [{"type": "point", "position": [2, 3, 4], "intensity": 600, "unit": "cd"}]}
-JSON
-figures() {  # figures IMAGE REFERENCE: frame error, median block error
-  "$IBL" -q compare "$1" "$2" --json | python3 -c '
-import json, sys; f = json.load(sys.stdin)["frame"]
-print("".join(f"{100 * f[k]:8.2f} %" for k in ("frame_error", "median_block_error")))'
-}
+source tools/measure_common.sh
 printf '%-8s %-22s %5s %10s %10s\n' light material r frame median
 for light in park sunset point; do
   case $light in

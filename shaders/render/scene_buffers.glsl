@@ -109,6 +109,15 @@ bool slotUv(MeshRecord m, uvec3 tri, ivec2 slot, vec3 w, out vec2 uv) {
   return true;
 }
 
+// The texel of the slot coded `slotCode` (slotOf) at barycentrics w, sRGB-decoded if asked;
+// white (which multiplies nothing) when the material has no texture there or the mesh lacks its
+// UV set, as Texture::sample gives for none.
+vec4 slotTexel(MeshRecord m, uvec3 tri, float slotCode, vec3 w, bool srgb) {
+  ivec2 slot = slotOf(slotCode);
+  vec2 uv;
+  return slotUv(m, tri, slot, w, uv) ? sampleTexture(slot.x, uv, srgb) : vec4(1.0);
+}
+
 bool bvhCovers(int triangle, float u, float v, vec3 origin, vec3 dir) {
   uint mesh = floatBitsToUint(bvhTriangles[3 * triangle].w);
   uint primitive = floatBitsToUint(bvhTriangles[3 * triangle + 1].w);
@@ -202,38 +211,20 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     float metallic = m1.w, roughness = m3.x;
     vec3 emissive = m1.rgb;
     vec2 uv;
-    if (slotUv(m, tri, slotOf(m4.x), w, uv)) base *= sampleTexture(slotOf(m4.x).x, uv, true).rgb;
-    if (slotUv(m, tri, slotOf(m4.y), w, uv)) {
-      vec2 mr = applyMetallicRoughnessTexel(metallic, roughness,
-                                            sampleTexture(slotOf(m4.y).x, uv, false));
-      metallic = mr.x;
-      roughness = mr.y;
-    }
-    if (slotUv(m, tri, slotOf(m4.w), w, uv))
-      emissive *= sampleTexture(slotOf(m4.w).x, uv, true).rgb;
-    p.sheenColor = m2.rgb;
-    p.sheenRoughness = m2.w;
-    if (slotUv(m, tri, slotOf(m5.x), w, uv))
-      p.sheenColor *= sampleTexture(slotOf(m5.x).x, uv, true).rgb;
-    if (slotUv(m, tri, slotOf(m5.y), w, uv))
-      p.sheenRoughness *= sampleTexture(slotOf(m5.y).x, uv, false).a;
-    p.sheenRoughness = clamp(p.sheenRoughness, 0.0, 1.0);
+    base *= slotTexel(m, tri, m4.x, w, true).rgb;
+    vec2 mr = applyMetallicRoughnessTexel(metallic, roughness, slotTexel(m, tri, m4.y, w, false));
+    metallic = mr.x;
+    roughness = mr.y;
+    emissive *= slotTexel(m, tri, m4.w, w, true).rgb;
+    p.sheenColor = m2.rgb * slotTexel(m, tri, m5.x, w, true).rgb;
+    p.sheenRoughness = clamp(m2.w * slotTexel(m, tri, m5.y, w, false).a, 0.0, 1.0);
     vec4 m6 = materialAt(material, 6);
-    p.specularColor = m6.rgb;
-    p.specular = m6.w;
-    if (slotUv(m, tri, slotOf(m5.z), w, uv)) p.specular *= sampleTexture(slotOf(m5.z).x, uv, false).a;
-    if (slotUv(m, tri, slotOf(m5.w), w, uv))
-      p.specularColor *= sampleTexture(slotOf(m5.w).x, uv, true).rgb;
+    p.specularColor = m6.rgb * slotTexel(m, tri, m5.w, w, true).rgb;
+    p.specular = m6.w * slotTexel(m, tri, m5.z, w, false).a;
     vec4 m8 = materialAt(material, 8);
     m7 = materialAt(material, 7);
-    p.clearcoat = m7.y;
-    p.clearcoatRoughness = m7.z;
-    if (slotUv(m, tri, slotOf(m8.x), w, uv))
-      p.clearcoat *= sampleTexture(slotOf(m8.x).x, uv, false).r;
-    if (slotUv(m, tri, slotOf(m8.y), w, uv))
-      p.clearcoatRoughness *= sampleTexture(slotOf(m8.y).x, uv, false).g;
-    p.clearcoat = clamp(p.clearcoat, 0.0, 1.0);
-    p.clearcoatRoughness = clamp(p.clearcoatRoughness, 0.0, 1.0);
+    p.clearcoat = clamp(m7.y * slotTexel(m, tri, m8.x, w, false).r, 0.0, 1.0);
+    p.clearcoatRoughness = clamp(m7.z * slotTexel(m, tri, m8.y, w, false).g, 0.0, 1.0);
     // The coat's normal: the interpolated one, unless it has a normal map of its own.
     coatNormal = n;
     if ((m.flags & 1u) != 0u) {

@@ -152,6 +152,18 @@ TEST(GpuReference, SphereGridWithTheWalkEqualsTheCpu) {
   expectAgreement(a);
 }
 
+// A wall of material `material` behind the sphere grid (z = -2, 18 x 10), its texture repeated
+// 6 x 4 times.
+Mesh textureWall(int material) {
+  Mesh wall;
+  wall.positions = {{-9, -5, -2}, {9, -5, -2}, {9, 5, -2}, {-9, 5, -2}};
+  wall.normals.assign(4, glm::vec3(0, 0, 1));
+  wall.uvs = {{0, 0}, {6, 0}, {6, 4}, {0, 4}};
+  wall.indices = {0, 1, 2, 0, 2, 3};
+  wall.material = material;
+  return wall;
+}
+
 // Black dielectrics whose specular layer (KHR_materials_ior 2.4, KHR_materials_specular 0.6 of
 // a green-heavy color) is all they reflect: luminance follows the layer's color. Behind them a
 // black backdrop takes its layer from textures: color from RGB (sRGB), strength from A, each
@@ -177,13 +189,7 @@ TEST(GpuReference, IorAndSpecularLayersEqualTheCpu) {
   backdrop.specularColorTexture.index = 0;
   backdrop.specularTexture.index = 0;
   scene.materials.push_back(backdrop);
-  Mesh wall;
-  wall.positions = {{-9, -5, -2}, {9, -5, -2}, {9, 5, -2}, {-9, 5, -2}};
-  wall.normals.assign(4, glm::vec3(0, 0, 1));
-  wall.uvs = {{0, 0}, {6, 0}, {6, 4}, {0, 4}};
-  wall.indices = {0, 1, 2, 0, 2, 3};
-  wall.material = static_cast<int>(scene.materials.size()) - 1;
-  scene.meshes.push_back(wall);
+  scene.meshes.push_back(textureWall(static_cast<int>(scene.materials.size()) - 1));
   const Camera camera = gridCamera();
   RenderOptions o;
   o.bounces = 1;
@@ -219,13 +225,8 @@ TEST(GpuReference, ClearcoatEqualsTheCpu) {
   backdrop.clearcoatRoughnessTexture.index = 0;
   backdrop.clearcoatNormalTexture.index = 1;
   scene.materials.push_back(backdrop);
-  Mesh wall;
-  wall.positions = {{-9, -5, -2}, {9, -5, -2}, {9, 5, -2}, {-9, 5, -2}};
-  wall.normals.assign(4, glm::vec3(0, 0, 1));
+  Mesh wall = textureWall(static_cast<int>(scene.materials.size()) - 1);
   wall.tangents.assign(4, glm::vec4(1, 0, 0, 1));
-  wall.uvs = {{0, 0}, {6, 0}, {6, 4}, {0, 4}};
-  wall.indices = {0, 1, 2, 0, 2, 3};
-  wall.material = static_cast<int>(scene.materials.size()) - 1;
   scene.meshes.push_back(wall);
   const Camera camera = gridCamera();
   RenderOptions o;
