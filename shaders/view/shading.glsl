@@ -200,7 +200,8 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
   // KHR_materials_clearcoat: the coat's lobe at its own normal and roughness over the rest, which
   // it scales by belowCoat (its emission already attenuated by fragmentSurface).
   bool coat = m.clearcoat > 0.0 && !sheenOnly;
-  float belowCoat = coat ? 1.0 - clearcoatWeight(m.clearcoat, dot(m.clearcoatNormal, view)) : 1.0;
+  float belowCoat =
+      m.clearcoat > 0.0 ? 1.0 - clearcoatWeight(m.clearcoat, dot(m.clearcoatNormal, view)) : 1.0;
   SplitSumLookup coatLook = splitSumLookup(m.clearcoatNormal, view, m.clearcoatRoughness, s);
   vec2 coatDfg =
       coat ? textureLod(dfgLut, vec2(coatLook.NoV, m.clearcoatRoughness), 0.0).rg : vec2(0.0);
@@ -226,10 +227,11 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
       vec3 radiance = belowScale * lightRadiance(direct, n, view, inc, dfg.xy, s);
       if (shadeSheen)
         radiance += sheenLightRadiance(sheen.rgb, sheenAlpha, s.sheenVisibility, n, view, inc);
+      radiance *= belowCoat;
       if (coat) {
         LightIncidence coatInc = lightIncidence(l, position, m.clearcoatNormal, view,
                                                 m.clearcoatRoughness, s, coatLtc);
-        radiance = belowCoat * radiance + clearcoatLightRadiance(m, view, coatInc, coatDfg, s);
+        radiance += clearcoatLightRadiance(m, view, coatInc, coatDfg, s);
       }
       lit += l.color * profile * radiance;
     }
@@ -280,6 +282,7 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
     vec3 prefilteredSheen = distant * textureLod(sheenMap, n, lod).rgb;
     color += sheenRadiance(sheen.rgb, sheenE, prefilteredSheen) * m.occlusion;
   }
+  color *= belowCoat;
   if (coat) {
     // The coat reads the same light as the base (probes, then the distant environment, the
     // volume's scale) at its reflection and roughness; the screen-space reflection is the base's.
@@ -293,7 +296,7 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
       float lod = specularLodForRoughness(m.clearcoatRoughness, frame.lods.x, frame.lods.y > 0.5);
       light += rest * textureLod(specularMap, coatLook.specularDirection, lod).rgb;
     }
-    color = belowCoat * color + clearcoatRadiance(m, coatLook.NoV, coatDfg, specularScale * light, s);
+    color += clearcoatRadiance(m, coatLook.NoV, coatDfg, specularScale * light, s);
   }
   return lit + color + emissive;
 }

@@ -189,6 +189,7 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
       below += shared::sheenRadiance(p.sheenColor, e, prefilteredSheen) * p.occlusion;
     }
   }
+  if (p.clearcoat > 0.0f) below *= belowCoat(p, view);
   if (p.clearcoat > 0.0f && o.only != ShadingTerms::Sheen) {
     // The coat over all of it (its emission already attenuated by surfaceAt): its lobe reads the
     // same light at its own normal and roughness; the screen-space reflection is the base's alone.
@@ -198,8 +199,7 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
     const glm::vec3 light =
         specularScale * prefilteredLight(coat.specularDirection, coat.specularDirection,
                                          p.clearcoatRoughness, nullptr);
-    below = belowCoat(p, view) * below +
-            shared::clearcoatRadiance(m, coat.NoV, glm::vec2(coatDfg), light, s);
+    below += shared::clearcoatRadiance(m, coat.NoV, glm::vec2(coatDfg), light, s);
   }
   return below + p.emissive;
 }
@@ -244,13 +244,13 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
     if (sheen)
       radiance += shared::sheenLightRadiance(p.sheenColor, sheenAlpha, s.sheenVisibility, p.normal,
                                              view, inc);
+    radiance *= below;
     if (coat)
-      radiance =
-          below * radiance + shared::clearcoatLightRadiance(
-                                 m, view,
-                                 shared::lightIncidence(sl, position, p.clearcoatNormal, view,
-                                                        p.clearcoatRoughness, s, coatLtc),
-                                 coatDfg, s);
+      radiance += shared::clearcoatLightRadiance(
+          m, view,
+          shared::lightIncidence(sl, position, p.clearcoatNormal, view, p.clearcoatRoughness, s,
+                                 coatLtc),
+          coatDfg, s);
     sum += sl.color * (profile * visible) * radiance;
   }
   return sum;
