@@ -13,10 +13,7 @@ OUT=${OUT:-out/clearcoat}
 source tools/measure_common.sh
 printf '%-8s %-10s %-10s %10s %10s\n' light clearcoat roughness frame median
 for light in park sunset point; do
-  case $light in
-    point) lighting=(--env none --lights "$OUT/point.json") ;;
-    *) lighting=(--env "data/hdri/$light.exr") ;;
-  esac
+  lightingFor "$light"
   for coat in "0 0" "1 0" "1 0.1" "1 0.3" "1 0.6" "0.5 0.1"; do
     read -r strength rc <<< "$coat"
     name="$OUT/$light-c$strength-r$rc"

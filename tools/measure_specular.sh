@@ -13,10 +13,7 @@ OUT=${OUT:-out/specular}
 source tools/measure_common.sh
 printf '%-8s %-22s %5s %10s %10s\n' light material r frame median
 for light in park sunset point; do
-  case $light in
-    point) lighting=(--env none --lights "$OUT/point.json") ;;
-    *) lighting=(--env "data/hdri/$light.exr") ;;
-  esac
+  lightingFor "$light"
   for material in "ior=1.33" "ior=1.5" "ior=2" "ior=2.42" "specular=0.5" "specular=0"; do
     key=${material%%=*} value=${material#*=}
     for r in 0.3 0.7; do
