@@ -125,6 +125,7 @@ void runGltfInfo(const InfoOptions& o) {
            {"alpha_mode", m.alphaMode},
            {"double_sided", m.doubleSided},
            {"textures", m.textures},
+           {"transformed_slots", m.transformedSlots},
            {"extensions", m.extensions},
            {"unsupported_extensions", m.unsupported},
            {"ior", m.ior},
@@ -225,6 +226,8 @@ void runGltfInfo(const InfoOptions& o) {
     }
     std::string textures;
     for (int t : m.textures) textures += (textures.empty() ? "" : " ") + std::to_string(t);
+    if (!m.transformedSlots.empty())
+      textures += " (KHR_texture_transform on " + list(m.transformedSlots) + ")";
     // The dielectric's Fresnel, where KHR_materials_ior or _specular changes it.
     const std::string dielectric =
         m.ior == 1.5f && m.specular == 1.0f && m.specularColor == glm::vec3(1.0f)

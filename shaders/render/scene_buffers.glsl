@@ -42,6 +42,7 @@ layout(std430, set = SCENE_SET, binding = 4) readonly buffer Words {
 #include "ibl/shared/color.h"
 #include "ibl/shared/light_record.h"
 #include "ibl/shared/material.h"
+#include "ibl/shared/view_bindings.h"
 #include "ibl/shared/bvh.h"
 
 uint bitsAt(vec4 v, int c) {
@@ -92,30 +93,37 @@ vec4 vertexAt(uint v, int k) {
 vec4 materialAt(uint material, int k) {
   return sceneData[params.offsets.y + uint(kMaterialRecordVec4s) * material + uint(k)];
 }
-// A texture slot: (texture index, texCoord) or texture -1.
-ivec2 slotOf(float encoded) {
-  int e = int(encoded);
+// Texture slot `binding` (MaterialBinding) of a material: (texture index, texCoord) or texture -1.
+ivec2 materialSlot(uint material, int binding) {
+  int e = int(materialAt(material, kMaterialRecordSlots + binding / 4)[binding % 4]);
   return e < 0 ? ivec2(-1, 0) : ivec2(e >> 1, e & 1);
 }
-// The UV of a slot at barycentrics (w0, u, v), or false when the mesh lacks its set.
-bool slotUv(MeshRecord m, uvec3 tri, ivec2 slot, vec3 w, out vec2 uv) {
+// The UV at which slot `binding` of the material reads barycentrics (w0, u, v) of a triangle:
+// its UV set's, through its KHR_texture_transform; false when the mesh lacks that set.
+bool slotUv(MeshRecord m, uvec3 tri, uint material, int binding, vec3 w, out vec2 uv) {
   uv = vec2(0.0);
+  ivec2 slot = materialSlot(material, binding);
   if (slot.x < 0) return false;
   if (slot.y == 0 && (m.flags & 2u) == 0u) return false;
   if (slot.y == 1 && (m.flags & 4u) == 0u) return false;
   for (int k = 0; k < 3; ++k)
     uv += w[k] * (slot.y == 0 ? vec2(vertexAt(tri[k], 0).w, vertexAt(tri[k], 1).w)
                               : vertexAt(tri[k], 3).xy);
+  UvTransform t;
+  t.u = materialAt(material, kMaterialRecordUvTransforms + 2 * binding).xyz;
+  t.v = materialAt(material, kMaterialRecordUvTransforms + 2 * binding + 1).xyz;
+  uv = transformUv(t, uv);
   return true;
 }
 
-// The texel of the slot coded `slotCode` (slotOf) at barycentrics w, sRGB-decoded if asked;
-// white (which multiplies nothing) when the material has no texture there or the mesh lacks its
-// UV set, as Texture::sample gives for none.
-vec4 slotTexel(MeshRecord m, uvec3 tri, float slotCode, vec3 w, bool srgb) {
-  ivec2 slot = slotOf(slotCode);
+// The texel of slot `binding` at barycentrics w, sRGB-decoded if asked; white (which
+// multiplies nothing) when the material has no texture there or the mesh lacks its UV set, as
+// Texture::sample gives for none.
+vec4 slotTexel(MeshRecord m, uvec3 tri, uint material, int binding, vec3 w, bool srgb) {
   vec2 uv;
-  return slotUv(m, tri, slot, w, uv) ? sampleTexture(slot.x, uv, srgb) : vec4(1.0);
+  return slotUv(m, tri, material, binding, w, uv)
+             ? sampleTexture(materialSlot(material, binding).x, uv, srgb)
+             : vec4(1.0);
 }
 
 bool bvhCovers(int triangle, float u, float v, vec3 origin, vec3 dir) {
@@ -125,11 +133,9 @@ bool bvhCovers(int triangle, float u, float v, vec3 origin, vec3 dir) {
   vec4 m3 = materialAt(m.material, 3);
   int mode = int(m3.z);
   if (mode == 0) return true;
-  float alpha = materialAt(m.material, 0).w;
-  ivec2 slot = slotOf(materialAt(m.material, 4).x);
-  vec2 uv;
-  if (slotUv(m, triangleVertices(m, primitive), slot, vec3(1.0 - u - v, u, v), uv))
-    alpha *= sampleTexture(slot.x, uv, false).a;
+  float alpha = materialAt(m.material, 0).w * slotTexel(m, triangleVertices(m, primitive),
+                                                        m.material, kMaterialBaseColor,
+                                                        vec3(1.0 - u - v, u, v), false).a;
   return alphaCovers(mode, alpha, m3.w, rayBlendThreshold(origin, dir, primitive));
 }
 vec4 bvhNodeAt(int i) {
@@ -193,7 +199,7 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
   p.position = origin + hit.t * dir;
   vec3 n, coatNormal;
   uint material;
-  vec4 m7;
+  vec4 m5;
   if (hit.sphere) {
     vec4 sphere = sceneData[params.offsets2.x + 2u * hit.mesh];
     n = normalize(p.position - sphere.xyz);
@@ -206,33 +212,34 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     n = normalize(vertexAt(tri.x, 1).xyz * w.x + vertexAt(tri.y, 1).xyz * w.y +
                   vertexAt(tri.z, 1).xyz * w.z);
     vec4 m0 = materialAt(material, 0), m1 = materialAt(material, 1), m2 = materialAt(material, 2),
-         m3 = materialAt(material, 3), m4 = materialAt(material, 4), m5 = materialAt(material, 5);
-    vec3 base = m0.rgb;
-    float metallic = m1.w, roughness = m3.x;
-    vec3 emissive = m1.rgb;
-    vec2 uv;
-    base *= slotTexel(m, tri, m4.x, w, true).rgb;
-    vec2 mr = applyMetallicRoughnessTexel(metallic, roughness, slotTexel(m, tri, m4.y, w, false));
-    metallic = mr.x;
-    roughness = mr.y;
-    emissive *= slotTexel(m, tri, m4.w, w, true).rgb;
-    p.sheenColor = m2.rgb * slotTexel(m, tri, m5.x, w, true).rgb;
-    p.sheenRoughness = clamp(m2.w * slotTexel(m, tri, m5.y, w, false).a, 0.0, 1.0);
-    vec4 m6 = materialAt(material, 6);
-    p.specularColor = m6.rgb * slotTexel(m, tri, m5.w, w, true).rgb;
-    p.specular = m6.w * slotTexel(m, tri, m5.z, w, false).a;
-    vec4 m8 = materialAt(material, 8);
-    m7 = materialAt(material, 7);
-    p.clearcoat = clamp(m7.y * slotTexel(m, tri, m8.x, w, false).r, 0.0, 1.0);
-    p.clearcoatRoughness = clamp(m7.z * slotTexel(m, tri, m8.y, w, false).g, 0.0, 1.0);
+         m3 = materialAt(material, 3), m4 = materialAt(material, 4);
+    m5 = materialAt(material, 5);
+    vec3 base = m0.rgb * slotTexel(m, tri, material, kMaterialBaseColor, w, true).rgb;
+    vec2 mr = applyMetallicRoughnessTexel(
+        m1.w, m3.x, slotTexel(m, tri, material, kMaterialMetallicRoughness, w, false));
+    float metallic = mr.x, roughness = mr.y;
+    vec3 emissive = m1.rgb * slotTexel(m, tri, material, kMaterialEmissive, w, true).rgb;
+    p.sheenColor = m2.rgb * slotTexel(m, tri, material, kMaterialSheenColor, w, true).rgb;
+    p.sheenRoughness =
+        clamp(m2.w * slotTexel(m, tri, material, kMaterialSheenRoughness, w, false).a, 0.0, 1.0);
+    p.specularColor = m4.rgb * slotTexel(m, tri, material, kMaterialSpecularColor, w, true).rgb;
+    p.specular = m4.w * slotTexel(m, tri, material, kMaterialSpecular, w, false).a;
+    p.clearcoat =
+        clamp(m5.y * slotTexel(m, tri, material, kMaterialClearcoat, w, false).r, 0.0, 1.0);
+    p.clearcoatRoughness = clamp(
+        m5.z * slotTexel(m, tri, material, kMaterialClearcoatRoughness, w, false).g, 0.0, 1.0);
     // The coat's normal: the interpolated one, unless it has a normal map of its own.
     coatNormal = n;
     if ((m.flags & 1u) != 0u) {
       vec4 t4 = vertexAt(tri.x, 2) * w.x + vertexAt(tri.y, 2) * w.y + vertexAt(tri.z, 2) * w.z;
-      if (slotUv(m, tri, slotOf(m8.z), w, uv))
-        coatNormal = applyNormalMap(n, t4, sampleTexture(slotOf(m8.z).x, uv, false), m7.w);
-      if (slotUv(m, tri, slotOf(m4.z), w, uv))
-        n = applyNormalMap(n, t4, sampleTexture(slotOf(m4.z).x, uv, false), m3.y);
+      vec2 uv;
+      if (slotUv(m, tri, material, kMaterialClearcoatNormal, w, uv))
+        coatNormal = applyNormalMap(
+            n, t4, sampleTexture(materialSlot(material, kMaterialClearcoatNormal).x, uv, false),
+            m5.w);
+      if (slotUv(m, tri, material, kMaterialNormal, w, uv))
+        n = applyNormalMap(n, t4, sampleTexture(materialSlot(material, kMaterialNormal).x, uv, false),
+                           m3.y);
     }
     p.baseColor = base;
     p.metallic = clamp(metallic, 0.0, 1.0);
@@ -247,14 +254,14 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     p.emissive = m1.rgb;
     p.sheenColor = m2.rgb;
     p.sheenRoughness = m2.w;
-    p.specularColor = materialAt(material, 6).rgb;
-    p.specular = materialAt(material, 6).w;
-    m7 = materialAt(material, 7);
-    p.clearcoat = m7.y;
-    p.clearcoatRoughness = m7.z;
+    p.specularColor = materialAt(material, 4).rgb;
+    p.specular = materialAt(material, 4).w;
+    m5 = materialAt(material, 5);
+    p.clearcoat = m5.y;
+    p.clearcoatRoughness = m5.z;
     coatNormal = n;
   }
-  p.ior = m7.x;
+  p.ior = m5.x;
   // Shade the side the ray sees (the coat's normal on the same side).
   if (dot(n, dir) > 0.0) {
     n = -n;

@@ -1,7 +1,7 @@
 // A mesh's material in the viewer's fragment shaders (the scene's and the shadow maps'): its
-// textures (set 1), its factors and the sphere it may bound (push constants, MaterialConstants in
-// src/gpu/scene_upload.hpp), and the alpha coverage of glTF's MASK and BLEND modes. The
-// including shader declares the inputs texCoord0 and texCoord1 first.
+// textures and factors (set 1: MaterialUniforms in src/gpu/scene_upload.hpp), the draw's sphere
+// and pass (push constants, DrawConstants), and the alpha coverage of glTF's MASK and BLEND
+// modes. The including shader declares the inputs texCoord0 and texCoord1 first.
 #include "ibl/shared/material.h"
 #include "ibl/shared/view_bindings.h"
 
@@ -18,26 +18,42 @@ layout(set = 1, binding = kMaterialSpecularColor) uniform sampler2D specularColo
 layout(set = 1, binding = kMaterialClearcoat) uniform sampler2D clearcoatTexture;  // R
 layout(set = 1, binding = kMaterialClearcoatRoughness) uniform sampler2D clearcoatRoughnessTexture;
 layout(set = 1, binding = kMaterialClearcoatNormal) uniform sampler2D clearcoatNormalTexture;
-layout(push_constant) uniform Material {
+layout(std140, set = 1, binding = kMaterialUniforms) uniform Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
-  vec4 scales;       // normal scale, occlusion strength, KHR_materials_ior's ior, the clear
-                     // coat's normal scale
-  vec4 sphere;       // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
-  vec3 alpha;        // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
-  uint clearcoat;    // KHR_materials_clearcoat's factor and roughness, packHalf2x16 (the 128
-                     // bytes are full)
-  vec4 sheen;        // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
-  vec4 specular;     // KHR_materials_specular: specularColorFactor, specularFactor
-  uint textureMask;   // 1 base color, 2 metallic-roughness, 4 normal, 8 occlusion, 16 emissive,
-                      // 32 sheen color, 64 sheen roughness, 128 specular, 256 specular color,
-                      // 512 clear coat, 1024 its roughness, 2048 its normal
-  uint texCoordMask;  // the same bits: that texture reads TEXCOORD_1
-  int shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
+  vec4 scales;     // normal scale, occlusion strength, KHR_materials_ior's ior, the clear coat's
+                   // normal scale
+  vec4 alpha;      // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
+  vec4 clearcoat;  // KHR_materials_clearcoat's factor and roughness
+  vec4 sheen;      // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
+  vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
+  uint textureMask;   // bit b: the texture at binding b is the material's (else white)
+  uint texCoordMask;  // bit b: the texture at binding b reads TEXCOORD_1
+  // KHR_texture_transform: binding b's UvTransform rows u and v at 2b and 2b + 1.
+  vec4 uvTransforms[2 * 12];
+} material;
+layout(push_constant) uniform Draw {
+  vec4 sphere;     // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)
+  int shadowLayer;  // the shadow maps' pass: the layer drawn (view/shadow.vert)
   int scenePass;  // 0 the frame's only scene pass; with screen-space reflections 1 the lit frame
                   // (no area light drawn over the surfaces), 2 the pass that composes them
                   // (kFrameScreenReflection): ScenePass in src/gpu/scene_upload.hpp
-} material;
+} draw;
+
+// Whether the material has a texture at `binding` (MaterialBinding).
+bool hasTexture(int binding) {
+  return (material.textureMask & (1u << uint(binding))) != 0u;
+}
+
+// The UV at which the texture at `binding` reads this fragment: its UV set's (glTF texCoord),
+// through its KHR_texture_transform.
+vec2 slotUv(int binding) {
+  vec2 uv = (material.texCoordMask & (1u << uint(binding))) != 0u ? texCoord1 : texCoord0;
+  UvTransform t;
+  t.u = material.uvTransforms[2 * binding].xyz;
+  t.v = material.uvTransforms[2 * binding + 1].xyz;
+  return transformUv(t, uv);
+}
 
 // A uniform number in [0, 1) per pixel and surface depth: BLEND's stochastic threshold (hashed
 // alpha; the CPU renderer hashes its rays instead, so the two agree on average, not per pixel).
@@ -53,15 +69,15 @@ float blendThreshold() {
   return float(v.x >> 8u) * (1.0 / 16777216.0);
 }
 
-// The UV set texture slot `bit` reads (glTF texCoord).
-vec2 texCoordOf(uint bit) {
-  return (material.texCoordMask & bit) != 0u ? texCoord1 : texCoord0;
+// The texel of `t`, the texture at `binding`, for this fragment; white (which multiplies
+// nothing) where the material has none.
+vec4 slotTexel(sampler2D t, int binding) {
+  return hasTexture(binding) ? texture(t, slotUv(binding)) : vec4(1.0);
 }
 
 // Whether the material covers this fragment: its alpha (factor times the base color texture's)
 // against the mode's rule (alphaCovers in ibl/shared/material.h).
 bool materialCovers() {
-  float alpha = material.alpha.x;
-  if ((material.textureMask & 1u) != 0u) alpha *= texture(baseColorTexture, texCoordOf(1u)).a;
+  float alpha = material.alpha.x * slotTexel(baseColorTexture, kMaterialBaseColor).a;
   return alphaCovers(int(material.alpha.y), alpha, material.alpha.z, blendThreshold());
 }

@@ -27,7 +27,7 @@ void main() {
     if (dot(ao.yzw, surface.normal) > 0.0) bentNormal = ao.yzw;
   }
   // The screen-space reflection (view/ssr.frag), in the second pass of a frame that has them.
-  vec4 reflection = material.scenePass == 2
+  vec4 reflection = draw.scenePass == 2
                         ? texelFetch(screenReflection, ivec2(gl_FragCoord.xy), 0)
                         : vec4(0.0);
   vec3 color = shadeSplitSum(surface.position, gl_FragCoord.xy, surface.normal, surface.view,
@@ -37,7 +37,7 @@ void main() {
   Ray center = primaryRay(gl_FragCoord.xy);
   vec3 emitted;
   bool isSurface;
-  if (material.scenePass != 1 &&
+  if (draw.scenePass != 1 &&
       nearestEmitter(center, gl_FragCoord.xy,
                      dot(surface.position - center.origin, center.direction), emitted, isSurface))
     color = emitted;

@@ -13,13 +13,13 @@ layout(location = 2) in vec2 texCoord1;
 #include "view/material.glsl"
 
 void main() {
-  ShadowLayer l = shadowLayerAt(material.shadowLayer);
+  ShadowLayer l = shadowLayerAt(draw.shadowLayer);
   float z = dot(worldPosition - l.origin, l.forward);
-  if (material.sphere.w > 0.0) {
+  if (draw.sphere.w > 0.0) {
     vec3 d = shadowRayDirection(l, gl_FragCoord.xy, shadowMapSize());
     float len = length(d);
     float t = intersectSphere(Ray(shadowRayOrigin(l, gl_FragCoord.xy, shadowMapSize()), d / len),
-                              material.sphere);
+                              draw.sphere);
     if (t < 0.0) discard;
     z = t / len;  // d's forward component is 1 (orthographic: d is forward)
   } else if (!materialCovers()) {

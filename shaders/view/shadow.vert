@@ -12,7 +12,7 @@ layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec2 texCoord0;
 layout(location = 2) out vec2 texCoord1;
 layout(push_constant) uniform Layer {
-  layout(offset = 120) int shadowLayer;  // MaterialConstants::shadowLayer
+  layout(offset = 16) int shadowLayer;  // DrawConstants::shadowLayer
 } pass;
 
 void main() {

@@ -27,14 +27,14 @@ vec2 samplePosition(int count, int i) {
 // at the standard locations (0 or 1: the center alone).
 bool traceSphere(int count, out vec3 position, out vec3 normal) {
   Ray center = primaryRay(gl_FragCoord.xy);
-  float t = intersectSphere(center, material.sphere);
+  float t = intersectSphere(center, draw.sphere);
   Ray shaded = center;
   if (count > 1) {
     vec2 corner = floor(gl_FragCoord.xy);
     int mask = 0;
     for (int i = 0; i < count; ++i) {
       Ray r = primaryRay(corner + samplePosition(count, i));
-      float ti = intersectSphere(r, material.sphere);
+      float ti = intersectSphere(r, draw.sphere);
       if (ti < 0.0) continue;
       mask |= 1 << i;
       if (t < 0.0) {
@@ -48,7 +48,7 @@ bool traceSphere(int count, out vec3 position, out vec3 normal) {
   }
   if (t < 0.0) return false;
   position = shaded.origin + t * shaded.direction;
-  normal = normalize(position - material.sphere.xyz);
+  normal = normalize(position - draw.sphere.xyz);
   vec4 clip = frame.viewProjection * vec4(position, 1.0);
   gl_FragDepth = clip.z / clip.w;
   return true;
@@ -66,7 +66,7 @@ struct ShadedSurface {
 ShadedSurface fragmentSurface(int samples) {
   vec3 n = normalize(worldNormal);
   vec3 position = worldPosition;
-  if (material.sphere.w > 0.0) {
+  if (draw.sphere.w > 0.0) {
     if (!traceSphere(samples, position, n)) discard;
   } else {
     gl_SampleMask[0] = -1;
@@ -76,36 +76,34 @@ ShadedSurface fragmentSurface(int samples) {
   float metallic = material.baseColorMetallic.a;
   float roughness = material.emissiveRoughness.a;
   vec3 emissive = material.emissiveRoughness.rgb;
-  float occlusion = 1.0;
-  uint mask = material.textureMask;
   // sRGB textures are decoded before filtering (their formats), as Texture::sample does.
-  if ((mask & 1u) != 0u) baseColor *= texture(baseColorTexture, texCoordOf(1u)).rgb;
+  baseColor *= slotTexel(baseColorTexture, kMaterialBaseColor).rgb;
   if (!materialCovers()) discard;
-  if ((mask & 2u) != 0u) {
-    vec2 mr = applyMetallicRoughnessTexel(metallic, roughness,
-                                          texture(metallicRoughnessTexture, texCoordOf(2u)));
-    metallic = mr.x;
-    roughness = mr.y;
-  }
-  if ((mask & 8u) != 0u)
-    occlusion = occlusionFromTexel(material.scales.y, texture(occlusionTexture, texCoordOf(8u)));
-  if ((mask & 16u) != 0u) emissive *= texture(emissiveTexture, texCoordOf(16u)).rgb;
+  vec2 mr = applyMetallicRoughnessTexel(
+      metallic, roughness, slotTexel(metallicRoughnessTexture, kMaterialMetallicRoughness));
+  metallic = mr.x;
+  roughness = mr.y;
+  float occlusion =
+      occlusionFromTexel(material.scales.y, slotTexel(occlusionTexture, kMaterialOcclusion));
+  emissive *= slotTexel(emissiveTexture, kMaterialEmissive).rgb;
   vec4 sheen = material.sheen;
-  if ((mask & 32u) != 0u) sheen.rgb *= texture(sheenColorTexture, texCoordOf(32u)).rgb;
-  if ((mask & 64u) != 0u) sheen.w *= texture(sheenRoughnessTexture, texCoordOf(64u)).a;
+  sheen.rgb *= slotTexel(sheenColorTexture, kMaterialSheenColor).rgb;
+  sheen.w *= slotTexel(sheenRoughnessTexture, kMaterialSheenRoughness).a;
   vec4 specular = material.specular;
-  if ((mask & 128u) != 0u) specular.w *= texture(specularTexture, texCoordOf(128u)).a;
-  if ((mask & 256u) != 0u) specular.rgb *= texture(specularColorTexture, texCoordOf(256u)).rgb;
-  vec2 coat = unpackHalf2x16(material.clearcoat);  // KHR_materials_clearcoat: factor, roughness
-  if ((mask & 512u) != 0u) coat.x *= texture(clearcoatTexture, texCoordOf(512u)).r;
-  if ((mask & 1024u) != 0u) coat.y *= texture(clearcoatRoughnessTexture, texCoordOf(1024u)).g;
+  specular.w *= slotTexel(specularTexture, kMaterialSpecular).a;
+  specular.rgb *= slotTexel(specularColorTexture, kMaterialSpecularColor).rgb;
+  vec2 coat = material.clearcoat.xy;  // KHR_materials_clearcoat: factor, roughness
+  coat.x *= slotTexel(clearcoatTexture, kMaterialClearcoat).r;
+  coat.y *= slotTexel(clearcoatRoughnessTexture, kMaterialClearcoatRoughness).g;
   // The coat's normal: the interpolated one, unless it has a normal map of its own.
   vec3 coatNormal = n;
-  if ((mask & 2048u) != 0u)
-    coatNormal = applyNormalMap(n, worldTangent, texture(clearcoatNormalTexture, texCoordOf(2048u)),
+  if (hasTexture(kMaterialClearcoatNormal))
+    coatNormal = applyNormalMap(n, worldTangent,
+                                slotTexel(clearcoatNormalTexture, kMaterialClearcoatNormal),
                                 material.scales.w);
-  if ((mask & 4u) != 0u)
-    n = applyNormalMap(n, worldTangent, texture(normalTexture, texCoordOf(4u)), material.scales.x);
+  if (hasTexture(kMaterialNormal))
+    n = applyNormalMap(n, worldTangent, slotTexel(normalTexture, kMaterialNormal),
+                       material.scales.x);
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
                                            : normalize(position - frame.cameraPosition.xyz);
   if (dot(n, ray) > 0.0) {  // shade the side the camera sees (the coat's normal alike)

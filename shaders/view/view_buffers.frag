@@ -27,7 +27,7 @@ void main() {
   // The triangle's plane, before fragmentSurface may discard (derivatives need every fragment).
   vec3 geometric = cross(dFdx(worldPosition), dFdy(worldPosition));
   ShadedSurface surface = fragmentSurface(1);  // single-sampled: the pixel center, as the CPU
-  if (material.sphere.w > 0.0) geometric = surface.normal;  // traced: the sphere's own
+  if (draw.sphere.w > 0.0) geometric = surface.normal;  // traced: the sphere's own
   outPosition = vec4(toView(surface.position - frame.cameraPosition.xyz), 1.0);
   vec3 normal = viewBufferNormal(surface.normal, geometric, surface.view);
   outNormal = vec4(toView(normal), surface.material.roughness);

@@ -35,20 +35,24 @@ VkDescriptorSetLayout createSetLayout(VkDevice device,
   return layout;
 }
 
-// Set 1's layout: a combined image sampler per MaterialBinding, read by the fragment shaders.
+// Set 1's layout: a combined image sampler per MaterialBinding and the uniform buffer of the
+// factors (kMaterialUniforms), read by the fragment shaders.
 std::vector<VkDescriptorSetLayoutBinding> materialSetBindings() {
+  static_assert(shared::kMaterialUniforms == kMaterialTextures, "the buffer after the textures");
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (std::uint32_t b = 0; b < kMaterialTextures; ++b)
     bindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+  bindings.push_back({kMaterialTextures, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                      VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   return bindings;
 }
 
-// Sets 0 and 1 and the material's push constants (MaterialConstants).
+// Sets 0 and 1 and a draw's push constants (DrawConstants).
 VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout frameLayout,
                                       VkDescriptorSetLayout materialLayout) {
   const std::array<VkDescriptorSetLayout, 2> setLayouts{frameLayout, materialLayout};
-  const VkPushConstantRange push{kMaterialStages, 0, sizeof(MaterialConstants)};
+  const VkPushConstantRange push{kDrawStages, 0, sizeof(DrawConstants)};
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layoutInfo.setLayoutCount = 2;
   layoutInfo.pSetLayouts = setLayouts.data();

@@ -6,6 +6,7 @@
 
 #include "gpu/bvh.hpp"
 #include "ibl/shared/light_record.h"
+#include "ibl/shared/material.h"
 #include "render/emissive_triangles.hpp"
 #include "render/ray_tracer.hpp"
 
@@ -36,6 +37,13 @@ void appendIesTable(const Light& light, std::vector<float>& out) {
 float slotOf(const TextureRef& ref) {
   return ref.index < 0 ? -1.0f : static_cast<float>(ref.index * 2 + (ref.texCoord == 1 ? 1 : 0));
 }
+
+static_assert(Material::kTextureSlots % 4 == 0 &&
+                  shared::kMaterialRecordUvTransforms ==
+                      shared::kMaterialRecordSlots + int(Material::kTextureSlots / 4) &&
+                  shared::kMaterialRecordVec4s ==
+                      shared::kMaterialRecordUvTransforms + 2 * int(Material::kTextureSlots),
+              "a material's record: factors, slots, then two rows per slot");
 
 }  // namespace
 
@@ -84,15 +92,19 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
     data.push_back(glm::vec4(mat.sheenColor, mat.sheenRoughness));
     data.push_back(glm::vec4(mat.roughness, mat.normalScale,
                              static_cast<float>(static_cast<int>(mat.alphaMode)), mat.alphaCutoff));
-    data.push_back(glm::vec4(slotOf(mat.baseColorTexture), slotOf(mat.metallicRoughnessTexture),
-                             slotOf(mat.normalTexture), slotOf(mat.emissiveTexture)));
-    data.push_back(glm::vec4(slotOf(mat.sheenColorTexture), slotOf(mat.sheenRoughnessTexture),
-                             slotOf(mat.specularTexture), slotOf(mat.specularColorTexture)));
     data.push_back(glm::vec4(mat.specularColor, mat.specular));
     data.push_back(
         glm::vec4(mat.ior, mat.clearcoat, mat.clearcoatRoughness, mat.clearcoatNormalScale));
-    data.push_back(glm::vec4(slotOf(mat.clearcoatTexture), slotOf(mat.clearcoatRoughnessTexture),
-                             slotOf(mat.clearcoatNormalTexture), 0.0f));
+    const auto slots = mat.textureSlots();
+    for (std::size_t b = 0; b < slots.size(); b += 4)
+      data.push_back(glm::vec4(slotOf(slots[b]), slotOf(slots[b + 1]), slotOf(slots[b + 2]),
+                               slotOf(slots[b + 3])));
+    for (const TextureRef& slot : slots) {
+      const TextureTransform& t = slot.transform;
+      const shared::UvTransform uv = shared::uvTransformOf(t.offset, t.rotation, t.scale);
+      data.push_back(glm::vec4(uv.u, 0.0f));
+      data.push_back(glm::vec4(uv.v, 0.0f));
+    }
   }
   out.offsets.z = static_cast<std::uint32_t>(data.size());
   out.offsets2.z = static_cast<std::uint32_t>(wordData.size());

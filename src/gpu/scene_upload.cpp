@@ -9,7 +9,6 @@
 #include <span>
 
 #include <fmt/format.h>
-#include <glm/packing.hpp>
 
 #include "gpu/frame_set.hpp"
 #include "ibl/core/error.hpp"
@@ -17,6 +16,7 @@
 #include "ibl/math/color.hpp"
 #include "ibl/render/ltc.hpp"
 #include "ibl/render/renderer.hpp"
+#include "ibl/shared/material.h"
 
 namespace ibl::gpu {
 
@@ -282,29 +282,26 @@ VkSampler SceneUpload::samplerFor(const TextureSampler& kind) {
 }
 
 void SceneUpload::uploadMaterials(const Scene& scene) {
-  // Their push constants, and per texture slot the scene's texture (sRGB for base color,
-  // emission, sheen color and specular color) and its sampler, or white.
+  // Their uniforms, and per texture slot the scene's texture (sRGB for base color, emission,
+  // sheen color and specular color) and its sampler, or white.
   const std::vector<Material> sceneMaterials =
       scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
   std::vector<std::array<VkDescriptorImageInfo, kMaterialTextures>> materialImages;
   const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   for (const Material& mat : sceneMaterials) {
-    MaterialConstants mc{};
-    mc.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
-    mc.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
-    mc.scales =
+    MaterialUniforms mu{};
+    mu.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
+    mu.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
+    mu.scales =
         glm::vec4(mat.normalScale, mat.occlusionStrength, mat.ior, mat.clearcoatNormalScale);
-    mc.alpha = glm::vec3(mat.baseColorAlpha, static_cast<float>(mat.alphaMode), mat.alphaCutoff);
-    mc.clearcoat = glm::packHalf2x16(glm::vec2(mat.clearcoat, mat.clearcoatRoughness));
-    mc.sheen = glm::vec4(mat.sheenColor, mat.sheenRoughness);
-    mc.specular = glm::vec4(mat.specularColor, mat.specular);
+    mu.alpha =
+        glm::vec4(mat.baseColorAlpha, static_cast<float>(mat.alphaMode), mat.alphaCutoff, 0.0f);
+    mu.clearcoat = glm::vec4(mat.clearcoat, mat.clearcoatRoughness, 0.0f, 0.0f);
+    mu.sheen = glm::vec4(mat.sheenColor, mat.sheenRoughness);
+    mu.specular = glm::vec4(mat.specularColor, mat.specular);
     if (mat.sheenColor != glm::vec3(0.0f)) sceneHasSheen_ = true;
-    // In MaterialBinding's order.
-    const std::array<TextureRef, kMaterialTextures> slots{
-        mat.baseColorTexture,      mat.metallicRoughnessTexture,  mat.normalTexture,
-        mat.occlusionTexture,      mat.emissiveTexture,           mat.sheenColorTexture,
-        mat.sheenRoughnessTexture, mat.specularTexture,           mat.specularColorTexture,
-        mat.clearcoatTexture,      mat.clearcoatRoughnessTexture, mat.clearcoatNormalTexture};
+    static_assert(Material::kTextureSlots == kMaterialTextures, "MaterialBinding's order");
+    const auto slots = mat.textureSlots();
     std::array<VkDescriptorImageInfo, kMaterialTextures> images{};
     for (std::size_t b = 0; b < kMaterialTextures; ++b) {
       const int i = slots[b].index;
@@ -312,6 +309,10 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
       const bool srgb = slot == MaterialBinding::BaseColor || slot == MaterialBinding::Emissive ||
                         slot == MaterialBinding::SheenColor ||
                         slot == MaterialBinding::SpecularColor;
+      const TextureTransform& t = slots[b].transform;
+      const shared::UvTransform uv = shared::uvTransformOf(t.offset, t.rotation, t.scale);
+      mu.uvTransforms[2 * b] = glm::vec4(uv.u, 0.0f);
+      mu.uvTransforms[2 * b + 1] = glm::vec4(uv.v, 0.0f);
       const bool valid = i >= 0 && static_cast<std::size_t>(i) < scene.textures.size() &&
                          !scene.textures[i].empty();
       images[b] = {samplerFor(TextureSampler{}), frame_.white().view(), readable};
@@ -319,20 +320,23 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
       auto& image = textures_[{i, srgb}];
       if (!image) image = uploadTexture(context_, scene.textures[i], srgb);
       images[b] = {samplerFor(scene.textures[i].sampler), image->view(), readable};
-      mc.textureMask |= 1u << b;
-      if (slots[b].texCoord == 1) mc.texCoordMask |= 1u << b;
+      mu.textureMask |= 1u << b;
+      if (slots[b].texCoord == 1) mu.texCoordMask |= 1u << b;
     }
-    materials_.push_back(mc);
+    materialBuffers_.push_back(
+        std::make_unique<Buffer>(Buffer::of(context_, std::vector<MaterialUniforms>{mu})));
     materialImages.push_back(images);
   }
   // Their sets.
-  const auto materialCount = static_cast<std::uint32_t>(materials_.size());
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                  kMaterialTextures * materialCount};
+  const auto materialCount = static_cast<std::uint32_t>(materialBuffers_.size());
+  const std::array<VkDescriptorPoolSize, 2> sizes{
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                           kMaterialTextures * materialCount},
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = materialCount;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &size;
+  poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+  poolInfo.pPoolSizes = sizes.data();
   VkDescriptorPool pool;
   check(vkCreateDescriptorPool(device_, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
   materialPool_ = {device_, pool};
@@ -345,13 +349,26 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
   check(vkAllocateDescriptorSets(device_, &setAlloc, materialSets_.data()),
         "vkAllocateDescriptorSets");
   std::vector<VkWriteDescriptorSet> writes;
-  for (std::size_t m = 0; m < materials_.size(); ++m)
+  std::vector<VkDescriptorBufferInfo> bufferInfos;
+  bufferInfos.reserve(materialBuffers_.size());
+  for (std::size_t m = 0; m < materialBuffers_.size(); ++m) {
     for (std::size_t b = 0; b < kMaterialTextures; ++b)
       writes.push_back(
           imageWrite(materialSets_[m], static_cast<std::uint32_t>(b), &materialImages[m][b]));
+    bufferInfos.push_back(
+        {static_cast<VkBuffer>(materialBuffers_[m]->handle()), 0, sizeof(MaterialUniforms)});
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = materialSets_[m];
+    w.dstBinding = kMaterialTextures;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    w.pBufferInfo = &bufferInfos.back();
+    writes.push_back(w);
+  }
   vkUpdateDescriptorSets(device_, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
                          nullptr);
 }
+
 void SceneUpload::uploadBake(const BakeResult& bake, const BakeOptions& bakeOptions) {
   if (sceneHasSheen_ && (!bake.sheen || !bake.sheenDfg))
     fail("viewer",
@@ -493,14 +510,11 @@ void SceneUpload::drawMeshes(VkCommandBuffer cmd, VkPipelineLayout layout, int l
                              ScenePass pass) const {
   for (const DrawMesh& m : meshes_) {
     const auto mi = static_cast<std::size_t>(
-        std::clamp(m.material, 0, static_cast<int>(materials_.size()) - 1));
-    MaterialConstants mc = materials_[mi];
-    mc.sphere = m.sphere;
-    mc.shadowLayer = layer;
-    mc.scenePass = pass;
+        std::clamp(m.material, 0, static_cast<int>(materialBuffers_.size()) - 1));
+    const DrawConstants draw{m.sphere, layer, pass};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &materialSets_[mi],
                             0, nullptr);
-    vkCmdPushConstants(cmd, layout, kMaterialStages, 0, sizeof(mc), &mc);
+    vkCmdPushConstants(cmd, layout, kDrawStages, 0, sizeof(draw), &draw);
     const VkBuffer vertexBuffer = static_cast<VkBuffer>(m.vertices->handle());
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);

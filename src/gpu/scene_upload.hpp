@@ -57,37 +57,44 @@ std::vector<MeshVertex> meshVertices(const Mesh& mesh);
 inline constexpr std::uint32_t kMaterialTextures =
     static_cast<std::uint32_t>(MaterialBinding::Count);
 
-// The stages that read the push constants: the fragment shaders, and the shadow maps' vertex
-// shader its layer.
-inline constexpr VkShaderStageFlags kMaterialStages =
+// The stages that read the push constants (DrawConstants): the fragment shaders, and the shadow
+// maps' vertex shader its layer.
+inline constexpr VkShaderStageFlags kDrawStages =
     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
-// The push constants of shaders/view/material.glsl: a material, and the sphere a mesh bounds.
-struct MaterialConstants {
-  // scales: normal scale, occlusion strength, KHR_materials_ior's ior, the coat's normal scale.
-  glm::vec4 baseColorMetallic, emissiveRoughness, scales, sphere;
-  glm::vec3 alpha;  // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff
-  // KHR_materials_clearcoat's factor and roughness as two halves (glm::packHalf2x16: the 128
-  // bytes are full; halves hold [0, 1] within 5e-4).
-  std::uint32_t clearcoat;
-  glm::vec4 sheen;             // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
-  glm::vec4 specular;          // KHR_materials_specular: specularColorFactor, specularFactor
+// A material's factors in the uniform buffer of its set (binding kMaterialUniforms; std140, as
+// the block Material in shaders/view/material.glsl reads it).
+struct MaterialUniforms {
+  glm::vec4 baseColorMetallic, emissiveRoughness;
+  // normal scale, occlusion strength, KHR_materials_ior's ior, the coat's normal scale
+  glm::vec4 scales;
+  glm::vec4 alpha;      // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff, 0
+  glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness, 0, 0
+  glm::vec4 sheen;      // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
+  glm::vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
   std::uint32_t textureMask;   // the textures the material has, bit b for set 1 binding b
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
-  std::int32_t shadowLayer;    // the shadow maps' pass: the layer drawn (view/shadow.vert)
-  std::int32_t scenePass;      // the scene pass's part: ScenePass
+  std::uint32_t padding[2];
+  // KHR_texture_transform: binding b's rows u and v (shared::UvTransform) at 2b and 2b + 1.
+  glm::vec4 uvTransforms[2 * kMaterialTextures];
+};
+static_assert(offsetof(MaterialUniforms, uvTransforms) == 128 &&
+                  sizeof(MaterialUniforms) == 128 + 32 * kMaterialTextures,
+              "std140: the rows' array starts on 16 bytes");
+
+// The push constants of a draw (shaders/view/material.glsl): the sphere the mesh bounds, and
+// the pass it is drawn for.
+struct DrawConstants {
+  glm::vec4 sphere;          // center, radius (0: the mesh is not a sphere's proxy)
+  std::int32_t shadowLayer;  // the shadow maps' pass: the layer drawn (view/shadow.vert)
+  std::int32_t scenePass;    // the scene pass's part: ScenePass
 };
 // Which of a frame's scene passes draws (view/material.glsl): the only one; with screen-space
 // reflections, the lit frame (the surfaces without the area lights in front of them: what the
 // view buffers hold, so that no reflection meets a light) or the pass that composes them.
 enum ScenePass : std::int32_t { kOnlyScenePass = 0, kLitFramePass = 1, kReflectedPass = 2 };
-static_assert(offsetof(MaterialConstants, clearcoat) == 76,
-              "view/material.glsl reads the coat's factors after the vec3 alpha");
-static_assert(offsetof(MaterialConstants, shadowLayer) == 120,
-              "view/shadow.vert reads the layer at offset 120");
-static_assert(sizeof(MaterialConstants) <= 128, "Vulkan guarantees 128 bytes of push constants");
-static_assert(offsetof(MaterialConstants, scenePass) == 124,
-              "view/material.glsl reads the scene pass's part at offset 124");
+static_assert(offsetof(DrawConstants, shadowLayer) == 16,
+              "view/shadow.vert reads the layer at offset 16");
 
 class SceneUpload {
  public:
@@ -105,8 +112,8 @@ class SceneUpload {
   // scene's, else Error), and points the frame set at them. The device must be idle.
   void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                       const std::vector<Light>& lights);
-  // Binds and draws every mesh with its material (set 1 and the push constants, through
-  // `layout`), shadow layer `layer` and scene pass part `pass`.
+  // Binds and draws every mesh with its material (set 1, through `layout`) and its push
+  // constants (DrawConstants): its sphere, shadow layer `layer` and scene pass part `pass`.
   void drawMeshes(VkCommandBuffer cmd, VkPipelineLayout layout, int layer, ScenePass pass) const;
   // Sets the bake's, the probes' and the lights' parts of `state`.
   void describe(FrameState& state) const;
@@ -142,7 +149,7 @@ class SceneUpload {
     glm::vec4 sphere{0.0f};  // center, radius of the sphere this mesh bounds (radius 0: none)
   };
   std::vector<DrawMesh> meshes_;
-  std::vector<MaterialConstants> materials_;  // sphere left 0
+  std::vector<std::unique_ptr<Buffer>> materialBuffers_;  // MaterialUniforms, one per material
   // The scene's textures with mip chains, sRGB or linear as each material slot reads them
   // (a texture used both ways is uploaded twice); the frame set's white stands in for none.
   std::map<std::pair<int, bool>, std::unique_ptr<DeviceImage>> textures_;

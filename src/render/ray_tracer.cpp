@@ -12,6 +12,14 @@ namespace ibl {
 
 namespace {
 
+// The UV at which texture slot `ref` reads a surface point of UV `uv` in its set
+// (KHR_texture_transform's map, shared::uvTransformOf).
+glm::vec2 slotUv(const TextureRef& ref, glm::vec2 uv) {
+  if (ref.transform.identity()) return uv;
+  const TextureTransform& t = ref.transform;
+  return shared::transformUv(shared::uvTransformOf(t.offset, t.rotation, t.scale), uv);
+}
+
 // The material's alpha at a hit (barycentrics u, v of triangle `primitive`).
 float alphaAt(const AlphaTest& a, unsigned primitive, float u, float v) {
   float alpha = a.material->baseColorAlpha;
@@ -20,7 +28,7 @@ float alphaAt(const AlphaTest& a, unsigned primitive, float u, float v) {
   if (a.texture && !uvs.empty()) {
     const std::uint32_t* i = &a.mesh->indices[3 * static_cast<std::size_t>(primitive)];
     const glm::vec2 uv = uvs[i[0]] * (1.0f - u - v) + uvs[i[1]] * u + uvs[i[2]] * v;
-    alpha *= a.texture->sample(uv, false).w;
+    alpha *= a.texture->sample(slotUv(a.material->baseColorTexture, uv), false).w;
   }
   return alpha;
 }
@@ -139,7 +147,7 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
       const std::vector<glm::vec2>& uvs = ref.texCoord == 1 ? m.uvs1 : m.uvs;
       if (ref.index < 0 || uvs.empty()) return false;
       const glm::vec2 uv = uvs[i0] * w0 + uvs[i1] * w1 + uvs[i2] * w2;
-      texel = scene.textures[ref.index].sample(uv, srgb);
+      texel = scene.textures[ref.index].sample(slotUv(ref, uv), srgb);
       return true;
     };
     glm::vec4 t;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "ibl/core/image.hpp"
 #include "ibl/io/image_io.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/render/scene.hpp"
 #include "support/helpers.hpp"
 
 namespace ibl::test {
@@ -170,14 +172,44 @@ inline QuadMaterial specularLayerQuad(glm::vec3 baseColor) {
   return m;
 }
 
+// A width x height RGBA PNG holding exactly `texels` (4 codes each, row by row, top first).
+inline std::vector<std::uint8_t> rgbaPng(int width, int height,
+                                         const std::vector<std::uint8_t>& texels) {
+  std::vector<std::uint8_t> png;
+  stbi_write_png_to_func(appendToVector, &png, width, height, 4, texels.data(), 4 * width);
+  return png;
+}
+
+// A kGridTexels x kGridTexels RGBA grid whose texel (x, y) has the R and G codes of its column
+// and row (gridCodes), B `blue` and A 255, row by row: a texture in which every texel differs.
+inline constexpr int kGridTexels = 4;
+inline glm::ivec2 gridCodes(int x, int y) {
+  return {30 + 70 * x, 30 + 70 * y};
+}
+inline std::vector<std::uint8_t> gridTexels(std::uint8_t blue) {
+  std::vector<std::uint8_t> t;
+  for (int y = 0; y < kGridTexels; ++y)
+    for (int x = 0; x < kGridTexels; ++x) {
+      const glm::ivec2 c = gridCodes(x, y);
+      t.insert(t.end(),
+               {static_cast<std::uint8_t>(c.x), static_cast<std::uint8_t>(c.y), blue, 255});
+    }
+  return t;
+}
+// The grid as a scene's texture (bilinear unless `nearest`, repeated).
+inline Texture gridTexture(std::uint8_t blue, bool nearest) {
+  Texture t;
+  t.width = t.height = kGridTexels;
+  t.rgba = std::make_shared<std::vector<std::uint8_t>>(gridTexels(blue));
+  t.sampler.nearest = nearest;
+  return t;
+}
+
 // A 1 x 1 RGBA PNG holding exactly `codes`.
 inline std::vector<std::uint8_t> rgbaPng(glm::ivec4 codes) {
-  const std::vector<std::uint8_t> texel = {
-      static_cast<std::uint8_t>(codes.x), static_cast<std::uint8_t>(codes.y),
-      static_cast<std::uint8_t>(codes.z), static_cast<std::uint8_t>(codes.w)};
-  std::vector<std::uint8_t> png;
-  stbi_write_png_to_func(appendToVector, &png, 1, 1, 4, texel.data(), 4);
-  return png;
+  return rgbaPng(1, 1,
+                 {static_cast<std::uint8_t>(codes.x), static_cast<std::uint8_t>(codes.y),
+                  static_cast<std::uint8_t>(codes.z), static_cast<std::uint8_t>(codes.w)});
 }
 
 // A 2 x 1 RGBA PNG, white, with alpha codes (left, right).

@@ -75,8 +75,9 @@ struct GltfSummary {
     std::string alphaMode = "OPAQUE";
     bool doubleSided = false;
     std::vector<int> textures;  // the textures its slots read, in slot order, without repeats
-    std::vector<std::string> extensions;   // every extension on it
-    std::vector<std::string> unsupported;  // those of them ibl does not render
+    std::vector<std::string> transformedSlots;  // slots with KHR_texture_transform
+    std::vector<std::string> extensions;        // every extension on it
+    std::vector<std::string> unsupported;       // those of them ibl does not render
     // KHR_materials_ior and KHR_materials_specular (their defaults when absent), and the
     // dielectric's Fresnel reflectance they make (shared::specularReflectance at metallic 0).
     float ior = 1.5f, specular = 1.0f;

@@ -2,6 +2,8 @@
 // API: stable
 // Scenes to render: triangle meshes with glTF metallic-roughness materials (from glTF 2.0
 // files), analytic spheres (the built-in scenes), analytic lights, and an optional camera.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -43,10 +45,25 @@ struct Texture {
   glm::vec4 sample(glm::vec2 uv, bool srgb) const;
 };
 
-// One texture slot of a material: the scene's texture (-1: none) and which UV set it reads.
+// KHR_texture_transform on a texture slot: the UVs are scaled, then turned counterclockwise by
+// `rotation` radians about the origin, then offset (shared::uvTransformOf in
+// ibl/shared/material.h gives the map). The defaults leave them as they are.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;
+  glm::vec2 scale{1.0f};
+
+  bool identity() const {
+    return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f);
+  }
+};
+
+// One texture slot of a material: the scene's texture (-1: none), which UV set it reads (the
+// transform's texCoord, where it has one, already applied) and how its UVs are transformed.
 struct TextureRef {
   int index = -1;
   int texCoord = 0;  // 0: TEXCOORD_0, 1: TEXCOORD_1
+  TextureTransform transform;
 };
 
 // How a material's alpha covers what is behind it (the values of shared::alphaCovers).
@@ -90,6 +107,17 @@ struct Material {
   TextureRef clearcoatRoughnessTexture;  // G multiplies clearcoatRoughness
   TextureRef clearcoatNormalTexture;     // none: the coat follows the unmapped normal
   float clearcoatNormalScale = 1.0f;     // as normalScale
+
+  // Its texture slots in the order of the device's bindings and records (MaterialBinding in
+  // ibl/shared/view_bindings.h): base color, metallic-roughness, normal, occlusion, emissive,
+  // sheen color, sheen roughness, specular, specular color, clear coat, its roughness, its normal.
+  static constexpr std::size_t kTextureSlots = 12;
+  std::array<TextureRef, kTextureSlots> textureSlots() const {
+    return {baseColorTexture,      metallicRoughnessTexture,  normalTexture,
+            occlusionTexture,      emissiveTexture,           sheenColorTexture,
+            sheenRoughnessTexture, specularTexture,           specularColorTexture,
+            clearcoatTexture,      clearcoatRoughnessTexture, clearcoatNormalTexture};
+  }
 };
 
 // Triangles in world space.

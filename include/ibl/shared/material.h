@@ -73,9 +73,37 @@ IBL_FN int wrapTexel(int i, int n, int wrap) {
   return i < 0 ? i + n : i;
 }
 
-// The vec4s of a material's record in the GPU path tracer's scene buffer (written by
-// src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl).
-const int kMaterialRecordVec4s = 9;
+// KHR_texture_transform: a texture slot's UVs moved by the affine map
+//   uv' = T(offset) R(rotation) S(scale) uv,
+// rows u and v: u' = dot(u, (uv, 1)), v' = dot(v, (uv, 1)). The rotation turns the UVs
+// counterclockwise by `rotation` radians, the image clockwise: with c = cos, s = sin,
+//   u' = c sx u + s sy v + ox,   v' = -s sx u + c sy v + oy,
+// the map that the extension's example (offset (0, 1), rotation pi/2, scale 0.5: the image's
+// lower left quadrant) and the glTF Sample Viewer compute; the GLSL in the extension's text reads
+// its rotation's columns as rows and turns the other way.
+struct UvTransform {
+  vec3 u;
+  vec3 v;
+};
+IBL_FN UvTransform uvTransformOf(vec2 offset, float rotation, vec2 scale) {
+  float c = cos(rotation), s = sin(rotation);
+  UvTransform t;
+  t.u = vec3(c * scale.x, s * scale.y, offset.x);
+  t.v = vec3(-s * scale.x, c * scale.y, offset.y);
+  return t;
+}
+IBL_FN vec2 transformUv(UvTransform t, vec2 uv) {
+  vec3 h = vec3(uv.x, uv.y, 1.0f);
+  return vec2(dot(t.u, h), dot(t.v, h));
+}
+
+// A material's record in the GPU path tracer's scene buffer (written by
+// src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl): six vec4s of factors,
+// three of texture slots (one float per MaterialBinding, in its order) and two per slot of its
+// UV transform's rows.
+const int kMaterialRecordSlots = 6;
+const int kMaterialRecordUvTransforms = 9;
+const int kMaterialRecordVec4s = 33;
 
 // KHR_materials_ior: the Fresnel reflectance at normal incidence of a dielectric of index `ior`
 // in air, ((ior - 1) / (ior + 1))^2: 0.04 at glTF's default 1.5. ior = 0, the specification's

@@ -61,11 +61,13 @@ struct Instance {
   glm::mat4 world{1.0f};
 };
 
-// The material slots ibl reads, as (name, texture info): glTF's five and KHR_materials_sheen's
-// two.
+// The material slots ibl reads, as (name, texture info): glTF's five and those of the material
+// extensions ibl renders; the texCoord is KHR_texture_transform's where it gives one.
 struct SlotRef {
   std::string name;
   int index = -1, texCoord = 0;
+  TextureTransform transform;  // KHR_texture_transform (identity: none)
+  bool transformed = false;    // the slot has KHR_texture_transform
 };
 
 // --- container.cpp ---------------------------------------------------------------------------

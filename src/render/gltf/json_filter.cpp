@@ -222,6 +222,12 @@ std::vector<ImageSource> takeImages(nlohmann::json& gltf, const std::string& pat
   return images;
 }
 
+// Whether the member `key` holds a texture info (a material's slot: "normalTexture",
+// "clearcoatTexture", ...).
+bool textureInfo(const std::string& key) {
+  return key.ends_with("Texture");
+}
+
 // Whether ibl reads the extension `name` on an object of `kind` (the key of the array or object
 // holding it; "" for the file's root). EXT_meshopt_compression is read by hideMeshoptFallbacks.
 bool readsExtension(const std::string& kind, const std::string& name) {
@@ -234,6 +240,7 @@ bool readsExtension(const std::string& kind, const std::string& name) {
            name == "KHR_materials_unlit" || name == "KHR_materials_clearcoat")) ||
          (kind == "primitives" && name == "KHR_draco_mesh_compression") ||
          (kind == "textures" && name == "EXT_texture_webp") ||
+         (textureInfo(kind) && name == "KHR_texture_transform") ||
          ((kind == "bufferViews" || kind == "buffers") && name == "EXT_meshopt_compression");
 }
 
@@ -393,6 +400,8 @@ bool keepMember(const std::vector<std::string>& keys, std::size_t d) {
   if (d < 3 || keys[d - 2] != "extensions") return true;  // not inside an extension
   // keys[d - 1] is the extension; "extensions" is a member of the root (d == 3) or of an
   // element of the array at keys[d - 4] (a material, node or primitive).
+  // A texture info's extensions: keys[d - 3] is the slot.
+  if (d >= 4 && textureInfo(keys[d - 3])) return readsExtension(keys[d - 3], keys[d - 1]);
   return readsExtension(d == 3 ? "" : d >= 5 ? keys[d - 4] : "-", keys[d - 1]);
 }
 

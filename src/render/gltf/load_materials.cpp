@@ -1,6 +1,6 @@
 // Materials: glTF's metallic-roughness model, KHR_materials_emissive_strength,
 // KHR_materials_sheen, _ior, _specular, _clearcoat and _unlit, their
-// texture slots pointing at the textures images.cpp read.
+// texture slots pointing at the textures images.cpp read, each with its KHR_texture_transform.
 #include <cmath>
 #include <map>
 
@@ -9,35 +9,6 @@
 #include "document.hpp"
 
 namespace ibl::gltf {
-
-std::vector<SlotRef> materialSlots(const tinygltf::Material& m, const std::string& path,
-                                   const std::string& where) {
-  const auto& pbr = m.pbrMetallicRoughness;
-  std::vector<SlotRef> slots = {
-      {"baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord},
-      {"metallicRoughnessTexture", pbr.metallicRoughnessTexture.index,
-       pbr.metallicRoughnessTexture.texCoord},
-      {"normalTexture", m.normalTexture.index, m.normalTexture.texCoord},
-      {"occlusionTexture", m.occlusionTexture.index, m.occlusionTexture.texCoord},
-      {"emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord}};
-  const std::pair<const char*, std::vector<const char*>> extensionSlots[] = {
-      {"KHR_materials_sheen", {"sheenColorTexture", "sheenRoughnessTexture"}},
-      {"KHR_materials_specular", {"specularTexture", "specularColorTexture"}},
-      {"KHR_materials_clearcoat",
-       {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}}};
-  for (const auto& [extension, names] : extensionSlots) {
-    const auto x = m.extensions.find(extension);
-    if (x == m.extensions.end()) continue;
-    for (const char* name : names) {
-      if (!x->second.IsObject() || !x->second.Has(name)) continue;
-      const tinygltf::Value& t = x->second.Get(name);
-      const std::string at = fmt::format("{}: {} {}", where, extension, name);
-      slots.push_back({name, extensionIndex(t, "index", path, at).value_or(-1),
-                       extensionIndex(t, "texCoord", path, at).value_or(0)});
-    }
-  }
-  return slots;
-}
 
 namespace {
 
@@ -65,15 +36,18 @@ float extensionNumber(const tinygltf::Value& x, const char* name, float fallback
   return x.Has(name) ? numberWithin(x.Get(name), lo, hi, path, at + " " + name) : fallback;
 }
 
-// Three numbers of an extension's object (a color factor), each within [lo, hi].
-glm::vec3 extensionColor(const tinygltf::Value& x, const char* name, glm::vec3 fallback, double lo,
-                         double hi, const std::string& path, const std::string& at) {
+// N numbers of an extension's object (a color factor, an offset, a scale), each within
+// [lo, hi].
+template <int N>
+glm::vec<N, float> extensionVector(const tinygltf::Value& x, const char* name,
+                                   glm::vec<N, float> fallback, double lo, double hi,
+                                   const std::string& path, const std::string& at) {
   if (!x.Has(name)) return fallback;
   const tinygltf::Value& v = x.Get(name);
-  if (!v.IsArray() || v.ArrayLen() != 3)
-    fail(path, fmt::format("{} {}: not an array of 3 numbers", at, name));
-  glm::vec3 c;
-  for (int i = 0; i < 3; ++i)
+  if (!v.IsArray() || v.ArrayLen() != N)
+    fail(path, fmt::format("{} {}: not an array of {} numbers", at, name, N));
+  glm::vec<N, float> c;
+  for (int i = 0; i < N; ++i)
     c[i] = numberWithin(v.Get(static_cast<std::size_t>(i)), lo, hi, path,
                         fmt::format("{} {}[{}]", at, name, i));
   return c;
@@ -94,7 +68,80 @@ Material unlit(Material m) {
   return m;
 }
 
+// A texture info's KHR_texture_transform (`extensions`: its extensions object, or null), read
+// into `slot`: offset, rotation and scale (finite; the specification bounds none of them, ibl
+// refuses magnitudes past 1e6) and the texCoord that overrides the slot's.
+void readTextureTransform(const tinygltf::Value* extensions, const std::string& path,
+                          const std::string& at, SlotRef& slot) {
+  if (!extensions || !extensions->IsObject() || !extensions->Has("KHR_texture_transform")) return;
+  const tinygltf::Value& x = extensions->Get("KHR_texture_transform");
+  const std::string where = at + " KHR_texture_transform";
+  if (!x.IsObject()) fail(path, where + ": not an object");
+  constexpr double kLimit = 1e6;
+  slot.transform.offset =
+      extensionVector<2>(x, "offset", glm::vec2(0.0f), -kLimit, kLimit, path, where);
+  slot.transform.rotation = extensionNumber(x, "rotation", 0.0f, -kLimit, kLimit, path, where);
+  slot.transform.scale =
+      extensionVector<2>(x, "scale", glm::vec2(1.0f), -kLimit, kLimit, path, where);
+  if (const std::optional<int> texCoord = extensionIndex(x, "texCoord", path, where))
+    slot.texCoord = *texCoord;
+  slot.transformed = true;
+}
+
+// tinygltf's extension map of a core texture info as one object value.
+tinygltf::Value extensionsObject(const tinygltf::ExtensionMap& extensions) {
+  return tinygltf::Value(tinygltf::Value::Object(extensions.begin(), extensions.end()));
+}
+
 }  // namespace
+
+std::vector<SlotRef> materialSlots(const tinygltf::Material& m, const std::string& path,
+                                   const std::string& where) {
+  const auto& pbr = m.pbrMetallicRoughness;
+  const auto core = [&](const char* name, int index, int texCoord,
+                        const tinygltf::ExtensionMap& extensions) {
+    SlotRef slot;
+    slot.name = name;
+    slot.index = index;
+    slot.texCoord = texCoord;
+    const tinygltf::Value x = extensionsObject(extensions);
+    readTextureTransform(&x, path, fmt::format("{}: {}", where, name), slot);
+    return slot;
+  };
+  std::vector<SlotRef> slots = {
+      core("baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+           pbr.baseColorTexture.extensions),
+      core("metallicRoughnessTexture", pbr.metallicRoughnessTexture.index,
+           pbr.metallicRoughnessTexture.texCoord, pbr.metallicRoughnessTexture.extensions),
+      core("normalTexture", m.normalTexture.index, m.normalTexture.texCoord,
+           m.normalTexture.extensions),
+      core("occlusionTexture", m.occlusionTexture.index, m.occlusionTexture.texCoord,
+           m.occlusionTexture.extensions),
+      core("emissiveTexture", m.emissiveTexture.index, m.emissiveTexture.texCoord,
+           m.emissiveTexture.extensions)};
+  const std::pair<const char*, std::vector<const char*>> extensionSlots[] = {
+      {"KHR_materials_sheen", {"sheenColorTexture", "sheenRoughnessTexture"}},
+      {"KHR_materials_specular", {"specularTexture", "specularColorTexture"}},
+      {"KHR_materials_clearcoat",
+       {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}}};
+  for (const auto& [extension, names] : extensionSlots) {
+    const auto x = m.extensions.find(extension);
+    if (x == m.extensions.end()) continue;
+    for (const char* name : names) {
+      if (!x->second.IsObject() || !x->second.Has(name)) continue;
+      const tinygltf::Value& t = x->second.Get(name);
+      const std::string at = fmt::format("{}: {} {}", where, extension, name);
+      SlotRef slot;
+      slot.name = name;
+      slot.index = extensionIndex(t, "index", path, at).value_or(-1);
+      slot.texCoord = extensionIndex(t, "texCoord", path, at).value_or(0);
+      if (t.IsObject() && t.Has("extensions"))
+        readTextureTransform(&t.Get("extensions"), path, at, slot);
+      slots.push_back(std::move(slot));
+    }
+  }
+  return slots;
+}
 
 glm::vec3 GltfDocument::emissiveOf(const tinygltf::Material& m) {
   glm::vec3 e(0.0f);
@@ -116,7 +163,8 @@ void readExtensionFactors(const tinygltf::Material& m, const std::string& path,
   // sheen); the color's texture in RGB (sRGB), the roughness's in A.
   if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_sheen")) {
     const std::string at = where + ": KHR_materials_sheen";
-    mat.sheenColor = extensionColor(*x, "sheenColorFactor", glm::vec3(0.0f), 0.0, 1.0, path, at);
+    mat.sheenColor =
+        extensionVector<3>(*x, "sheenColorFactor", glm::vec3(0.0f), 0.0, 1.0, path, at);
     mat.sheenRoughness = extensionNumber(*x, "sheenRoughnessFactor", 0.0f, 0.0, 1.0, path, at);
   }
   // KHR_materials_ior: ior >= 1, or 0 (the specular-glossiness mode, an infinite index).
@@ -133,7 +181,7 @@ void readExtensionFactors(const tinygltf::Material& m, const std::string& path,
     const std::string at = where + ": KHR_materials_specular";
     mat.specular = extensionNumber(*x, "specularFactor", 1.0f, 0.0, 1.0, path, at);
     mat.specularColor =
-        extensionColor(*x, "specularColorFactor", glm::vec3(1.0f), 0.0, 1e6, path, at);
+        extensionVector<3>(*x, "specularColorFactor", glm::vec3(1.0f), 0.0, 1e6, path, at);
   }
   // KHR_materials_clearcoat: clearcoatFactor and clearcoatRoughnessFactor in [0, 1] (default 0:
   // no coat), the factor's texture in R, the roughness's in G (both linear); the coat's normal
@@ -163,6 +211,7 @@ std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& te
       } else if (slot.index >= 0 && !textures[static_cast<std::size_t>(slot.index)].empty()) {
         ref.index = slot.index;
         ref.texCoord = slot.texCoord;
+        ref.transform = slot.transform;
       }
       refs[slot.name] = ref;
     }

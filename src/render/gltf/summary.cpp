@@ -93,10 +93,12 @@ GltfSummary GltfDocument::describe() {
     info.emissive = emissiveOf(m);
     info.alphaMode = m.alphaMode.empty() ? "OPAQUE" : m.alphaMode;
     info.doubleSided = m.doubleSided;
-    for (const SlotRef& slot : materialSlots(m, path_, materialLabel(k)))
+    for (const SlotRef& slot : materialSlots(m, path_, materialLabel(k))) {
       if (slot.index >= 0 &&
           std::find(info.textures.begin(), info.textures.end(), slot.index) == info.textures.end())
         info.textures.push_back(slot.index);
+      if (slot.index >= 0 && slot.transformed) info.transformedSlots.push_back(slot.name);
+    }
     Material factors;
     readExtensionFactors(m, path_, materialLabel(k), factors);
     info.ior = factors.ior;
