@@ -1,5 +1,5 @@
 // A mesh's material in the viewer's fragment shaders (the scene's and the shadow maps'): its
-// textures and factors (set 1: MaterialUniforms in src/gpu/scene_upload.hpp), the draw's sphere
+// textures and factors (set 1: MaterialFactors in src/gpu/scene_upload.hpp), the draw's sphere
 // and pass (push constants, DrawConstants), and the alpha coverage of glTF's MASK and BLEND
 // modes. The including shader declares the inputs texCoord0 and texCoord1 first.
 #include "ibl/shared/material.h"
@@ -18,7 +18,7 @@ layout(set = 1, binding = kMaterialSpecularColor) uniform sampler2D specularColo
 layout(set = 1, binding = kMaterialClearcoat) uniform sampler2D clearcoatTexture;  // R
 layout(set = 1, binding = kMaterialClearcoatRoughness) uniform sampler2D clearcoatRoughnessTexture;
 layout(set = 1, binding = kMaterialClearcoatNormal) uniform sampler2D clearcoatNormalTexture;
-layout(std140, set = 1, binding = kMaterialUniforms) uniform Material {
+layout(std430, set = 1, binding = kMaterialFactors) readonly buffer Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
   vec4 scales;     // normal scale, occlusion strength, KHR_materials_ior's ior, the clear coat's
@@ -27,7 +27,6 @@ layout(std140, set = 1, binding = kMaterialUniforms) uniform Material {
   vec4 clearcoat;  // KHR_materials_clearcoat's factor and roughness
   vec4 sheen;      // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
-  uint textureMask;   // bit b: the texture at binding b is the material's (else white)
   uint texCoordMask;  // bit b: the texture at binding b reads TEXCOORD_1
   // KHR_texture_transform: binding b's UvTransform rows u and v at 2b and 2b + 1.
   vec4 uvTransforms[2 * 12];
@@ -38,21 +37,32 @@ layout(push_constant) uniform Draw {
   int scenePass;  // 0 the frame's only scene pass; with screen-space reflections 1 the lit frame
                   // (no area light drawn over the surfaces), 2 the pass that composes them
                   // (kFrameScreenReflection): ScenePass in src/gpu/scene_upload.hpp
+  // bit b: the texture at binding b is the material's (else white). Here, not with the factors:
+  // it decides where derivatives are taken (slotTexel), which needs a uniform condition that the
+  // helper invocations read too.
+  uint textureMask;
 } draw;
 
 // Whether the material has a texture at `binding` (MaterialBinding).
 bool hasTexture(int binding) {
-  return (material.textureMask & (1u << uint(binding))) != 0u;
+  return (draw.textureMask & (1u << uint(binding))) != 0u;
 }
 
-// The UV at which the texture at `binding` reads this fragment: its UV set's (glTF texCoord),
-// through its KHR_texture_transform.
-vec2 slotUv(int binding) {
-  vec2 uv = (material.texCoordMask & (1u << uint(binding))) != 0u ? texCoord1 : texCoord0;
-  UvTransform t;
-  t.u = material.uvTransforms[2 * binding].xyz;
-  t.v = material.uvTransforms[2 * binding + 1].xyz;
-  return transformUv(t, uv);
+// The texel of `t`, the texture at `binding`, for this fragment: at its UV set's coordinates
+// (glTF texCoord) through its KHR_texture_transform; white (which multiplies nothing) where the
+// material has none. The screen derivatives are the UV set's, carried through the map's linear
+// part and passed explicitly: an implicit one would difference the map across the pixel quad, and
+// lavapipe reads a storage buffer as zeros in the quad's helper invocations.
+vec4 slotTexel(sampler2D t, int binding) {
+  if (!hasTexture(binding)) return vec4(1.0);
+  vec2 dx0 = dFdx(texCoord0), dy0 = dFdy(texCoord0), dx1 = dFdx(texCoord1), dy1 = dFdy(texCoord1);
+  bool second = (material.texCoordMask & (1u << uint(binding))) != 0u;
+  UvTransform m;
+  m.u = material.uvTransforms[2 * binding].xyz;
+  m.v = material.uvTransforms[2 * binding + 1].xyz;
+  mat2 linear = mat2(m.u.x, m.v.x, m.u.y, m.v.y);  // columns: d(uv')/du, d(uv')/dv
+  return textureGrad(t, transformUv(m, second ? texCoord1 : texCoord0),
+                     linear * (second ? dx1 : dx0), linear * (second ? dy1 : dy0));
 }
 
 // A uniform number in [0, 1) per pixel and surface depth: BLEND's stochastic threshold (hashed
@@ -67,12 +77,6 @@ float blendThreshold() {
   v ^= v >> 16u;
   v.x += v.y * v.z;
   return float(v.x >> 8u) * (1.0 / 16777216.0);
-}
-
-// The texel of `t`, the texture at `binding`, for this fragment; white (which multiplies
-// nothing) where the material has none.
-vec4 slotTexel(sampler2D t, int binding) {
-  return hasTexture(binding) ? texture(t, slotUv(binding)) : vec4(1.0);
 }
 
 // Whether the material covers this fragment: its alpha (factor times the base color texture's)

@@ -35,15 +35,15 @@ VkDescriptorSetLayout createSetLayout(VkDevice device,
   return layout;
 }
 
-// Set 1's layout: a combined image sampler per MaterialBinding and the uniform buffer of the
-// factors (kMaterialUniforms), read by the fragment shaders.
+// Set 1's layout: a combined image sampler per MaterialBinding and the storage buffer of the
+// factors (kMaterialFactors), read by the fragment shaders.
 std::vector<VkDescriptorSetLayoutBinding> materialSetBindings() {
-  static_assert(shared::kMaterialUniforms == kMaterialTextures, "the buffer after the textures");
+  static_assert(shared::kMaterialFactors == kMaterialTextures, "the buffer after the textures");
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (std::uint32_t b = 0; b < kMaterialTextures; ++b)
     bindings.push_back(
         {b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-  bindings.push_back({kMaterialTextures, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+  bindings.push_back({kMaterialTextures, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
                       VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
   return bindings;
 }

@@ -282,27 +282,28 @@ VkSampler SceneUpload::samplerFor(const TextureSampler& kind) {
 }
 
 void SceneUpload::uploadMaterials(const Scene& scene) {
-  // Their uniforms, and per texture slot the scene's texture (sRGB for base color, emission,
+  // Their factors, and per texture slot the scene's texture (sRGB for base color, emission,
   // sheen color and specular color) and its sampler, or white.
   const std::vector<Material> sceneMaterials =
       scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
   std::vector<std::array<VkDescriptorImageInfo, kMaterialTextures>> materialImages;
   const auto readable = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   for (const Material& mat : sceneMaterials) {
-    MaterialUniforms mu{};
-    mu.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
-    mu.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
-    mu.scales =
+    MaterialFactors factors{};
+    factors.baseColorMetallic = glm::vec4(mat.baseColor, mat.metallic);
+    factors.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
+    factors.scales =
         glm::vec4(mat.normalScale, mat.occlusionStrength, mat.ior, mat.clearcoatNormalScale);
-    mu.alpha =
+    factors.alpha =
         glm::vec4(mat.baseColorAlpha, static_cast<float>(mat.alphaMode), mat.alphaCutoff, 0.0f);
-    mu.clearcoat = glm::vec4(mat.clearcoat, mat.clearcoatRoughness, 0.0f, 0.0f);
-    mu.sheen = glm::vec4(mat.sheenColor, mat.sheenRoughness);
-    mu.specular = glm::vec4(mat.specularColor, mat.specular);
+    factors.clearcoat = glm::vec4(mat.clearcoat, mat.clearcoatRoughness, 0.0f, 0.0f);
+    factors.sheen = glm::vec4(mat.sheenColor, mat.sheenRoughness);
+    factors.specular = glm::vec4(mat.specularColor, mat.specular);
     if (mat.sheenColor != glm::vec3(0.0f)) sceneHasSheen_ = true;
     static_assert(Material::kTextureSlots == kMaterialTextures, "MaterialBinding's order");
     const auto slots = mat.textureSlots();
     std::array<VkDescriptorImageInfo, kMaterialTextures> images{};
+    std::uint32_t textureMask = 0;
     for (std::size_t b = 0; b < kMaterialTextures; ++b) {
       const int i = slots[b].index;
       const auto slot = static_cast<MaterialBinding>(b);
@@ -311,8 +312,8 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
                         slot == MaterialBinding::SpecularColor;
       const TextureTransform& t = slots[b].transform;
       const shared::UvTransform uv = shared::uvTransformOf(t.offset, t.rotation, t.scale);
-      mu.uvTransforms[2 * b] = glm::vec4(uv.u, 0.0f);
-      mu.uvTransforms[2 * b + 1] = glm::vec4(uv.v, 0.0f);
+      factors.uvTransforms[2 * b] = glm::vec4(uv.u, 0.0f);
+      factors.uvTransforms[2 * b + 1] = glm::vec4(uv.v, 0.0f);
       const bool valid = i >= 0 && static_cast<std::size_t>(i) < scene.textures.size() &&
                          !scene.textures[i].empty();
       images[b] = {samplerFor(TextureSampler{}), frame_.white().view(), readable};
@@ -320,11 +321,12 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
       auto& image = textures_[{i, srgb}];
       if (!image) image = uploadTexture(context_, scene.textures[i], srgb);
       images[b] = {samplerFor(scene.textures[i].sampler), image->view(), readable};
-      mu.textureMask |= 1u << b;
-      if (slots[b].texCoord == 1) mu.texCoordMask |= 1u << b;
+      textureMask |= 1u << b;
+      if (slots[b].texCoord == 1) factors.texCoordMask |= 1u << b;
     }
+    textureMasks_.push_back(textureMask);
     materialBuffers_.push_back(
-        std::make_unique<Buffer>(Buffer::of(context_, std::vector<MaterialUniforms>{mu})));
+        std::make_unique<Buffer>(Buffer::of(context_, std::vector<MaterialFactors>{factors})));
     materialImages.push_back(images);
   }
   // Their sets.
@@ -332,7 +334,7 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
   const std::array<VkDescriptorPoolSize, 2> sizes{
       VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                            kMaterialTextures * materialCount},
-      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, materialCount}};
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, materialCount}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = materialCount;
   poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
@@ -356,12 +358,12 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
       writes.push_back(
           imageWrite(materialSets_[m], static_cast<std::uint32_t>(b), &materialImages[m][b]));
     bufferInfos.push_back(
-        {static_cast<VkBuffer>(materialBuffers_[m]->handle()), 0, sizeof(MaterialUniforms)});
+        {static_cast<VkBuffer>(materialBuffers_[m]->handle()), 0, sizeof(MaterialFactors)});
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = materialSets_[m];
     w.dstBinding = kMaterialTextures;
     w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     w.pBufferInfo = &bufferInfos.back();
     writes.push_back(w);
   }
@@ -511,7 +513,7 @@ void SceneUpload::drawMeshes(VkCommandBuffer cmd, VkPipelineLayout layout, int l
   for (const DrawMesh& m : meshes_) {
     const auto mi = static_cast<std::size_t>(
         std::clamp(m.material, 0, static_cast<int>(materialBuffers_.size()) - 1));
-    const DrawConstants draw{m.sphere, layer, pass};
+    const DrawConstants draw{m.sphere, layer, pass, textureMasks_[mi]};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &materialSets_[mi],
                             0, nullptr);
     vkCmdPushConstants(cmd, layout, kDrawStages, 0, sizeof(draw), &draw);

@@ -62,9 +62,11 @@ inline constexpr std::uint32_t kMaterialTextures =
 inline constexpr VkShaderStageFlags kDrawStages =
     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
 
-// A material's factors in the uniform buffer of its set (binding kMaterialUniforms; std140, as
-// the block Material in shaders/view/material.glsl reads it).
-struct MaterialUniforms {
+// A material's factors in the storage buffer of its set (binding kMaterialFactors; std430, as the
+// block Material in shaders/view/material.glsl reads it). Not a uniform buffer: with one, a frame
+// of the sphere grid took 3.0 s on lavapipe against 0.5 s, its time spent allocating, as a driver
+// does that specializes the shader on each material's uniform values (docs/materials.md).
+struct MaterialFactors {
   glm::vec4 baseColorMetallic, emissiveRoughness;
   // normal scale, occlusion strength, KHR_materials_ior's ior, the coat's normal scale
   glm::vec4 scales;
@@ -72,22 +74,25 @@ struct MaterialUniforms {
   glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness, 0, 0
   glm::vec4 sheen;      // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   glm::vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
-  std::uint32_t textureMask;   // the textures the material has, bit b for set 1 binding b
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
-  std::uint32_t padding[2];
+  std::uint32_t padding[3];
   // KHR_texture_transform: binding b's rows u and v (shared::UvTransform) at 2b and 2b + 1.
   glm::vec4 uvTransforms[2 * kMaterialTextures];
 };
-static_assert(offsetof(MaterialUniforms, uvTransforms) == 128 &&
-                  sizeof(MaterialUniforms) == 128 + 32 * kMaterialTextures,
-              "std140: the rows' array starts on 16 bytes");
+static_assert(offsetof(MaterialFactors, uvTransforms) == 128 &&
+                  sizeof(MaterialFactors) == 128 + 32 * kMaterialTextures,
+              "std430: the rows' array starts on 16 bytes");
 
-// The push constants of a draw (shaders/view/material.glsl): the sphere the mesh bounds, and
-// the pass it is drawn for.
+// The push constants of a draw (shaders/view/material.glsl): the sphere the mesh bounds, the
+// pass it is drawn for, and which textures its material has. The mask is here, not with the
+// factors: it decides where the shader takes screen derivatives, which needs a condition that is
+// uniform and that the pixel quad's helper invocations read too (lavapipe reads a storage buffer
+// as zeros there).
 struct DrawConstants {
-  glm::vec4 sphere;          // center, radius (0: the mesh is not a sphere's proxy)
-  std::int32_t shadowLayer;  // the shadow maps' pass: the layer drawn (view/shadow.vert)
-  std::int32_t scenePass;    // the scene pass's part: ScenePass
+  glm::vec4 sphere;           // center, radius (0: the mesh is not a sphere's proxy)
+  std::int32_t shadowLayer;   // the shadow maps' pass: the layer drawn (view/shadow.vert)
+  std::int32_t scenePass;     // the scene pass's part: ScenePass
+  std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
 };
 // Which of a frame's scene passes draws (view/material.glsl): the only one; with screen-space
 // reflections, the lit frame (the surfaces without the area lights in front of them: what the
@@ -149,7 +154,8 @@ class SceneUpload {
     glm::vec4 sphere{0.0f};  // center, radius of the sphere this mesh bounds (radius 0: none)
   };
   std::vector<DrawMesh> meshes_;
-  std::vector<std::unique_ptr<Buffer>> materialBuffers_;  // MaterialUniforms, one per material
+  std::vector<std::unique_ptr<Buffer>> materialBuffers_;  // MaterialFactors, one per material
+  std::vector<std::uint32_t> textureMasks_;               // DrawConstants::textureMask of each
   // The scene's textures with mip chains, sRGB or linear as each material slot reads them
   // (a texture used both ways is uploaded twice); the frame set's white stands in for none.
   std::map<std::pair<int, bool>, std::unique_ptr<DeviceImage>> textures_;

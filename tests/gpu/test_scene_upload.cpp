@@ -14,6 +14,7 @@
 #include "ibl/gpu/viewer.hpp"
 #include "ibl/io/ies.hpp"
 #include "ibl/render/gltf.hpp"
+#include "ibl/shared/material.h"
 #include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
 #include "support/light_scenes.hpp"
@@ -242,6 +243,53 @@ TEST(Viewer, TextureTransformsMatchTheCpu) {
   // viewer's transforms makes it 91 %.
   EXPECT_LT(c.meanRelative, 4e-3);
   EXPECT_LT(c.coverageMismatch, 5e-3);
+}
+
+// A transform's screen derivatives: a floor seen at a glance minifies a checker texture (mip
+// levels, read at the derivatives of the transformed UVs) through a transform that scales it 6 x
+// 4 and turns it, and is drawn again with the same map applied to its vertices' UVs instead (the
+// map is affine: the same UVs). The two frames agree; derivatives left untransformed would pick
+// other mip levels.
+TEST(Viewer, TextureTransformEqualsTheSameMapInTheUvs) {
+  Texture checker;
+  checker.width = checker.height = 64;
+  auto rgba = std::make_shared<std::vector<std::uint8_t>>();
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool dark = ((x / 4) + (y / 4)) % 2 == 0;
+      rgba->insert(rgba->end(), {static_cast<std::uint8_t>(dark ? 20 : 240),
+                                 static_cast<std::uint8_t>(dark ? 60 : 200), 120, 255});
+    }
+  checker.rgba = rgba;
+  Material m;
+  m.metallic = 0.0f;
+  m.baseColorTexture.index = 0;
+  m.baseColorTexture.transform = {{0.2f, 0.1f}, 0.3f, {6.0f, 4.0f}};
+  Mesh floor;
+  floor.positions = {{-4, -1, -4}, {4, -1, -4}, {4, -1, 4}, {-4, -1, 4}};
+  floor.normals.assign(4, glm::vec3(0, 1, 0));
+  floor.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  floor.indices = {0, 2, 1, 0, 3, 2};
+  Scene transformed;
+  transformed.textures = {checker};
+  transformed.materials = {m};
+  transformed.meshes = {floor};
+  Scene baked = transformed;
+  const TextureTransform& t = m.baseColorTexture.transform;
+  for (glm::vec2& uv : baked.meshes[0].uvs)
+    uv = shared::transformUv(shared::uvTransformOf(t.offset, t.rotation, t.scale), uv);
+  baked.materials[0].baseColorTexture.transform = TextureTransform{};
+  Camera camera = lookingAt({0.0f, 0.2f, 4.5f}, 96, 64);
+  camera.at = glm::vec3(0.0f, -1.0f, 0.0f);
+  RenderOptions o;
+  o.spp = 1;
+  gpu::SceneRenderer a(graphicsContext(), transformed, sunsetBake().bake, sunsetBake().options);
+  gpu::SceneRenderer b(graphicsContext(), baked, sunsetBake().bake, sunsetBake().options);
+  const Comparison c = compare(a.render(camera, o), b.render(camera, o));
+  std::printf("transform against the same map in the UVs: mean relative difference %.6f\n",
+              c.meanRelative);
+  EXPECT_LT(c.meanRelative, 1e-4);
+  EXPECT_EQ(c.coverageMismatch, 0.0);
 }
 
 TEST(Viewer, TexturedAndCompressedMeshesMatchTheCpu) {

@@ -1,7 +1,7 @@
 // The viewer's descriptor bindings are numbered once (include/ibl/shared/view_bindings.h), and
 // the shaders use the names: each number appears once, from 0 up, as many as the C++
 // enumerations count; frame.glsl and material.glsl declare each name exactly once (and the
-// material's uniform buffer after its textures); no shader
+// material's factors after its textures); no shader
 // that includes them binds set 0 or 1 by a literal number.
 #include <filesystem>
 #include <map>
@@ -80,9 +80,9 @@ TEST(ViewBindings, ShadersDeclareEachNameOnce) {
   for (const auto& [name, number] : declaredNumbers("IBL_MATERIAL_BINDING"))
     EXPECT_EQ(material.count(name) ? material.at(name) : 0, 1) << name << " (" << number << ")";
   EXPECT_EQ(frame.size(), static_cast<std::size_t>(shared::FrameBinding::Count));
-  // The textures, then the material's uniform buffer (kMaterialUniforms) right after them.
-  EXPECT_EQ(material.count("Uniforms") ? material.at("Uniforms") : 0, 1);
-  EXPECT_EQ(shared::kMaterialUniforms, static_cast<int>(shared::MaterialBinding::Count));
+  // The textures, then the material's factors (kMaterialFactors) right after them.
+  EXPECT_EQ(material.count("Factors") ? material.at("Factors") : 0, 1);
+  EXPECT_EQ(shared::kMaterialFactors, static_cast<int>(shared::MaterialBinding::Count));
   EXPECT_EQ(material.size(), static_cast<std::size_t>(shared::MaterialBinding::Count) + 1);
   // No literal numbers in the sets the names cover, in the shaders of the frame set (the
   // window's tone map and the bloom have sets of their own).

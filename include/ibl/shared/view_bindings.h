@@ -50,7 +50,7 @@ Count
 #endif
 #undef IBL_FRAME_BINDING
 
-// Set 1: a material's texture slots; bit b of MaterialUniforms::textureMask (src/gpu/
+// Set 1: a material's texture slots; bit b of MaterialFactors::textureMask (src/gpu/
 // scene_upload.hpp) is slot b's.
 #ifdef __cplusplus
 #define IBL_MATERIAL_BINDING(name, number) name = number,
@@ -75,9 +75,9 @@ Count
 };
 #endif
 #undef IBL_MATERIAL_BINDING
-// After the textures: the material's factors and UV transforms, a uniform buffer
-// (MaterialUniforms in src/gpu/scene_upload.hpp).
-const int kMaterialUniforms = 12;
+// After the textures: the material's factors and UV transforms, a storage buffer
+// (MaterialFactors in src/gpu/scene_upload.hpp).
+const int kMaterialFactors = 12;
 // clang-format on
 
 IBL_END
