@@ -33,7 +33,7 @@ struct OptionInfo {
   bool help = false;       // -h,--help (and --version)
 };
 
-std::vector<std::string> split(const std::string& text, char separator) {
+std::vector<std::string> splitKeepingEmpty(const std::string& text, char separator) {
   std::vector<std::string> parts;
   std::string part;
   std::istringstream in(text);
@@ -67,7 +67,7 @@ OptionInfo describe(const CLI::Option& o) {
     const std::size_t open = rest.find('{');
     const std::size_t close = rest.find('}', open == std::string::npos ? 0 : open);
     if (open != std::string::npos && close != std::string::npos) {
-      for (std::string v : split(rest.substr(open + 1, close - open - 1), ',')) {
+      for (std::string v : splitKeepingEmpty(rest.substr(open + 1, close - open - 1), ',')) {
         v = v.substr(0, v.find("->"));
         if (!v.empty()) info.values.push_back(v);
       }
@@ -169,7 +169,7 @@ std::string roffText(const std::string& text) {
       out += c;
   }
   std::string guarded;
-  for (const std::string& line : split(out, '\n')) {
+  for (const std::string& line : splitKeepingEmpty(out, '\n')) {
     if (!line.empty() && (line.front() == '.' || line.front() == '\'')) guarded += "\\&";
     guarded += line + "\n";
   }

@@ -97,7 +97,7 @@ std::string oneOf(const std::vector<std::string>& items) {
   return text;
 }
 
-std::vector<std::string> split(const std::string& text, char separator) {
+std::vector<std::string> splitNonEmpty(const std::string& text, char separator) {
   std::vector<std::string> items;
   std::size_t begin = 0;
   while (begin <= text.size()) {
@@ -122,7 +122,7 @@ std::string expectedValue(const CLI::Option* option) {
   if (check.empty()) return kind;
   if (check.rfind("a ", 0) == 0) return check;
   if (check.size() > 2 && check.front() == '{' && check.back() == '}')  // a choice
-    return oneOf(split(check.substr(1, check.size() - 2), ','));
+    return oneOf(splitNonEmpty(check.substr(1, check.size() - 2), ','));
   if (std::isdigit(static_cast<unsigned char>(check[0])) || check[0] == '-')
     return fmt::format("{} from {}", kind, check);
   if (check == "POSITIVE") return "a positive number";
@@ -201,7 +201,7 @@ std::string usageErrorMessage(const CLI::App& app, const CLI::ParseError& e,
   }
   if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
     // "The following argument(s) was/were not expected: A B".
-    const std::vector<std::string> extras = split(what.substr(what.find(": ") + 2), ' ');
+    const std::vector<std::string> extras = splitNonEmpty(what.substr(what.find(": ") + 2), ' ');
     for (const std::string& arg : extras)
       if (arg.size() > 1 && arg[0] == '-') return unknownOption(arg, command, app);
     if (&command == &app && !extras.empty()) return missingCommand(app, {extras.front()});
@@ -221,7 +221,7 @@ std::string usageErrorMessage(const CLI::App& app, const CLI::ParseError& e,
   }
   if (dynamic_cast<const CLI::ValidationError*>(&e) &&
       std::regex_match(what, m, std::regex("(\\S+): (.*) not in \\{(.*)\\}")))
-    return fmt::format("{}: '{}' is not {}", m[1].str(), m[2].str(), oneOf(split(m[3].str(), ',')));
+    return fmt::format("{}: '{}' is not {}", m[1].str(), m[2].str(), oneOf(splitNonEmpty(m[3].str(), ',')));
   if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
     std::string name;
     if (std::regex_search(what, m, std::regex("^(-\\S+?):")) ||

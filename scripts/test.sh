@@ -14,7 +14,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="$(nproc)"
-# Each phase's start, in seconds since the script began (the whole script must stay under 45
+# Each phase's start, in seconds since the script began (the whole script must stay under 50
 # minutes on CI's 2 cores).
 phase() { echo "== $1 (at ${SECONDS} s)" >&2; }
 
