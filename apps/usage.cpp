@@ -221,7 +221,8 @@ std::string usageErrorMessage(const CLI::App& app, const CLI::ParseError& e,
   }
   if (dynamic_cast<const CLI::ValidationError*>(&e) &&
       std::regex_match(what, m, std::regex("(\\S+): (.*) not in \\{(.*)\\}")))
-    return fmt::format("{}: '{}' is not {}", m[1].str(), m[2].str(), oneOf(splitNonEmpty(m[3].str(), ',')));
+    return fmt::format("{}: '{}' is not {}", m[1].str(), m[2].str(),
+                       oneOf(splitNonEmpty(m[3].str(), ',')));
   if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
     std::string name;
     if (std::regex_search(what, m, std::regex("^(-\\S+?):")) ||
