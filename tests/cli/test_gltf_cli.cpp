@@ -45,9 +45,10 @@ std::string writeHostileCount(const TempDir& dir, std::uint64_t count) {
 
 // The command run with little memory: 256 MiB of address space (the command itself takes about
 // 150 MiB before it reads anything). Under AddressSanitizer, whose shadow memory takes terabytes
-// of address space, each allocation is bounded instead (64 MiB).
+// of address space, each allocation is bounded instead (64 MiB). IBL_CLI_ASAN: the command is
+// instrumented (tests/CMakeLists.txt), whether or not this file is.
 CliRun runIblWithLittleMemory(const std::string& args) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(IBL_CLI_ASAN)
   return runCommand(
       "ASAN_OPTIONS=\"${ASAN_OPTIONS:+$ASAN_OPTIONS:}max_allocation_size_mb=64:"
       "allocator_may_return_null=1\" " +
