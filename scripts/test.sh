@@ -43,14 +43,14 @@ phase "AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIBL_SANITIZE=ON \
   -DIBL_WERROR=ON -DIBL_BUILD_BENCH=OFF >/dev/null
 ninja -C build-asan ibl_cli ibl_tests ibl_gpu_tests
-asan_excluded="$(sed -e 's/#.*//' -e '/^[[:space:]]*$/d' -e 's/[[:space:]]*$//' -e 's/\./\\./g' \
-  tests/asan_excluded.txt | paste -sd '|')"
+mapfile -t excluded < <(sed -e 's/#.*//' -e 's/[[:space:]]*$//' -e '/^$/d' tests/asan_excluded.txt)
 # A name the suite no longer has would leave out nothing: the list must stay true.
 listed="$(ctest --test-dir build-asan -N | sed -n 's/^ *Test *#[0-9]*: //p')"
-for name in ${asan_excluded//|/ }; do
-  grep -qxF "${name//\\/}" <<<"$listed" || { echo "tests/asan_excluded.txt: no test ${name//\\/}" >&2; exit 1; }
+for name in "${excluded[@]}"; do
+  grep -qxF "$name" <<<"$listed" || { echo "tests/asan_excluded.txt: no test $name" >&2; exit 1; }
 done
-ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "^(${asan_excluded})\$"
+ctest --test-dir build-asan --output-on-failure -j "$jobs" \
+  -E "^($(printf '%s\n' "${excluded[@]}" | sed 's/\./\\./g' | paste -sd '|'))\$"
 
 phase "ThreadSanitizer build and tests"
 # The suites that run the library's own parallel code (oneTBB, through include/ibl/core/
