@@ -17,7 +17,8 @@ layout(std430, binding = 6) readonly buffer EnvironmentLevels {
   uvec2 levels[];
 };
 // The environment's row CDF (6n), its rows' column CDFs (6n^2), the albedo tables (2 x 33^2),
-// then each IES light's intensity table (kIesRows x kIesColumns).
+// the Charlie table (ibl/shared/charlie_table.h), then each IES light's intensity table
+// (kIesRows x kIesColumns).
 layout(std430, binding = 7) readonly buffer Tables {
   float tables[];
 };
@@ -52,6 +53,15 @@ float albedoTableNode(int table, int index) {
 #include "ibl/shared/path_brdf.h"
 #include "env/cube_buffer.glsl"
 
+// The sheen's exact Lambda reads its table after the albedo tables (brdf.h declares this).
+int charlieTableStart() {
+  int n = environmentSize();
+  return 6 * n + 6 * n * n + 2 * 33 * 33;
+}
+float charlieTableEntry(int k) {
+  return tables[charlieTableStart() + k];
+}
+
 // --- Lights ---
 
 // Light i's record (ibl/shared/light_record.h; uploadSceneBuffers in src/gpu/scene_buffers.cpp).
@@ -73,8 +83,8 @@ float iesIntensity(ShadingLight l, float table, vec3 w) {
   vec2 p = vec2(angles.y, angles.x) / 0.5;
   ivec2 i = min(ivec2(p), ivec2(kIesColumns - 2, kIesRows - 2));
   vec2 f = p - vec2(i);
-  int n = environmentSize();
-  int base = 6 * n + 6 * n * n + 2 * 33 * 33 + int(table) * kIesRows * kIesColumns;
+  int base = charlieTableStart() + kCharlieTableRoughnesses * kCharlieTableAngles +
+             int(table) * kIesRows * kIesColumns;
   int a = base + i.y * kIesColumns + i.x;
   return mix(mix(tables[a], tables[a + 1], f.x),
              mix(tables[a + kIesColumns], tables[a + kIesColumns + 1], f.x), f.y);

@@ -90,6 +90,11 @@ layout(set = 0, binding = kFrameProbeIrradianceMaps) uniform samplerCubeArray pr
 // table (R: the lobe's albedo E at (n.v, sheen roughness)); 1 x 1 black when the bake has none.
 layout(set = 0, binding = kFrameSheenMap) uniform samplerCube sheenMap;
 layout(set = 0, binding = kFrameSheenDfgLut) uniform sampler2D sheenDfgLut;
+// The table of the Charlie microsurface's projected area (ibl/shared/charlie_table.h), read by
+// the sheen's visibility (charlieTableEntry in view/shading.glsl).
+layout(std430, set = 0, binding = kFrameCharlieTable) readonly buffer CharlieTable {
+  float charlieTable[];
+};
 // The lights' shadows (ShadowPass in src/gpu/shadow_pass.cpp): per light a caster, five
 // vec4 ((kind, first layer, layer count, size), light position, view origin, view forward,
 // cascade splits), then per layer four ((origin, perspective), (right, scale), (up, near),

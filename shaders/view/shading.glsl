@@ -10,6 +10,11 @@
 #include "ibl/shared/split_sum.h"
 #include "ibl/shared/screen_space_reflections.h"
 
+// The sheen's exact Lambda reads its table from the frame's buffer (brdf.h declares this).
+float charlieTableEntry(int k) {
+  return charlieTable[k];
+}
+
 // Specialization constants (SceneRenderer::Impl::scenePipeline): whether the lights cast shadows
 // and whether area lights go through LTCs. The pipeline of each variant has only its own code.
 layout(constant_id = 0) const bool kCastShadows = false;

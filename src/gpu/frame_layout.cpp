@@ -25,6 +25,7 @@ VkDescriptorType descriptorTypeOf(FrameBinding binding) {
       return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     case FrameBinding::Lights:
     case FrameBinding::Probes:
+    case FrameBinding::CharlieTable:
     case FrameBinding::ShadowRecords:
     case FrameBinding::ShadowDepths:
     case FrameBinding::LightClusters:

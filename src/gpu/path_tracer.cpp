@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -17,6 +18,7 @@
 #include "gpu/scene_buffers.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/math/color.hpp"
+#include "ibl/shared/charlie_table.h"
 #include "render/path_tracer.hpp"
 
 namespace ibl::gpu {
@@ -64,7 +66,8 @@ PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& b
   r.parameters.offsets = r.scene.offsets;
   r.parameters.offsets2 = r.scene.offsets2;
   const std::vector<float>& iesTables = r.scene.iesTables;
-  // The environment: level 0 of the source cube, its sampling tables, the albedo tables.
+  // The environment: level 0 of the source cube, its sampling tables, the albedo tables, the
+  // Charlie table (the sheen's exact Lambda).
   const auto& level = bake.source.levels[0];
   const int n = level[0].width;
   r.parameters.counts.w = static_cast<std::uint32_t>(n);
@@ -81,6 +84,8 @@ PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& b
   for (double c : environment.columnCdf()) tableData.push_back(static_cast<float>(c));
   // The albedo tables are those of the render's sheen visibility: both are uploaded by reset().
   tableData.resize(tableData.size() + 2 * shared::kAlbedoTableNodes * shared::kAlbedoTableNodes);
+  tableData.insert(tableData.end(), std::begin(shared::kCharlieProjectedArea),
+                   std::end(shared::kCharlieProjectedArea));
   r.iesFloats = iesTables.size();
   tableData.insert(tableData.end(), iesTables.begin(), iesTables.end());
   r.tables = std::make_unique<Buffer>(Buffer::of(context, tableData));
@@ -148,7 +153,8 @@ void PathTracer::reset(const Camera& camera, const RenderOptions& o) {
     constexpr std::size_t kNodes =
         std::size_t{shared::kAlbedoTableNodes} * shared::kAlbedoTableNodes;
     std::vector<float>& all = r.tableHost;
-    const auto envFloats = static_cast<std::ptrdiff_t>(all.size() - r.iesFloats - 2 * kNodes);
+    const auto envFloats = static_cast<std::ptrdiff_t>(
+        all.size() - r.iesFloats - std::size(shared::kCharlieProjectedArea) - 2 * kNodes);
     std::copy(albedo.ggx, albedo.ggx + kNodes, all.begin() + envFloats);
     std::copy(albedo.sheen, albedo.sheen + kNodes,
               all.begin() + envFloats + static_cast<std::ptrdiff_t>(kNodes));

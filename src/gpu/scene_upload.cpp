@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <numbers>
 #include <span>
 
@@ -16,6 +17,7 @@
 #include "ibl/math/color.hpp"
 #include "ibl/render/ltc.hpp"
 #include "ibl/render/renderer.hpp"
+#include "ibl/shared/charlie_table.h"
 #include "ibl/shared/material.h"
 
 namespace ibl::gpu {
@@ -254,6 +256,9 @@ SceneUpload::SceneUpload(Context& context, FrameSet& frame, const Scene& scene,
   uploadBake(bake, bakeOptions);
   uploadProbes(probes, bake);
   uploadLights(scene.lights);
+  charlieTable_ = std::make_unique<Buffer>(
+      Buffer::of(context_, std::vector<float>(std::begin(shared::kCharlieProjectedArea),
+                                              std::end(shared::kCharlieProjectedArea))));
   writeBakeBindings();
   writeOtherBindings();
 }
@@ -506,6 +511,7 @@ void SceneUpload::writeOtherBindings() const {
   frame_.writeImage(FrameBinding::ProbeIrradianceMaps, cube, probeIrradiance_->view());
   frame_.writeBuffer(FrameBinding::Lights, *lightsBuffer_);
   frame_.writeBuffer(FrameBinding::Probes, *probesBuffer_);
+  frame_.writeBuffer(FrameBinding::CharlieTable, *charlieTable_);
 }
 
 void SceneUpload::drawMeshes(VkCommandBuffer cmd, VkPipelineLayout layout, int layer,

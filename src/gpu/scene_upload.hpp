@@ -166,7 +166,8 @@ class SceneUpload {
   std::unique_ptr<DeviceImage> specular_, irradiance_, source_, dfg_;
   // The sheen chain and its table (1 x 1 black when the bake has none).
   std::unique_ptr<DeviceImage> sheen_, sheenDfg_;
-  bool sceneHasSheen_ = false;  // a material has a sheen: every bake must bring one
+  std::unique_ptr<Buffer> charlieTable_;  // shared::kCharlieProjectedArea, for the sheen's Lambda
+  bool sceneHasSheen_ = false;            // a material has a sheen: every bake must bring one
   SheenVisibility sheenVisibility_ = SheenVisibility::Charlie;  // the bake's sheen table's
   float specularMaxLod_ = 0.0f, skyboxMaxLod_ = 0.0f;
   bool frostbiteMapping_ = false;

@@ -56,14 +56,15 @@ TEST(FrameLayout, SetBindsEachNameOnce) {
   for (std::uint32_t b = 0; b < count; ++b) EXPECT_EQ(seen[b], 1) << "binding " << b;
 }
 
-// frame.glsl: the Frame block is a uniform buffer, Lights, Probes, ShadowRecords, ShadowDepths,
-// LightClusters and VolumeProbes are buffers, the rest samplers; the vertex shaders read the block
-// and the shadow records (view/shadow.vert), the fragment shaders and the irradiance volume's
-// update (view/volume_trace.comp) every binding.
+// frame.glsl: the Frame block is a uniform buffer, Lights, Probes, CharlieTable, ShadowRecords,
+// ShadowDepths, LightClusters and VolumeProbes are buffers, the rest samplers; the vertex shaders
+// read the block and the shadow records (view/shadow.vert), the fragment shaders and the irradiance
+// volume's update (view/volume_trace.comp) every binding.
 TEST(FrameLayout, SetTypesAndStagesFollowFrameGlsl) {
-  const std::vector<FrameBinding> buffers{FrameBinding::Lights,        FrameBinding::Probes,
-                                          FrameBinding::ShadowRecords, FrameBinding::ShadowDepths,
-                                          FrameBinding::LightClusters, FrameBinding::VolumeProbes};
+  const std::vector<FrameBinding> buffers{FrameBinding::Lights,       FrameBinding::Probes,
+                                          FrameBinding::CharlieTable, FrameBinding::ShadowRecords,
+                                          FrameBinding::ShadowDepths, FrameBinding::LightClusters,
+                                          FrameBinding::VolumeProbes};
   for (const VkDescriptorSetLayoutBinding& b : gpu::frameSetBindings()) {
     const auto name = static_cast<FrameBinding>(b.binding);
     bool buffer = false;

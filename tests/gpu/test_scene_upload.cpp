@@ -119,6 +119,14 @@ TEST(Viewer, SheenMatchesTheCpu) {
   const Comparison lit = renderBoth(scene, camera, o, 0.0f, sheenBake);
   std::printf("sheen sphere and a point light, viewer vs CPU: %.2e\n", lit.meanRelative);
   EXPECT_LT(lit.meanRelative, 1e-3);
+  // At a sheen roughness of 0.15 the lights' lobe takes the tabulated exact Lambda over most
+  // angles: the frame's buffer against the header's array.
+  Scene smooth = scene;
+  smooth.materials[0].sheenRoughness = 0.15f;
+  const Comparison tabulated = renderBoth(smooth, camera, o, 0.0f, sheenBake);
+  std::printf("sheen of roughness 0.15 and a point light, viewer vs CPU: %.2e\n",
+              tabulated.meanRelative);
+  EXPECT_LT(tabulated.meanRelative, 1e-3);
   // Neubelt's visibility, named: its table in place of the bake's and the lights' lobe through
   // the frame's uniforms; a lobe that contradicts the table is refused.
   Baked neubelt = sheenBake;

@@ -64,17 +64,19 @@ void expectFurnaceAlbedo(SheenVisibility visibility, float rs) {
   o.mode = RenderMode::Reference;
   o.spp = 16384;
   const RenderResult ref = renderScene(s, cam, b.result, b.options, o);
-  const bool charlie = visibility == SheenVisibility::Charlie;
+  const SheenModel model =
+      visibility == SheenVisibility::Charlie ? SheenModel::Charlie : SheenModel::Neubelt;
   for (int x : {16, 22, 26}) {
     const float d = (x + 0.5f) / n * 2.0f - 1.0f;
-    const double e = sheenAlbedoQuadrature(std::sqrt(1.0 - d * d), rs, charlie);
+    const double e = sheenAlbedoQuadrature(std::sqrt(1.0 - d * d), rs, model);
     EXPECT_NEAR(split.color.at(x, 0).y, e, 0.01 * e + 2e-3) << "rs " << rs << " x " << x;
     EXPECT_NEAR(ref.color.at(x, 0).y, e, 0.02 * e + 2e-3) << "rs " << rs << " x " << x;
   }
 }
 
 TEST(SheenRender, TheSheenLobeAloneReflectsItsAlbedoInAFurnace) {
-  for (float rs : {0.3f, 0.7f}) expectFurnaceAlbedo(SheenVisibility::Charlie, rs);
+  // 0.15: where the fitted Lambda falls short and the exact one holds the albedo below 1.
+  for (float rs : {0.15f, 0.3f, 0.7f}) expectFurnaceAlbedo(SheenVisibility::Charlie, rs);
 }
 
 TEST(SheenRender, NeubeltsVisibilityWhenNamed) {

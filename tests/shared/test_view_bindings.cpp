@@ -68,7 +68,7 @@ TEST(ViewBindings, EachNumberOnceFromZero) {
                     static_cast<unsigned>(shared::FrameBinding::Count));
   expectZeroToCount(declaredNumbers("IBL_MATERIAL_BINDING"),
                     static_cast<unsigned>(shared::MaterialBinding::Count));
-  EXPECT_EQ(static_cast<unsigned>(shared::FrameBinding::LightClusters), 15u);
+  EXPECT_EQ(static_cast<unsigned>(shared::FrameBinding::LightClusters), 16u);
   EXPECT_EQ(static_cast<unsigned>(shared::MaterialBinding::Emissive), 4u);
 }
 

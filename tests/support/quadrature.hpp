@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -92,14 +94,6 @@ inline double charlieLambdaFromPaper(double mu, double alpha) {
   };
   return mu < 0.5 ? std::exp(fit(mu)) : std::exp(2.0 * fit(0.5) - fit(1.0 - mu));
 }
-// V = G2 / (4 n.v n.l), G2 = 1 / (1 + Lambda(n.v) + Lambda(n.l)) (Charlie); or Neubelt &
-// Pettineo's 1 / (4 (n.l + n.v - n.l n.v)).
-inline double sheenVisibilityFromPaper(bool charlie, double NoV, double NoL, double alpha) {
-  if (!charlie) return 1.0 / (4.0 * (NoL + NoV - NoL * NoV));
-  return 1.0 / ((1.0 + charlieLambdaFromPaper(NoV, alpha) + charlieLambdaFromPaper(NoL, alpha)) *
-                (4.0 * NoV * NoL));
-}
-
 // The integral over half vectors h of the upper hemisphere of f(h, c_h) dh by the midpoint rule
 // in (u, phi) with cos theta_h = u^2: the points crowd toward the horizon, where the Charlie
 // distribution lives (at r = 0.1 it falls by e from c_h = 0 to 0.14). phi over [0, pi], doubled:
@@ -118,23 +112,6 @@ double halfVectorQuadrature(const F& f, int steps) {
   return sum * 2.0 * pi / (static_cast<double>(steps) * steps);
 }
 
-// The sheen lobe's directional albedo E(n.v, r) = integral of D V (n.l) dl, over half vectors
-// (l = 2 (v.h) h - v, dl = 4 (v.h) dh), with the Charlie visibility or Neubelt's. 600^2 points:
-// within 1e-3 relative of 1500^2 from r = 0.1 up, at every n.v.
-inline double sheenAlbedoQuadrature(double NoV, double roughness, bool charlie = true,
-                                    int steps = 600) {
-  const double alpha = roughness * roughness;
-  const glm::dvec3 v(std::sqrt(1.0 - NoV * NoV), 0.0, NoV);
-  return halfVectorQuadrature(
-      [&](glm::dvec3 h) {
-        const double VoH = glm::dot(v, h), NoL = 2.0 * VoH * h.z - NoV;
-        if (VoH <= 0.0 || NoL <= 0.0) return 0.0;
-        return charlieDistributionFromPaper(h.z, alpha) *
-               sheenVisibilityFromPaper(charlie, NoV, NoL, alpha) * NoL * 4.0 * VoH;
-      },
-      steps);
-}
-
 // The Smith Lambda of the Charlie distribution itself (Smith masking, Heitz 2014: G1(v) =
 // n.v / integral of max(0, v.h) D(h) dh = 1 / (1 + Lambda)), at n.v = mu: the quantity
 // that Estevez & Kulla's Lambda fits.
@@ -147,6 +124,68 @@ inline double charlieSmithLambda(double mu, double alpha, int steps = 600) {
              steps) /
              mu -
          1.0;
+}
+
+// Lambda as the renderers take it (ibl/shared/brdf.h): the paper's fit, or the Smith Lambda of D
+// where the fit falls short of it. The Smith Lambda at one alpha from charlieSmithLambda's
+// quadrature at `angles` angles uniform in theta, its projected area mu (1 + Lambda) (smooth in
+// theta) interpolated linearly between them: for integrands that need it at every point.
+class CharlieLambdaFromPapers {
+ public:
+  explicit CharlieLambdaFromPapers(double alpha, int angles = 129, int steps = 200)
+      : alpha_(alpha), area_(angles) {
+    for (int i = 0; i < angles; ++i) {
+      const double mu = std::max(std::cos(angleAt(i)), 1e-9);
+      area_[i] = mu * (1.0 + charlieSmithLambda(mu, alpha, steps));
+    }
+  }
+  [[nodiscard]] double smith(double mu) const {
+    const double x = std::acos(std::clamp(mu, 0.0, 1.0)) / angleAt(1);
+    const int i = std::min(static_cast<int>(x), static_cast<int>(area_.size()) - 2);
+    const double t = x - i;
+    return ((1.0 - t) * area_[i] + t * area_[i + 1]) / std::max(mu, 1e-9) - 1.0;
+  }
+  [[nodiscard]] double operator()(double mu) const {
+    return std::max(charlieLambdaFromPaper(mu, alpha_), smith(mu));
+  }
+
+ private:
+  [[nodiscard]] double angleAt(int i) const {
+    return 0.5 * 3.14159265358979323846 * i / (static_cast<double>(area_.size()) - 1.0);
+  }
+  double alpha_;
+  std::vector<double> area_;
+};
+
+// The sheen lobe's visibility: Charlie's with Lambda as the renderers take it (the default),
+// with the paper's fit alone (whose albedo passes 1 at small roughness and grazing n.v), or
+// Neubelt & Pettineo's 1 / (4 (n.l + n.v - n.l n.v)).
+enum class SheenModel { Charlie, CharlieFitAlone, Neubelt };
+
+// The sheen lobe's directional albedo E(n.v, r) = integral of D V (n.l) dl, over half vectors
+// (l = 2 (v.h) h - v, dl = 4 (v.h) dh), V = G2 / (4 n.v n.l), G2 = 1 / (1 + Lambda(n.v) +
+// Lambda(n.l)) for Charlie's. 600^2 points: within 1e-3 relative of 1500^2 from r = 0.1 up, at
+// every n.v.
+inline double sheenAlbedoQuadrature(double NoV, double roughness,
+                                    SheenModel model = SheenModel::Charlie, int steps = 600) {
+  const double alpha = roughness * roughness;
+  const glm::dvec3 v(std::sqrt(1.0 - NoV * NoV), 0.0, NoV);
+  std::optional<CharlieLambdaFromPapers> lambda;
+  if (model == SheenModel::Charlie) lambda.emplace(alpha);
+  const auto lambdaAt = [&](double mu) {
+    return lambda ? (*lambda)(mu) : charlieLambdaFromPaper(mu, alpha);
+  };
+  const double lambdaV = lambdaAt(NoV);
+  return halfVectorQuadrature(
+      [&](glm::dvec3 h) {
+        const double VoH = glm::dot(v, h), NoL = 2.0 * VoH * h.z - NoV;
+        if (VoH <= 0.0 || NoL <= 0.0) return 0.0;
+        const double visibility = model == SheenModel::Neubelt
+                                      ? 1.0 / (4.0 * (NoL + NoV - NoL * NoV))
+                                      : 1.0 / ((1.0 + lambdaV + lambdaAt(NoL)) * (4.0 * NoV * NoL));
+        return charlieDistributionFromPaper(h.z, alpha) * visibility * NoL * 4.0 * VoH;
+      },
+      steps);
 }
 
 // The GGX lobe written from its papers, apart from ibl/shared/brdf.h: the distribution (Walter et

@@ -43,6 +43,16 @@ inline float sheenVisibility(SheenVisibility v, float NoV, float NoL, float alph
   return shared::sheenVisibility(static_cast<int>(v), NoV, NoL, alpha);
 }
 
+// The projected area of the Charlie microsurface (alpha = sheen roughness^2 > 0) seen from a
+// direction theta (0 to pi/2) from the normal: the integral of max(0, w.h) D(h) over half vectors
+// h. The microsurface projects to the same area as the macrosurface (Heitz 2014, "Understanding
+// the Masking-Shadowing Function in Microfacet-Based BRDFs"), so with Smith's masking
+// G1 = 1 / (1 + Lambda) the exact Lambda is area / cos(theta) - 1. By the midpoint rule over
+// theta_h (points crowded toward the horizon, where D lives at small alpha) with the azimuth's
+// integral in closed form: the source of the table ibl/shared/charlie_table.h
+// (tools/charlie_table.cpp writes it).
+double charlieProjectedArea(double theta, double alpha, int steps = 4000);
+
 // Analytic fits of the split-sum DFG term: (scale A, bias B) with specular = F0 A + B.
 // roughness: perceptual, 0 to 1; NoV: cosine, 0 to 1.
 // Lazarov 2013, "Getting More Physical in Call of Duty: Black Ops II" (gloss = 1 - roughness).

@@ -5,6 +5,7 @@
 // lang.h).
 #ifndef IBL_SHARED_BRDF_H
 #define IBL_SHARED_BRDF_H
+#include "ibl/shared/charlie_table.h"
 #include "ibl/shared/lang.h"
 #include "ibl/shared/sampling.h"
 
@@ -124,6 +125,37 @@ IBL_FN float neubeltVisibility(float NoV, float NoL) {
   return 1.0f / (4.0f * (NoL + NoV - NoL * NoV));
 }
 
+// Entry k (row-major) of the table of r A in charlie_table.h. The shaders that shade sheen define
+// it to read the table from a buffer (view/frame.glsl, render/path_trace.comp): as a constant
+// array of 561 floats indexed at run time, it takes Mesa's shader compiler minutes per shader.
+#ifdef __cplusplus
+IBL_FN float charlieTableEntry(int k) {
+  return kCharlieProjectedArea[k];
+}
+#else
+float charlieTableEntry(int k);
+#endif
+
+// The exact Smith Lambda of the Charlie distribution at mu = cos(theta) and alpha (= sheen
+// roughness^2): Lambda = A / mu - 1 with A the microsurface's projected area toward theta
+// (ibl::charlieProjectedArea), read from the table of r A (charlie_table.h, rows r = sqrt(alpha),
+// columns theta, both uniform) bilinearly. Within 1.3 % of 1 + Lambda from r = 0.004 to 1.
+IBL_FN float charlieLambdaTabulated(float mu, float alpha) {
+  float r = clamp(sqrt(alpha), kCharlieTableSmallestRoughness, 1.0f);
+  float c = clamp(mu, 1e-6f, 1.0f);
+  float x = acos(c) * (2.0f / kPi) * float(kCharlieTableAngles - 1);
+  float y = r * float(kCharlieTableRoughnesses - 1);
+  int i = min(int(x), kCharlieTableAngles - 2);
+  int j = min(int(y), kCharlieTableRoughnesses - 2);
+  float tx = x - float(i);
+  float ty = y - float(j);
+  int k = j * kCharlieTableAngles + i;
+  float below = mix(charlieTableEntry(k), charlieTableEntry(k + 1), tx);
+  float above = mix(charlieTableEntry(k + kCharlieTableAngles),
+                    charlieTableEntry(k + kCharlieTableAngles + 1), tx);
+  return mix(below, above, ty) / (r * c) - 1.0f;
+}
+
 // The "Charlie" visibility (Estevez & Kulla 2017, section 3; the one KHR_materials_sheen's
 // implementation notes define), V = G2 / (4 n.v n.l) with the height-correlated Smith term
 // G2 = 1 / (1 + Lambda(n.v) + Lambda(n.l)) and their fit of Lambda:
@@ -132,11 +164,13 @@ IBL_FN float neubeltVisibility(float NoV, float NoL) {
 // the second the symmetric extension that carries the fit from 0.5 to mu = 1, where Lambda
 // vanishes. The five coefficients are interpolated between the paper's fits at r = 0 and r = 1
 // by t = (1 - r)^2, with r = alpha (= sheen roughness^2, as KHR_materials_sheen maps it). The
-// fit follows the Smith Lambda of D from alpha = 0.07 (r = 0.27) up; below, it falls short (0.4
-// of it at alpha = 0.01) and the lobe's albedo passes 1 at grazing n.v (docs/targets.md,
-// "Sheen"). Without the paper's terminator softening (section 4: Lambda(n.l) raised to
-// 1 + 2 (1 - n.l)^8), a non-reciprocal artistic adjustment that neither the specification nor
-// the glTF Sample Viewer applies.
+// fit follows the exact Lambda within -12 % .. +20 % from alpha = 0.09 (r = 0.3) up; below, it
+// falls short (0.4 of it at alpha = 0.01), and with it alone the lobe's albedo passes 1 at
+// grazing n.v (up to 2 at r = 0.1, 11 at r = 0.004). So charlieLambda is the larger of the fit
+// and the exact Lambda (charlieLambdaTabulated): the fit wherever it does not undershoot, and
+// an albedo at or below 1 everywhere (docs/targets.md, "Sheen"). Without the paper's terminator
+// softening (section 4: Lambda(n.l) raised to 1 + 2 (1 - n.l)^8), a non-reciprocal artistic
+// adjustment that neither the specification nor the glTF Sample Viewer applies.
 IBL_FN float charlieLambdaExponent(float mu, float alpha) {
   float t = (1.0f - alpha) * (1.0f - alpha);
   float a = mix(21.5473f, 25.3245f, t);
@@ -146,9 +180,12 @@ IBL_FN float charlieLambdaExponent(float mu, float alpha) {
   float e = mix(-4.32054f, -4.85967f, t);
   return a / (1.0f + b * pow(max(mu, 0.0f), c)) + d * mu + e;
 }
-IBL_FN float charlieLambda(float mu, float alpha) {
+IBL_FN float charlieLambdaFit(float mu, float alpha) {
   if (mu < 0.5f) return exp(charlieLambdaExponent(mu, alpha));
   return exp(2.0f * charlieLambdaExponent(0.5f, alpha) - charlieLambdaExponent(1.0f - mu, alpha));
+}
+IBL_FN float charlieLambda(float mu, float alpha) {
+  return max(charlieLambdaFit(mu, alpha), charlieLambdaTabulated(mu, alpha));
 }
 IBL_FN float charlieVisibility(float NoV, float NoL, float alpha) {
   return 1.0f /

@@ -32,18 +32,19 @@ IBL_FRAME_BINDING(ProbeSpecularMaps, 9)
 IBL_FRAME_BINDING(ProbeIrradianceMaps, 10)
 IBL_FRAME_BINDING(SheenMap, 11)
 IBL_FRAME_BINDING(SheenDfgLut, 12)
-IBL_FRAME_BINDING(ShadowRecords, 13)    // read by the shadow maps' vertex shader too
-IBL_FRAME_BINDING(ShadowDepths, 14)
-IBL_FRAME_BINDING(LightClusters, 15)
-IBL_FRAME_BINDING(VolumeIrradiance, 16) // the irradiance volume's atlases
-IBL_FRAME_BINDING(VolumeDistance, 17)
-IBL_FRAME_BINDING(VolumeProbes, 18)     // its probes' relocation records
-IBL_FRAME_BINDING(ViewPositions, 19)    // the screen-space passes' from here on
-IBL_FRAME_BINDING(ViewNormals, 20)
-IBL_FRAME_BINDING(ScreenOcclusion, 21)
-IBL_FRAME_BINDING(ScreenReflection, 22)
-IBL_FRAME_BINDING(LitFrame, 23)
-IBL_FRAME_BINDING(TracedReflection, 24)
+IBL_FRAME_BINDING(CharlieTable, 13)     // the sheen's exact Lambda (charlie_table.h)
+IBL_FRAME_BINDING(ShadowRecords, 14)    // read by the shadow maps' vertex shader too
+IBL_FRAME_BINDING(ShadowDepths, 15)
+IBL_FRAME_BINDING(LightClusters, 16)
+IBL_FRAME_BINDING(VolumeIrradiance, 17) // the irradiance volume's atlases
+IBL_FRAME_BINDING(VolumeDistance, 18)
+IBL_FRAME_BINDING(VolumeProbes, 19)     // its probes' relocation records
+IBL_FRAME_BINDING(ViewPositions, 20)    // the screen-space passes' from here on
+IBL_FRAME_BINDING(ViewNormals, 21)
+IBL_FRAME_BINDING(ScreenOcclusion, 22)
+IBL_FRAME_BINDING(ScreenReflection, 23)
+IBL_FRAME_BINDING(LitFrame, 24)
+IBL_FRAME_BINDING(TracedReflection, 25)
 #ifdef __cplusplus
 Count
 };
