@@ -114,7 +114,8 @@ void runGltfInfo(const InfoOptions& o) {
                              {"triangles", m.triangles},
                              {"vertices", m.vertices},
                              {"instances", m.instances},
-                             {"compression", m.compression}});
+                             {"compression", m.compression},
+                             {"vertex_colors", m.vertexColors}});
     for (const auto& m : s.materials)
       j["materials"].push_back(
           {{"name", m.name},
@@ -209,10 +210,10 @@ void runGltfInfo(const InfoOptions& o) {
   fmt::print("meshes      {}\n", s.meshes.size());
   for (std::size_t i = 0; i < s.meshes.size(); ++i) {
     const auto& m = s.meshes[i];
-    fmt::print("  {}{}: {} ({}), {}, {} each; {}{}\n", i, quoted(m.name),
+    fmt::print("  {}{}: {} ({}), {}, {} each; {}{}{}\n", i, quoted(m.name),
                plural(m.primitives, "primitive"), plural(m.trianglePrimitives, "triangle list"),
                plural(m.triangles, "triangle"), plural(m.vertices, "vertex"),
-               plural(m.instances, "instance"),
+               plural(m.instances, "instance"), m.vertexColors ? "; vertex colors (COLOR_0)" : "",
                m.compression.empty() ? "" : "; " + list(m.compression));
   }
   fmt::print("materials   {}\n", s.materials.size());

@@ -3,9 +3,6 @@
 #include <fstream>
 #include <vector>
 
-#include <draco/compression/encode.h>
-#include <draco/mesh/triangle_soup_mesh_builder.h>
-
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -18,6 +15,7 @@
 #include "ibl/io/image_io.hpp"
 #include "ibl/io/ktx1.hpp"
 #include "ibl/io/ktx2.hpp"
+#include "support/draco_writer.hpp"
 #include "support/gltf_writer.hpp"
 
 namespace {
@@ -46,82 +44,6 @@ void writeGlb(const fs::path& path, const json& gltf, std::vector<std::uint8_t> 
     file.insert(file.end(), bin.begin(), bin.end());
   }
   ibl::writeFileAtomic(path, file);
-}
-
-// A cube of 8 vertices and 12 triangles, for the compressed seeds.
-ibl::Mesh cube() {
-  ibl::Mesh m;
-  for (int i = 0; i < 8; ++i) {
-    const glm::vec3 p(i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 1.0f : -1.0f);
-    m.positions.push_back(p);
-    m.normals.push_back(glm::normalize(p));
-  }
-  m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
-               2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
-  return m;
-}
-
-// The cube as a KHR_draco_mesh_compression primitive (positions, normals, UVs) in a GLB, encoded
-// with the Draco library's edgebreaker or sequential method.
-void writeDracoCube(const fs::path& path, int method) {
-  const ibl::Mesh m = cube();
-  const int faces = static_cast<int>(m.indices.size() / 3);
-  draco::TriangleSoupMeshBuilder builder;
-  builder.Start(faces);
-  const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
-  const int nrm = builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
-  const int uv = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
-  for (int f = 0; f < faces; ++f) {
-    glm::vec3 p[3], n[3];
-    glm::vec2 t[3];
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t v = m.indices[static_cast<std::size_t>(3 * f + k)];
-      p[k] = m.positions[v];
-      n[k] = m.normals[v];
-      t[k] = glm::vec2(p[k].x, p[k].y) * 0.5f + 0.5f;
-    }
-    builder.SetAttributeValuesForFace(pos, draco::FaceIndex(f), &p[0], &p[1], &p[2]);
-    builder.SetAttributeValuesForFace(nrm, draco::FaceIndex(f), &n[0], &n[1], &n[2]);
-    builder.SetAttributeValuesForFace(uv, draco::FaceIndex(f), &t[0], &t[1], &t[2]);
-  }
-  const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
-  draco::Encoder encoder;
-  encoder.SetEncodingMethod(method);
-  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 14);
-  encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, 10);
-  encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
-  draco::EncoderBuffer buffer;
-  if (!encoder.EncodeMeshToBuffer(*mesh, &buffer).ok()) throw std::runtime_error("Draco encoder");
-  const std::vector<std::uint8_t> bin(buffer.data(), buffer.data() + buffer.size());
-  const json ids = {{"POSITION", mesh->attribute(pos)->unique_id()},
-                    {"NORMAL", mesh->attribute(nrm)->unique_id()},
-                    {"TEXCOORD_0", mesh->attribute(uv)->unique_id()}};
-  const std::size_t points = mesh->num_points();
-  const json gltf = {
-      {"asset", {{"version", "2.0"}}},
-      {"extensionsUsed", {"KHR_draco_mesh_compression"}},
-      {"extensionsRequired", {"KHR_draco_mesh_compression"}},
-      {"scene", 0},
-      {"scenes", {{{"nodes", {0}}}}},
-      {"nodes", {{{"mesh", 0}, {"scale", {2, 2, 2}}}}},
-      {"meshes",
-       {{{"primitives",
-          {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
-            {"indices", 3},
-            {"extensions",
-             {{"KHR_draco_mesh_compression", {{"bufferView", 0}, {"attributes", ids}}}}}}}}}}},
-      {"accessors",
-       {{{"componentType", 5126},
-         {"count", points},
-         {"type", "VEC3"},
-         {"min", {-1, -1, -1}},
-         {"max", {1, 1, 1}}},
-        {{"componentType", 5126}, {"count", points}, {"type", "VEC3"}},
-        {{"componentType", 5126}, {"count", points}, {"type", "VEC2"}},
-        {{"componentType", 5125}, {"count", 3 * faces}, {"type", "SCALAR"}}}},
-      {"bufferViews", {{{"buffer", 0}, {"byteLength", bin.size()}}}},
-      {"buffers", {{{"byteLength", bin.size()}}}}};
-  writeGlb(path, gltf, bin);
 }
 
 // One triangle with most of what the loader reads: a node tree (TRS and matrix), a camera,
@@ -312,10 +234,14 @@ int main(int argc, char** argv) {
   // glTF: the loader's features, the compressed primitives, a textured quad.
   fs::create_directories(root / "gltf");
   writeFeatures(root / "gltf" / "features.gltf", root / "gltf" / "features.glb");
-  writeDracoCube(root / "gltf" / "draco_edgebreaker.glb", draco::MESH_EDGEBREAKER_ENCODING);
-  writeDracoCube(root / "gltf" / "draco_sequential.glb", draco::MESH_SEQUENTIAL_ENCODING);
-  ibl::test::writeMeshoptMesh(root / "gltf" / "meshopt.gltf", cube());
-  ibl::test::writeMeshoptMesh(root / "gltf" / "meshopt.glb", cube());
+  ibl::test::writeDracoCube(root / "gltf" / "draco_edgebreaker.glb",
+                            draco::MESH_EDGEBREAKER_ENCODING);
+  ibl::test::writeDracoCube(root / "gltf" / "draco_sequential.glb",
+                            draco::MESH_SEQUENTIAL_ENCODING);
+  ibl::test::writeDracoCube(root / "gltf" / "draco_colors.glb", draco::MESH_EDGEBREAKER_ENCODING,
+                            true);
+  ibl::test::writeMeshoptMesh(root / "gltf" / "meshopt.gltf", ibl::test::cubeMesh());
+  ibl::test::writeMeshoptMesh(root / "gltf" / "meshopt.glb", ibl::test::cubeMesh());
   ibl::test::writeTexturedQuad(root / "gltf" / "quad.gltf", true);
   return 0;
 }

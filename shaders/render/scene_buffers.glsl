@@ -86,9 +86,13 @@ uvec3 triangleVertices(MeshRecord m, uint primitive) {
   uint i = m.firstIndex + 3u * primitive;
   return m.firstVertex + uvec3(words[i], words[i + 1u], words[i + 2u]);
 }
-// A vertex: (position, uv0.x), (normal, uv0.y), tangent, (uv1, 0, 0).
+// Entry k of vertex v's record (kVertexRecordVec4s in ibl/shared/material.h).
 vec4 vertexAt(uint v, int k) {
-  return sceneData[params.offsets.x + 4u * v + uint(k)];
+  return sceneData[params.offsets.x + uint(kVertexRecordVec4s) * v + uint(k)];
+}
+// The vertex color (COLOR_0) at barycentrics w of a triangle.
+vec4 vertexColorAt(uvec3 tri, vec3 w) {
+  return vertexAt(tri.x, 4) * w.x + vertexAt(tri.y, 4) * w.y + vertexAt(tri.z, 4) * w.z;
 }
 vec4 materialAt(uint material, int k) {
   return sceneData[params.offsets.y + uint(kMaterialRecordVec4s) * material + uint(k)];
@@ -133,9 +137,11 @@ bool bvhCovers(int triangle, float u, float v, vec3 origin, vec3 dir) {
   vec4 m3 = materialAt(m.material, 3);
   int mode = int(m3.z);
   if (mode == 0) return true;
-  float alpha = materialAt(m.material, 0).w * slotTexel(m, triangleVertices(m, primitive),
-                                                        m.material, kMaterialBaseColor,
-                                                        vec3(1.0 - u - v, u, v), false).a;
+  uvec3 tri = triangleVertices(m, primitive);
+  vec3 w = vec3(1.0 - u - v, u, v);
+  float alpha = materialAt(m.material, 0).w *
+                slotTexel(m, tri, m.material, kMaterialBaseColor, w, false).a *
+                vertexColorAt(tri, w).a;
   return alphaCovers(mode, alpha, m3.w, rayBlendThreshold(origin, dir, primitive));
 }
 vec4 bvhNodeAt(int i) {
@@ -214,7 +220,8 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     vec4 m0 = materialAt(material, 0), m1 = materialAt(material, 1), m2 = materialAt(material, 2),
          m3 = materialAt(material, 3), m4 = materialAt(material, 4);
     m5 = materialAt(material, 5);
-    vec3 base = m0.rgb * slotTexel(m, tri, material, kMaterialBaseColor, w, true).rgb;
+    vec3 base = m0.rgb * slotTexel(m, tri, material, kMaterialBaseColor, w, true).rgb *
+                vertexColorAt(tri, w).rgb;
     vec2 mr = applyMetallicRoughnessTexel(
         m1.w, m3.x, slotTexel(m, tri, material, kMaterialMetallicRoughness, w, false));
     float metallic = mr.x, roughness = mr.y;

@@ -1,7 +1,7 @@
 // A mesh's material in the viewer's fragment shaders (the scene's and the shadow maps'): its
 // textures and factors (set 1: MaterialFactors in src/gpu/scene_upload.hpp), the draw's sphere
 // and pass (push constants, DrawConstants), and the alpha coverage of glTF's MASK and BLEND
-// modes. The including shader declares the inputs texCoord0 and texCoord1 first.
+// modes. The including shader declares the inputs texCoord0, texCoord1 and vertexColor first.
 #include "ibl/shared/material.h"
 #include "ibl/shared/view_bindings.h"
 
@@ -79,9 +79,10 @@ float blendThreshold() {
   return float(v.x >> 8u) * (1.0 / 16777216.0);
 }
 
-// Whether the material covers this fragment: its alpha (factor times the base color texture's)
-// against the mode's rule (alphaCovers in ibl/shared/material.h).
+// Whether the material covers this fragment: its alpha (factor times the base color texture's
+// times the vertex color's) against the mode's rule (alphaCovers in ibl/shared/material.h).
 bool materialCovers() {
-  float alpha = material.alpha.x * slotTexel(baseColorTexture, kMaterialBaseColor).a;
+  float alpha =
+      material.alpha.x * slotTexel(baseColorTexture, kMaterialBaseColor).a * vertexColor.a;
   return alphaCovers(int(material.alpha.y), alpha, material.alpha.z, blendThreshold());
 }

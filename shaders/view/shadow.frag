@@ -10,6 +10,7 @@
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec2 texCoord0;
 layout(location = 2) in vec2 texCoord1;
+layout(location = 3) in vec4 vertexColor;
 #include "view/material.glsl"
 
 void main() {

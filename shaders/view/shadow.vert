@@ -8,9 +8,11 @@
 layout(location = 0) in vec3 position;
 layout(location = 3) in vec2 uv;
 layout(location = 4) in vec2 uv1;
+layout(location = 5) in vec4 color;
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec2 texCoord0;
 layout(location = 2) out vec2 texCoord1;
+layout(location = 3) out vec4 vertexColor;
 layout(push_constant) uniform Layer {
   layout(offset = 16) int shadowLayer;  // DrawConstants::shadowLayer
 } pass;
@@ -19,5 +21,6 @@ void main() {
   worldPosition = position;
   texCoord0 = uv;
   texCoord1 = uv1;
+  vertexColor = color;
   gl_Position = shadowClipPosition(shadowLayerAt(pass.shadowLayer), position);
 }

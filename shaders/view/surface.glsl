@@ -77,7 +77,7 @@ ShadedSurface fragmentSurface(int samples) {
   float roughness = material.emissiveRoughness.a;
   vec3 emissive = material.emissiveRoughness.rgb;
   // sRGB textures are decoded before filtering (their formats), as Texture::sample does.
-  baseColor *= slotTexel(baseColorTexture, kMaterialBaseColor).rgb;
+  baseColor *= slotTexel(baseColorTexture, kMaterialBaseColor).rgb * vertexColor.rgb;
   if (!materialCovers()) discard;
   vec2 mr = applyMetallicRoughnessTexel(
       metallic, roughness, slotTexel(metallicRoughnessTexture, kMaterialMetallicRoughness));

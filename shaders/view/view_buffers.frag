@@ -12,6 +12,7 @@ layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec4 worldTangent;
 layout(location = 3) in vec2 texCoord0;
 layout(location = 4) in vec2 texCoord1;
+layout(location = 5) in vec4 vertexColor;
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 #include "view/material.glsl"

@@ -76,6 +76,7 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
         bitsOf(meshStarts[i].x, meshStarts[i].y, static_cast<std::uint32_t>(m.material), flags));
   }
   out.offsets.x = static_cast<std::uint32_t>(data.size());
+  static_assert(shared::kVertexRecordVec4s == 5, "each vertex pushes the five below");
   for (const Mesh& m : scene.meshes)
     for (std::size_t v = 0; v < m.positions.size(); ++v) {
       const glm::vec2 uv0 = m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[v];
@@ -84,6 +85,7 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
       data.push_back(glm::vec4(m.normals[v], uv0.y));
       data.push_back(m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[v]);
       data.push_back(glm::vec4(uv1, 0.0f, 0.0f));
+      data.push_back(m.colors.empty() ? glm::vec4(1.0f) : m.colors[v]);
     }
   out.offsets.y = static_cast<std::uint32_t>(data.size());
   for (const Material& mat : scene.materials) {  // shared::kMaterialRecordVec4s each

@@ -212,7 +212,7 @@ std::vector<glm::vec4> lightRecords(const std::vector<Light>& lights,
 
 }  // namespace
 
-std::array<VkVertexInputAttributeDescription, 5> meshVertexAttributes() {
+std::array<VkVertexInputAttributeDescription, 6> meshVertexAttributes() {
   return {
       VkVertexInputAttributeDescription{0, 0, VK_FORMAT_R32G32B32_SFLOAT,
                                         offsetof(MeshVertex, position)},
@@ -221,15 +221,19 @@ std::array<VkVertexInputAttributeDescription, 5> meshVertexAttributes() {
       VkVertexInputAttributeDescription{2, 0, VK_FORMAT_R32G32B32A32_SFLOAT,
                                         offsetof(MeshVertex, tangent)},
       VkVertexInputAttributeDescription{3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(MeshVertex, uv0)},
-      VkVertexInputAttributeDescription{4, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(MeshVertex, uv1)}};
+      VkVertexInputAttributeDescription{4, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(MeshVertex, uv1)},
+      VkVertexInputAttributeDescription{5, 0, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                        offsetof(MeshVertex, color)}};
 }
 
 VkPipeline createMeshPipeline(VkDevice device, GraphicsPipelineDescription p, bool shadow) {
   const VkVertexInputBindingDescription binding{0, sizeof(MeshVertex), VK_VERTEX_INPUT_RATE_VERTEX};
-  const std::array<VkVertexInputAttributeDescription, 5> all = meshVertexAttributes();
-  const std::array<VkVertexInputAttributeDescription, 3> positionAndUvs{all[0], all[3], all[4]};
+  const std::array<VkVertexInputAttributeDescription, 6> all = meshVertexAttributes();
+  // The shadow pass's: the position, and what the alpha reads (the UV sets, the vertex color).
+  const std::array<VkVertexInputAttributeDescription, 4> shadowInputs{all[0], all[3], all[4],
+                                                                      all[5]};
   p.bindings = {&binding, 1};
-  p.attributes = shadow ? std::span<const VkVertexInputAttributeDescription>(positionAndUvs)
+  p.attributes = shadow ? std::span<const VkVertexInputAttributeDescription>(shadowInputs)
                         : std::span<const VkVertexInputAttributeDescription>(all);
   p.depth = true;
   return createGraphicsPipeline(device, p);
@@ -242,7 +246,8 @@ std::vector<MeshVertex> meshVertices(const Mesh& m) {
     const glm::vec4 t = m.tangents.empty() ? glm::vec4(0.0f) : m.tangents[i];
     const glm::vec2 uv = m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[i];
     const glm::vec2 uv1 = m.uvs1.empty() ? glm::vec2(0.0f) : m.uvs1[i];
-    v.push_back({m.positions[i], m.normals[i], t, uv, uv1});
+    const glm::vec4 color = m.colors.empty() ? glm::vec4(1.0f) : m.colors[i];
+    v.push_back({m.positions[i], m.normals[i], t, uv, uv1, color});
   }
   return v;
 }

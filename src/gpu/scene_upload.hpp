@@ -39,15 +39,16 @@ struct MeshVertex {
   glm::vec3 position, normal;
   glm::vec4 tangent;
   glm::vec2 uv0, uv1;
+  glm::vec4 color;  // COLOR_0, or white
 };
-static_assert(sizeof(MeshVertex) == 14 * sizeof(float), "packed: no padding between members");
+static_assert(sizeof(MeshVertex) == 18 * sizeof(float), "packed: no padding between members");
 
-// The attributes of scene.vert's locations 0 to 4 in buffer binding 0, made from MeshVertex.
-std::array<VkVertexInputAttributeDescription, 5> meshVertexAttributes();
+// The attributes of scene.vert's locations 0 to 5 in buffer binding 0, made from MeshVertex.
+std::array<VkVertexInputAttributeDescription, 6> meshVertexAttributes();
 
 // The pipeline of `p` drawing the meshes (SceneUpload::drawMeshes), depth tested and written:
 // their vertex buffer's binding, and all of scene.vert's attributes or (`shadow`) those
-// view/shadow.vert reads, the position and the UV sets (alpha coverage).
+// view/shadow.vert reads, the position, the UV sets and the vertex color (alpha coverage).
 VkPipeline createMeshPipeline(VkDevice device, GraphicsPipelineDescription p, bool shadow = false);
 
 // `mesh`'s vertices in the layout above (missing tangents and UV sets: zero).

@@ -23,13 +23,16 @@ glm::vec2 slotUv(const TextureRef& ref, glm::vec2 uv) {
 // The material's alpha at a hit (barycentrics u, v of triangle `primitive`).
 float alphaAt(const AlphaTest& a, unsigned primitive, float u, float v) {
   float alpha = a.material->baseColorAlpha;
+  const std::uint32_t* i = &a.mesh->indices[3 * static_cast<std::size_t>(primitive)];
   const std::vector<glm::vec2>& uvs =
       a.material->baseColorTexture.texCoord == 1 ? a.mesh->uvs1 : a.mesh->uvs;
   if (a.texture && !uvs.empty()) {
-    const std::uint32_t* i = &a.mesh->indices[3 * static_cast<std::size_t>(primitive)];
     const glm::vec2 uv = uvs[i[0]] * (1.0f - u - v) + uvs[i[1]] * u + uvs[i[2]] * v;
     alpha *= a.texture->sample(slotUv(a.material->baseColorTexture, uv), false).w;
   }
+  const std::vector<glm::vec4>& colors = a.mesh->colors;
+  if (!colors.empty())
+    alpha *= colors[i[0]].w * (1.0f - u - v) + colors[i[1]].w * u + colors[i[2]].w * v;
   return alpha;
 }
 
@@ -152,6 +155,8 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     };
     glm::vec4 t;
     if (lookup(mat->baseColorTexture, true, t)) base *= glm::vec3(t);
+    if (!m.colors.empty())
+      base *= glm::vec3(m.colors[i0] * w0 + m.colors[i1] * w1 + m.colors[i2] * w2);
     if (lookup(mat->metallicRoughnessTexture, false, t)) {
       const glm::vec2 mr = shared::applyMetallicRoughnessTexel(metallic, roughness, t);
       metallic = mr.x;

@@ -20,6 +20,7 @@ TEST(SceneBuffers, RecordsLieWhereTheShaderReadsThem) {
   Mesh quad;
   quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   quad.normals.assign(4, glm::vec3(0, 0, 1));
+  quad.colors = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0.25f, 0.5f, 0.75f, 0.4f}, {0, 0, 1, 1}};
   quad.indices = {0, 1, 2, 0, 2, 3};
   quad.material = 1;
   scene.meshes.push_back(quad);
@@ -33,14 +34,16 @@ TEST(SceneBuffers, RecordsLieWhereTheShaderReadsThem) {
   const auto materials = static_cast<unsigned>(scene.materials.size());
   EXPECT_EQ(b.counts, glm::uvec4(lights, spheres, 0u, 0u));
   const glm::uvec4 o = b.offsets, o2 = b.offsets2;
-  EXPECT_EQ(o.x, 1u);                                              // one mesh record
-  EXPECT_EQ(o.y, o.x + 4u * 4u);                                   // four vertices
+  EXPECT_EQ(o.x, 1u);  // one mesh record
+  const auto vertex = static_cast<unsigned>(shared::kVertexRecordVec4s);
+  EXPECT_EQ(o.y, o.x + 4u * vertex);                               // four vertices
   EXPECT_EQ(o.z, o.y + shared::kMaterialRecordVec4s * materials);  // the materials
   EXPECT_EQ(o.w, o.z);                                             // no textures
   EXPECT_EQ(o2.x, o.w + lights * shared::kLightRecordVec4s);       // the lights
   EXPECT_EQ(o2.y, o2.x + 2u * spheres);                            // the spheres, then no emitters
   const std::vector<glm::vec4> data = b.sceneData->read<glm::vec4>(o2.y);
-  EXPECT_EQ(glm::vec3(data[o.x + 4u * 2u]), quad.positions[2]);  // vertex 2's position
+  EXPECT_EQ(glm::vec3(data[o.x + vertex * 2u]), quad.positions[2]);  // vertex 2's position
+  EXPECT_EQ(data[o.x + vertex * 2u + 4u], quad.colors[2]);           // and its color
   for (unsigned m = 0; m < materials; ++m)
     EXPECT_EQ(glm::vec3(data[o.y + shared::kMaterialRecordVec4s * m]), scene.materials[m].baseColor)
         << m;

@@ -96,6 +96,69 @@ TEST(ShadingRules, AlphaModesCoverAsTheSpecificationSays) {
   EXPECT_NEAR(right, 0.5 * 204.0 / 255.0, 0.02);
 }
 
+// COLOR_0 multiplies the base color and its alpha (glTF 2.0, 3.9.2 and 3.7.2.1). The quad's
+// vertex colors follow a linear function of position, so whatever the triangulation the color at
+// a point is that function there: Lambertian diffuse under a uniform white irradiance of 1 shows
+// the base color factor times it, in both modes. The alpha against a MASK cutoff of 0.5: 0.3
+// cuts the quad out, 0.8 keeps it.
+TEST(ShadingRules, VertexColorsMultiplyTheBaseColorAndItsAlpha) {
+  TempDir dir;
+  QuadMaterial m;
+  m.baseColorFactor = glm::vec3(0.8f, 0.5f, 1.0f);
+  m.metallicFactor = 0.0f;
+  writeMaterialQuad(dir / "q.gltf", m);
+  Scene scene = loadGltf((dir / "q.gltf").string());
+  const auto field = [](glm::vec3 p) {
+    return glm::vec4(0.5f + 0.2f * p.x, 0.5f - 0.15f * p.y, 0.25f + 0.1f * (p.x + p.y), 1.0f);
+  };
+  Mesh& mesh = scene.meshes.at(0);
+  mesh.colors.clear();
+  for (const glm::vec3& p : mesh.positions) mesh.colors.push_back(field(p));
+  // A white environment of radiance 1: the reference's source, the split sum's irradiance.
+  SyntheticBake s = syntheticBake(
+      2, [](int, glm::vec3) { return glm::vec3(1.0f); }, [](glm::vec3) { return glm::vec3(1.0f); },
+      glm::vec3(1.0f, 0.0f, 1.0f), 8);
+  s.bake.source = cubeFromFunction(8, [](glm::vec3) { return glm::vec3(1.0f); });
+  for (RenderMode mode : {RenderMode::SplitSum, RenderMode::Reference})
+    for (glm::vec2 at : {glm::vec2(0.0f), glm::vec2(0.6f, -0.35f)}) {
+      Camera c;
+      c.perspective = false;
+      c.orthoWidth = 0.01f;
+      c.from = glm::vec3(at, 3.0f);
+      c.at = glm::vec3(at, 0.0f);
+      c.width = c.height = 1;
+      RenderOptions o;
+      o.mode = mode;
+      o.spp = mode == RenderMode::Reference ? 256 : 1;
+      o.only = ShadingTerms::Diffuse;
+      o.diffuse = DiffuseModel::Lambert;
+      const RenderResult r = renderScene(scene, c, s.bake, s.options, o);
+      const glm::vec3 expected = m.baseColorFactor * glm::vec3(field(glm::vec3(at, 0.0f)));
+      // The reference's estimate is exact but for its samples' noise (1 % here).
+      const float relative = mode == RenderMode::Reference ? 1e-2f : 1e-4f;
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(r.color.at(0, 0)[k], expected[k], relative * expected[k])
+            << "mode " << static_cast<int>(mode) << " at " << at.x << ", " << at.y << " channel "
+            << k;
+    }
+  scene.materials.at(0).alphaMode = AlphaMode::Mask;
+  for (float alpha : {0.3f, 0.8f}) {
+    for (glm::vec4& color : mesh.colors) color.w = alpha;
+    RenderOptions o;
+    o.only = ShadingTerms::Diffuse;
+    Camera c;
+    c.perspective = false;
+    c.orthoWidth = 0.01f;
+    c.from = glm::vec3(0.0f, 0.0f, 3.0f);
+    c.width = c.height = 1;
+    for (RenderMode mode : {RenderMode::SplitSum, RenderMode::Reference}) {
+      o.mode = mode;
+      EXPECT_EQ(renderScene(scene, c, s.bake, s.options, o).alpha[0], alpha < 0.5f ? 0.0f : 1.0f)
+          << "alpha " << alpha << " mode " << static_cast<int>(mode);
+    }
+  }
+}
+
 // metallicRoughnessTexture: roughness in G, metalness in B (linear), R ignored.
 TEST(ShadingRules, MetallicRoughnessChannels) {
   TempDir dir;

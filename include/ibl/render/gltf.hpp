@@ -66,6 +66,7 @@ struct GltfSummary {
     std::uint64_t triangles = 0, vertices = 0;  // of one instance, vertices the triangles use
     std::size_t instances = 0;                  // nodes of the scene that place it
     std::vector<std::string> compression;       // KHR_draco_mesh_compression, EXT_meshopt_...
+    bool vertexColors = false;                  // a primitive has COLOR_0 (multiplies the base)
   };
   struct Material {
     std::string name;

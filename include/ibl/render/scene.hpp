@@ -122,11 +122,14 @@ struct Material {
 
 // Triangles in world space.
 struct Mesh {
-  std::vector<glm::vec3> positions;    // scene units (meters for glTF)
-  std::vector<glm::vec3> normals;      // per vertex, unit
-  std::vector<glm::vec4> tangents;     // per vertex, w = handedness (empty: no normal map)
-  std::vector<glm::vec2> uvs;          // TEXCOORD_0 (empty: no textures)
-  std::vector<glm::vec2> uvs1;         // TEXCOORD_1 (empty: none)
+  std::vector<glm::vec3> positions;  // scene units (meters for glTF)
+  std::vector<glm::vec3> normals;    // per vertex, unit
+  std::vector<glm::vec4> tangents;   // per vertex, w = handedness (empty: no normal map)
+  std::vector<glm::vec2> uvs;        // TEXCOORD_0 (empty: no textures)
+  std::vector<glm::vec2> uvs1;       // TEXCOORD_1 (empty: none)
+  // COLOR_0, linear RGBA (alpha 1 for a VEC3 accessor; empty: none): multiplies the base color
+  // and its alpha, as glTF's baseColorFactor and texture do.
+  std::vector<glm::vec4> colors;
   std::vector<std::uint32_t> indices;  // three per triangle, into the vertex arrays
   int material = 0;                    // index into Scene::materials
   // The names it answers to (--exclude): its glTF mesh's, its node's and that node's ancestors'

@@ -104,6 +104,9 @@ IBL_FN vec2 transformUv(UvTransform t, vec2 uv) {
 const int kMaterialRecordSlots = 6;
 const int kMaterialRecordUvTransforms = 9;
 const int kMaterialRecordVec4s = 33;
+// A vertex's record in the same buffers: (position, uv0.x), (normal, uv0.y), tangent,
+// (uv1, 0, 0), color (COLOR_0, or white).
+const int kVertexRecordVec4s = 5;
 
 // KHR_materials_ior: the Fresnel reflectance at normal incidence of a dielectric of index `ior`
 // in air, ((ior - 1) / (ior + 1))^2: 0.04 at glTF's default 1.5. ior = 0, the specification's

@@ -1,6 +1,7 @@
 // Compressed geometry: EXT_meshopt_compression's buffer views (meshoptimizer's codecs and
 // filters) and KHR_draco_mesh_compression's streams (Draco's decoder), each bounded before it
 // is decoded.
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -162,17 +163,19 @@ Mesh GltfDocument::readDracoPrimitive(int m, std::size_t p) const {
     }
   const std::vector<std::uint32_t> kept = keepUsed(mesh.indices, points);
   const tinygltf::Value& attributes = ext.Get("attributes");
+  // n components of attribute `name` into `out` (a VEC3 color's alpha stays 1).
   const auto read = [&](const char* name, int n, auto& out) {
     if (!attributes.Has(name)) return;
     const draco::PointAttribute* att = dm->GetAttributeByUniqueId(static_cast<std::uint32_t>(
         *extensionIndex(attributes, name, path_, where + " attributes")));
     if (!att) error(fmt::format("{}: the stream has no {} attribute", where, name));
+    if (n == 0) n = std::clamp(static_cast<int>(att->num_components()), 3, 4);
     out.resize(kept.size());
     for (std::size_t i = 0; i < kept.size(); ++i) {
-      float v[4] = {0, 0, 0, 0};
+      float v[4] = {0, 0, 0, 1};
       att->ConvertValue<float>(att->mapped_index(draco::PointIndex(kept[i])),
                                static_cast<std::int8_t>(n), v);
-      for (int c = 0; c < n; ++c) out[i][c] = v[c];
+      for (int c = 0; c < static_cast<int>(out[i].length()); ++c) out[i][c] = v[c];
     }
   };
   if (!attributes.Has("POSITION")) error(where + " has no POSITION");
@@ -181,6 +184,8 @@ Mesh GltfDocument::readDracoPrimitive(int m, std::size_t p) const {
   read("TEXCOORD_0", 2, mesh.uvs);
   read("TANGENT", 4, mesh.tangents);
   read("TEXCOORD_1", 2, mesh.uvs1);
+  read("COLOR_0", 0, mesh.colors);  // VEC3 or VEC4, as the stream holds it
+  if (!mesh.colors.empty()) checkVertexColors(mesh, where);
   return mesh;
 }
 

@@ -248,8 +248,8 @@ class GltfDocument {
   // --- 5. Geometry (load_geometry.cpp; Draco in compression.cpp) ----------------------------
 
   // Bytes per vertex and per index as a Scene stores them: position, normal, tangent, two UV
-  // sets; one 32-bit index.
-  static constexpr u64 kVertexBytes = 12 + 12 + 16 + 8 + 8, kIndexBytes = 4;
+  // sets, a color; one 32-bit index.
+  static constexpr u64 kVertexBytes = 12 + 12 + 16 + 8 + 8 + 16, kIndexBytes = 4;
   // Draco's peak while decoding, per triangle its stream declares: the edgebreaker's corner table
   // (24 bytes, measured), its other tables, the attributes' values (up to 3 points a triangle) and
   // the copy into the Scene.
@@ -295,6 +295,9 @@ class GltfDocument {
   // Positions past float range (a transform's scale, or values of 3e38) would break the bounds
   // and the ray tracer.
   void checkFinite(const Mesh& mesh, int m, std::size_t p, int node) const;
+
+  // COLOR_0's values are finite and not negative (a multiplier of the base color).
+  void checkVertexColors(const Mesh& mesh, const std::string& where) const;
 
   // --- Lights (load_lights.cpp) -------------------------------------------------------------
 

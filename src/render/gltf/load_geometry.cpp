@@ -130,6 +130,15 @@ Mesh GltfDocument::readPrimitive(int m, std::size_t p) const {
     const int k = attributeOf(prim, o.name);
     if (k >= 0) o.layout = &attribute(m, p, o.name, k, o.components, vertices);
   }
+  // COLOR_0: VEC3 or VEC4 (float, or normalized unsigned bytes or shorts).
+  const AccessorLayout* color = nullptr;
+  if (const int k = attributeOf(prim, "COLOR_0"); k >= 0) {
+    const bool rgb = layouts_[static_cast<std::size_t>(k)].components == 3;
+    color = &attribute(m, p, "COLOR_0", k, rgb ? 3 : 4, vertices);
+    if (color->componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !color->normalized)
+      error(fmt::format("{}: COLOR_0 accessor {} has integer components that are not normalized",
+                        where, k));
+  }
   Mesh mesh;
   if (prim.indices >= 0) {
     const AccessorLayout& idx = layouts_[static_cast<std::size_t>(prim.indices)];
@@ -166,6 +175,11 @@ Mesh GltfDocument::readPrimitive(int m, std::size_t p) const {
   if (optional[1].layout) gather(*optional[1].layout, mesh.tangents);
   if (optional[2].layout) gather(*optional[2].layout, mesh.uvs);
   if (optional[3].layout) gather(*optional[3].layout, mesh.uvs1);
+  if (color) {
+    mesh.colors.assign(kept.size(), glm::vec4(1.0f));  // a VEC3 leaves alpha at 1
+    for (std::size_t i = 0; i < kept.size(); ++i) readFloats(*color, kept[i], &mesh.colors[i][0]);
+    checkVertexColors(mesh, where);
+  }
   return mesh;
 }
 
@@ -190,6 +204,13 @@ std::vector<std::uint32_t> GltfDocument::keepUsed(std::vector<std::uint32_t>& in
       i = static_cast<std::uint32_t>(std::lower_bound(kept.begin(), kept.end(), i) - kept.begin());
   }
   return kept;
+}
+
+void GltfDocument::checkVertexColors(const Mesh& mesh, const std::string& where) const {
+  for (const glm::vec4& c : mesh.colors)
+    for (int k = 0; k < 4; ++k)
+      if (!(c[k] >= 0.0f) || !std::isfinite(c[k]))
+        error(fmt::format("{}: COLOR_0 holds {}, not a color (finite, at least 0)", where, c[k]));
 }
 
 void GltfDocument::checkFinite(const Mesh& mesh, int m, std::size_t p, int node) const {

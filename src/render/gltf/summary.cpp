@@ -55,6 +55,7 @@ GltfSummary GltfDocument::describe() {
       ++info.trianglePrimitives;
       info.triangles += data->mesh.indices.size() / 3;
       info.vertices += data->mesh.positions.size();
+      info.vertexColors = info.vertexColors || !data->mesh.colors.empty();
     }
     info.compression.assign(compression.begin(), compression.end());
     s.meshes.push_back(std::move(info));

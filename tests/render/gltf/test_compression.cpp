@@ -33,6 +33,28 @@ TEST(Gltf, DracoCompressedModels) {
   EXPECT_GT(glm::length(hi - lo), 0.0f);
 }
 
+// COLOR_0 in a Draco stream (VEC3 of normalized unsigned bytes), in the fuzzers' seed that
+// fuzz/make_seeds.cpp encodes with the Draco library (writeDracoCube in
+// tests/support/draco_writer.hpp): each corner's codes, 250 or 10, 200 or 30, 128 or 64 by the
+// signs of its x, y, z, read as code / 255 with alpha 1.
+TEST(Gltf, DracoVertexColors) {
+  const Scene s = loadGltf((repositoryRoot() / "fuzz/seeds/gltf/draco_colors.glb").string());
+  ASSERT_EQ(s.meshes.size(), 1u);
+  const Mesh& m = s.meshes[0];
+  ASSERT_EQ(m.positions.size(), 8u);
+  ASSERT_EQ(m.colors.size(), m.positions.size());
+  for (std::size_t v = 0; v < m.positions.size(); ++v) {
+    const glm::vec3 p = m.positions[v];
+    const glm::vec3 expected(p.x > 0.0f ? 250 : 10, p.y > 0.0f ? 200 : 30, p.z > 0.0f ? 128 : 64);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(m.colors[v][k], expected[k] / 255.0f, 1e-6f) << "vertex " << v << " " << k;
+    EXPECT_EQ(m.colors[v].w, 1.0f);
+  }
+  EXPECT_TRUE(loadGltf((repositoryRoot() / "fuzz/seeds/gltf/draco_edgebreaker.glb").string())
+                  .meshes.at(0)
+                  .colors.empty());
+}
+
 namespace {
 // Each triangle rotated to start at its smallest index (its winding kept).
 std::vector<std::uint32_t> canonicalTriangles(std::vector<std::uint32_t> indices) {
