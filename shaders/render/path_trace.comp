@@ -43,9 +43,13 @@ bool flag(int f) {
 int environmentSize() {
   return int(params.counts.w);
 }
-float albedoTableNode(int table, int index) {
+// Where the albedo tables start in `tables`: after the environment's CDFs.
+int albedoTablesStart() {
   int n = environmentSize();
-  return tables[6 * n + 6 * n * n + table * 33 * 33 + index];
+  return 6 * n + 6 * n * n;
+}
+float albedoTableNode(int table, int index) {
+  return tables[albedoTablesStart() + table * 33 * 33 + index];
 }
 
 #include "ibl/shared/cube.h"
@@ -55,8 +59,7 @@ float albedoTableNode(int table, int index) {
 
 // The sheen's exact Lambda reads its table after the albedo tables (brdf.h declares this).
 int charlieTableStart() {
-  int n = environmentSize();
-  return 6 * n + 6 * n * n + 2 * 33 * 33;
+  return albedoTablesStart() + 2 * 33 * 33;
 }
 float charlieTableEntry(int k) {
   return tables[charlieTableStart() + k];

@@ -142,6 +142,17 @@ Camera gridCamera() {
   return camera;
 }
 
+// The scene from gridCamera with one bounce, 64 samples per pixel: the GPU and the CPU agree
+// (expectAgreement); `what` names the scene in the printed figures.
+void expectOneBounceAgreement(const Scene& scene, const char* what) {
+  RenderOptions o;
+  o.bounces = 1;
+  const Agreement a = compare(scene, gridCamera(), skyBake().result, skyBake().options, o, 64);
+  std::printf("%s: GPU / CPU mean %.4f, outliers %.4f, same seed median %.2e\n", what, a.meanRatio,
+              a.outliers, a.sameSeedMedian);
+  expectAgreement(a);
+}
+
 #define REQUIRE_DEVICE() \
   if (!device()) GTEST_SKIP() << "no Vulkan device"
 
@@ -194,13 +205,7 @@ TEST(GpuReference, IorAndSpecularLayersEqualTheCpu) {
   backdrop.specularTexture.index = 0;
   scene.materials.push_back(backdrop);
   scene.meshes.push_back(textureWall(static_cast<int>(scene.materials.size()) - 1));
-  const Camera camera = gridCamera();
-  RenderOptions o;
-  o.bounces = 1;
-  const Agreement a = compare(scene, camera, skyBake().result, skyBake().options, o, 64);
-  std::printf("ior and specular layers: GPU / CPU mean %.4f, outliers %.4f\n", a.meanRatio,
-              a.outliers);
-  expectAgreement(a);
+  expectOneBounceAgreement(scene, "ior and specular layers");
 }
 
 // KHR_materials_clearcoat: a coated grid, and a wall whose coat's strength and roughness come
@@ -232,22 +237,14 @@ TEST(GpuReference, ClearcoatEqualsTheCpu) {
   Mesh wall = textureWall(static_cast<int>(scene.materials.size()) - 1);
   wall.tangents.assign(4, glm::vec4(1, 0, 0, 1));
   scene.meshes.push_back(wall);
-  const Camera camera = gridCamera();
-  RenderOptions o;
-  o.bounces = 1;
-  const Agreement a = compare(scene, camera, skyBake().result, skyBake().options, o, 64);
-  std::printf("clear coat: GPU / CPU mean %.4f, outliers %.4f\n", a.meanRatio, a.outliers);
-  expectAgreement(a);
+  expectOneBounceAgreement(scene, "clear coat");
   // The wall alone fills the frame: its coat's textures and normal map decide every pixel.
   Scene wallOnly;
   wallOnly.textures = scene.textures;
   wallOnly.materials = {backdrop};
   wall.material = 0;
   wallOnly.meshes = {wall};
-  const Agreement w = compare(wallOnly, camera, skyBake().result, skyBake().options, o, 64);
-  std::printf("clear coat's textures: GPU / CPU mean %.4f, outliers %.4f\n", w.meanRatio,
-              w.outliers);
-  expectAgreement(w);
+  expectOneBounceAgreement(wallOnly, "clear coat's textures");
 }
 
 // KHR_materials_sheen at a sheen roughness of 0.15, where the Charlie Lambda is the tabulated
@@ -265,13 +262,7 @@ TEST(GpuReference, SheenEqualsTheCpu) {
   point.position = glm::vec3(0.0f, 8.0f, -4.0f);
   point.intensity = 400.0f;
   scene.lights.push_back(point);
-  const Camera camera = gridCamera();
-  RenderOptions o;
-  o.bounces = 1;
-  const Agreement a = compare(scene, camera, skyBake().result, skyBake().options, o, 64);
-  std::printf("sheen: GPU / CPU mean %.4f, outliers %.4f, same seed median %.2e\n", a.meanRatio,
-              a.outliers, a.sameSeedMedian);
-  expectAgreement(a);
+  expectOneBounceAgreement(scene, "sheen");
 }
 
 // COLOR_0: a wall whose four corners' colors differ in every channel, masked where the
@@ -290,13 +281,7 @@ TEST(GpuReference, VertexColorsEqualTheCpu) {
                  {0.2f, 0.3f, 1.0f, 0.1f},
                  {0.9f, 0.9f, 0.1f, 0.6f}};
   scene.meshes = {wall};
-  const Camera camera = gridCamera();
-  RenderOptions o;
-  o.bounces = 1;
-  const Agreement a = compare(scene, camera, skyBake().result, skyBake().options, o, 64);
-  std::printf("vertex colors: GPU / CPU mean %.4f, outliers %.4f, same seed median %.2e\n",
-              a.meanRatio, a.outliers, a.sameSeedMedian);
-  expectAgreement(a);
+  expectOneBounceAgreement(scene, "vertex colors");
 }
 
 // KHR_texture_transform: a wall whose base color and emission read a 4 x 4 texture through
@@ -316,11 +301,7 @@ TEST(GpuReference, TextureTransformsEqualTheCpu) {
   scene.textures = {test::gridTexture(150, true)};
   scene.materials = {wall};
   scene.meshes = {textureWall(0)};
-  RenderOptions o;
-  o.bounces = 1;
-  const Agreement a = compare(scene, gridCamera(), skyBake().result, skyBake().options, o, 64);
-  std::printf("texture transforms: GPU / CPU mean %.4f, outliers %.4f\n", a.meanRatio, a.outliers);
-  expectAgreement(a);
+  expectOneBounceAgreement(scene, "texture transforms");
 }
 
 // Textures with each wrap mode, MASK and BLEND alpha from a texture's A, a normal map's
