@@ -180,7 +180,8 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     const RenderResult reference = tracer.result();
     RenderResult realTime;
     if (view != gpu::ViewMode::Reference) {
-      gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume);
+      gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume,
+                                  o.scene.volumeUpdateFrames > 0);
       updateVolumeBeforeScreenshot(renderer, camera, shading, o.scene, global);
       realTime = renderer.render(camera, shading, o.skyboxMip);
     }
@@ -201,7 +202,8 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     gpu::ContextOptions co;
     co.graphics = true;
     const auto context = gpu::Context::create(co);
-    gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume);
+    gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume,
+                                o.scene.volumeUpdateFrames > 0);
     updateVolumeBeforeScreenshot(renderer, camera, shading, o.scene, global);
     RenderResult result = renderer.render(camera, shading, o.skyboxMip);
     if (renderer.samples() < shading.spp && !global.quiet)

@@ -226,6 +226,8 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
         m1.w, m3.x, slotTexel(m, tri, material, kMaterialMetallicRoughness, w, false));
     float metallic = mr.x, roughness = mr.y;
     vec3 emissive = m1.rgb * slotTexel(m, tri, material, kMaterialEmissive, w, true).rgb;
+    // Unlit (m6.x = 1): the emission is the base color's, so the vertex colors multiply it.
+    if (materialAt(material, 6).x != 0.0) emissive *= vertexColorAt(tri, w).rgb;
     p.sheenColor = m2.rgb * slotTexel(m, tri, material, kMaterialSheenColor, w, true).rgb;
     p.sheenRoughness =
         clamp(m2.w * slotTexel(m, tri, material, kMaterialSheenRoughness, w, false).a, 0.0, 1.0);

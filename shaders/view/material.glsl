@@ -23,7 +23,7 @@ layout(std430, set = 1, binding = kMaterialFactors) readonly buffer Material {
   vec4 emissiveRoughness;
   vec4 scales;     // normal scale, occlusion strength, KHR_materials_ior's ior, the clear coat's
                    // normal scale
-  vec4 alpha;      // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff
+  vec4 alpha;      // baseColorFactor's A, mode (0 opaque, 1 mask, 2 blend), cutoff, 1 if unlit
   vec4 clearcoat;  // KHR_materials_clearcoat's factor and roughness
   vec4 sheen;      // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor

@@ -86,6 +86,7 @@ ShadedSurface fragmentSurface(int samples) {
   float occlusion =
       occlusionFromTexel(material.scales.y, slotTexel(occlusionTexture, kMaterialOcclusion));
   emissive *= slotTexel(emissiveTexture, kMaterialEmissive).rgb;
+  if (material.alpha.w != 0.0) emissive *= vertexColor.rgb;  // unlit: the base color's place
   vec4 sheen = material.sheen;
   sheen.rgb *= slotTexel(sheenColorTexture, kMaterialSheenColor).rgb;
   sheen.w *= slotTexel(sheenRoughnessTexture, kMaterialSheenRoughness).a;

@@ -97,6 +97,7 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
     data.push_back(glm::vec4(mat.specularColor, mat.specular));
     data.push_back(
         glm::vec4(mat.ior, mat.clearcoat, mat.clearcoatRoughness, mat.clearcoatNormalScale));
+    data.push_back(glm::vec4(mat.unlit ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f));
     const auto slots = mat.textureSlots();
     for (std::size_t b = 0; b < slots.size(); b += 4)
       data.push_back(glm::vec4(slotOf(slots[b]), slotOf(slots[b + 1]), slotOf(slots[b + 2]),

@@ -98,10 +98,11 @@ VkRenderPass createSceneRenderPass(VkDevice device, VkFormat depthFormat, int sa
 
 SceneRenderer::Impl::Impl(Context& c, const Scene& sceneData, const BakeResult& bake,
                           const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes,
-                          const IrradianceVolume* irradianceVolume)
+                          const IrradianceVolume* irradianceVolume, bool updatableVolume)
     : context(c),
       device(rasterizingDevice(c)),
       bounds(sceneData.bounds()),
+      hasVolume(irradianceVolume != nullptr),
       depthFormat(chooseDepthFormat(c)),
       standardSampleLocations(hasStandardSampleLocations(c)),
       frame(c),
@@ -113,7 +114,7 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& sceneData, const BakeResult& 
       sceneFrag(device, c.impl().shaderModule("scene_frag")),
       fullscreenVert(device, c.impl().shaderModule("fullscreen_vert")),
       skyboxFrag(device, c.impl().shaderModule("skybox_frag")) {
-  if (irradianceVolume)
+  if (irradianceVolume && updatableVolume)
     volumeUpdate = std::make_unique<VolumeUpdate>(c, frame, volume, sceneData, *irradianceVolume,
                                                   VolumeUpdateOptions{});
 }
@@ -315,8 +316,9 @@ void SceneRenderer::Impl::recordScenePass(VkCommandBuffer cmd, VkFramebuffer fra
 
 SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const BakeResult& bake,
                              const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes,
-                             const IrradianceVolume* volume)
-    : impl_(std::make_unique<Impl>(context, scene, bake, bakeOptions, probes, volume)) {}
+                             const IrradianceVolume* volume, bool updatableVolume)
+    : impl_(std::make_unique<Impl>(context, scene, bake, bakeOptions, probes, volume,
+                                   updatableVolume)) {}
 SceneRenderer::~SceneRenderer() = default;
 
 void SceneRenderer::setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
@@ -326,7 +328,9 @@ void SceneRenderer::setEnvironment(const BakeResult& bake, const BakeOptions& ba
 
 void SceneRenderer::updateVolume(const Camera& camera, const RenderOptions& options, int frames) {
   Impl& r = *impl_;
-  if (!r.volumeUpdate) fail("view", "there is no irradiance volume to update (--volume)");
+  if (!r.volumeUpdate)
+    fail("view", r.hasVolume ? "the irradiance volume was loaded as static (--volume-update off)"
+                             : "there is no irradiance volume to update (--volume)");
   checkCamera(camera);
   r.prepare(camera.width, camera.height, r.supportedSamples(std::max(options.spp, 1)));
   for (int i = 0; i < frames; ++i)

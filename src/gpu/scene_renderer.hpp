@@ -27,12 +27,13 @@ struct SceneRenderer::Impl {
   Context& context;
   VkDevice device;
   std::pair<glm::vec3, glm::vec3> bounds;  // the scene's
+  bool hasVolume;                          // an irradiance volume was given
   VkFormat depthFormat;                    // of the scene pass and the view buffers
   bool standardSampleLocations;            // the device's multisamples lie where Vulkan says
   FrameSet frame;
   SceneUpload scene;
   VolumeUpload volume;
-  std::unique_ptr<VolumeUpdate> volumeUpdate;  // with a volume: its live update
+  std::unique_ptr<VolumeUpdate> volumeUpdate;  // with an updatable volume: its live update
   ShadowPass shadows;
   ClusterUpload clusters;
   // The scene pass's shaders: the meshes' (view/scene.vert and .frag) and the skybox's.
@@ -57,10 +58,11 @@ struct SceneRenderer::Impl {
   };
   std::optional<Targets> targets;
 
-  // Uploads the scene, the bake, the probes and the volume (SceneRenderer's constructor); throws
-  // Error when the context's queue cannot rasterize.
+  // Uploads the scene, the bake, the probes and the volume, and the volume's live update where
+  // updatableVolume (SceneRenderer's constructor); throws Error when the context's queue cannot
+  // rasterize.
   Impl(Context& context, const Scene& scene, const BakeResult& bake, const BakeOptions& bakeOptions,
-       const std::vector<LocalProbe>& probes, const IrradianceVolume* volume);
+       const std::vector<LocalProbe>& probes, const IrradianceVolume* volume, bool updatableVolume);
   // Waits for the device to be idle; the parts then free what they made.
   ~Impl();
   Impl(const Impl&) = delete;

@@ -304,8 +304,8 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
     factors.emissiveRoughness = glm::vec4(mat.emissive, mat.roughness);
     factors.scales =
         glm::vec4(mat.normalScale, mat.occlusionStrength, mat.ior, mat.clearcoatNormalScale);
-    factors.alpha =
-        glm::vec4(mat.baseColorAlpha, static_cast<float>(mat.alphaMode), mat.alphaCutoff, 0.0f);
+    factors.alpha = glm::vec4(mat.baseColorAlpha, static_cast<float>(mat.alphaMode),
+                              mat.alphaCutoff, mat.unlit ? 1.0f : 0.0f);
     factors.clearcoat = glm::vec4(mat.clearcoat, mat.clearcoatRoughness, 0.0f, 0.0f);
     factors.sheen = glm::vec4(mat.sheenColor, mat.sheenRoughness);
     factors.specular = glm::vec4(mat.specularColor, mat.specular);

@@ -71,10 +71,11 @@ struct MaterialFactors {
   glm::vec4 baseColorMetallic, emissiveRoughness;
   // normal scale, occlusion strength, KHR_materials_ior's ior, the coat's normal scale
   glm::vec4 scales;
-  glm::vec4 alpha;      // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff, 0
-  glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness, 0, 0
-  glm::vec4 sheen;      // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
-  glm::vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
+  // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff, 1 where Material::unlit
+  glm::vec4 alpha;
+  glm::vec4 clearcoat;         // KHR_materials_clearcoat: factor, roughness, 0, 0
+  glm::vec4 sheen;             // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
+  glm::vec4 specular;          // KHR_materials_specular: specularColorFactor, specularFactor
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
   std::uint32_t padding[3];
   // KHR_texture_transform: binding b's rows u and v (shared::UvTransform) at 2b and 2b + 1.

@@ -444,8 +444,8 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   const VkSurfaceFormatKHR format = chooseSurfaceFormat(c.physical, r.surface);
   createTonemapPass(r, format.format);
   createSwapchain(r, format);
-  r.renderer =
-      std::make_unique<SceneRenderer>(*r.context, scene, bake, bakeOptions, probes, volume);
+  r.renderer = std::make_unique<SceneRenderer>(*r.context, scene, bake, bakeOptions, probes, volume,
+                                               o.volumeUpdate);
   auto& renderer = r.renderer->impl();
   if (o.bloom) r.bloom = std::make_unique<DeviceBloom>(*r.context);
   const int samples = renderer.supportedSamples(std::max(o.render.spp, 1));

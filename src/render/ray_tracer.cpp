@@ -155,8 +155,11 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     };
     glm::vec4 t;
     if (lookup(mat->baseColorTexture, true, t)) base *= glm::vec3(t);
-    if (!m.colors.empty())
-      base *= glm::vec3(m.colors[i0] * w0 + m.colors[i1] * w1 + m.colors[i2] * w2);
+    if (!m.colors.empty()) {
+      const glm::vec3 color(m.colors[i0] * w0 + m.colors[i1] * w1 + m.colors[i2] * w2);
+      base *= color;
+      if (mat->unlit) emissive *= color;  // the base color, moved to the emission
+    }
     if (lookup(mat->metallicRoughnessTexture, false, t)) {
       const glm::vec2 mr = shared::applyMetallicRoughnessTexel(metallic, roughness, t);
       metallic = mr.x;

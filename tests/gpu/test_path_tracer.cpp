@@ -266,22 +266,33 @@ TEST(GpuReference, SheenEqualsTheCpu) {
 }
 
 // COLOR_0: a wall whose four corners' colors differ in every channel, masked where the
-// interpolated alpha falls below the cutoff (the rays' coverage test reads it too).
+// interpolated alpha falls below the cutoff (the rays' coverage test reads it too). Its right
+// half is unlit, as the loader converts KHR_materials_unlit: there the colors multiply the
+// emission that shows the base color.
 TEST(GpuReference, VertexColorsEqualTheCpu) {
   REQUIRE_DEVICE();
   Material m;
   m.baseColor = glm::vec3(0.9f, 0.8f, 0.7f);
   m.roughness = 0.4f;
   m.alphaMode = AlphaMode::Mask;
+  Material unlit = m;
+  unlit.unlit = true;
+  unlit.emissive = m.baseColor;
+  unlit.baseColor = glm::vec3(0.0f);
+  unlit.specular = 0.0f;
   Scene scene;
-  scene.materials = {m};
-  Mesh wall = textureWall(0);
-  wall.colors = {{1.0f, 0.1f, 0.2f, 1.0f},
-                 {0.1f, 1.0f, 0.3f, 0.8f},
-                 {0.2f, 0.3f, 1.0f, 0.1f},
-                 {0.9f, 0.9f, 0.1f, 0.6f}};
-  scene.meshes = {wall};
-  expectOneBounceAgreement(scene, "vertex colors");
+  scene.materials = {m, unlit};
+  for (int half = 0; half < 2; ++half) {
+    Mesh wall = textureWall(half);
+    for (int k : {0, 3}) wall.positions[static_cast<std::size_t>(k)].x = half == 0 ? -9.0f : 0.0f;
+    for (int k : {1, 2}) wall.positions[static_cast<std::size_t>(k)].x = half == 0 ? 0.0f : 9.0f;
+    wall.colors = {{1.0f, 0.1f, 0.2f, 1.0f},
+                   {0.1f, 1.0f, 0.3f, 0.8f},
+                   {0.2f, 0.3f, 1.0f, 0.1f},
+                   {0.9f, 0.9f, 0.1f, 0.6f}};
+    scene.meshes.push_back(wall);
+  }
+  expectOneBounceAgreement(scene, "vertex colors, lit and unlit");
 }
 
 // KHR_texture_transform: a wall whose base color and emission read a 4 x 4 texture through

@@ -255,32 +255,36 @@ TEST(Viewer, TextureTransformsMatchTheCpu) {
 
 // COLOR_0 multiplies the base color and its alpha: a quad whose vertices' colors differ in every
 // channel (the colors interpolated across it), masked where the vertices' alpha falls below the
-// cutoff, lit by the environment and a point light.
+// cutoff, lit by the environment and a point light; then unlit, where they multiply the color
+// it shows.
 TEST(Viewer, VertexColorsMatchTheCpu) {
-  TempDir dir;
-  QuadMaterial q;
-  q.baseColorCodes = {255, 200, 160};
-  q.metallicFactor = 0.0f;
-  q.roughnessFactor = 0.5f;
-  q.alphaMode = "MASK";
-  writeMaterialQuad(dir / "quad.gltf", q);
-  Scene scene = loadGltf((dir / "quad.gltf").string());
-  Mesh& mesh = scene.meshes.at(0);
-  const glm::vec4 corners[4] = {{1.0f, 0.1f, 0.2f, 1.0f},
-                                {0.1f, 1.0f, 0.3f, 0.8f},
-                                {0.2f, 0.3f, 1.0f, 0.1f},
-                                {0.9f, 0.9f, 0.1f, 0.6f}};
-  mesh.colors.clear();
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) mesh.colors.push_back(corners[i % 4]);
-  scene.lights.push_back(
-      viewerTestLight(LightType::Point, {1.0f, 1.0f, 2.0f}, {0.0f, 0.0f, -1.0f}, 30.0f, 1.0f));
-  RenderOptions o;
-  o.spp = 1;
-  const Comparison c = renderBoth(scene, lookingAt({0.3f, 0.2f, 3.0f}, 64, 64), o);
-  std::printf("vertex colors: mean relative difference %.2e, coverage mismatch %.4f\n",
-              c.meanRelative, c.coverageMismatch);
-  EXPECT_LT(c.meanRelative, 1e-3);
-  EXPECT_LT(c.coverageMismatch, 5e-3);
+  for (bool unlit : {false, true}) {
+    TempDir dir;
+    QuadMaterial q;
+    q.baseColorCodes = {255, 200, 160};
+    q.metallicFactor = 0.0f;
+    q.roughnessFactor = 0.5f;
+    q.alphaMode = "MASK";
+    q.unlit = unlit;
+    writeMaterialQuad(dir / "quad.gltf", q);
+    Scene scene = loadGltf((dir / "quad.gltf").string());
+    Mesh& mesh = scene.meshes.at(0);
+    const glm::vec4 corners[4] = {{1.0f, 0.1f, 0.2f, 1.0f},
+                                  {0.1f, 1.0f, 0.3f, 0.8f},
+                                  {0.2f, 0.3f, 1.0f, 0.1f},
+                                  {0.9f, 0.9f, 0.1f, 0.6f}};
+    mesh.colors.clear();
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) mesh.colors.push_back(corners[i % 4]);
+    scene.lights.push_back(
+        viewerTestLight(LightType::Point, {1.0f, 1.0f, 2.0f}, {0.0f, 0.0f, -1.0f}, 30.0f, 1.0f));
+    RenderOptions o;
+    o.spp = 1;
+    const Comparison c = renderBoth(scene, lookingAt({0.3f, 0.2f, 3.0f}, 64, 64), o);
+    std::printf("vertex colors%s: mean relative difference %.2e, coverage mismatch %.4f\n",
+                q.unlit ? " (unlit)" : "", c.meanRelative, c.coverageMismatch);
+    EXPECT_LT(c.meanRelative, 1e-3);
+    EXPECT_LT(c.coverageMismatch, 5e-3);
+  }
 }
 
 // A transform's screen derivatives: a floor seen at a glance minifies a checker texture (mip

@@ -77,3 +77,27 @@ TEST(Viewer, VolumeUpdateMatchesTheCpu) {
   EXPECT_LT(d, 0.005);
   EXPECT_GT(changed, 0.5);
 }
+
+// A volume loaded as static (ibl view --volume-update off, or a screenshot without
+// --volume-update-frames) gets no live update, so neither its scene buffers nor its pipelines:
+// its frames are those of the same volume loaded as updatable (not updated), and asking to update
+// it is a clear error, not a crash.
+TEST(Viewer, StaticVolumeHasNoUpdate) {
+  const Scene room = loadGltf((dataDir() / "scenes" / "room.gltf").string());
+  const Baked& b = sunsetBake();
+  const IrradianceVolume volume = makeVolume({-2.5f, 0.0f, -2.5f}, {2.5f, 3.0f, 2.5f}, {2, 2, 2},
+                                             VolumeOptions{}, CaptureOptions{});
+  RenderOptions o;
+  o.spp = 1;
+  gpu::SceneRenderer viewer(graphicsContext(), room, b.bake, b.options, {}, &volume, false);
+  const Camera camera = lookingAt({0.0f, 1.5f, 2.0f}, 16, 12);
+  const Image frame = viewer.render(camera, o).color;
+  gpu::SceneRenderer updatable(graphicsContext(), room, b.bake, b.options, {}, &volume);
+  EXPECT_EQ(frame.pixels, updatable.render(camera, o).color.pixels);
+  try {
+    viewer.updateVolume(camera, o, 1);
+    ADD_FAILURE() << "a static volume was updated";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--volume-update off"), std::string::npos) << e.what();
+  }
+}

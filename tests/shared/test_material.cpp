@@ -204,7 +204,8 @@ TEST(ShadingRules, SpecularTexturesScaleTheDielectricsFresnel) {
 
 // KHR_materials_unlit: the quad shows baseColorFactor times its sRGB-decoded texture whatever
 // lights it (a bright environment and a sun here), in both modes; its other properties (a
-// rough white metal) reflect nothing.
+// rough white metal) reflect nothing. With vertex colors (COLOR_0), their product too: the
+// colors are linear in position, so the quad's center shows their value there.
 TEST(ShadingRules, UnlitShowsItsBaseColor) {
   TempDir dir;
   QuadMaterial m;
@@ -224,11 +225,20 @@ TEST(ShadingRules, UnlitShowsItsBaseColor) {
       2, [](int, glm::vec3) { return glm::vec3(3.0f); }, [](glm::vec3) { return glm::vec3(3.0f); },
       glm::vec3(0.7f, 0.2f, 1.0f), 8);
   const glm::vec3 expected(0.5f * 0.2158605f, 1.0f * 0.0512695f, 0.25f * 1.0f);
-  for (RenderMode mode : {RenderMode::SplitSum, RenderMode::Reference}) {
-    RenderOptions o;
-    o.mode = mode;
-    const glm::vec3 c = centerPixel(scene, s, o);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], expected[k], 1e-4f) << k;
+  const glm::vec4 center(0.6f, 0.3f, 0.9f, 1.0f);
+  for (bool colors : {false, true}) {
+    if (colors)
+      for (const glm::vec3& p : scene.meshes.at(0).positions)
+        scene.meshes.at(0).colors.push_back(center +
+                                            glm::vec4(0.3f * p.x, -0.2f * p.y, 0.0f, 0.0f));
+    for (RenderMode mode : {RenderMode::SplitSum, RenderMode::Reference}) {
+      RenderOptions o;
+      o.mode = mode;
+      const glm::vec3 c = centerPixel(scene, s, o);
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(c[k], expected[k] * (colors ? center[k] : 1.0f), 1e-4f)
+            << k << (colors ? " with vertex colors" : "");
+    }
   }
 }
 

@@ -32,9 +32,11 @@ class SceneRenderer {
   // RenderOptions::volume (null: none; the frames then read no volume whatever options.volume
   // says, as they read the probes given here and not options.probes). Throws Error when the
   // device's 2D images are smaller than its atlases.
+  // updatableVolume: whether the volume can be updated live (updateVolume, record's flag); false
+  // leaves out the update's scene buffers and pipelines, which a static volume never reads.
   SceneRenderer(Context& context, const Scene& scene, const BakeResult& bake,
                 const BakeOptions& bakeOptions, const std::vector<LocalProbe>& probes = {},
-                const IrradianceVolume* volume = nullptr);
+                const IrradianceVolume* volume = nullptr, bool updatableVolume = true);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;

@@ -107,6 +107,9 @@ struct Material {
   TextureRef clearcoatRoughnessTexture;  // G multiplies clearcoatRoughness
   TextureRef clearcoatNormalTexture;     // none: the coat follows the unmapped normal
   float clearcoatNormalScale = 1.0f;     // as normalScale
+  // KHR_materials_unlit, as the loader converts it: the emission is the base color (and its
+  // texture), so COLOR_0 multiplies the emission as it would the base color.
+  bool unlit = false;
 
   // Its texture slots in the order of the device's bindings and records (MaterialBinding in
   // ibl/shared/view_bindings.h): base color, metallic-roughness, normal, occlusion, emissive,

@@ -98,12 +98,12 @@ IBL_FN vec2 transformUv(UvTransform t, vec2 uv) {
 }
 
 // A material's record in the GPU path tracer's scene buffer (written by
-// src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl): six vec4s of factors,
+// src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl): seven vec4s of factors,
 // three of texture slots (one float per MaterialBinding, in its order) and two per slot of its
 // UV transform's rows.
-const int kMaterialRecordSlots = 6;
-const int kMaterialRecordUvTransforms = 9;
-const int kMaterialRecordVec4s = 33;
+const int kMaterialRecordSlots = 7;
+const int kMaterialRecordUvTransforms = 10;
+const int kMaterialRecordVec4s = 34;
 // A vertex's record in the same buffers: (position, uv0.x), (normal, uv0.y), tangent,
 // (uv1, 0, 0), color (COLOR_0, or white).
 const int kVertexRecordVec4s = 5;

@@ -53,12 +53,13 @@ glm::vec<N, float> extensionVector(const tinygltf::Value& x, const char* name,
   return c;
 }
 
-// KHR_materials_unlit: the surface shows its base color (factor times texture; the vertex colors,
-// which multiply the base color of a lit material, do not reach this emission) whatever the light.
-// As every path shades it: an emitter of that radiance that reflects nothing (black, no specular
-// layer, no sheen), its alpha coverage kept. In the reference it lights what it faces, as any
-// emissive surface does.
+// KHR_materials_unlit: the surface shows its base color (factor times texture times the vertex
+// colors) whatever the light. As every path shades it: an emitter of that radiance that reflects
+// nothing (black, no specular layer, no sheen), its alpha coverage kept; Material::unlit tells
+// the paths that COLOR_0 multiplies this emission. In the reference it lights what it faces, as
+// any emissive surface does.
 Material unlit(Material m) {
+  m.unlit = true;
   m.emissive = m.baseColor;
   m.emissiveTexture = m.baseColorTexture;  // sRGB, as the base color's; its A still covers
   m.baseColor = glm::vec3(0.0f);
