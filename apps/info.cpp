@@ -135,7 +135,11 @@ void runGltfInfo(const InfoOptions& o) {
            {"dielectric_f0", vec(m.dielectricF0)},
            {"dielectric_f90", m.dielectricF90},
            {"clearcoat", m.clearcoat},
-           {"clearcoat_roughness", m.clearcoatRoughness}});
+           {"clearcoat_roughness", m.clearcoatRoughness},
+           {"iridescence", m.iridescence},
+           {"iridescence_ior", m.iridescenceIor},
+           {"iridescence_thickness",
+            {m.iridescenceThicknessMinimum, m.iridescenceThicknessMaximum}}});
     for (const auto& t : s.textures)
       j["textures"].push_back({{"image", index(t.image)},
                                {"source", t.source},
@@ -242,11 +246,17 @@ void runGltfInfo(const InfoOptions& o) {
                                  ? fmt::format(", clear coat {:.4g} (roughness {:.4g})",
                                                m.clearcoat, m.clearcoatRoughness)
                                  : "";
+    const std::string film =
+        m.iridescence > 0.0f
+            ? fmt::format(", iridescence {:.4g} (film ior {:.4g}, {:.4g} to {:.4g} nm)",
+                          m.iridescence, m.iridescenceIor, m.iridescenceThicknessMinimum,
+                          m.iridescenceThicknessMaximum)
+            : "";
     fmt::print(
         "  {}{}: base color {:.4g} {:.4g} {:.4g} {:.4g}, metallic {:.4g}, roughness "
-        "{:.4g}{}{}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
+        "{:.4g}{}{}{}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
         i, quoted(m.name), m.baseColor.x, m.baseColor.y, m.baseColor.z, m.baseColor.w, m.metallic,
-        m.roughness, dielectric, coat, m.emissive.x, m.emissive.y, m.emissive.z, m.alphaMode,
+        m.roughness, dielectric, coat, film, m.emissive.x, m.emissive.y, m.emissive.z, m.alphaMode,
         m.doubleSided ? ", double-sided" : "", textures.empty() ? "" : ", textures " + textures,
         extensions.empty() ? "" : "; extensions: " + extensions);
   }

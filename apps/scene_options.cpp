@@ -121,6 +121,19 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "Built-in scenes: the clear coat's perceptual roughness")
       ->check(numberIn(0.0f, 1.0f))
       ->capture_default_str();
+  cmd->add_option("--iridescence", o.iridescence,
+                  "Built-in scenes: a thin film's strength (KHR_materials_iridescence: its "
+                  "interference colors the specular reflection)")
+      ->check(numberIn(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--iridescence-ior", o.iridescenceIor,
+                  "Built-in scenes: the thin film's index of refraction")
+      ->check(numberIn(1.0f, 3.0f))
+      ->capture_default_str();
+  cmd->add_option("--iridescence-thickness", o.iridescenceThickness,
+                  "Built-in scenes: the thin film's thickness in nanometers")
+      ->check(numberIn(0.0f, 2000.0f))
+      ->capture_default_str();
   cmd->add_option("--diffuse", o.diffuse, "disney (Frostbite renormalized) or lambert")
       ->check(CLI::IsMember({"disney", "lambert"}))
       ->capture_default_str();
@@ -274,6 +287,9 @@ Scene loadSceneAlone(const SceneCliOptions& o, const GlobalOptions& global) {
   m.specular = o.specular;
   m.clearcoat = o.clearcoat;
   m.clearcoatRoughness = o.clearcoatRoughness;
+  m.iridescence = o.iridescence;
+  m.iridescenceIor = o.iridescenceIor;
+  m.iridescenceThicknessMaximum = o.iridescenceThickness;
   if (o.scene == "grid") return makeSphereGrid(m);
   m.metallic = o.metallic;
   m.roughness = o.roughness;
@@ -336,8 +352,9 @@ void refuseIgnoredSceneOptions(const SceneCliOptions& o) {
   if (o.orthoWidth && (given(o, "--camera") || builtInScene(o)) && o.camera != "ortho")
     failUsage("--ortho-width", "applies to --camera ortho; --camera perspective's view is --fov");
   // The built-in scenes' material.
-  for (const char* option : {"--base-color", "--metallic", "--roughness", "--ior", "--specular",
-                             "--clearcoat", "--clearcoat-roughness"})
+  for (const char* option :
+       {"--base-color", "--metallic", "--roughness", "--ior", "--specular", "--clearcoat",
+        "--clearcoat-roughness", "--iridescence", "--iridescence-ior", "--iridescence-thickness"})
     if (given(o, option) && !builtInScene(o))
       failUsage(option, fmt::format("sets the material of the built-in scenes (sphere, grid); "
                                     "the scene {} has its own",

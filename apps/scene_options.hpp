@@ -45,6 +45,10 @@ struct SceneCliOptions {
   float specular = 1.0f;            // KHR_materials_specular's factor
   float clearcoat = 0.0f;           // KHR_materials_clearcoat's factor
   float clearcoatRoughness = 0.0f;  // and roughness
+  // KHR_materials_iridescence: the film's strength, index and thickness (nm)
+  float iridescence = 0.0f;
+  float iridescenceIor = 1.3f;
+  float iridescenceThickness = 400.0f;
   std::string diffuse = "disney";
   std::string only;
   std::string multiscatter = "walk";  // --multiscatter walk|scale|off

@@ -198,6 +198,8 @@ struct Surface {
   // the emission above is what the coat lets through toward the ray's origin.
   float clearcoat, clearcoatRoughness;
   vec3 clearcoatNormal;
+  // KHR_materials_iridescence (textures applied; 0: none): strength, the film's IOR and thickness.
+  float iridescence, iridescenceIor, iridescenceThickness;
 };
 
 Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
@@ -226,8 +228,8 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
         m1.w, m3.x, slotTexel(m, tri, material, kMaterialMetallicRoughness, w, false));
     float metallic = mr.x, roughness = mr.y;
     vec3 emissive = m1.rgb * slotTexel(m, tri, material, kMaterialEmissive, w, true).rgb;
-    // Unlit (m6.x = 1): the emission is the base color's, so the vertex colors multiply it.
-    if (materialAt(material, 6).x != 0.0) emissive *= vertexColorAt(tri, w).rgb;
+    // Unlit (m7.x = 1): the emission is the base color's, so the vertex colors multiply it.
+    if (materialAt(material, 7).x != 0.0) emissive *= vertexColorAt(tri, w).rgb;
     p.sheenColor = m2.rgb * slotTexel(m, tri, material, kMaterialSheenColor, w, true).rgb;
     p.sheenRoughness =
         clamp(m2.w * slotTexel(m, tri, material, kMaterialSheenRoughness, w, false).a, 0.0, 1.0);
@@ -237,6 +239,12 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
         clamp(m5.y * slotTexel(m, tri, material, kMaterialClearcoat, w, false).r, 0.0, 1.0);
     p.clearcoatRoughness = clamp(
         m5.z * slotTexel(m, tri, material, kMaterialClearcoatRoughness, w, false).g, 0.0, 1.0);
+    vec4 m6 = materialAt(material, 6);
+    p.iridescence =
+        clamp(m6.x * slotTexel(m, tri, material, kMaterialIridescence, w, false).r, 0.0, 1.0);
+    // No thickness texture: white, so the maximum.
+    p.iridescenceThickness =
+        mix(m6.z, m6.w, slotTexel(m, tri, material, kMaterialIridescenceThickness, w, false).g);
     // The coat's normal: the interpolated one, unless it has a normal map of its own.
     coatNormal = n;
     if ((m.flags & 1u) != 0u) {
@@ -268,9 +276,12 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     m5 = materialAt(material, 5);
     p.clearcoat = m5.y;
     p.clearcoatRoughness = m5.z;
+    p.iridescence = materialAt(material, 6).x;
+    p.iridescenceThickness = materialAt(material, 6).w;
     coatNormal = n;
   }
   p.ior = m5.x;
+  p.iridescenceIor = materialAt(material, 6).y;
   // Shade the side the ray sees (the coat's normal on the same side).
   if (dot(n, dir) > 0.0) {
     n = -n;
@@ -283,10 +294,12 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
   return p;
 }
 
-// The Fresnel reflectance of the surface's material (specularReflectance, ibl/shared/material.h).
+// The Fresnel reflectance of the surface's material (specularReflectance and withIridescence,
+// ibl/shared/material.h).
 SpecularReflectance surfaceReflectance(Surface p, bool microOcclusion) {
-  return specularReflectance(p.baseColor, p.metallic, p.ior, p.specular, p.specularColor,
-                             microOcclusion);
+  return withIridescence(specularReflectance(p.baseColor, p.metallic, p.ior, p.specular,
+                                             p.specularColor, microOcclusion),
+                         p.iridescence, p.iridescenceIor, p.iridescenceThickness);
 }
 
 // A probe capture's view of a metal (RenderOptions::captureMetalsAsDiffuse): a diffuse surface

@@ -18,6 +18,9 @@ layout(set = 1, binding = kMaterialSpecularColor) uniform sampler2D specularColo
 layout(set = 1, binding = kMaterialClearcoat) uniform sampler2D clearcoatTexture;  // R
 layout(set = 1, binding = kMaterialClearcoatRoughness) uniform sampler2D clearcoatRoughnessTexture;
 layout(set = 1, binding = kMaterialClearcoatNormal) uniform sampler2D clearcoatNormalTexture;
+layout(set = 1, binding = kMaterialIridescence) uniform sampler2D iridescenceTexture;  // R
+layout(set = 1, binding = kMaterialIridescenceThickness) uniform sampler2D
+    iridescenceThicknessTexture;  // G
 layout(std430, set = 1, binding = kMaterialFactors) readonly buffer Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
@@ -27,9 +30,10 @@ layout(std430, set = 1, binding = kMaterialFactors) readonly buffer Material {
   vec4 clearcoat;  // KHR_materials_clearcoat's factor and roughness
   vec4 sheen;      // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
+  vec4 iridescence;  // KHR_materials_iridescence: factor, IOR, thickness minimum and maximum (nm)
   uint texCoordMask;  // bit b: the texture at binding b reads TEXCOORD_1
   // KHR_texture_transform: binding b's UvTransform rows u and v at 2b and 2b + 1.
-  vec4 uvTransforms[2 * 12];
+  vec4 uvTransforms[2 * 14];
 } material;
 layout(push_constant) uniform Draw {
   vec4 sphere;     // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)

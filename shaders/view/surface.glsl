@@ -96,6 +96,11 @@ ShadedSurface fragmentSurface(int samples) {
   vec2 coat = material.clearcoat.xy;  // KHR_materials_clearcoat: factor, roughness
   coat.x *= slotTexel(clearcoatTexture, kMaterialClearcoat).r;
   coat.y *= slotTexel(clearcoatRoughnessTexture, kMaterialClearcoatRoughness).g;
+  vec4 iridescence = material.iridescence;  // KHR_materials_iridescence: factor, IOR, thicknesses
+  iridescence.x *= slotTexel(iridescenceTexture, kMaterialIridescence).r;
+  float filmThickness =
+      mix(iridescence.z, iridescence.w,
+          slotTexel(iridescenceThicknessTexture, kMaterialIridescenceThickness).g);
   // The coat's normal: the interpolated one, unless it has a normal map of its own.
   vec3 coatNormal = n;
   if (hasTexture(kMaterialClearcoatNormal))
@@ -126,6 +131,9 @@ ShadedSurface fragmentSurface(int samples) {
   m.specularColor = specular.rgb;
   m.clearcoat = coat.x;
   m.clearcoatRoughness = coat.y;
+  m.iridescence = clamp(iridescence.x, 0.0, 1.0);
+  m.iridescenceIor = iridescence.y;
+  m.iridescenceThickness = filmThickness;
   m.clearcoatNormal = coatNormal;
   surface.position = position;
   surface.normal = n;

@@ -38,9 +38,8 @@ float slotOf(const TextureRef& ref) {
   return ref.index < 0 ? -1.0f : static_cast<float>(ref.index * 2 + (ref.texCoord == 1 ? 1 : 0));
 }
 
-static_assert(Material::kTextureSlots % 4 == 0 &&
-                  shared::kMaterialRecordUvTransforms ==
-                      shared::kMaterialRecordSlots + int(Material::kTextureSlots / 4) &&
+static_assert(shared::kMaterialRecordUvTransforms ==
+                      shared::kMaterialRecordSlots + int((Material::kTextureSlots + 3) / 4) &&
                   shared::kMaterialRecordVec4s ==
                       shared::kMaterialRecordUvTransforms + 2 * int(Material::kTextureSlots),
               "a material's record: factors, slots, then two rows per slot");
@@ -97,11 +96,16 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
     data.push_back(glm::vec4(mat.specularColor, mat.specular));
     data.push_back(
         glm::vec4(mat.ior, mat.clearcoat, mat.clearcoatRoughness, mat.clearcoatNormalScale));
+    data.push_back(glm::vec4(mat.iridescence, mat.iridescenceIor, mat.iridescenceThicknessMinimum,
+                             mat.iridescenceThicknessMaximum));
     data.push_back(glm::vec4(mat.unlit ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f));
     const auto slots = mat.textureSlots();
-    for (std::size_t b = 0; b < slots.size(); b += 4)
-      data.push_back(glm::vec4(slotOf(slots[b]), slotOf(slots[b + 1]), slotOf(slots[b + 2]),
-                               slotOf(slots[b + 3])));
+    for (std::size_t b = 0; b < slots.size(); b += 4) {
+      glm::vec4 four(-1.0f);
+      for (std::size_t k = 0; k < 4 && b + k < slots.size(); ++k)
+        four[static_cast<int>(k)] = slotOf(slots[b + k]);
+      data.push_back(four);
+    }
     for (const TextureRef& slot : slots) {
       const TextureTransform& t = slot.transform;
       const shared::UvTransform uv = shared::uvTransformOf(t.offset, t.rotation, t.scale);

@@ -309,6 +309,9 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
     factors.clearcoat = glm::vec4(mat.clearcoat, mat.clearcoatRoughness, 0.0f, 0.0f);
     factors.sheen = glm::vec4(mat.sheenColor, mat.sheenRoughness);
     factors.specular = glm::vec4(mat.specularColor, mat.specular);
+    factors.iridescence =
+        glm::vec4(mat.iridescence, mat.iridescenceIor, mat.iridescenceThicknessMinimum,
+                  mat.iridescenceThicknessMaximum);
     if (mat.sheenColor != glm::vec3(0.0f)) sceneHasSheen_ = true;
     static_assert(Material::kTextureSlots == kMaterialTextures, "MaterialBinding's order");
     const auto slots = mat.textureSlots();

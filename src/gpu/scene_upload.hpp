@@ -73,16 +73,18 @@ struct MaterialFactors {
   glm::vec4 scales;
   // baseColorFactor's A, alpha mode (0 opaque, 1 mask, 2 blend), cutoff, 1 where Material::unlit
   glm::vec4 alpha;
-  glm::vec4 clearcoat;         // KHR_materials_clearcoat: factor, roughness, 0, 0
-  glm::vec4 sheen;             // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
-  glm::vec4 specular;          // KHR_materials_specular: specularColorFactor, specularFactor
+  glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness, 0, 0
+  glm::vec4 sheen;      // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
+  glm::vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
+  // KHR_materials_iridescence: factor, the film's IOR, thickness minimum and maximum (nm)
+  glm::vec4 iridescence;
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
   std::uint32_t padding[3];
   // KHR_texture_transform: binding b's rows u and v (shared::UvTransform) at 2b and 2b + 1.
   glm::vec4 uvTransforms[2 * kMaterialTextures];
 };
-static_assert(offsetof(MaterialFactors, uvTransforms) == 128 &&
-                  sizeof(MaterialFactors) == 128 + 32 * kMaterialTextures,
+static_assert(offsetof(MaterialFactors, uvTransforms) == 144 &&
+                  sizeof(MaterialFactors) == 144 + 32 * kMaterialTextures,
               "std430: the rows' array starts on 16 bytes");
 
 // The push constants of a draw (shaders/view/material.glsl): the sphere the mesh bounds, the

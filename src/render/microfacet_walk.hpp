@@ -21,8 +21,7 @@ class MicrofacetWalk {
 
   MicrofacetWalk(float alpha, glm::vec3 f0, float f90) {
     surface_.alpha = alpha;
-    surface_.f0 = f0;
-    surface_.f90 = f90;
+    surface_.reflectance = shared::schlickReflectance(f0, f90);
   }
 
   // The phase function of one bounce (shared::microsurfacePhase).

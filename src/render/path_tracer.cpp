@@ -61,10 +61,12 @@ float maxComponent(glm::vec3 c) {
   return std::max(c.x, std::max(c.y, c.z));
 }
 
-// The Fresnel reflectance of the material at p (KHR_materials_ior and _specular).
+// The Fresnel reflectance of the material at p (KHR_materials_ior, _specular and _iridescence).
 shared::SpecularReflectance reflectanceOf(const SurfacePoint& p, bool microOcclusion) {
-  return shared::specularReflectance(p.baseColor, p.metallic, p.ior, p.specular, p.specularColor,
-                                     microOcclusion);
+  return shared::withIridescence(
+      shared::specularReflectance(p.baseColor, p.metallic, p.ior, p.specular, p.specularColor,
+                                  microOcclusion),
+      p.iridescence, p.iridescenceIor, p.iridescenceThickness);
 }
 
 // The material at one point (ibl/shared/path_brdf.h, which the GPU reference evaluates too).

@@ -134,6 +134,8 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.specularColor = mat->specularColor;
     p.clearcoat = mat->clearcoat;
     p.clearcoatRoughness = mat->clearcoatRoughness;
+    p.iridescence = mat->iridescence;
+    p.iridescenceThickness = mat->iridescenceThicknessMaximum;
     coatNormal = n;
   } else {
     const Mesh& m = scene.meshes[hit.geometry];
@@ -185,6 +187,13 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     if (lookup(mat->clearcoatRoughnessTexture, false, t)) p.clearcoatRoughness *= t.y;
     p.clearcoat = std::clamp(p.clearcoat, 0.0f, 1.0f);
     p.clearcoatRoughness = std::clamp(p.clearcoatRoughness, 0.0f, 1.0f);
+    p.iridescence = mat->iridescence;
+    if (lookup(mat->iridescenceTexture, false, t)) p.iridescence *= t.x;
+    p.iridescence = std::clamp(p.iridescence, 0.0f, 1.0f);
+    p.iridescenceThickness = mat->iridescenceThicknessMaximum;
+    if (lookup(mat->iridescenceThicknessTexture, false, t))
+      p.iridescenceThickness =
+          glm::mix(mat->iridescenceThicknessMinimum, mat->iridescenceThicknessMaximum, t.y);
     // The coat's normal: the interpolated one, unless it has a normal map of its own (not the
     // base's: KHR_materials_clearcoat).
     coatNormal = n;
@@ -207,6 +216,7 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     coatNormal = -coatNormal;
   }
   p.ior = mat->ior;
+  p.iridescenceIor = mat->iridescenceIor;
   p.normal = n;
   p.clearcoatNormal = coatNormal;
   // The coat lies over the emission too (KHR_materials_clearcoat, "Emission").

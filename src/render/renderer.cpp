@@ -79,6 +79,9 @@ shared::SplitSumMaterial splitSumMaterial(const SurfacePoint& p, float occlusion
   m.clearcoat = p.clearcoat;
   m.clearcoatRoughness = p.clearcoatRoughness;
   m.clearcoatNormal = p.clearcoatNormal;
+  m.iridescence = p.iridescence;
+  m.iridescenceIor = p.iridescenceIor;
+  m.iridescenceThickness = p.iridescenceThickness;
   return m;
 }
 

@@ -247,6 +247,43 @@ TEST(GpuReference, ClearcoatEqualsTheCpu) {
   expectOneBounceAgreement(wallOnly, "clear coat's textures");
 }
 
+// KHR_materials_iridescence: a grid of metals under a film (the walk's bounces each take the film's
+// Fresnel), and a wall whose film's strength and thickness come from a texture (R, G), lit by the
+// sky and a point light.
+TEST(GpuReference, IridescenceEqualsTheCpu) {
+  REQUIRE_DEVICE();
+  Material base;
+  base.baseColor = glm::vec3(0.9f, 0.6f, 0.3f);
+  base.iridescence = 1.0f;
+  base.iridescenceIor = 1.5f;
+  base.iridescenceThicknessMaximum = 500.0f;
+  Scene scene = makeSphereGrid(base);
+  Texture film;
+  film.width = film.height = 2;
+  film.rgba = std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>{
+      255, 20, 0, 255, 128, 128, 0, 255, 40, 255, 0, 255, 255, 200, 0, 255});
+  film.sampler.nearest = true;
+  scene.textures = {film};
+  Material wall;
+  wall.baseColor = glm::vec3(0.02f);
+  wall.metallic = 0.0f;
+  wall.roughness = 0.3f;
+  wall.iridescence = 1.0f;
+  wall.iridescenceIor = 2.0f;
+  wall.iridescenceThicknessMinimum = 100.0f;
+  wall.iridescenceThicknessMaximum = 800.0f;
+  wall.iridescenceTexture.index = 0;
+  wall.iridescenceThicknessTexture.index = 0;
+  scene.materials.push_back(wall);
+  scene.meshes.push_back(textureWall(static_cast<int>(scene.materials.size()) - 1));
+  Light point;
+  point.type = LightType::Point;
+  point.position = glm::vec3(0.0f, 8.0f, -4.0f);
+  point.intensity = 400.0f;
+  scene.lights.push_back(point);
+  expectOneBounceAgreement(scene, "iridescence");
+}
+
 // KHR_materials_sheen at a sheen roughness of 0.15, where the Charlie Lambda is the tabulated
 // exact one over most angles (shared::charlieLambda): the device reads the table from its buffer,
 // the CPU from the header's array. A point light adds the lobe's direct light.

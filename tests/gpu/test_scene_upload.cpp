@@ -218,6 +218,48 @@ TEST(Viewer, ClearcoatMatchesTheCpu) {
   EXPECT_LT(c.fractionOver1, 5e-3);
 }
 
+// KHR_materials_iridescence: a quad whose film's strength and thickness come from a texture (R,
+// G), and a grid of iridescent spheres (a metal's and a dielectric's film) under a point light
+// and a sphere light (the film's Fresnel at n.v times the LTC's lobe).
+TEST(Viewer, IridescenceMatchesTheCpu) {
+  TempDir dir;
+  QuadMaterial m;
+  m.baseColorFactor = glm::vec3(0.05f);
+  m.metallicFactor = 0.0f;
+  m.roughnessFactor = 0.3f;
+  m.iridescenceFactor = 1.0f;
+  m.iridescenceIor = 1.8f;
+  m.iridescenceThicknessMinimum = 150.0f;
+  m.iridescenceThicknessMaximum = 700.0f;
+  m.iridescenceCodes = {220, 90, 0};
+  writeMaterialQuad(dir / "film.gltf", m);
+  RenderOptions o;
+  o.spp = 1;
+  Comparison c =
+      renderBoth(loadGltf((dir / "film.gltf").string()), lookingAt({0.3f, 0.2f, 3.0f}, 64, 64), o);
+  std::printf("iridescent quad: mean relative difference %.2e\n", c.meanRelative);
+  EXPECT_LT(c.meanRelative, 1e-3);
+  for (float metallic : {0.0f, 1.0f}) {
+    Material base;
+    base.baseColor = metallic > 0.0f ? glm::vec3(0.9f, 0.7f, 0.4f) : glm::vec3(0.02f);
+    base.metallic = metallic;
+    base.iridescence = 1.0f;
+    base.iridescenceThicknessMaximum = 450.0f;
+    Scene grid = makeSphereGrid(base);
+    Light l = viewerTestLight(LightType::Point, {-6, 9, 4}, {0, -1, 0}, 2000.0f, 1.0f);
+    l.range = 30.0f;
+    grid.lights.push_back(l);
+    Light sphere = viewerTestLight(LightType::Sphere, {5, 6, 6}, {0, -1, 0}, 3000.0f, 1.0f);
+    sphere.radius = 0.8f;
+    grid.lights.push_back(sphere);
+    c = renderBoth(grid, lookingAt({0, 0, 20}, 320, 160), o);
+    std::printf("iridescent grid (metallic %.0f): mean relative difference %.2e\n", metallic,
+                c.meanRelative);
+    EXPECT_LT(c.meanRelative, 1e-3);
+    EXPECT_LT(c.fractionOver1, 5e-3);
+  }
+}
+
 // KHR_texture_transform on every slot the quad has: each reads a 4 x 4 bilinear texture through
 // a transform of its own (offset, rotation, uneven scale), the normal maps included.
 TEST(Viewer, TextureTransformsMatchTheCpu) {

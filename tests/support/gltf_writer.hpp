@@ -154,6 +154,11 @@ struct QuadMaterial {
   glm::ivec3 clearcoatCodes{-1, 0, 0};
   glm::ivec3 clearcoatNormalCodes{-1, 0, 0};
   float clearcoatNormalScale = 1.0f;
+  // KHR_materials_iridescence (written when the factor is not negative): the factors and one
+  // texture (linear codes) for both iridescenceTexture (R) and iridescenceThicknessTexture (G).
+  float iridescenceFactor = -1.0f, iridescenceIor = 1.3f;
+  float iridescenceThicknessMinimum = 100.0f, iridescenceThicknessMaximum = 400.0f;
+  glm::ivec3 iridescenceCodes{-1, 0, 0};
 };
 
 // A dielectric of `baseColor` whose specular layer uses every part of KHR_materials_ior and
@@ -300,6 +305,17 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
       coat["clearcoatNormalTexture"]["scale"] = m.clearcoatNormalScale;
     }
     material["extensions"]["KHR_materials_clearcoat"] = coat;
+  }
+  if (m.iridescenceFactor >= 0.0f) {
+    nlohmann::json film = {{"iridescenceFactor", m.iridescenceFactor},
+                           {"iridescenceIor", m.iridescenceIor},
+                           {"iridescenceThicknessMinimum", m.iridescenceThicknessMinimum},
+                           {"iridescenceThicknessMaximum", m.iridescenceThicknessMaximum}};
+    if (m.iridescenceCodes.x >= 0) {
+      film["iridescenceTexture"] = texture(m.iridescenceCodes);
+      film["iridescenceThicknessTexture"] = film["iridescenceTexture"];
+    }
+    material["extensions"]["KHR_materials_iridescence"] = film;
   }
   nlohmann::json j = {
       {"asset", {{"version", "2.0"}}},
@@ -514,6 +530,12 @@ inline void writeSceneAsGltf(const Scene& scene, const std::filesystem::path& pa
     if (m.clearcoat > 0.0f)
       material["extensions"]["KHR_materials_clearcoat"] = {
           {"clearcoatFactor", m.clearcoat}, {"clearcoatRoughnessFactor", m.clearcoatRoughness}};
+    if (m.iridescence > 0.0f)
+      material["extensions"]["KHR_materials_iridescence"] = {
+          {"iridescenceFactor", m.iridescence},
+          {"iridescenceIor", m.iridescenceIor},
+          {"iridescenceThicknessMinimum", m.iridescenceThicknessMinimum},
+          {"iridescenceThicknessMaximum", m.iridescenceThicknessMaximum}};
     materials.push_back(material);
   }
   nlohmann::json sceneNodes = nlohmann::json::array();

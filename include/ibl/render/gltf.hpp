@@ -87,6 +87,9 @@ struct GltfSummary {
     float dielectricF90 = 1.0f;
     // KHR_materials_clearcoat's factors (0 when absent: no coat).
     float clearcoat = 0.0f, clearcoatRoughness = 0.0f;
+    // KHR_materials_iridescence's factors (factor 0 when absent: no film; thicknesses in nm).
+    float iridescence = 0.0f, iridescenceIor = 1.3f;
+    float iridescenceThicknessMinimum = 100.0f, iridescenceThicknessMaximum = 400.0f;
   };
   struct Texture {
     int image = -1;      // -1: none that ibl can read

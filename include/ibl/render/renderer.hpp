@@ -177,6 +177,11 @@ struct SurfacePoint {
   float clearcoat = 0.0f;
   float clearcoatRoughness = 0.0f;
   glm::vec3 clearcoatNormal{0.0f, 0.0f, 1.0f};
+  // KHR_materials_iridescence, textures applied (iridescence 0: none): the film's strength, index
+  // and thickness (nm).
+  float iridescence = 0.0f;
+  float iridescenceIor = 1.3f;
+  float iridescenceThickness = 400.0f;
 };
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
 // viewer's frame uniforms carry the same.

@@ -107,19 +107,38 @@ struct Material {
   TextureRef clearcoatRoughnessTexture;  // G multiplies clearcoatRoughness
   TextureRef clearcoatNormalTexture;     // none: the coat follows the unmapped normal
   float clearcoatNormalScale = 1.0f;     // as normalScale
+  // KHR_materials_iridescence: a thin dielectric film whose Fresnel replaces the specular lobe's
+  // by `iridescence` (shared::withIridescence, fresnelOf). iridescence 0: none.
+  float iridescence = 0.0f;                    // 0 to 1
+  TextureRef iridescenceTexture;               // R multiplies iridescence
+  float iridescenceIor = 1.3f;                 // the film's index of refraction
+  float iridescenceThicknessMinimum = 100.0f;  // nm
+  float iridescenceThicknessMaximum = 400.0f;  // nm
+  TextureRef iridescenceThicknessTexture;      // G mixes minimum (0) to maximum (1); none: 1
   // KHR_materials_unlit, as the loader converts it: the emission is the base color (and its
   // texture), so COLOR_0 multiplies the emission as it would the base color.
   bool unlit = false;
 
   // Its texture slots in the order of the device's bindings and records (MaterialBinding in
   // ibl/shared/view_bindings.h): base color, metallic-roughness, normal, occlusion, emissive,
-  // sheen color, sheen roughness, specular, specular color, clear coat, its roughness, its normal.
-  static constexpr std::size_t kTextureSlots = 12;
+  // sheen color, sheen roughness, specular, specular color, clear coat, its roughness, its normal,
+  // iridescence, its thickness.
+  static constexpr std::size_t kTextureSlots = 14;
   std::array<TextureRef, kTextureSlots> textureSlots() const {
-    return {baseColorTexture,      metallicRoughnessTexture,  normalTexture,
-            occlusionTexture,      emissiveTexture,           sheenColorTexture,
-            sheenRoughnessTexture, specularTexture,           specularColorTexture,
-            clearcoatTexture,      clearcoatRoughnessTexture, clearcoatNormalTexture};
+    return {baseColorTexture,
+            metallicRoughnessTexture,
+            normalTexture,
+            occlusionTexture,
+            emissiveTexture,
+            sheenColorTexture,
+            sheenRoughnessTexture,
+            specularTexture,
+            specularColorTexture,
+            clearcoatTexture,
+            clearcoatRoughnessTexture,
+            clearcoatNormalTexture,
+            iridescenceTexture,
+            iridescenceThicknessTexture};
   }
 };
 

@@ -53,21 +53,21 @@ IBL_FN vec3 sheenLightRadiance(vec3 sheenColor, float sheenAlpha, int visibility
                        sheenVisibility(visibility, NoV, NoL, sheenAlpha) * inc.diffuseIlluminance);
 }
 
-// A GGX lobe of Fresnel reflectance (f0, f90) and roughness alpha at normal n lit by a light's
+// A GGX lobe of Fresnel reflectance r and roughness alpha at normal n lit by a light's
 // incidence, toward v, per unit of the light's color: the LTC's fraction of the lobe times the
-// lobe's directional albedo with Schlick's Fresnel (the DFG table's F0 A + F90 B at n.v, as the
-// split sum scales the prefiltered map), or D V F at the representative point.
-IBL_FN vec3 specularLightRadiance(vec3 f0, float f90, float alpha, vec3 n, vec3 v,
+// lobe's directional albedo with its Fresnel (directionalReflectance: the DFG table's F0 A + F90
+// B at n.v, as the split sum scales the prefiltered map), or D V F at the representative point.
+IBL_FN vec3 specularLightRadiance(SpecularReflectance r, float alpha, vec3 n, vec3 v,
                                   LightIncidence inc, vec2 dfg) {
   if (inc.specularLobeFraction > 0.0f)
-    return (f0 * dfg.x + vec3(f90 * dfg.y)) * inc.specularLobeFraction;
+    return directionalReflectance(r, dfg, max(dot(n, v), 1e-4f)) * inc.specularLobeFraction;
   if (inc.specularIlluminance <= 0.0f) return vec3(0.0f);
   vec3 l = inc.specularDirection;
   vec3 h = normalize(v + l);
   float NoV = max(dot(n, v), 1e-4f), NoL = max(dot(n, l), 1e-4f);
   float dv = ggxDistribution(clamp(dot(n, h), 0.0f, 1.0f), alpha) * inc.specularNormalization *
              smithGgxCorrelatedVisibility(NoV, NoL, alpha);
-  return dv * fresnelSchlick(f0, f90, max(dot(v, h), 0.0f)) * inc.specularIlluminance;
+  return dv * fresnelOf(r, max(dot(v, h), 0.0f)) * inc.specularIlluminance;
 }
 
 // The radiance the standard material (the BRDF of the IBL path) reflects toward v from a light's
@@ -90,8 +90,9 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
     color += diffuseColor * (fd / kPi * inc.diffuseIlluminance);
   }
   if (s.terms != 1) {
-    vec3 specular = specularLightRadiance(r.f0, r.f90, alpha, n, v, inc, dfg);
-    if (s.multipleScattering) specular *= multipleScatteringCompensation(r.f0, dfg);
+    vec3 specular = specularLightRadiance(r, alpha, n, v, inc, dfg);
+    if (s.multipleScattering)
+      specular *= multipleScatteringCompensation(filmFresnelAtView(r, NoV), dfg);
     color += specular;
   }
   return color;
@@ -107,7 +108,7 @@ IBL_FN float clearcoatLightRadiance(SplitSumMaterial m, vec3 v, LightIncidence i
   vec3 nc = m.clearcoatNormal;
   float alpha = max(alphaFromRoughness(m.clearcoatRoughness), 1e-3f);
   return clearcoatWeight(m.clearcoat, dot(nc, v)) *
-         specularLightRadiance(vec3(1.0f), 1.0f, alpha, nc, v, inc, dfg).x;
+         specularLightRadiance(schlickReflectance(vec3(1.0f), 1.0f), alpha, nc, v, inc, dfg).x;
 }
 
 IBL_END

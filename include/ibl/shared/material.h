@@ -5,6 +5,7 @@
 #ifndef IBL_SHARED_MATERIAL_H
 #define IBL_SHARED_MATERIAL_H
 #include "ibl/shared/brdf.h"
+#include "ibl/shared/iridescence.h"
 #include "ibl/shared/lang.h"
 
 IBL_BEGIN
@@ -98,12 +99,12 @@ IBL_FN vec2 transformUv(UvTransform t, vec2 uv) {
 }
 
 // A material's record in the GPU path tracer's scene buffer (written by
-// src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl): seven vec4s of factors,
-// three of texture slots (one float per MaterialBinding, in its order) and two per slot of its
-// UV transform's rows.
-const int kMaterialRecordSlots = 7;
-const int kMaterialRecordUvTransforms = 10;
-const int kMaterialRecordVec4s = 34;
+// src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl): eight vec4s of factors,
+// four of texture slots (one float per MaterialBinding, in its order; -1 past the last) and two
+// per slot of its UV transform's rows.
+const int kMaterialRecordSlots = 8;
+const int kMaterialRecordUvTransforms = 12;
+const int kMaterialRecordVec4s = 40;
 // A vertex's record in the same buffers: (position, uv0.x), (normal, uv0.y), tangent,
 // (uv1, 0, 0), color (COLOR_0, or white).
 const int kVertexRecordVec4s = 5;
@@ -116,10 +117,14 @@ IBL_FN float dielectricF0FromIor(float ior) {
   return r * r;
 }
 
-// The Fresnel term's reflectance at normal incidence (f0) and at grazing angles (f90).
+// The Fresnel term's reflectance at normal incidence (f0) and at grazing angles (f90), and
+// KHR_materials_iridescence's thin film over it (fresnelOf).
 struct SpecularReflectance {
   vec3 f0;
   float f90;
+  float iridescence IBL_DEFAULT(0.0f);    // the film's strength, 0 to 1 (0: no film)
+  float filmIor IBL_DEFAULT(1.3f);        // the film's index of refraction
+  float filmThickness IBL_DEFAULT(0.0f);  // nm
 };
 
 // The reflectance of glTF 2.0's metallic-roughness material with KHR_materials_ior and
@@ -136,7 +141,63 @@ IBL_FN SpecularReflectance specularReflectance(vec3 baseColor, float metallic, f
   SpecularReflectance r;
   r.f0 = mix(dielectric, baseColor, metallic);
   r.f90 = mix(specular, 1.0f, metallic) * fresnelF90(r.f0, microOcclusion);
+  r.iridescence = 0.0f;
+  r.filmIor = 1.3f;
+  r.filmThickness = 0.0f;
   return r;
+}
+
+// A Fresnel term without a film: Schlick's with (f0, f90).
+IBL_FN SpecularReflectance schlickReflectance(vec3 f0, float f90) {
+  SpecularReflectance r;
+  r.f0 = f0;
+  r.f90 = f90;
+  r.iridescence = 0.0f;
+  r.filmIor = 1.3f;
+  r.filmThickness = 0.0f;
+  return r;
+}
+
+// KHR_materials_iridescence over a reflectance: a film of index filmIor and thickness (nm) whose
+// Fresnel replaces Schlick's by `strength` (iridescenceFactor times its texture's R), in air (a
+// clear coat over it is ignored, as the extension says). The thickness: iridescenceThickness-
+// Maximum, or mix(minimum, maximum, the thickness texture's G).
+IBL_FN SpecularReflectance withIridescence(SpecularReflectance r, float strength, float filmIor,
+                                           float thickness) {
+  r.iridescence = clamp(strength, 0.0f, 1.0f);
+  r.filmIor = filmIor;
+  r.filmThickness = max(thickness, 0.0f);
+  return r;
+}
+
+// The Fresnel term at a microfacet, cosine = v.h: Schlick's with (f0, f90), mixed toward the thin
+// film's over a base of reflectance f0 by the iridescence strength. With KHR_materials_specular
+// this is the extension's mix(specular_weight fr, iridescent_fresnel(specular_weight base_f0),
+// strength): f0 and f90 carry the specular weight. A metal's film lies over its base color.
+IBL_FN vec3 fresnelOf(SpecularReflectance r, float cosine) {
+  vec3 f = fresnelSchlick(r.f0, r.f90, cosine);
+  if (r.iridescence > 0.0f)
+    f = mix(f, thinFilmFresnel(1.0f, r.filmIor, r.filmThickness, cosine, r.f0), r.iridescence);
+  return f;
+}
+
+// The Fresnel reflectance the real-time paths take for the film: its value at n.v, where a
+// mirror's microfacet lies (v.h = n.v), mixed with f0 by the strength. As f0 in the
+// multiple-scattering compensation; times the lobe's albedo in directionalReflectance.
+IBL_FN vec3 filmFresnelAtView(SpecularReflectance r, float NoV) {
+  if (r.iridescence <= 0.0f) return r.f0;
+  return mix(r.f0, thinFilmFresnel(1.0f, r.filmIor, r.filmThickness, NoV, r.f0), r.iridescence);
+}
+
+// The GGX lobe's directional albedo with its Fresnel, from the DFG table's (A, B) at n.v:
+// Karis's f0 A + f90 B (split sum), the film's share as its Fresnel at n.v times the lobe's
+// albedo A + B (exact for a mirror; docs/materials.md measures the rest), as the glTF Sample
+// Viewer also takes the film's Fresnel at n.v.
+IBL_FN vec3 directionalReflectance(SpecularReflectance r, vec2 dfg, float NoV) {
+  vec3 schlick = r.f0 * dfg.x + vec3(r.f90 * dfg.y);
+  if (r.iridescence <= 0.0f) return schlick;
+  vec3 film = thinFilmFresnel(1.0f, r.filmIor, r.filmThickness, NoV, r.f0) * (dfg.x + dfg.y);
+  return mix(schlick, film, r.iridescence);
 }
 
 // KHR_materials_clearcoat's layering (the specification's fresnel_coat): the coat's BRDF (GGX

@@ -15,6 +15,7 @@
 #define IBL_SHARED_MICROFACET_WALK_H
 #include "ibl/shared/brdf.h"
 #include "ibl/shared/lang.h"
+#include "ibl/shared/material.h"
 #include "ibl/shared/path_sampler.h"
 #include "ibl/shared/sampling.h"
 
@@ -89,11 +90,10 @@ IBL_FN float sampleWalkHeight(vec3 wr, float hr, float u, float alpha) {
   return uniformHeightInvC1(uniformHeightC1(hr) / pow(1.0f - u, 1.0f / ggxLambda(wr, alpha)));
 }
 
-// A conductor's microsurface: GGX alpha and the Schlick Fresnel of its microfacets.
+// A conductor's microsurface: GGX alpha and the Fresnel of its microfacets (fresnelOf).
 struct Microsurface {
   float alpha;
-  vec3 f0;
-  float f90;
+  SpecularReflectance reflectance;
 };
 
 // The phase function of one bounce (Heitz et al. 2016, the conductor's phase function): the
@@ -110,8 +110,7 @@ IBL_FN vec3 microsurfacePhase(Microsurface s, vec3 wi, vec3 wo) {
   float projectedArea = (1.0f + ggxLambda(wi, s.alpha)) * wi.z;
   if (!(WioH > 0.0f) || !(projectedArea > 0.0f)) return vec3(0.0f);
   // D_wi(h) / (4 wi.h) with D_wi(h) = (wi.h) D(h) / projectedArea: the wi.h cancel.
-  return fresnelSchlick(s.f0, s.f90, WioH) *
-         (ggxDistribution(h.z, s.alpha) / (4.0f * projectedArea));
+  return fresnelOf(s.reflectance, WioH) * (ggxDistribution(h.z, s.alpha) / (4.0f * projectedArea));
 }
 
 // One bounce of the walk at a hit, the ray arriving from direction w: a normal visible from w, of
@@ -120,7 +119,7 @@ IBL_FN vec3 microsurfacePhase(Microsurface s, vec3 wi, vec3 wo) {
 IBL_FN vec3 walkBounce(Microsurface s, vec3 w, vec2 xi, IBL_INOUT(vec3) energy) {
   vec3 m = sampleGgxVisibleNormal(w, xi, s.alpha);
   float WoM = dot(w, m);
-  energy *= fresnelSchlick(s.f0, s.f90, max(WoM, 0.0f));
+  energy *= fresnelOf(s.reflectance, max(WoM, 0.0f));
   return 2.0f * WoM * m - w;
 }
 

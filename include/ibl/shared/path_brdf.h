@@ -78,10 +78,9 @@ struct PathShading {
 // The material's BRDF pieces at one point, seen from local direction v (n = +Z).
 struct PathBrdf {
   vec3 diffuseColor;
-  vec3 f0;
+  SpecularReflectance reflectance;  // the specular lobe's Fresnel (fresnelOf)
   float alpha;
   float roughness;
-  float f90;
   int diffuseModel;
   int lobes;                // kLobes...
   vec3 multipleScattering;  // the specular lobe's scale for the bounces between microfacets
@@ -127,10 +126,9 @@ IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, flo
                            vec3 v, int lobes, PathShading o) {
   PathBrdf b;
   b.diffuseColor = baseColor * (1.0f - metallic);
-  b.f0 = reflectance.f0;
+  b.reflectance = reflectance;
   b.alpha = max(alphaFromRoughness(roughness), kMinPathAlpha);
   b.roughness = roughness;
-  b.f90 = reflectance.f90;
   b.diffuseModel = o.diffuseModel;
   b.lobes = lobes;
   b.multipleScattering = vec3(1.0f);
@@ -142,7 +140,8 @@ IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, flo
   // energy (within 5 % for F0 = 0.9), in another shape (docs/render.md).
   if (o.multipleScattering == kMultipleScatteringScale && lobes != kLobesDiffuse) {
     float e = albedoTableLookup(IBL_ALBEDO_ARG 0, max(v.z, 1e-4f), roughness);
-    b.multipleScattering = multipleScatteringCompensation(b.f0, vec2(e, 0.0f));
+    b.multipleScattering = multipleScatteringCompensation(
+        filmFresnelAtView(reflectance, max(v.z, 1e-4f)), vec2(e, 0.0f));
   }
   if (o.multipleScattering == kMultipleScatteringWalk && lobes != kLobesDiffuse) b.walk = true;
   b.sheenColor = sheenColor;
@@ -194,8 +193,7 @@ IBL_FN float pathCoatPdf(PathBrdf b, vec3 v, vec3 l) {
 IBL_FN Microsurface pathMicrosurface(PathBrdf b) {
   Microsurface s;
   s.alpha = b.alpha;
-  s.f0 = b.f0;
-  s.f90 = b.f90;
+  s.reflectance = b.reflectance;
   return s;
 }
 
@@ -218,7 +216,7 @@ IBL_FN vec3 evaluatePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v, vec3 l, PathS
   if (pathSpecularLobe(b) && withSpecular) {
     float VoH = max(dot(v, h), 0.0f);
     result += ggxDistribution(h.z, b.alpha) * smithGgxCorrelatedVisibility(NoV, NoL, b.alpha) *
-              fresnelSchlick(b.f0, b.f90, VoH) * b.multipleScattering;
+              fresnelOf(b.reflectance, VoH) * b.multipleScattering;
     // The walk's orders 2 and up (f cos, hence the division): its order 1 has the expectation
     // of the term above, which is exact.
     if (b.walk) {
@@ -265,7 +263,7 @@ IBL_FN float pathSheenProbability(PathBrdf b) {
 IBL_FN float pathSpecularProbability(PathBrdf b) {
   if (!pathSpecularLobe(b)) return 0.0f;
   if (!pathDiffuseLobe(b)) return 1.0f;
-  float s = luminance(b.f0) + 0.04f, d = luminance(b.diffuseColor);
+  float s = luminance(b.reflectance.f0) + 0.04f, d = luminance(b.diffuseColor);
   if (d <= 0.0f) return 1.0f;  // a metal: no diffuse lobe to sample
   return clamp(s / (s + d), 0.1f, 0.9f);
 }

@@ -48,12 +48,19 @@ struct SplitSumMaterial {
   float clearcoat IBL_DEFAULT(0.0f);
   float clearcoatRoughness IBL_DEFAULT(0.0f);
   vec3 clearcoatNormal IBL_DEFAULT(vec3(0.0f, 0.0f, 1.0f));
+  // KHR_materials_iridescence, its textures applied: strength (0: none), the film's index and
+  // thickness (nm).
+  float iridescence IBL_DEFAULT(0.0f);
+  float iridescenceIor IBL_DEFAULT(1.3f);
+  float iridescenceThickness IBL_DEFAULT(400.0f);
 };
 
-// The material's Fresnel reflectance (specularReflectance) under the switches' micro-occlusion.
+// The material's Fresnel reflectance (specularReflectance, withIridescence) under the switches'
+// micro-occlusion.
 IBL_FN SpecularReflectance splitSumReflectance(SplitSumMaterial m, SplitSumSwitches s) {
-  return specularReflectance(m.baseColor, m.metallic, m.ior, m.specular, m.specularColor,
-                             s.specularMicroOcclusion);
+  return withIridescence(specularReflectance(m.baseColor, m.metallic, m.ior, m.specular,
+                                             m.specularColor, s.specularMicroOcclusion),
+                         m.iridescence, m.iridescenceIor, m.iridescenceThickness);
 }
 
 // Mip level of the prefiltered specular map that holds a roughness: level m of L holds
@@ -138,9 +145,10 @@ IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefi
   SpecularReflectance r = splitSumReflectance(m, s);
   vec3 color = m.emissive;
   if (s.terms != 1) {
-    // The DFG table's scale and bias: F0 A + F90 B (Karis 2013).
-    vec3 specular = prefiltered * (r.f0 * dfg.x + r.f90 * dfg.y);
-    if (s.multipleScattering) specular *= multipleScatteringCompensation(r.f0, vec2(dfg.x, dfg.y));
+    // The DFG table's scale and bias: F0 A + F90 B (Karis 2013), the film's Fresnel at n.v.
+    vec3 specular = prefiltered * directionalReflectance(r, vec2(dfg.x, dfg.y), NoV);
+    if (s.multipleScattering)
+      specular *= multipleScatteringCompensation(filmFresnelAtView(r, NoV), vec2(dfg.x, dfg.y));
     if (s.specularOcclusion && m.occlusion < 1.0f)
       specular *= specularOcclusion(NoV, m.occlusion, alpha);
     color += specular;

@@ -71,6 +71,8 @@ IBL_MATERIAL_BINDING(SpecularColor, 8)  // an sRGB format
 IBL_MATERIAL_BINDING(Clearcoat, 9)      // KHR_materials_clearcoat: its R
 IBL_MATERIAL_BINDING(ClearcoatRoughness, 10)  // its G
 IBL_MATERIAL_BINDING(ClearcoatNormal, 11)
+IBL_MATERIAL_BINDING(Iridescence, 12)  // KHR_materials_iridescence: its R
+IBL_MATERIAL_BINDING(IridescenceThickness, 13)  // its G
 #ifdef __cplusplus
 Count
 };
@@ -78,7 +80,7 @@ Count
 #undef IBL_MATERIAL_BINDING
 // After the textures: the material's factors and UV transforms, a storage buffer
 // (MaterialFactors in src/gpu/scene_upload.hpp).
-const int kMaterialFactors = 12;
+const int kMaterialFactors = 14;
 // clang-format on
 
 IBL_END

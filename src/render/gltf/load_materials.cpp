@@ -1,5 +1,5 @@
 // Materials: glTF's metallic-roughness model, KHR_materials_emissive_strength,
-// KHR_materials_sheen, _ior, _specular, _clearcoat and _unlit, their
+// KHR_materials_sheen, _ior, _specular, _clearcoat, _iridescence and _unlit, their
 // texture slots pointing at the textures images.cpp read, each with its KHR_texture_transform.
 #include <cmath>
 #include <map>
@@ -67,6 +67,7 @@ Material unlit(Material m) {
   m.specular = 0.0f;
   m.sheenColor = glm::vec3(0.0f);
   m.clearcoat = 0.0f;
+  m.iridescence = 0.0f;
   return m;
 }
 
@@ -125,7 +126,8 @@ std::vector<SlotRef> materialSlots(const tinygltf::Material& m, const std::strin
       {"KHR_materials_sheen", {"sheenColorTexture", "sheenRoughnessTexture"}},
       {"KHR_materials_specular", {"specularTexture", "specularColorTexture"}},
       {"KHR_materials_clearcoat",
-       {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}}};
+       {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}},
+      {"KHR_materials_iridescence", {"iridescenceTexture", "iridescenceThicknessTexture"}}};
   for (const auto& [extension, names] : extensionSlots) {
     const auto x = m.extensions.find(extension);
     if (x == m.extensions.end()) continue;
@@ -197,6 +199,18 @@ void readExtensionFactors(const tinygltf::Material& m, const std::string& path,
       mat.clearcoatNormalScale = extensionNumber(x->Get("clearcoatNormalTexture"), "scale", 1.0f,
                                                  -1e6, 1e6, path, at + " clearcoatNormalTexture");
   }
+  // KHR_materials_iridescence: iridescenceFactor in [0, 1] (default 0: no film; its texture's R),
+  // the film's iridescenceIOR >= 1 (default 1.3), its thickness from iridescenceThicknessMinimum
+  // to ...Maximum (nm, >= 0; defaults 100 and 400; the thickness texture's G mixes them).
+  if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_iridescence")) {
+    const std::string at = where + ": KHR_materials_iridescence";
+    mat.iridescence = extensionNumber(*x, "iridescenceFactor", 0.0f, 0.0, 1.0, path, at);
+    mat.iridescenceIor = extensionNumber(*x, "iridescenceIor", 1.3f, 1.0, 1e3, path, at);
+    mat.iridescenceThicknessMinimum =
+        extensionNumber(*x, "iridescenceThicknessMinimum", 100.0f, 0.0, 1e6, path, at);
+    mat.iridescenceThicknessMaximum =
+        extensionNumber(*x, "iridescenceThicknessMaximum", 400.0f, 0.0, 1e6, path, at);
+  }
 }
 
 std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& textures) {
@@ -247,6 +261,8 @@ std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& te
     mat.clearcoatTexture = refs["clearcoatTexture"];
     mat.clearcoatRoughnessTexture = refs["clearcoatRoughnessTexture"];
     mat.clearcoatNormalTexture = refs["clearcoatNormalTexture"];
+    mat.iridescenceTexture = refs["iridescenceTexture"];
+    mat.iridescenceThicknessTexture = refs["iridescenceThicknessTexture"];
     if (materialExtension(m, "KHR_materials_unlit")) mat = unlit(mat);
     materials.push_back(mat);
   }

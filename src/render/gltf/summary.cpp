@@ -107,6 +107,10 @@ GltfSummary GltfDocument::describe() {
     info.specularColor = factors.specularColor;
     info.clearcoat = factors.clearcoat;
     info.clearcoatRoughness = factors.clearcoatRoughness;
+    info.iridescence = factors.iridescence;
+    info.iridescenceIor = factors.iridescenceIor;
+    info.iridescenceThicknessMinimum = factors.iridescenceThicknessMinimum;
+    info.iridescenceThicknessMaximum = factors.iridescenceThicknessMaximum;
     const shared::SpecularReflectance dielectric = shared::specularReflectance(
         glm::vec3(0.0f), 0.0f, factors.ior, factors.specular, factors.specularColor, false);
     info.dielectricF0 = dielectric.f0;
