@@ -181,6 +181,23 @@ TEST(Viewer, IorAndSpecularMatchTheCpu) {
   EXPECT_LT(c.fractionOver1, 5e-3);
 }
 
+namespace {
+
+// The sphere grid of `base` under a point light and a sphere light (whose LTC lookups a layer's
+// lobes take), for the material extensions' comparisons.
+Scene gridUnderPointAndSphereLights(const Material& base) {
+  Scene grid = makeSphereGrid(base);
+  Light l = viewerTestLight(LightType::Point, {-6, 9, 4}, {0, -1, 0}, 2000.0f, 1.0f);
+  l.range = 30.0f;
+  grid.lights.push_back(l);
+  Light sphere = viewerTestLight(LightType::Sphere, {5, 6, 6}, {0, -1, 0}, 3000.0f, 1.0f);
+  sphere.radius = 0.8f;
+  grid.lights.push_back(sphere);
+  return grid;
+}
+
+}  // namespace
+
 // KHR_materials_clearcoat: a quad with every part of the extension (factor and roughness
 // textures, the coat's own normal map over the base's), and a coated grid under a point light
 // and a sphere light (the coat's own LTC lookup).
@@ -206,14 +223,7 @@ TEST(Viewer, ClearcoatMatchesTheCpu) {
   base.baseColor = glm::vec3(0.1f, 0.2f, 0.6f);
   base.clearcoat = 1.0f;
   base.clearcoatRoughness = 0.15f;
-  Scene grid = makeSphereGrid(base);
-  Light l = viewerTestLight(LightType::Point, {-6, 9, 4}, {0, -1, 0}, 2000.0f, 1.0f);
-  l.range = 30.0f;
-  grid.lights.push_back(l);
-  Light sphere = viewerTestLight(LightType::Sphere, {5, 6, 6}, {0, -1, 0}, 3000.0f, 1.0f);
-  sphere.radius = 0.8f;
-  grid.lights.push_back(sphere);
-  c = renderBoth(grid, lookingAt({0, 0, 20}, 320, 160), o);
+  c = renderBoth(gridUnderPointAndSphereLights(base), lookingAt({0, 0, 20}, 320, 160), o);
   EXPECT_LT(c.meanRelative, 1e-3);
   EXPECT_LT(c.fractionOver1, 5e-3);
 }
@@ -245,14 +255,7 @@ TEST(Viewer, IridescenceMatchesTheCpu) {
     base.metallic = metallic;
     base.iridescence = 1.0f;
     base.iridescenceThicknessMaximum = 450.0f;
-    Scene grid = makeSphereGrid(base);
-    Light l = viewerTestLight(LightType::Point, {-6, 9, 4}, {0, -1, 0}, 2000.0f, 1.0f);
-    l.range = 30.0f;
-    grid.lights.push_back(l);
-    Light sphere = viewerTestLight(LightType::Sphere, {5, 6, 6}, {0, -1, 0}, 3000.0f, 1.0f);
-    sphere.radius = 0.8f;
-    grid.lights.push_back(sphere);
-    c = renderBoth(grid, lookingAt({0, 0, 20}, 320, 160), o);
+    c = renderBoth(gridUnderPointAndSphereLights(base), lookingAt({0, 0, 20}, 320, 160), o);
     std::printf("iridescent grid (metallic %.0f): mean relative difference %.2e\n", metallic,
                 c.meanRelative);
     EXPECT_LT(c.meanRelative, 1e-3);
