@@ -306,6 +306,7 @@ SpecularReflectance surfaceReflectance(Surface p, bool microOcclusion) {
 // of its F0.
 Surface metalAsDiffuse(Surface p) {
   p.baseColor = metalAsDiffuseColor(p.baseColor, p.metallic, surfaceReflectance(p, false).f0);
+  p.specular *= 1.0 - p.metallic;  // fresnel_mix's layer: the dielectric share's alone
   p.metallic = 0.0;
   return p;
 }

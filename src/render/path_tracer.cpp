@@ -164,9 +164,11 @@ void preparePathTracer() {
 
 // Lagarde & de Rousiers 2014, 4.9.1.2: a probe capture keeps the diffuse light of the surfaces it
 // sees, so a metal (no diffuse lobe) would be black; it is seen as a diffuse surface whose albedo
-// is its F0 instead.
+// is its F0 instead. Its metallic share keeps all of that albedo: fresnel_mix's layer
+// (diffuseWeight) is the dielectric share's alone.
 SurfacePoint metalAsDiffuse(SurfacePoint p) {
   p.baseColor = shared::metalAsDiffuseColor(p.baseColor, p.metallic, reflectanceOf(p, false).f0);
+  p.specular *= 1.0f - p.metallic;
   p.metallic = 0.0f;
   return p;
 }

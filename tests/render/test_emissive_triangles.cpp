@@ -35,9 +35,11 @@ Scene floorUnderEmissiveSquare(float side, float height, glm::vec3 le) {
   Material floor;
   floor.baseColor = glm::vec3(0.5f);
   floor.metallic = 0.0f;
+  floor.specular = 0.0f;  // Lambertian (no fresnel_mix share)
   Material lamp;
   lamp.baseColor = glm::vec3(0.0f);
   lamp.metallic = 0.0f;
+  lamp.specular = 0.0f;
   lamp.emissive = le;
   scene.materials = {floor, lamp};
   const auto quad = [&](float half, float y, int material, float ny) {

@@ -30,6 +30,7 @@ WindowRoom windowRoom(float skyRadiance) {
   Material wall;
   wall.baseColor = glm::vec3(0.6f);
   wall.metallic = 0.0f;
+  wall.specular = 0.0f;  // Lambertian (no fresnel_mix share)
   wall.roughness = 1.0f;
   for (auto& w : room.walls) w = {wall, wall};
   room.window = true;
@@ -144,6 +145,7 @@ TEST(IrradianceVolumeUpdate, AGlowingEnclosureConvergesToItsClosedForm) {
   Material wall;
   wall.baseColor = glm::vec3(0.5f);
   wall.metallic = 0.0f;
+  wall.specular = 0.0f;  // Lambertian (no fresnel_mix share)
   wall.roughness = 1.0f;
   wall.emissive = glm::vec3(1.0f, 0.5f, 0.25f);
   for (auto& w : room.walls) w = {wall, wall};

@@ -20,11 +20,13 @@ using namespace ibl::test;
 
 namespace {
 
-// A white Lambert plane (diffuse only: radiance = E / pi exactly) lit by the lights.
+// A white Lambert plane (diffuse only: radiance = E / pi exactly; specular 0, so that no
+// specular layer takes its share: glTF's fresnel_mix) lit by the lights.
 Scene whitePlane(const std::vector<Light>& lights) {
   Material m;
   m.baseColor = glm::vec3(1.0f);
   m.metallic = 0.0f;
+  m.specular = 0.0f;
   Scene s;
   s.materials = {m};
   s.meshes.push_back(planeMesh(5.0f));
@@ -176,6 +178,7 @@ TEST(LightRender, GltfPunctualLightsAreRead) {
   const auto path = dir.path() / "lit.gltf";
   QuadMaterial qm;
   qm.metallicFactor = 0.0f;
+  qm.specularFactor = 0.0f;  // Lambertian: no layer takes its share of the diffuse
   writeMaterialQuad(path, qm);
   nlohmann::json j = nlohmann::json::parse(std::ifstream(path));
   j["extensionsUsed"] = {"KHR_lights_punctual"};

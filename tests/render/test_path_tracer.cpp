@@ -43,6 +43,7 @@ TEST(PathTracer, ClosedLambertianFurnace) {
   Material wall;
   wall.baseColor = glm::vec3(0.6f);
   wall.metallic = 0.0f;
+  wall.specular = 0.0f;  // Lambertian: no layer takes a share (fresnel_mix)
   wall.emissive = glm::vec3(1.0f, 0.5f, 0.25f);
   Scene scene;
   scene.materials.push_back(wall);
@@ -116,6 +117,7 @@ TEST(PathTracer, CornellBoxAgreesWithRadiosity) {
         Material m;
         m.baseColor = albedo;
         m.metallic = 0.0f;
+        m.specular = 0.0f;  // Lambertian patches, as radiosity has them
         m.emissive = p.emission;
         scene.materials.push_back(m);
         Mesh mesh;

@@ -28,14 +28,17 @@ Material emitting(glm::vec3 e) {
   Material m;
   m.baseColor = glm::vec3(0.0f);
   m.metallic = 0.0f;
+  m.specular = 0.0f;
   m.emissive = e;
   return m;
 }
 
+// Lambertian: specular 0, so that no layer takes its share of the diffuse (fresnel_mix).
 Material diffuse(glm::vec3 c) {
   Material m;
   m.baseColor = c;
   m.metallic = 0.0f;
+  m.specular = 0.0f;
   m.roughness = 1.0f;
   return m;
 }

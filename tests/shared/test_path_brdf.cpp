@@ -44,9 +44,12 @@ shared::SpecularReflectance gltfDefaultReflectance(glm::vec3 baseColor, float me
 TEST(PathBrdf, LambertianSamplesWeighTheAlbedo) {
   const glm::vec3 v = glm::normalize(glm::vec3(0.3f, 0.2f, 0.9f));
   const glm::vec3 albedo(0.2f, 0.5f, 0.8f);
+  // Lambertian: specular 0, so that no layer takes its share of the diffuse (fresnel_mix).
+  shared::SpecularReflectance lambertian = gltfDefaultReflectance(albedo, 0.0f);
+  lambertian.specularWeight = 0.0f;
   const shared::PathBrdf b =
-      shared::pathBrdfOf(kTables, albedo, 0.0f, 0.7f, gltfDefaultReflectance(albedo, 0.0f),
-                         glm::vec3(0.0f), 0.0f, v, shared::kLobesDiffuse, singleScattering(1));
+      shared::pathBrdfOf(kTables, albedo, 0.0f, 0.7f, lambertian, glm::vec3(0.0f), 0.0f, v,
+                         shared::kLobesDiffuse, singleScattering(1));
   const std::uint32_t key = shared::pathSamplerKey(1u, 0u, 2u, 0u);
   for (std::uint32_t i = 0; i < 64; ++i) {
     shared::PathSampler numbers = shared::pathSamplerAt(key, i);

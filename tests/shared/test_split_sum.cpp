@@ -23,6 +23,7 @@ SurfacePoint point(glm::vec3 n, float metallic, float roughness, float occlusion
   p.metallic = metallic;
   p.roughness = roughness;
   p.occlusion = occlusion;
+  p.specular = 0.0f;  // a dielectric's diffuse whole: no layer takes its share (fresnel_mix)
   return p;
 }
 

@@ -237,4 +237,21 @@ inline double fresnelDielectric(double c, double n) {
   return 0.5 * (rs * rs + rp * rp);
 }
 
+// The cosine-weighted mean over the hemisphere of light directions l of (1 - v.h)^5, h =
+// normalize(v + l), at n.v = NoV: the midpoint rule over (sin^2 theta, phi), in which the cosine
+// weight is uniform. glTF's fresnel_mix takes specular (F0 + (1 - F0) this) from a Lambertian
+// diffuse under uniform light.
+inline double lambertianSchlickMeanQuadrature(double NoV, int steps = 160) {
+  const glm::dvec3 v(std::sqrt(1.0 - NoV * NoV), 0.0, NoV);
+  double sum = 0.0;
+  for (int i = 0; i < steps; ++i)
+    for (int j = 0; j < steps; ++j) {
+      const double u = (i + 0.5) / steps, phi = 2.0 * 3.14159265358979 * (j + 0.5) / steps;
+      const glm::dvec3 l(std::sqrt(u) * std::cos(phi), std::sqrt(u) * std::sin(phi),
+                         std::sqrt(1.0 - u));
+      sum += std::pow(1.0 - glm::dot(v, glm::normalize(v + l)), 5.0);
+    }
+  return sum / (steps * steps);
+}
+
 }  // namespace ibl::test

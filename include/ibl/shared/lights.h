@@ -87,7 +87,9 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
     if (s.disneyDiffuse)
       fd = disneyDiffuseRenormalized(NoV, clamp(dot(n, l), 0.0f, 1.0f), dot(l, normalize(v + l)),
                                      m.roughness);
-    color += diffuseColor * (fd / kPi * inc.diffuseIlluminance);
+    // fresnel_mix at the light's half vector (diffuseWeight, material.h).
+    color += diffuseColor *
+             (fd * diffuseWeight(r, dot(v, normalize(v + l))) / kPi * inc.diffuseIlluminance);
   }
   if (s.terms != 1) {
     vec3 specular = specularLightRadiance(r, alpha, n, v, inc, dfg);

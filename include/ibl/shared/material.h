@@ -122,6 +122,10 @@ IBL_FN float dielectricF0FromIor(float ior) {
 struct SpecularReflectance {
   vec3 f0;
   float f90;
+  // The dielectric's layer alone, for the diffuse it leaves (diffuseWeight): min(F0(ior)
+  // specularColor, 1) and KHR_materials_specular's strength.
+  vec3 dielectricF0 IBL_DEFAULT(vec3(0.04f));
+  float specularWeight IBL_DEFAULT(1.0f);
   float iridescence IBL_DEFAULT(0.0f);    // the film's strength, 0 to 1 (0: no film)
   float filmIor IBL_DEFAULT(1.3f);        // the film's index of refraction
   float filmThickness IBL_DEFAULT(0.0f);  // nm
@@ -137,10 +141,12 @@ struct SpecularReflectance {
 IBL_FN SpecularReflectance specularReflectance(vec3 baseColor, float metallic, float ior,
                                                float specular, vec3 specularColor,
                                                bool microOcclusion) {
-  vec3 dielectric = min(dielectricF0FromIor(ior) * specularColor, vec3(1.0f)) * specular;
+  vec3 layer = min(dielectricF0FromIor(ior) * specularColor, vec3(1.0f));
   SpecularReflectance r;
-  r.f0 = mix(dielectric, baseColor, metallic);
+  r.f0 = mix(layer * specular, baseColor, metallic);
   r.f90 = mix(specular, 1.0f, metallic) * fresnelF90(r.f0, microOcclusion);
+  r.dielectricF0 = layer;
+  r.specularWeight = specular;
   r.iridescence = 0.0f;
   r.filmIor = 1.3f;
   r.filmThickness = 0.0f;
@@ -152,6 +158,8 @@ IBL_FN SpecularReflectance schlickReflectance(vec3 f0, float f90) {
   SpecularReflectance r;
   r.f0 = f0;
   r.f90 = f90;
+  r.dielectricF0 = f0;
+  r.specularWeight = 1.0f;
   r.iridescence = 0.0f;
   r.filmIor = 1.3f;
   r.filmThickness = 0.0f;
@@ -210,6 +218,43 @@ const float kClearcoatIor = 1.5f;
 IBL_FN float clearcoatWeight(float clearcoat, float NcoV) {
   float f0 = dielectricF0FromIor(kClearcoatIor);
   return clearcoat * (f0 + (1.0f - f0) * schlickWeight(abs(NcoV)));
+}
+
+// The share of the diffuse lobe the dielectric's specular layer leaves at a light direction of
+// half vector h, cosine = v.h: glTF 2.0's fresnel_mix (Appendix B.3.5) with
+// KHR_materials_specular's weight, 1 - specular max(fr), fr = Schlick's Fresnel of F0 =
+// dielectricF0 and F90 = 1; with KHR_materials_iridescence the extension's rgb_mix,
+// 1 - max(mix(specular fr, F_film, strength)), the film over specular dielectricF0.
+IBL_FN float diffuseWeight(SpecularReflectance r, float cosine) {
+  vec3 f = r.specularWeight * fresnelSchlick(r.dielectricF0, 1.0f, cosine);
+  if (r.iridescence > 0.0f)
+    f = mix(f,
+            thinFilmFresnel(1.0f, r.filmIor, r.filmThickness, cosine,
+                            r.specularWeight * r.dielectricF0),
+            r.iridescence);
+  return 1.0f - max(f.x, max(f.y, f.z));
+}
+
+// The cosine-weighted mean of Schlick's (1 - v.h)^5 over the hemisphere of light directions,
+// h = normalize(v + l), as a function of n.v: what fresnel_mix takes from the diffuse under a
+// uniform light. Fitted to 2D quadrature (tests/shared/test_material.cpp) as
+// 0.0279 (1 - n.v)^2.55, within 6e-4 of it.
+IBL_FN float lambertianSchlickMean(float NoV) {
+  return 0.0279f * pow(clamp(1.0f - NoV, 0.0f, 1.0f), 2.55f);
+}
+
+// diffuseWeight's mean over a Lambertian lobe at n.v, for the split sum, whose irradiance has no
+// light direction: specular (F0 + (1 - F0) lambertianSchlickMean) in place of specular fr, the
+// film's at n.v in place of its own.
+IBL_FN float meanDiffuseWeight(SpecularReflectance r, float NoV) {
+  float c = lambertianSchlickMean(NoV);
+  vec3 f = r.specularWeight * (r.dielectricF0 + (vec3(1.0f) - r.dielectricF0) * c);
+  if (r.iridescence > 0.0f)
+    f = mix(
+        f,
+        thinFilmFresnel(1.0f, r.filmIor, r.filmThickness, NoV, r.specularWeight * r.dielectricF0),
+        r.iridescence);
+  return 1.0f - max(f.x, max(f.y, f.z));
 }
 
 // The diffuse color a capture gives a metal, whose specular it leaves out (RenderOptions::

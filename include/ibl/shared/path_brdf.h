@@ -229,7 +229,8 @@ IBL_FN vec3 evaluatePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v, vec3 l, PathS
   if (pathDiffuseLobe(b)) {
     float fd =
         b.diffuseModel == 0 ? disneyDiffuseRenormalized(NoV, NoL, dot(l, h), b.roughness) : 1.0f;
-    result += b.diffuseColor * (fd / kPi);
+    // glTF's fresnel_mix: the share the specular layer leaves (diffuseWeight, material.h).
+    result += b.diffuseColor * (fd * diffuseWeight(b.reflectance, dot(v, h)) / kPi);
   }
   if (pathHasSheen(b)) {
     result *= min(b.sheenScaleV, pathSheenScaling(IBL_ALBEDO_ARG b, NoL));

@@ -157,7 +157,8 @@ IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefi
     float fd = s.disneyDiffuse ? dfg.z : 1.0f;
     vec3 occlusion = s.multiBounceOcclusion ? multiBounceVisibility(m.occlusion, diffuseColor)
                                             : vec3(m.occlusion);
-    color += diffuseColor * irradiance * fd * occlusion;
+    // fresnel_mix: the share the specular layer leaves, meanDiffuseWeight (material.h).
+    color += diffuseColor * irradiance * (fd * meanDiffuseWeight(r, NoV)) * occlusion;
   }
   return color;
 }

@@ -26,9 +26,11 @@ using namespace ibl::test;
 using nlohmann::json;
 
 namespace {
-// An 8 x 8 orthographic view of the 2 x 2 quad, diffuse only (Lambert) under constant white
-// light: each pixel's radiance is the base color there.
-RenderResult renderLambertUnderWhiteLight(const Scene& s) {
+// An 8 x 8 orthographic view of the 2 x 2 quad, diffuse only (Lambert, no specular layer to take
+// its share: glTF's fresnel_mix) under constant white light: each pixel's radiance is the base
+// color there.
+RenderResult renderLambertUnderWhiteLight(Scene s) {
+  for (Material& m : s.materials) m.specular = 0.0f;
   BakeOptions bo;
   bo.specular.size = 16;
   bo.dfgSize = 16;
