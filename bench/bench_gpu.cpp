@@ -178,6 +178,18 @@ void BM_ViewerFrameWithClearcoat(benchmark::State& state) {
                state.range(0) ? ", clear coat" : ", no clear coat");
 }
 
+// A frame (1 sample per pixel) of the sphere grid, its spheres under a thin film
+// (KHR_materials_iridescence, 420 nm) or not (0): the film's Fresnel in the split sum, in the
+// diffuse's share and at each light.
+void BM_ViewerFrameWithIridescence(benchmark::State& state) {
+  ibl::Material base;
+  base.baseColor = glm::vec3(1.0f);
+  base.iridescence = static_cast<float>(state.range(0));
+  base.iridescenceThicknessMaximum = 420.0f;
+  viewerFrames(state, ibl::makeSphereGrid(base), frameShading(1),
+               state.range(0) ? ", iridescence" : ", no iridescence");
+}
+
 // A frame (1 sample per pixel) of the sphere grid standing on a glossy metal floor (roughness
 // 0.05) that fills the lower half of the view, with screen-space reflections: -1 none, 0 low
 // (1 ray x 48 steps of 4 pixels), 1 medium (4 x 96 x 2), 2 high (8 x 192 x 1); the view
@@ -358,6 +370,10 @@ BENCHMARK(BM_ViewerFrameWithReflections)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithClearcoat)
+    ->DenseRange(0, 1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_ViewerFrameWithIridescence)
     ->DenseRange(0, 1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
