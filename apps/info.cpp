@@ -139,7 +139,9 @@ void runGltfInfo(const InfoOptions& o) {
            {"iridescence", m.iridescence},
            {"iridescence_ior", m.iridescenceIor},
            {"iridescence_thickness",
-            {m.iridescenceThicknessMinimum, m.iridescenceThicknessMaximum}}});
+            {m.iridescenceThicknessMinimum, m.iridescenceThicknessMaximum}},
+           {"anisotropy", m.anisotropy},
+           {"anisotropy_rotation", m.anisotropyRotation}});
     for (const auto& t : s.textures)
       j["textures"].push_back({{"image", index(t.image)},
                                {"source", t.source},
@@ -252,12 +254,17 @@ void runGltfInfo(const InfoOptions& o) {
                           m.iridescence, m.iridescenceIor, m.iridescenceThicknessMinimum,
                           m.iridescenceThicknessMaximum)
             : "";
+    const std::string anisotropy = m.anisotropy > 0.0f
+                                       ? fmt::format(", anisotropy {:.4g} (rotation {:.4g} rad)",
+                                                     m.anisotropy, m.anisotropyRotation)
+                                       : "";
     fmt::print(
         "  {}{}: base color {:.4g} {:.4g} {:.4g} {:.4g}, metallic {:.4g}, roughness "
-        "{:.4g}{}{}{}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
+        "{:.4g}{}{}{}{}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
         i, quoted(m.name), m.baseColor.x, m.baseColor.y, m.baseColor.z, m.baseColor.w, m.metallic,
-        m.roughness, dielectric, coat, film, m.emissive.x, m.emissive.y, m.emissive.z, m.alphaMode,
-        m.doubleSided ? ", double-sided" : "", textures.empty() ? "" : ", textures " + textures,
+        m.roughness, dielectric, coat, film, anisotropy, m.emissive.x, m.emissive.y, m.emissive.z,
+        m.alphaMode, m.doubleSided ? ", double-sided" : "",
+        textures.empty() ? "" : ", textures " + textures,
         extensions.empty() ? "" : "; extensions: " + extensions);
   }
   if (!s.variants.empty())

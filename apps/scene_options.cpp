@@ -8,6 +8,7 @@
 
 #include <fmt/core.h>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/default_environment.hpp"
@@ -133,6 +134,16 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
   cmd->add_option("--iridescence-thickness", o.iridescenceThickness,
                   "Built-in scenes: the thin film's thickness in nanometers")
       ->check(numberIn(0.0f, 2000.0f))
+      ->capture_default_str();
+  cmd->add_option("--anisotropy", o.anisotropy,
+                  "Built-in scenes: the anisotropy's strength (KHR_materials_anisotropy: the "
+                  "roughness grows along the spheres' parallels)")
+      ->check(numberIn(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--anisotropy-rotation", o.anisotropyRotation,
+                  "Built-in scenes: the anisotropy's direction, in degrees counterclockwise from "
+                  "the parallels toward the meridians")
+      ->check(numberIn(-360.0f, 360.0f))
       ->capture_default_str();
   cmd->add_option("--diffuse", o.diffuse, "disney (Frostbite renormalized) or lambert")
       ->check(CLI::IsMember({"disney", "lambert"}))
@@ -290,6 +301,8 @@ Scene loadSceneAlone(const SceneCliOptions& o, const GlobalOptions& global) {
   m.iridescence = o.iridescence;
   m.iridescenceIor = o.iridescenceIor;
   m.iridescenceThicknessMaximum = o.iridescenceThickness;
+  m.anisotropy = o.anisotropy;
+  m.anisotropyRotation = glm::radians(o.anisotropyRotation);
   if (o.scene == "grid") return makeSphereGrid(m);
   m.metallic = o.metallic;
   m.roughness = o.roughness;
@@ -354,7 +367,8 @@ void refuseIgnoredSceneOptions(const SceneCliOptions& o) {
   // The built-in scenes' material.
   for (const char* option :
        {"--base-color", "--metallic", "--roughness", "--ior", "--specular", "--clearcoat",
-        "--clearcoat-roughness", "--iridescence", "--iridescence-ior", "--iridescence-thickness"})
+        "--clearcoat-roughness", "--iridescence", "--iridescence-ior", "--iridescence-thickness",
+        "--anisotropy", "--anisotropy-rotation"})
     if (given(o, option) && !builtInScene(o))
       failUsage(option, fmt::format("sets the material of the built-in scenes (sphere, grid); "
                                     "the scene {} has its own",

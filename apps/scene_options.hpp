@@ -49,6 +49,9 @@ struct SceneCliOptions {
   float iridescence = 0.0f;
   float iridescenceIor = 1.3f;
   float iridescenceThickness = 400.0f;
+  // KHR_materials_anisotropy: the strength and the rotation from the tangent (degrees)
+  float anisotropy = 0.0f;
+  float anisotropyRotation = 0.0f;
   std::string diffuse = "disney";
   std::string only;
   std::string multiscatter = "walk";  // --multiscatter walk|scale|off

@@ -178,16 +178,23 @@ void BM_ViewerFrameWithClearcoat(benchmark::State& state) {
                state.range(0) ? ", clear coat" : ", no clear coat");
 }
 
-// A frame (1 sample per pixel) of the sphere grid, its spheres under a thin film
-// (KHR_materials_iridescence, 420 nm) or not (0): the film's Fresnel in the split sum, in the
-// diffuse's share and at each light.
-void BM_ViewerFrameWithIridescence(benchmark::State& state) {
+// A frame (1 sample per pixel) of the sphere grid with a material extension on every sphere: 0
+// none, 1 a thin film (KHR_materials_iridescence, 420 nm: its Fresnel in the split sum, in the
+// diffuse's share and at each light), 2 anisotropy (KHR_materials_anisotropy, strength 0.8: the
+// bent reflection, anisotropic GGX at each light, the tangent frame).
+void BM_ViewerFrameWithMaterialExtension(benchmark::State& state) {
   ibl::Material base;
   base.baseColor = glm::vec3(1.0f);
-  base.iridescence = static_cast<float>(state.range(0));
-  base.iridescenceThicknessMaximum = 420.0f;
-  viewerFrames(state, ibl::makeSphereGrid(base), frameShading(1),
-               state.range(0) ? ", iridescence" : ", no iridescence");
+  const char* label = ", no extension";
+  if (state.range(0) == 1) {
+    base.iridescence = 1.0f;
+    base.iridescenceThicknessMaximum = 420.0f;
+    label = ", iridescence";
+  } else if (state.range(0) == 2) {
+    base.anisotropy = 0.8f;
+    label = ", anisotropy";
+  }
+  viewerFrames(state, ibl::makeSphereGrid(base), frameShading(1), label);
 }
 
 // A frame (1 sample per pixel) of the sphere grid standing on a glossy metal floor (roughness
@@ -373,8 +380,8 @@ BENCHMARK(BM_ViewerFrameWithClearcoat)
     ->DenseRange(0, 1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-BENCHMARK(BM_ViewerFrameWithIridescence)
-    ->DenseRange(0, 1)
+BENCHMARK(BM_ViewerFrameWithMaterialExtension)
+    ->DenseRange(0, 2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithLights)

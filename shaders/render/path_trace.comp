@@ -263,6 +263,8 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
                                p.sheenRoughness, v, lobes, shading);
     if (p.clearcoat > 0.0)
       brdf = withClearcoat(brdf, p.clearcoat, p.clearcoatRoughness, toLocal * p.clearcoatNormal, v);
+    if (p.anisotropy > 0.0)
+      brdf = withAnisotropy(brdf, p.anisotropy, toLocal * p.anisotropyTangent, v, shading);
     vec3 origin = position + p.normal * 1e-4 * max(1.0, length(position));
     // Next-event estimation: one sample of each light, of the emitters and of the environment.
     for (uint i = 0u; i < params.counts.x; ++i) {

@@ -200,6 +200,10 @@ struct Surface {
   vec3 clearcoatNormal;
   // KHR_materials_iridescence (textures applied; 0: none): strength, the film's IOR and thickness.
   float iridescence, iridescenceIor, iridescenceThickness;
+  // KHR_materials_anisotropy (texture applied; 0: none): strength, the direction of the larger
+  // roughness (unit, orthogonal to the normal).
+  float anisotropy;
+  vec3 anisotropyTangent;
 };
 
 Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
@@ -208,10 +212,14 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
   vec3 n, coatNormal;
   uint material;
   vec4 m5;
+  // KHR_materials_anisotropy: the tangent frame, and the texel (the extension's default without
+  // a texture).
+  vec4 tangent = vec4(0.0), anisotropyTexel = vec4(1.0, 0.5, 1.0, 1.0);
   if (hit.sphere) {
     vec4 sphere = sceneData[params.offsets2.x + 2u * hit.mesh];
     n = normalize(p.position - sphere.xyz);
     material = floatBitsToUint(sceneData[params.offsets2.x + 2u * hit.mesh + 1u].x);
+    tangent = sphereTangent(n);
   } else {
     MeshRecord m = meshAt(hit.mesh);
     material = m.material;
@@ -247,17 +255,19 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
         mix(m6.z, m6.w, slotTexel(m, tri, material, kMaterialIridescenceThickness, w, false).g);
     // The coat's normal: the interpolated one, unless it has a normal map of its own.
     coatNormal = n;
+    vec2 uv;
     if ((m.flags & 1u) != 0u) {
-      vec4 t4 = vertexAt(tri.x, 2) * w.x + vertexAt(tri.y, 2) * w.y + vertexAt(tri.z, 2) * w.z;
-      vec2 uv;
+      tangent = vertexAt(tri.x, 2) * w.x + vertexAt(tri.y, 2) * w.y + vertexAt(tri.z, 2) * w.z;
       if (slotUv(m, tri, material, kMaterialClearcoatNormal, w, uv))
         coatNormal = applyNormalMap(
-            n, t4, sampleTexture(materialSlot(material, kMaterialClearcoatNormal).x, uv, false),
-            m5.w);
+            n, tangent,
+            sampleTexture(materialSlot(material, kMaterialClearcoatNormal).x, uv, false), m5.w);
       if (slotUv(m, tri, material, kMaterialNormal, w, uv))
-        n = applyNormalMap(n, t4, sampleTexture(materialSlot(material, kMaterialNormal).x, uv, false),
-                           m3.y);
+        n = applyNormalMap(
+            n, tangent, sampleTexture(materialSlot(material, kMaterialNormal).x, uv, false), m3.y);
     }
+    if (slotUv(m, tri, material, kMaterialAnisotropy, w, uv))
+      anisotropyTexel = sampleTexture(materialSlot(material, kMaterialAnisotropy).x, uv, false);
     p.baseColor = base;
     p.metallic = clamp(metallic, 0.0, 1.0);
     p.roughness = clamp(roughness, 0.0, 1.0);
@@ -282,6 +292,12 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
   }
   p.ior = m5.x;
   p.iridescenceIor = materialAt(material, 6).y;
+  // The anisotropy's direction in the frame of the side the mesh faces (surfaceAt's rule).
+  vec4 m7 = materialAt(material, 7);
+  vec3 anisotropy = anisotropyDirectionOf(m7.z, anisotropyTexel);
+  p.anisotropy = clamp(m7.y * anisotropy.z, 0.0, 1.0);
+  p.anisotropyTangent = vec3(1.0, 0.0, 0.0);
+  if (p.anisotropy > 0.0) p.anisotropyTangent = anisotropyTangentOf(n, tangent, anisotropy.xy);
   // Shade the side the ray sees (the coat's normal on the same side).
   if (dot(n, dir) > 0.0) {
     n = -n;

@@ -49,9 +49,12 @@ layout(std430, set = 0, binding = kFrameLights) readonly buffer Lights {
   vec4 lightData[];
 };
 // The GGX table of linearly transformed cosines (src/render/ltc_table.inc), read by texelFetch.
-layout(set = 0, binding = kFrameLtcTable) uniform sampler2D ltcTable;
+// This and the other images read only by texelFetch are sampled images without a sampler
+// (GL_EXT_samplerless_texture_functions, which each shader that includes this file enables):
+// samplers are few per stage (lavapipe allows 32: the frame's and a material's together).
+layout(set = 0, binding = kFrameLtcTable) uniform texture2D ltcTable;
 // The lights' IES profiles, kIesTableRows rows each (ibl/shared/light_record.h), read by texelFetch.
-layout(set = 0, binding = kFrameIesTable) uniform sampler2D iesTable;
+layout(set = 0, binding = kFrameIesTable) uniform texture2D iesTable;
 
 struct Ray {
   vec3 origin, direction;
@@ -124,8 +127,8 @@ layout(std430, set = 0, binding = kFrameVolumeProbes) readonly buffer VolumeProb
 // view-space position, w 1 where a surface is; view-space normal, w the perceptual roughness) and
 // the occlusion (view/gtao.frag: visibility, bent normal in world space), one texel per pixel,
 // read by texelFetch; 1 x 1 stand-ins when off.
-layout(set = 0, binding = kFrameViewPositions) uniform sampler2D viewPositions;
-layout(set = 0, binding = kFrameViewNormals) uniform sampler2D viewNormals;
+layout(set = 0, binding = kFrameViewPositions) uniform texture2D viewPositions;
+layout(set = 0, binding = kFrameViewNormals) uniform texture2D viewNormals;
 layout(set = 0, binding = kFrameScreenOcclusion) uniform sampler2D screenOcclusion;
 // Screen-space reflections: the reflection (view/ssr.frag: premultiplied radiance, the lobe's
 // share the screen holds), read by the scene's second pass, and the lit frame (the scene's first

@@ -3,6 +3,7 @@
 // CPU's split sum runs too) at each pixel from the view buffers (view/view_buffers.frag). Writes
 // the visibility and the bent normal in world space, read by view/scene.frag.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 #include "view/frame.glsl"
 layout(location = 0) out vec4 outOcclusion;
 

@@ -21,6 +21,7 @@ layout(set = 1, binding = kMaterialClearcoatNormal) uniform sampler2D clearcoatN
 layout(set = 1, binding = kMaterialIridescence) uniform sampler2D iridescenceTexture;  // R
 layout(set = 1, binding = kMaterialIridescenceThickness) uniform sampler2D
     iridescenceThicknessTexture;  // G
+layout(set = 1, binding = kMaterialAnisotropy) uniform sampler2D anisotropyTexture;  // RGB
 layout(std430, set = 1, binding = kMaterialFactors) readonly buffer Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
@@ -31,9 +32,10 @@ layout(std430, set = 1, binding = kMaterialFactors) readonly buffer Material {
   vec4 sheen;      // KHR_materials_sheen: sheenColorFactor, sheenRoughnessFactor
   vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
   vec4 iridescence;  // KHR_materials_iridescence: factor, IOR, thickness minimum and maximum (nm)
+  vec4 anisotropy;   // KHR_materials_anisotropy: strength, rotation (radians), 0, 0
   uint texCoordMask;  // bit b: the texture at binding b reads TEXCOORD_1
   // KHR_texture_transform: binding b's UvTransform rows u and v at 2b and 2b + 1.
-  vec4 uvTransforms[2 * 14];
+  vec4 uvTransforms[2 * 15];
 } material;
 layout(push_constant) uniform Draw {
   vec4 sphere;     // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)

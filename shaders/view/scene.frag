@@ -3,6 +3,7 @@
 // surfaceAt (src/render/ray_tracer.cpp), through ibl/shared/material.h, then shadeSplitSum
 // (view/shading.glsl), with the sheen layer of KHR_materials_sheen.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 #include "ibl/shared/color.h"
 #include "view/frame.glsl"
 #include "view/shading.glsl"

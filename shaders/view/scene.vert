@@ -1,6 +1,7 @@
 #version 450
 // The viewer's meshes: positions are already in world space (the scene applies node transforms).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 #include "view/frame.glsl"
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;

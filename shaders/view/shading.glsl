@@ -194,8 +194,13 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
   vec3 emissive = m.emissive;
   m.emissive = vec3(0.0);
   SplitSumLookup look = splitSumLookup(n, view, m.roughness, s);
+  look = anisotropicLookup(look, n, view, m, s);
   if (bentNormal != vec3(0.0)) look = bendDiffuseLookup(look, bentNormal, view, m.roughness, s);
-  vec3 dfg = textureLod(dfgLut, vec2(look.NoV, m.roughness), 0.0).rgb;
+  // The isotropic tables at the lobe's albedo-equivalent roughness (KHR_materials_anisotropy).
+  float lobeRoughness = tableRoughness(m);
+  vec3 dfg = textureLod(dfgLut, vec2(look.NoV, lobeRoughness), 0.0).rgb;
+  // Disney's diffuse (the table's third channel) at the material's own roughness.
+  if (lobeRoughness != m.roughness) dfg.z = textureLod(dfgLut, vec2(look.NoV, m.roughness), 0.0).b;
   // The sheen's table at the clamped roughness, and the scaling of the layer below.
   float sheenRoughness = max(sheen.w, kMinSheenRoughness);
   float sheenE = hasSheen ? textureLod(sheenDfgLut, vec2(look.NoV, sheenRoughness), 0.0).r : 0.0;
@@ -215,7 +220,7 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
     direct.occlusion = 1.0;
     vec4 ltc = vec4(1.0, 0.0, 0.0, 1.0);
     vec4 coatLtc = vec4(1.0, 0.0, 0.0, 1.0);
-    if (s.ltcAreaLights) ltc = ltcTableEntry(m.roughness, look.NoV);
+    if (s.ltcAreaLights) ltc = ltcTableEntry(lobeRoughness, look.NoV);
     if (s.ltcAreaLights && coat) coatLtc = ltcTableEntry(m.clearcoatRoughness, coatLook.NoV);
     float sheenAlpha = alphaFromRoughness(sheenRoughness);
     uvec2 list = clusterLights(pixel, position);
@@ -226,7 +231,7 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
       if (visible <= 0.0) continue;
       LightRecord record = lightRecordAt(i);
       ShadingLight l = unpackLight(record);
-      LightIncidence inc = lightIncidence(l, position, n, view, m.roughness, s, ltc);
+      LightIncidence inc = lightIncidence(l, position, n, view, lobeRoughness, s, ltc);
       float profile = visible * iesProfileFactor(l, lightRecordProfile(record),
                                                  normalize(position - l.position));
       vec3 radiance = belowScale * lightRadiance(direct, n, view, inc, dfg.xy, s);

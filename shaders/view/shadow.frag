@@ -5,6 +5,7 @@
 // what it does not cover, and a sphere is ray traced in its bounding polyhedron along the
 // texel's ray.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 #include "view/frame.glsl"
 #include "view/shadow_maps.glsl"
 layout(location = 0) in vec3 worldPosition;

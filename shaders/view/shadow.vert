@@ -3,6 +3,7 @@
 // the push constants), through the layer's light space (shadowClipPosition in
 // ibl/shared/shadows.h).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 #include "view/frame.glsl"
 #include "view/shadow_maps.glsl"
 layout(location = 0) in vec3 position;

@@ -2,6 +2,7 @@
 // The background: the source cube seen along each pixel's ray (at a chosen mip level), or a
 // flat color, and the emitters seen against it. Alpha 0: no model there.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 #include "view/frame.glsl"
 #include "view/shading.glsl"
 layout(location = 0) out vec4 outColor;

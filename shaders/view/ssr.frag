@@ -6,6 +6,7 @@
 // the share of the lobe it holds, which the resolve (view/ssr_resolve.frag) shares between
 // neighbors for the scene's second pass (view/scene.frag).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 #include "view/frame.glsl"
 #include "view/ssr_buffers.glsl"
 layout(location = 0) out vec4 outReflection;

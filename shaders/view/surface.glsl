@@ -110,6 +110,17 @@ ShadedSurface fragmentSurface(int samples) {
   if (hasTexture(kMaterialNormal))
     n = applyNormalMap(n, worldTangent, slotTexel(normalTexture, kMaterialNormal),
                        material.scales.x);
+  // KHR_materials_anisotropy (surfaceAt's rule): the direction in the frame of the side the mesh
+  // faces; the extension's default texel without a texture.
+  vec4 anisotropyTexel = hasTexture(kMaterialAnisotropy)
+                             ? slotTexel(anisotropyTexture, kMaterialAnisotropy)
+                             : vec4(1.0, 0.5, 1.0, 1.0);
+  vec3 anisotropy = anisotropyDirectionOf(material.anisotropy.y, anisotropyTexel);
+  float anisotropyStrength = clamp(material.anisotropy.x * anisotropy.z, 0.0, 1.0);
+  vec3 anisotropyTangent = vec3(1.0, 0.0, 0.0);
+  if (anisotropyStrength > 0.0)
+    anisotropyTangent = anisotropyTangentOf(
+        n, draw.sphere.w > 0.0 ? sphereTangent(n) : worldTangent, anisotropy.xy);
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
                                            : normalize(position - frame.cameraPosition.xyz);
   if (dot(n, ray) > 0.0) {  // shade the side the camera sees (the coat's normal alike)
@@ -135,6 +146,8 @@ ShadedSurface fragmentSurface(int samples) {
   m.iridescenceIor = iridescence.y;
   m.iridescenceThickness = filmThickness;
   m.clearcoatNormal = coatNormal;
+  m.anisotropy = anisotropyStrength;
+  m.anisotropyTangent = anisotropyTangent;
   surface.position = position;
   surface.normal = n;
   surface.view = -ray;

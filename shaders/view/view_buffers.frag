@@ -4,6 +4,7 @@
 // view space (x right, y up, z forward) and its perceptual roughness, as the CPU's
 // renderViewBuffers (src/render/view_buffers.cpp) computes them at the pixel centers.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
 #include "view/frame.glsl"
 #include "ibl/shared/ambient_occlusion.h"
 #include "ibl/shared/split_sum.h"

@@ -1,4 +1,5 @@
 #version 450
+#extension GL_EXT_samplerless_texture_functions : require
 // The irradiance volume's live update in the viewer, its rays (gpu::VolumeUpdate in
 // src/gpu/volume_update.cpp; updateVolume in src/render/irradiance_volume_update.cpp on the CPU):
 // ray i of probe p leaves along volumeRayDirection(i, rays, the frame's rotation), meets the
@@ -68,6 +69,11 @@ vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
   m.clearcoat = p.clearcoat;
   m.clearcoatRoughness = p.clearcoatRoughness;
   m.clearcoatNormal = p.clearcoatNormal;
+  m.iridescence = p.iridescence;
+  m.iridescenceIor = p.iridescenceIor;
+  m.iridescenceThickness = p.iridescenceThickness;
+  m.anisotropy = 0.0;  // the diffuse alone
+  m.anisotropyTangent = vec3(1.0, 0.0, 0.0);
   // What a clear coat lets through of the diffuse below it (its own lobe is specular).
   float belowCoat =
       p.clearcoat > 0.0 ? 1.0 - clearcoatWeight(p.clearcoat, dot(p.clearcoatNormal, view)) : 1.0;

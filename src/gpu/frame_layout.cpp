@@ -16,10 +16,7 @@
 
 namespace ibl::gpu {
 
-namespace {
-
-// The descriptor type of frame.glsl's declaration of `binding`.
-VkDescriptorType descriptorTypeOf(FrameBinding binding) {
+VkDescriptorType frameDescriptorType(FrameBinding binding) {
   switch (binding) {
     case FrameBinding::Uniforms:
       return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
@@ -31,12 +28,18 @@ VkDescriptorType descriptorTypeOf(FrameBinding binding) {
     case FrameBinding::LightClusters:
     case FrameBinding::VolumeProbes:
       return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    // Read by texelFetch alone: sampled images, which do not count against the stage's samplers
+    // (maxPerStageDescriptorSamplers, 32 on lavapipe, which the frame's and a material's
+    // combined image samplers share).
+    case FrameBinding::LtcTable:
+    case FrameBinding::IesTable:
+    case FrameBinding::ViewPositions:
+    case FrameBinding::ViewNormals:
+      return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
     default:
       return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;  // the cube maps, tables and screen images
   }
 }
-
-}  // namespace
 
 std::vector<VkDescriptorSetLayoutBinding> frameSetBindings() {
   // The fragment shaders read them all, and so does the irradiance volume's update
@@ -48,7 +51,7 @@ std::vector<VkDescriptorSetLayoutBinding> frameSetBindings() {
     const auto binding = static_cast<FrameBinding>(b);
     // The shadow records: the shadow maps' pass reads its layer in the vertex shader.
     const bool vertex = binding == FrameBinding::Uniforms || binding == FrameBinding::ShadowRecords;
-    bindings.push_back({b, descriptorTypeOf(binding), 1, vertex ? both : fragment, nullptr});
+    bindings.push_back({b, frameDescriptorType(binding), 1, vertex ? both : fragment, nullptr});
   }
   return bindings;
 }

@@ -33,6 +33,10 @@ constexpr std::uint32_t bindingNumber(FrameBinding binding) {
   return static_cast<std::uint32_t>(binding);
 }
 
+// The descriptor type of frame.glsl's declaration of `binding`: the uniform block, storage
+// buffers, combined image samplers, and sampled images for those read by texelFetch alone.
+VkDescriptorType frameDescriptorType(FrameBinding binding);
+
 // Set 0's layout: per FrameBinding its descriptor type (frame.glsl's declaration) and the
 // stages that read it (the fragment shaders; the uniforms and the shadow records the vertex
 // shaders too), in binding order.

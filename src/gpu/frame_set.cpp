@@ -129,7 +129,8 @@ FrameSet::FrameSet(Context& context) : device_(context.impl().device) {
 
 void FrameSet::writeImage(FrameBinding binding, VkSampler sampler, VkImageView view) {
   const VkDescriptorImageInfo info{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkWriteDescriptorSet w = imageWrite(set_, bindingNumber(binding), &info);
+  VkWriteDescriptorSet w = imageWrite(set_, bindingNumber(binding), &info);
+  w.descriptorType = frameDescriptorType(binding);  // a sampled image ignores the sampler
   vkUpdateDescriptorSets(device_, 1, &w, 0, nullptr);
 }
 

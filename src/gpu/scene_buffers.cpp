@@ -98,7 +98,8 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
         glm::vec4(mat.ior, mat.clearcoat, mat.clearcoatRoughness, mat.clearcoatNormalScale));
     data.push_back(glm::vec4(mat.iridescence, mat.iridescenceIor, mat.iridescenceThicknessMinimum,
                              mat.iridescenceThicknessMaximum));
-    data.push_back(glm::vec4(mat.unlit ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f));
+    data.push_back(
+        glm::vec4(mat.unlit ? 1.0f : 0.0f, mat.anisotropy, mat.anisotropyRotation, 0.0f));
     const auto slots = mat.textureSlots();
     for (std::size_t b = 0; b < slots.size(); b += 4) {
       glm::vec4 four(-1.0f);

@@ -312,6 +312,7 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
     factors.iridescence =
         glm::vec4(mat.iridescence, mat.iridescenceIor, mat.iridescenceThicknessMinimum,
                   mat.iridescenceThicknessMaximum);
+    factors.anisotropy = glm::vec4(mat.anisotropy, mat.anisotropyRotation, 0.0f, 0.0f);
     if (mat.sheenColor != glm::vec3(0.0f)) sceneHasSheen_ = true;
     static_assert(Material::kTextureSlots == kMaterialTextures, "MaterialBinding's order");
     const auto slots = mat.textureSlots();

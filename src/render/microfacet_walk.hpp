@@ -2,6 +2,7 @@
 // Internal to the renderer: multiple scattering between the microfacets of a conductor (Heitz,
 // Hanika, d'Eon & Dachsbacher 2016), the walk of ibl/shared/microfacet_walk.h (which the GPU
 // reference runs too) behind a small class for the CPU's path tracer and tests.
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "ibl/shared/microfacet_walk.h"
@@ -19,7 +20,10 @@ class MicrofacetWalk {
  public:
   static constexpr int kMaxOrder = shared::kWalkMaxOrder;
 
-  MicrofacetWalk(float alpha, glm::vec3 f0, float f90) {
+  MicrofacetWalk(float alpha, glm::vec3 f0, float f90)
+      : MicrofacetWalk(glm::vec2(alpha), f0, f90) {}
+  // An anisotropic microsurface: alpha.x along x, alpha.y along y (KHR_materials_anisotropy).
+  MicrofacetWalk(glm::vec2 alpha, glm::vec3 f0, float f90) {
     surface_.alpha = alpha;
     surface_.reflectance = shared::schlickReflectance(f0, f90);
   }

@@ -74,16 +74,18 @@ struct Brdf {
   shared::PathBrdf b;
   shared::AlbedoTables tables;
 
-  // The material at p seen from local direction v, its coat's normal `coatNormal` (local);
-  // `only` selects lobes.
-  static Brdf of(const SurfacePoint& p, glm::vec3 v, glm::vec3 coatNormal, ShadingTerms only,
-                 const RenderOptions& o) {
+  // The material at p seen from local direction v, its coat's normal `coatNormal` and its
+  // anisotropy's direction `anisotropyTangent` (both local); `only` selects lobes.
+  static Brdf of(const SurfacePoint& p, glm::vec3 v, glm::vec3 coatNormal,
+                 glm::vec3 anisotropyTangent, ShadingTerms only, const RenderOptions& o) {
     const shared::AlbedoTables tables = referenceAlbedoTables(o.sheenVisibility);
     shared::PathBrdf b = shared::pathBrdfOf(
         tables, p.baseColor, p.metallic, p.roughness, reflectanceOf(p, o.specularMicroOcclusion),
         p.sheenColor, p.sheenRoughness, v, static_cast<int>(only), pathShading(o));
     if (p.clearcoat > 0.0f)
       b = shared::withClearcoat(b, p.clearcoat, p.clearcoatRoughness, coatNormal, v);
+    if (p.anisotropy > 0.0f)
+      b = shared::withAnisotropy(tables, b, p.anisotropy, anisotropyTangent, v, pathShading(o));
     return {b, tables};
   }
   // f(v, l) (n.l), with n = +Z of the local frame (with the walk, an unbiased estimate drawn
@@ -192,7 +194,8 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     const bool captured = depth == 0 && !o.cameraSeesSpecular;
     const ShadingTerms only = captured ? ShadingTerms::Diffuse : o.only;
     if (captured && o.captureMetalsAsDiffuse) p = metalAsDiffuse(p);
-    const Brdf brdf = Brdf::of(p, v, toLocal * p.clearcoatNormal, only, o);
+    const Brdf brdf =
+        Brdf::of(p, v, toLocal * p.clearcoatNormal, toLocal * p.anisotropyTangent, only, o);
     const glm::vec3 origin = position + p.normal * 1e-4f * std::max(1.0f, glm::length(position));
     const auto unoccluded = [&](glm::vec3 w, float distance) {
       // Stop short of an area light's surface: the lights are not in the ray tracer.

@@ -120,6 +120,9 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
   SurfacePoint p{};
   const Material* mat;
   glm::vec3 n, coatNormal;
+  // KHR_materials_anisotropy: the tangent frame, and the texel (the extension's default without
+  // a texture).
+  glm::vec4 tangent(0.0f), anisotropyTexel(1.0f, 0.5f, 1.0f, 1.0f);
   if (tracer.isSphere(hit.geometry)) {
     const Sphere& s = scene.spheres[hit.primitive];
     n = glm::normalize(ray.origin + hit.t * ray.direction - s.center);
@@ -137,6 +140,7 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.iridescence = mat->iridescence;
     p.iridescenceThickness = mat->iridescenceThicknessMaximum;
     coatNormal = n;
+    tangent = shared::sphereTangent(n);
   } else {
     const Mesh& m = scene.meshes[hit.geometry];
     mat = &scene.materials[m.material];
@@ -198,18 +202,26 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     // base's: KHR_materials_clearcoat).
     coatNormal = n;
     if (!m.tangents.empty()) {
-      const glm::vec4 t4 = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
+      tangent = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
       if (lookup(mat->clearcoatNormalTexture, false, t))
-        coatNormal = shared::applyNormalMap(n, t4, t, mat->clearcoatNormalScale);
+        coatNormal = shared::applyNormalMap(n, tangent, t, mat->clearcoatNormalScale);
       if (lookup(mat->normalTexture, false, t))
-        n = shared::applyNormalMap(n, t4, t, mat->normalScale);
+        n = shared::applyNormalMap(n, tangent, t, mat->normalScale);
     }
+    lookup(mat->anisotropyTexture, false, anisotropyTexel);
     p.baseColor = base;
     p.metallic = std::clamp(metallic, 0.0f, 1.0f);
     p.roughness = std::clamp(roughness, 0.0f, 1.0f);
     p.emissive = emissive;
   }
   p.position = ray.origin + hit.t * ray.direction;
+  // The anisotropy's direction in the frame of the side the mesh faces (a back face flips the
+  // whole frame, as the glTF Sample Viewer does: the same line, the lobe is symmetric).
+  const glm::vec3 anisotropy =
+      shared::anisotropyDirectionOf(mat->anisotropyRotation, anisotropyTexel);
+  p.anisotropy = std::clamp(mat->anisotropy * anisotropy.z, 0.0f, 1.0f);
+  if (p.anisotropy > 0.0f)
+    p.anisotropyTangent = shared::anisotropyTangentOf(n, tangent, glm::vec2(anisotropy));
   // Shade the side the ray sees (the coat's normal on the same side).
   if (glm::dot(n, ray.direction) > 0.0f) {
     n = -n;

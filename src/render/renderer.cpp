@@ -82,6 +82,8 @@ shared::SplitSumMaterial splitSumMaterial(const SurfacePoint& p, float occlusion
   m.iridescence = p.iridescence;
   m.iridescenceIor = p.iridescenceIor;
   m.iridescenceThickness = p.iridescenceThickness;
+  m.anisotropy = p.anisotropy;
+  m.anisotropyTangent = p.anisotropyTangent;
   return m;
 }
 
@@ -99,10 +101,16 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
   // The formulas are ibl/shared/split_sum.h (the viewer's shader calls the same); only the
   // three lookups are the CPU's own: seam-aware trilinear and bilinear, the DFG table.
   const shared::SplitSumSwitches s = splitSumSwitches(o);
+  const shared::SplitSumMaterial m = splitSumMaterial(p, p.occlusion);
   shared::SplitSumLookup look = shared::splitSumLookup(p.normal, view, p.roughness, s);
+  look = shared::anisotropicLookup(look, p.normal, view, m, s);
   if (p.bentNormal != glm::vec3(0.0f))
     look = shared::bendDiffuseLookup(look, p.bentNormal, view, p.roughness, s);
-  const glm::vec3 dfg = sampleDfgLut(bake.dfg, look.NoV, p.roughness);
+  // The isotropic tables at the lobe's albedo-equivalent roughness (KHR_materials_anisotropy).
+  const float lobeRoughness = shared::tableRoughness(m);
+  glm::vec3 dfg = sampleDfgLut(bake.dfg, look.NoV, lobeRoughness);
+  // Disney's diffuse (the table's third channel) at the material's own roughness.
+  if (lobeRoughness != p.roughness) dfg.z = sampleDfgLut(bake.dfg, look.NoV, p.roughness).z;
   glm::vec3 irradiance(0.0f);
   // Local probes first (smallest influence first), the distant environment for the rest.
   float distant = 1.0f, distantDiffuse = 1.0f;
@@ -159,7 +167,6 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
       irradiance = glm::mix(irradiance, volume, cover);
     }
   }
-  const shared::SplitSumMaterial m = splitSumMaterial(p, p.occlusion);
   shared::SplitSumSwitches composed = s;
   if (p.screenReflection != glm::vec4(0.0f) && o.only != ShadingTerms::Diffuse) {
     // Lagarde & de Rousiers 2014, 4.9.5: the screen's reflection first, the probes for the rest.
@@ -212,8 +219,12 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
                               const RenderOptions& o, float belowScale,
                               const std::vector<float>& visibility) {
   const shared::SplitSumSwitches s = splitSumSwitches(o);
+  // Ambient occlusion darkens indirect light only.
+  const shared::SplitSumMaterial m = splitSumMaterial(p, 1.0f);
+  // The isotropic tables at the lobe's albedo-equivalent roughness (KHR_materials_anisotropy).
+  const float lobeRoughness = shared::tableRoughness(m);
   const glm::vec2 dfg(
-      sampleDfgLut(dfgTable, std::max(glm::dot(p.normal, view), 1e-4f), p.roughness));
+      sampleDfgLut(dfgTable, std::max(glm::dot(p.normal, view), 1e-4f), lobeRoughness));
   // KHR_materials_clearcoat: the coat's lobe at its normal and roughness, over the rest.
   const bool coat = p.clearcoat > 0.0f && o.only != ShadingTerms::Sheen;
   const float coatNoV = std::max(glm::dot(p.clearcoatNormal, view), 1e-4f);
@@ -222,11 +233,9 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
   const glm::vec4 coatLtc = coat && s.ltcAreaLights ? ltcTableLookup(p.clearcoatRoughness, coatNoV)
                                                     : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
   const float below = belowCoat(p, view);
-  // Ambient occlusion darkens indirect light only.
-  const shared::SplitSumMaterial m = splitSumMaterial(p, 1.0f);
-  const glm::vec4 ltc = s.ltcAreaLights
-                            ? ltcTableLookup(p.roughness, std::max(glm::dot(p.normal, view), 1e-4f))
-                            : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+  const glm::vec4 ltc =
+      s.ltcAreaLights ? ltcTableLookup(lobeRoughness, std::max(glm::dot(p.normal, view), 1e-4f))
+                      : glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
   const bool sheen = p.sheenColor != glm::vec3(0.0f) &&
                      (o.only == ShadingTerms::Both || o.only == ShadingTerms::Sheen);
   const float sheenAlpha =
@@ -238,7 +247,7 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
     if (visible <= 0.0f) continue;
     const shared::ShadingLight sl = shadingLightOf(light);
     const shared::LightIncidence inc =
-        shared::lightIncidence(sl, position, p.normal, view, p.roughness, s, ltc);
+        shared::lightIncidence(sl, position, p.normal, view, lobeRoughness, s, ltc);
     const float profile =
         light.ies ? light.intensityToward(glm::normalize(position - light.position)) : 1.0f;
     glm::vec3 radiance(0.0f);

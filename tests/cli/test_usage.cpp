@@ -113,6 +113,9 @@ std::vector<Misuse> sceneMisuses() {
        "--iridescence-ior: must be from 1 to 3, not 0.5"},
       {"--iridescence-thickness", "--iridescence-thickness -5", 2,
        "--iridescence-thickness: must be from 0 to 2000, not -5"},
+      {"--anisotropy", "--anisotropy 1.2", 2, "--anisotropy: must be from 0 to 1, not 1.2"},
+      {"--anisotropy-rotation", "--anisotropy-rotation 400", 2,
+       "--anisotropy-rotation: must be from -360 to 360, not 400"},
       {"--diffuse", "--diffuse oren-nayar", 2, "--diffuse"},
       {"--only", "--only glossy", 2, "--only"},
       {"--multiscatter", "--multiscatter=maybe", 2, "--multiscatter"},
@@ -529,6 +532,7 @@ TEST(Usage, OptionsThatOthersMakeMeaninglessNameBoth) {
       {"render " + gltf + " --specular 0.5" + png, {"--specular:", "built-in scenes"}},
       {"render " + gltf + " --clearcoat 1" + png, {"--clearcoat:", "built-in scenes"}},
       {"render " + gltf + " --iridescence 1" + png, {"--iridescence:", "built-in scenes"}},
+      {"render " + gltf + " --anisotropy 1" + png, {"--anisotropy:", "built-in scenes"}},
       // Settings of what is off.
       {"render sphere --ssao-quality high" + png, {"--ssao-quality:", "add --ssao on"}},
       {"render " + gltf + " --ssao off --ssao-radius 0.5" + png, {"--ssao-radius:", "--ssao off"}},

@@ -57,7 +57,8 @@ TEST(FrameLayout, SetBindsEachNameOnce) {
 }
 
 // frame.glsl: the Frame block is a uniform buffer, Lights, Probes, CharlieTable, ShadowRecords,
-// ShadowDepths, LightClusters and VolumeProbes are buffers, the rest samplers; the vertex shaders
+// ShadowDepths, LightClusters and VolumeProbes are buffers, LtcTable, IesTable, ViewPositions and
+// ViewNormals sampled images (read by texelFetch alone), the rest samplers; the vertex shaders
 // read the block and the shadow records (view/shadow.vert), the fragment shaders and the irradiance
 // volume's update (view/volume_trace.comp) every binding.
 TEST(FrameLayout, SetTypesAndStagesFollowFrameGlsl) {
@@ -69,16 +70,31 @@ TEST(FrameLayout, SetTypesAndStagesFollowFrameGlsl) {
     const auto name = static_cast<FrameBinding>(b.binding);
     bool buffer = false;
     for (FrameBinding s : buffers) buffer = buffer || s == name;
+    const bool fetched = name == FrameBinding::LtcTable || name == FrameBinding::IesTable ||
+                         name == FrameBinding::ViewPositions || name == FrameBinding::ViewNormals;
     const VkDescriptorType expected = name == FrameBinding::Uniforms
                                           ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-                                      : buffer ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
-                                               : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+                                      : buffer  ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
+                                      : fetched ? VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE
+                                                : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     EXPECT_EQ(b.descriptorType, expected) << b.binding;
     const bool vertex = name == FrameBinding::Uniforms || name == FrameBinding::ShadowRecords;
     const VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT,
                              both = fragment | VK_SHADER_STAGE_VERTEX_BIT;
     EXPECT_EQ(b.stageFlags, vertex ? both : fragment) << b.binding;
   }
+}
+
+// The fragment stage reads the frame's samplers and a material's together: lavapipe allows 32
+// per stage (maxPerStageDescriptorSamplers), and a pipeline layout past it fails validation and
+// crashes the window (Viewer.WindowShowsTheReference, when the anisotropy texture made 33).
+TEST(FrameLayout, SamplersFitLavapipesStageLimit) {
+  std::uint32_t samplers = 0;
+  for (const VkDescriptorSetLayoutBinding& b : gpu::frameSetBindings())
+    if (b.descriptorType == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)
+      samplers += b.descriptorCount;
+  samplers += static_cast<std::uint32_t>(shared::MaterialBinding::Count);  // one sampler each
+  EXPECT_LE(samplers, 32u);
 }
 
 // frame.glsl's Frame under std140: a mat4 (64 bytes), then 16 bytes per vec4 and ivec4, the

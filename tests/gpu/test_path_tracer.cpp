@@ -10,7 +10,9 @@
 //    to float rounding, which a path that takes another branch on either side cannot.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -247,6 +249,36 @@ TEST(GpuReference, ClearcoatEqualsTheCpu) {
   expectOneBounceAgreement(wallOnly, "clear coat's textures");
 }
 
+namespace {
+
+// A 2 x 2 texture of `rgba` (four RGBA texels), sampled nearest.
+Texture nearestTexture(std::vector<std::uint8_t> rgba) {
+  Texture t;
+  t.width = t.height = 2;
+  t.rgba = std::make_shared<std::vector<std::uint8_t>>(std::move(rgba));
+  t.sampler.nearest = true;
+  return t;
+}
+
+// The sphere grid of `base` before a textureWall of material `wall` (which reads `texture`; its
+// tangents along +X), lit by the sky and a point light above.
+Scene gridBeforeTexturedWall(const Material& base, const Texture& texture, const Material& wall) {
+  Scene scene = makeSphereGrid(base);
+  scene.textures = {texture};
+  scene.materials.push_back(wall);
+  Mesh w = textureWall(static_cast<int>(scene.materials.size()) - 1);
+  w.tangents.assign(4, glm::vec4(1, 0, 0, 1));
+  scene.meshes.push_back(w);
+  Light point;
+  point.type = LightType::Point;
+  point.position = glm::vec3(0.0f, 8.0f, -4.0f);
+  point.intensity = 400.0f;
+  scene.lights.push_back(point);
+  return scene;
+}
+
+}  // namespace
+
 // KHR_materials_iridescence: a grid of metals under a film (the walk's bounces each take the film's
 // Fresnel), and a wall whose film's strength and thickness come from a texture (R, G), lit by the
 // sky and a point light.
@@ -257,13 +289,6 @@ TEST(GpuReference, IridescenceEqualsTheCpu) {
   base.iridescence = 1.0f;
   base.iridescenceIor = 1.5f;
   base.iridescenceThicknessMaximum = 500.0f;
-  Scene scene = makeSphereGrid(base);
-  Texture film;
-  film.width = film.height = 2;
-  film.rgba = std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>{
-      255, 20, 0, 255, 128, 128, 0, 255, 40, 255, 0, 255, 255, 200, 0, 255});
-  film.sampler.nearest = true;
-  scene.textures = {film};
   Material wall;
   wall.baseColor = glm::vec3(0.02f);
   wall.metallic = 0.0f;
@@ -274,14 +299,30 @@ TEST(GpuReference, IridescenceEqualsTheCpu) {
   wall.iridescenceThicknessMaximum = 800.0f;
   wall.iridescenceTexture.index = 0;
   wall.iridescenceThicknessTexture.index = 0;
-  scene.materials.push_back(wall);
-  scene.meshes.push_back(textureWall(static_cast<int>(scene.materials.size()) - 1));
-  Light point;
-  point.type = LightType::Point;
-  point.position = glm::vec3(0.0f, 8.0f, -4.0f);
-  point.intensity = 400.0f;
-  scene.lights.push_back(point);
-  expectOneBounceAgreement(scene, "iridescence");
+  const Texture film =
+      nearestTexture({255, 20, 0, 255, 128, 128, 0, 255, 40, 255, 0, 255, 255, 200, 0, 255});
+  expectOneBounceAgreement(gridBeforeTexturedWall(base, film, wall), "iridescence");
+}
+
+// KHR_materials_anisotropy: a grid of anisotropic spheres (the walk's bounces in the lobe's
+// frame), and a wall whose direction and strength come from a texture (RG, B) turned by a
+// rotation, lit by the sky and a point light.
+TEST(GpuReference, AnisotropyEqualsTheCpu) {
+  REQUIRE_DEVICE();
+  Material base;
+  base.baseColor = glm::vec3(0.9f, 0.6f, 0.3f);
+  base.anisotropy = 0.8f;
+  base.anisotropyRotation = 0.4f;
+  Material wall;
+  wall.baseColor = glm::vec3(0.7f);
+  wall.metallic = 1.0f;
+  wall.roughness = 0.2f;
+  wall.anisotropy = 1.0f;
+  wall.anisotropyRotation = -0.5f;
+  wall.anisotropyTexture.index = 0;
+  const Texture brushed =
+      nearestTexture({255, 128, 255, 255, 128, 255, 200, 255, 30, 60, 255, 255, 220, 40, 90, 255});
+  expectOneBounceAgreement(gridBeforeTexturedWall(base, brushed, wall), "anisotropy");
 }
 
 // KHR_materials_sheen at a sheen roughness of 0.15, where the Charlie Lambda is the tabulated

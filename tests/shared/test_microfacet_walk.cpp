@@ -113,8 +113,9 @@ TEST(MicrofacetWalk, LambdaAndMaskingAreGgxs) {
       const glm::vec3 w = walkDirection(c, 0.4f);
       EXPECT_NEAR(1.0f / (1.0f + ggxLambda(w, alpha)), smithGgxMasking(c, alpha), 1e-5f);
       EXPECT_NEAR(ggxLambda(-w, alpha), -1.0f - ggxLambda(w, alpha), 1e-5f);
-      EXPECT_NEAR(ggxMaskingAtHeight(w, 1.0f, alpha), 1.0f, 1e-6f);
-      EXPECT_NEAR(ggxMaskingAtHeight(w, 0.0f, alpha), std::pow(0.5f, ggxLambda(w, alpha)), 1e-6f);
+      EXPECT_NEAR(ggxMaskingAtHeight(w, 1.0f, glm::vec2(alpha)), 1.0f, 1e-6f);
+      EXPECT_NEAR(ggxMaskingAtHeight(w, 0.0f, glm::vec2(alpha)),
+                  std::pow(0.5f, ggxLambda(w, alpha)), 1e-6f);
     }
   }
   EXPECT_EQ(uniformHeightC1(-2.0f), 0.0f);

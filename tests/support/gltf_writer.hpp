@@ -159,6 +159,10 @@ struct QuadMaterial {
   float iridescenceFactor = -1.0f, iridescenceIor = 1.3f;
   float iridescenceThicknessMinimum = 100.0f, iridescenceThicknessMaximum = 400.0f;
   glm::ivec3 iridescenceCodes{-1, 0, 0};
+  // KHR_materials_anisotropy (written when the strength is not negative): the factors and the
+  // anisotropyTexture's linear codes (RG the direction, B the strength).
+  float anisotropyStrength = -1.0f, anisotropyRotation = 0.0f;
+  glm::ivec3 anisotropyCodes{-1, 0, 0};
 };
 
 // A dielectric of `baseColor` whose specular layer uses every part of KHR_materials_ior and
@@ -316,6 +320,12 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
       film["iridescenceThicknessTexture"] = film["iridescenceTexture"];
     }
     material["extensions"]["KHR_materials_iridescence"] = film;
+  }
+  if (m.anisotropyStrength >= 0.0f) {
+    nlohmann::json anisotropy = {{"anisotropyStrength", m.anisotropyStrength},
+                                 {"anisotropyRotation", m.anisotropyRotation}};
+    if (m.anisotropyCodes.x >= 0) anisotropy["anisotropyTexture"] = texture(m.anisotropyCodes);
+    material["extensions"]["KHR_materials_anisotropy"] = anisotropy;
   }
   nlohmann::json j = {
       {"asset", {{"version", "2.0"}}},

@@ -90,6 +90,8 @@ struct GltfSummary {
     // KHR_materials_iridescence's factors (factor 0 when absent: no film; thicknesses in nm).
     float iridescence = 0.0f, iridescenceIor = 1.3f;
     float iridescenceThicknessMinimum = 100.0f, iridescenceThicknessMaximum = 400.0f;
+    // KHR_materials_anisotropy's factors (strength 0 when absent: none; rotation in radians).
+    float anisotropy = 0.0f, anisotropyRotation = 0.0f;
   };
   struct Texture {
     int image = -1;      // -1: none that ibl can read

@@ -182,6 +182,10 @@ struct SurfacePoint {
   float iridescence = 0.0f;
   float iridescenceIor = 1.3f;
   float iridescenceThickness = 400.0f;
+  // KHR_materials_anisotropy, texture applied (anisotropy 0: none): the strength and the
+  // direction of the larger roughness (world, unit, orthogonal to `normal`).
+  float anisotropy = 0.0f;
+  glm::vec3 anisotropyTangent{1.0f, 0.0f, 0.0f};
 };
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
 // viewer's frame uniforms carry the same.

@@ -115,6 +115,11 @@ struct Material {
   float iridescenceThicknessMinimum = 100.0f;  // nm
   float iridescenceThicknessMaximum = 400.0f;  // nm
   TextureRef iridescenceThicknessTexture;      // G mixes minimum (0) to maximum (1); none: 1
+  // KHR_materials_anisotropy: GGX's roughness stretched along a direction of the tangent frame
+  // (shared::anisotropicAlpha): anisotropy 0: none.
+  float anisotropy = 0.0f;          // 0 to 1, the strength
+  float anisotropyRotation = 0.0f;  // radians, counterclockwise from the tangent
+  TextureRef anisotropyTexture;     // RG the direction in [-1, 1], B multiplies the strength
   // KHR_materials_unlit, as the loader converts it: the emission is the base color (and its
   // texture), so COLOR_0 multiplies the emission as it would the base color.
   bool unlit = false;
@@ -122,8 +127,8 @@ struct Material {
   // Its texture slots in the order of the device's bindings and records (MaterialBinding in
   // ibl/shared/view_bindings.h): base color, metallic-roughness, normal, occlusion, emissive,
   // sheen color, sheen roughness, specular, specular color, clear coat, its roughness, its normal,
-  // iridescence, its thickness.
-  static constexpr std::size_t kTextureSlots = 14;
+  // iridescence, its thickness, anisotropy.
+  static constexpr std::size_t kTextureSlots = 15;
   std::array<TextureRef, kTextureSlots> textureSlots() const {
     return {baseColorTexture,
             metallicRoughnessTexture,
@@ -138,7 +143,8 @@ struct Material {
             clearcoatRoughnessTexture,
             clearcoatNormalTexture,
             iridescenceTexture,
-            iridescenceThicknessTexture};
+            iridescenceThicknessTexture,
+            anisotropyTexture};
   }
 };
 

@@ -39,6 +39,57 @@ IBL_FN float smithGgxMasking(float NoV, float alpha) {
   return 2.0f * NoV / (NoV + sqrt(a2 + (1.0f - a2) * NoV * NoV));
 }
 
+// KHR_materials_anisotropy's GGX in the lobe's frame (x along the direction of the larger
+// roughness t, y along n x t, z = n), alpha.x along x and alpha.y along y: the distribution
+// D(h) = 1 / (pi ax ay ((hx / ax)^2 + (hy / ay)^2 + hz^2)^2) (Heitz 2014, eq. 85), the
+// height-correlated visibility V = 0.5 / (l.z |(ax vx, ay vy, vz)| + v.z |(ax lx, ay ly, lz)|)
+// and the masking G1 = 2 v.z / (v.z + |(ax vx, ay vy, vz)|) (Heitz 2014, eq. 86: Lambda with
+// the roughness projected on the direction's azimuth). With ax = ay each is its isotropic twin
+// above.
+IBL_FN float ggxDistributionAnisotropic(vec3 h, vec2 alpha) {
+  vec3 s = vec3(h.x / alpha.x, h.y / alpha.y, h.z);
+  float d = dot(s, s);
+  return 1.0f / (kPi * alpha.x * alpha.y * d * d);
+}
+IBL_FN float smithGgxCorrelatedVisibilityAnisotropic(vec3 v, vec3 l, vec2 alpha) {
+  float lambdaV = l.z * length(vec3(alpha.x * v.x, alpha.y * v.y, v.z));
+  float lambdaL = v.z * length(vec3(alpha.x * l.x, alpha.y * l.y, l.z));
+  return 0.5f / (lambdaV + lambdaL);
+}
+IBL_FN float smithGgxMaskingAnisotropic(vec3 v, vec2 alpha) {
+  return 2.0f * v.z / (v.z + length(vec3(alpha.x * v.x, alpha.y * v.y, v.z)));
+}
+
+// A GGX lobe about a normal n: roughness alpha.x along the unit tangent t (orthogonal to n),
+// alpha.y along n x t. alpha.x = alpha.y is the isotropic lobe, whose t is not read.
+struct GgxLobe {
+  vec3 t;
+  vec2 alpha;
+};
+IBL_FN GgxLobe isotropicGgxLobe(float alpha) {
+  GgxLobe g;
+  g.t = vec3(1.0f, 0.0f, 0.0f);
+  g.alpha = vec2(alpha);
+  return g;
+}
+// The lobe's directions in its frame: (w.t, w.(n x t), w.n).
+IBL_FN vec3 ggxLobeCoordinates(GgxLobe g, vec3 n, vec3 w) {
+  return vec3(dot(w, g.t), dot(w, cross(n, g.t)), dot(w, n));
+}
+// D V of the lobe for unit n, v and l (n.v and n.l clamped to 1e-4).
+IBL_FN float ggxLobeValue(GgxLobe g, vec3 n, vec3 v, vec3 l) {
+  vec3 h = normalize(v + l);
+  float NoV = max(dot(n, v), 1e-4f), NoL = max(dot(n, l), 1e-4f);
+  if (g.alpha.x == g.alpha.y)
+    return ggxDistribution(clamp(dot(n, h), 0.0f, 1.0f), g.alpha.x) *
+           smithGgxCorrelatedVisibility(NoV, NoL, g.alpha.x);
+  vec3 vl = ggxLobeCoordinates(g, n, v), ll = ggxLobeCoordinates(g, n, l);
+  vl.z = NoV;
+  ll.z = NoL;
+  return ggxDistributionAnisotropic(ggxLobeCoordinates(g, n, h), g.alpha) *
+         smithGgxCorrelatedVisibilityAnisotropic(vl, ll, g.alpha);
+}
+
 // (1 - VoH)^5, the weight of f90 in Schlick's Fresnel.
 IBL_FN float schlickWeight(float VoH) {
   float m = clamp(1.0f - VoH, 0.0f, 1.0f);

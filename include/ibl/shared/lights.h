@@ -53,21 +53,19 @@ IBL_FN vec3 sheenLightRadiance(vec3 sheenColor, float sheenAlpha, int visibility
                        sheenVisibility(visibility, NoV, NoL, sheenAlpha) * inc.diffuseIlluminance);
 }
 
-// A GGX lobe of Fresnel reflectance r and roughness alpha at normal n lit by a light's
-// incidence, toward v, per unit of the light's color: the LTC's fraction of the lobe times the
-// lobe's directional albedo with its Fresnel (directionalReflectance: the DFG table's F0 A + F90
-// B at n.v, as the split sum scales the prefiltered map), or D V F at the representative point.
-IBL_FN vec3 specularLightRadiance(SpecularReflectance r, float alpha, vec3 n, vec3 v,
+// A GGX lobe (isotropic or anisotropic: GgxLobe, brdf.h) of Fresnel reflectance r at normal n
+// lit by a light's incidence, toward v, per unit of the light's color: the LTC's fraction of the
+// lobe times the lobe's directional albedo with its Fresnel (directionalReflectance: the DFG
+// table's F0 A + F90 B at n.v, as the split sum scales the prefiltered map; the LTCs and the DFG
+// table are isotropic), or D V F at the representative point.
+IBL_FN vec3 specularLightRadiance(SpecularReflectance r, GgxLobe lobe, vec3 n, vec3 v,
                                   LightIncidence inc, vec2 dfg) {
   if (inc.specularLobeFraction > 0.0f)
     return directionalReflectance(r, dfg, max(dot(n, v), 1e-4f)) * inc.specularLobeFraction;
   if (inc.specularIlluminance <= 0.0f) return vec3(0.0f);
   vec3 l = inc.specularDirection;
-  vec3 h = normalize(v + l);
-  float NoV = max(dot(n, v), 1e-4f), NoL = max(dot(n, l), 1e-4f);
-  float dv = ggxDistribution(clamp(dot(n, h), 0.0f, 1.0f), alpha) * inc.specularNormalization *
-             smithGgxCorrelatedVisibility(NoV, NoL, alpha);
-  return dv * fresnelOf(r, max(dot(v, h), 0.0f)) * inc.specularIlluminance;
+  float dv = ggxLobeValue(lobe, n, v, l) * inc.specularNormalization;
+  return dv * fresnelOf(r, max(dot(v, normalize(v + l)), 0.0f)) * inc.specularIlluminance;
 }
 
 // The radiance the standard material (the BRDF of the IBL path) reflects toward v from a light's
@@ -76,7 +74,6 @@ IBL_FN vec3 specularLightRadiance(SpecularReflectance r, float alpha, vec3 n, ve
 // split sum (dfg: the DFG table's A, B at n.v).
 IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc, vec2 dfg,
                           SplitSumSwitches s) {
-  float alpha = max(alphaFromRoughness(m.roughness), 1e-3f);
   vec3 diffuseColor = m.baseColor * (1.0f - m.metallic);
   SpecularReflectance r = splitSumReflectance(m, s);
   float NoV = max(dot(n, v), 1e-4f);
@@ -92,7 +89,7 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
              (fd * diffuseWeight(r, dot(v, normalize(v + l))) / kPi * inc.diffuseIlluminance);
   }
   if (s.terms != 1) {
-    vec3 specular = specularLightRadiance(r, alpha, n, v, inc, dfg);
+    vec3 specular = specularLightRadiance(r, materialGgxLobe(m), n, v, inc, dfg);
     if (s.multipleScattering)
       specular *= multipleScatteringCompensation(filmFresnelAtView(r, NoV), dfg);
     color += specular;
@@ -110,7 +107,9 @@ IBL_FN float clearcoatLightRadiance(SplitSumMaterial m, vec3 v, LightIncidence i
   vec3 nc = m.clearcoatNormal;
   float alpha = max(alphaFromRoughness(m.clearcoatRoughness), 1e-3f);
   return clearcoatWeight(m.clearcoat, dot(nc, v)) *
-         specularLightRadiance(schlickReflectance(vec3(1.0f), 1.0f), alpha, nc, v, inc, dfg).x;
+         specularLightRadiance(schlickReflectance(vec3(1.0f), 1.0f), isotropicGgxLobe(alpha), nc, v,
+                               inc, dfg)
+             .x;
 }
 
 IBL_END

@@ -7,6 +7,7 @@
 #include "ibl/shared/brdf.h"
 #include "ibl/shared/iridescence.h"
 #include "ibl/shared/lang.h"
+#include "ibl/shared/sampling.h"
 
 IBL_BEGIN
 
@@ -32,6 +33,70 @@ IBL_FN vec3 applyNormalMap(vec3 n, vec4 tangent, vec4 texel, float scale) {
   ts.x *= scale;
   ts.y *= scale;
   return normalize(t * ts.x + b * ts.y + n * ts.z);
+}
+
+// KHR_materials_anisotropy. The direction of the larger roughness in the tangent frame, and the
+// strength's factor: the texture's RG mapped from [0, 1] to [-1, 1] and normalized, turned
+// counterclockwise (from the tangent toward the bitangent) by `rotation` (anisotropyRotation,
+// radians), and its B. texel: the anisotropy texture's, or the extension's default (1, 0.5, 1)
+// without one. Returns (direction x, y, strength factor).
+IBL_FN vec3 anisotropyDirectionOf(float rotation, vec4 texel) {
+  vec2 d = vec2(texel.x, texel.y) * 2.0f - 1.0f;
+  float length2 = dot(d, d);
+  d = length2 > 0.0f ? d / sqrt(length2) : vec2(1.0f, 0.0f);
+  float c = cos(rotation), s = sin(rotation);
+  return vec3(c * d.x - s * d.y, s * d.x + c * d.y, texel.z);
+}
+
+// The anisotropy's direction in world space: direction.x along the mesh's tangent (made
+// orthogonal to the unit shading normal n), direction.y along its bitangent (w cross(n, t), w
+// the tangent's sign). A tangent along n (or none: 0) is replaced by tangentFrame(n)'s. Returns
+// a unit vector orthogonal to n.
+IBL_FN vec3 anisotropyTangentOf(vec3 n, vec4 tangent, vec2 direction) {
+  vec3 t = vec3(tangent.x, tangent.y, tangent.z);
+  t -= n * dot(n, t);
+  t = dot(t, t) > 1e-12f ? normalize(t) : tangentFrame(n)[0];
+  vec3 b = cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+  return normalize(t * direction.x + b * direction.y);
+}
+
+// The tangent of the built-in spheres (Scene::spheres), at unit normal n: along the parallels
+// about +Y, n x +Y normalized (+X at the poles); w = 1.
+IBL_FN vec4 sphereTangent(vec3 n) {
+  vec3 t = vec3(-n.z, 0.0f, n.x);
+  float length2 = dot(t, t);
+  return length2 > 1e-12f ? vec4(t / sqrt(length2), 1.0f) : vec4(1.0f, 0.0f, 0.0f, 1.0f);
+}
+
+// KHR_materials_anisotropy's roughness: alpha = roughness^2 across the direction, and
+// mix(alpha, 1, strength^2) along it. Returns (along, across).
+IBL_FN vec2 anisotropicAlpha(float roughness, float strength) {
+  float alpha = alphaFromRoughness(roughness);
+  return vec2(mix(alpha, 1.0f, strength * strength), alpha);
+}
+
+// The perceptual roughness of the isotropic GGX lobe whose directional albedo is nearest an
+// anisotropic lobe's: alpha = sqrt((alpha_t^2 + alpha_b^2) / 2), the root mean square of the two
+// (the two lobes' single-scattering albedos within 0.07 of each other at n.v 0.5 and 0.9, views
+// along and across the stretch: tests/shared/test_anisotropic_ggx.cpp). The isotropic tables
+// (the albedo, DFG and LTC tables) are read at it.
+IBL_FN float anisotropicTableRoughness(vec2 alpha) {
+  return sqrt(sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y)));
+}
+
+// The normal the split sum reflects the view about for an anisotropic lobe (the glTF Sample
+// Viewer's and Filament's, after McAuley's bent reflection vector): the normal bent toward the
+// view's component across the direction t (unit, orthogonal to n), by
+// 1 - (1 - strength (1 - roughness))^4, so that the prefiltered map is read where the lobe
+// stretches. Unit.
+IBL_FN vec3 anisotropicBentNormal(vec3 n, vec3 v, vec3 t, float strength, float roughness) {
+  vec3 b = cross(n, t);
+  vec3 across = cross(cross(b, v), b);  // v without its component along b
+  float bend = 1.0f - strength * (1.0f - roughness);
+  bend *= bend;
+  bend *= bend;
+  vec3 bent = mix(across, n, bend);
+  return dot(bent, bent) > 1e-12f ? normalize(bent) : n;
 }
 
 // alphaMode (glTF 2.0 3.9.4), alpha = baseColorFactor.a x the base color texture's A:
@@ -104,7 +169,7 @@ IBL_FN vec2 transformUv(UvTransform t, vec2 uv) {
 // per slot of its UV transform's rows.
 const int kMaterialRecordSlots = 8;
 const int kMaterialRecordUvTransforms = 12;
-const int kMaterialRecordVec4s = 40;
+const int kMaterialRecordVec4s = 42;
 // A vertex's record in the same buffers: (position, uv0.x), (normal, uv0.y), tangent,
 // (uv1, 0, 0), color (COLOR_0, or white).
 const int kVertexRecordVec4s = 5;

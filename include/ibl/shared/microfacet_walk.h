@@ -5,7 +5,7 @@
 // volume of microflakes whose heights follow a distribution (uniform here: the BSDF does not
 // depend on which, as they show) and whose normals follow GGX; a ray walks through it,
 // reflecting off a visible normal at each hit, until it leaves. The microfacets are mirrors
-// with the project's Schlick Fresnel (f0, f90). Isotropic alpha; reflection only. C++ and GLSL
+// with the project's Fresnel (fresnelOf). Anisotropic alpha; reflection only. C++ and GLSL
 // (see lang.h).
 //
 // Directions are unit vectors in the local frame (n = +Z), pointing away from the surface (wi
@@ -47,14 +47,19 @@ const int kWalkMaxOrder = 64;
 
 // Smith's Lambda of GGX for a direction of either hemisphere (Heitz 2014, eq. 86; Heitz et al.
 // 2016 extend it below the horizon by Lambda(-w) = -1 - Lambda(w), a downward ray's view):
-// Lambda(w) = (-1 + sign(w.z) sqrt(1 + alpha^2 tan^2(theta))) / 2.
-IBL_FN float ggxLambda(vec3 w, float alpha) {
+// Lambda(w) = (-1 + sign(w.z) sqrt(1 + (ax^2 wx^2 + ay^2 wy^2) / wz^2)) / 2, in the lobe's frame
+// (alpha.x along x, alpha.y along y; with ax = ay the isotropic 1 + alpha^2 tan^2(theta)).
+IBL_FN float ggxLambdaAnisotropic(vec3 w, vec2 alpha) {
   if (w.z > 0.9999f) return 0.0f;
   if (w.z < -0.9999f) return -1.0f;
-  // alpha^2 tan^2(theta) = alpha^2 (1 - z^2) / z^2; |z| >= 1e-4 reaches here from the walk.
+  // |z| >= 1e-4 reaches here from the walk.
   float z2 = max(w.z * w.z, 1e-12f);
-  float root = sqrt(1.0f + alpha * alpha * max(1.0f - z2, 0.0f) / z2);
+  float slope2 = alpha.x * alpha.x * w.x * w.x + alpha.y * alpha.y * w.y * w.y;
+  float root = sqrt(1.0f + slope2 / z2);
   return 0.5f * (-1.0f + (w.z >= 0.0f ? root : -root));
+}
+IBL_FN float ggxLambda(vec3 w, float alpha) {
+  return ggxLambdaAnisotropic(w, vec2(alpha));
 }
 
 // The uniform height distribution on [-1, 1]: its cumulative C1(h) and inverse (Heitz et al.
@@ -69,10 +74,10 @@ IBL_FN float uniformHeightInvC1(float u) {
 // Masking of w (up) by the microsurface below height h: G1(w, h) = C1(h)^Lambda(w), Smith's
 // height-dependent masking (Heitz 2014; Heitz et al. 2016 use it as the probability of a free
 // path to infinity); 0 for w below the horizon.
-IBL_FN float ggxMaskingAtHeight(vec3 w, float h, float alpha) {
+IBL_FN float ggxMaskingAtHeight(vec3 w, float h, vec2 alpha) {
   if (w.z > 0.9999f) return 1.0f;
   if (w.z <= 0.0f) return 0.0f;
-  return pow(uniformHeightC1(h), ggxLambda(w, alpha));
+  return pow(uniformHeightC1(h), ggxLambdaAnisotropic(w, alpha));
 }
 
 // The height of the next hit of a ray from height hr along wr for a uniform number u: the free
@@ -80,19 +85,21 @@ IBL_FN float ggxMaskingAtHeight(vec3 w, float h, float alpha) {
 // probability G1(wr, hr), else it hits at the height where the cumulative 1 - C1(h)^Lambda /
 // C1(hr)^Lambda reaches u, C1(h) = C1(hr) / (1 - u)^(1 / Lambda(wr)); Lambda < -1 for a
 // downward ray, which always hits). kWalkLeaves: it leaves.
-IBL_FN float sampleWalkHeight(vec3 wr, float hr, float u, float alpha) {
+IBL_FN float sampleWalkHeight(vec3 wr, float hr, float u, vec2 alpha) {
   if (wr.z > 0.9999f) return kWalkLeaves;  // straight up: nothing in the way (Lambda = 0)
   // Straight down: Lambda = -1, C1(h) = C1(hr) (1 - u), written as u C1(hr) (the same law).
   if (wr.z < -0.9999f) return uniformHeightInvC1(u * uniformHeightC1(hr));
   if (abs(wr.z) < 1e-4f) return hr;  // along the horizon: the next microfacet is here
   // Up: it leaves with probability G1(wr, hr) (0 for a downward ray).
   if (u > 1.0f - ggxMaskingAtHeight(wr, hr, alpha)) return kWalkLeaves;
-  return uniformHeightInvC1(uniformHeightC1(hr) / pow(1.0f - u, 1.0f / ggxLambda(wr, alpha)));
+  return uniformHeightInvC1(uniformHeightC1(hr) /
+                            pow(1.0f - u, 1.0f / ggxLambdaAnisotropic(wr, alpha)));
 }
 
-// A conductor's microsurface: GGX alpha and the Fresnel of its microfacets (fresnelOf).
+// A conductor's microsurface: GGX alpha (x and y of the lobe's frame: KHR_materials_anisotropy)
+// and the Fresnel of its microfacets (fresnelOf). Directions are in the lobe's frame.
 struct Microsurface {
-  float alpha;
+  vec2 alpha;
   SpecularReflectance reflectance;
 };
 
@@ -107,17 +114,18 @@ IBL_FN vec3 microsurfacePhase(Microsurface s, vec3 wi, vec3 wo) {
   float WioH = dot(wi, h);
   // The VNDF's normalization, the microsurface's area projected along wi: (1 + Lambda) wi.z,
   // positive in both hemispheres (-Lambda(-wi) wi.z below).
-  float projectedArea = (1.0f + ggxLambda(wi, s.alpha)) * wi.z;
+  float projectedArea = (1.0f + ggxLambdaAnisotropic(wi, s.alpha)) * wi.z;
   if (!(WioH > 0.0f) || !(projectedArea > 0.0f)) return vec3(0.0f);
   // D_wi(h) / (4 wi.h) with D_wi(h) = (wi.h) D(h) / projectedArea: the wi.h cancel.
-  return fresnelOf(s.reflectance, WioH) * (ggxDistribution(h.z, s.alpha) / (4.0f * projectedArea));
+  return fresnelOf(s.reflectance, WioH) *
+         (ggxDistributionAnisotropic(h, s.alpha) / (4.0f * projectedArea));
 }
 
 // One bounce of the walk at a hit, the ray arriving from direction w: a normal visible from w, of
 // either hemisphere (a ray going up meets the underside of the microsurface's upper part), drawn
 // for xi; `energy` takes its Fresnel; the new ray direction, reflected.
 IBL_FN vec3 walkBounce(Microsurface s, vec3 w, vec2 xi, IBL_INOUT(vec3) energy) {
-  vec3 m = sampleGgxVisibleNormal(w, xi, s.alpha);
+  vec3 m = sampleGgxVisibleNormalAnisotropic(w, xi, s.alpha);
   float WoM = dot(w, m);
   energy *= fresnelOf(s.reflectance, max(WoM, 0.0f));
   return 2.0f * WoM * m - w;

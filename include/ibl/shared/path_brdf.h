@@ -4,9 +4,9 @@
 // Smith term and Schlick's Fresnel, a Disney or Lambert diffuse), its multiple scattering (the
 // split sum's compensation, or Heitz et al. 2016's walk: microfacet_walk.h), the
 // KHR_materials_sheen layer, and how a path samples it: the lobe chosen by its weight, visible
-// normals for GGX (Heitz 2018), cosines for the others, with the pdf that multiple importance
-// sampling weighs (Veach 1997, section 9.2); the KHR_materials_clearcoat layer over all of it.
-// C++ and GLSL (see lang.h).
+// normals for GGX (Heitz 2018; anisotropic with KHR_materials_anisotropy), cosines for the others,
+// with the pdf that multiple importance sampling weighs (Veach 1997, section 9.2); the
+// KHR_materials_clearcoat layer over all of it. C++ and GLSL (see lang.h).
 #ifndef IBL_SHARED_PATH_BRDF_H
 #define IBL_SHARED_PATH_BRDF_H
 #include "ibl/shared/brdf.h"
@@ -79,8 +79,8 @@ struct PathShading {
 struct PathBrdf {
   vec3 diffuseColor;
   SpecularReflectance reflectance;  // the specular lobe's Fresnel (fresnelOf)
-  float alpha;
-  float roughness;
+  GgxLobe lobe;                     // its GGX, in the local frame (n = +Z; lobe.t in the XY plane)
+  float roughness;                  // perceptual, for the albedo tables
   int diffuseModel;
   int lobes;                // kLobes...
   vec3 multipleScattering;  // the specular lobe's scale for the bounces between microfacets
@@ -119,6 +119,14 @@ IBL_FN float pathSheenScaling(IBL_ALBEDO_TABLES PathBrdf b, float c) {
                             albedoTableLookup(IBL_ALBEDO_ARG 1, max(c, 1e-4f), b.sheenRoughness));
 }
 
+// The split sum's compensation of the specular lobe for reflectance r and perceptual roughness
+// r seen from v: 1 + F0 (1 / E(n.v) - 1).
+IBL_FN vec3 pathMultipleScattering(IBL_ALBEDO_TABLES SpecularReflectance r, float roughness,
+                                   vec3 v) {
+  float e = albedoTableLookup(IBL_ALBEDO_ARG 0, max(v.z, 1e-4f), roughness);
+  return multipleScatteringCompensation(filmFresnelAtView(r, max(v.z, 1e-4f)), vec2(e, 0.0f));
+}
+
 // The material of base color, metallic, roughness (perceptual), Fresnel reflectance
 // (specularReflectance in material.h, with o.specularMicroOcclusion) and sheen, seen from v.
 IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, float roughness,
@@ -127,7 +135,7 @@ IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, flo
   PathBrdf b;
   b.diffuseColor = baseColor * (1.0f - metallic);
   b.reflectance = reflectance;
-  b.alpha = max(alphaFromRoughness(roughness), kMinPathAlpha);
+  b.lobe = isotropicGgxLobe(max(alphaFromRoughness(roughness), kMinPathAlpha));
   b.roughness = roughness;
   b.diffuseModel = o.diffuseModel;
   b.lobes = lobes;
@@ -138,11 +146,8 @@ IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, flo
   // by 1 + F0 (1 / E(n.v) - 1). With F0 = 1 it reflects everything (a white furnace); both render
   // modes compute the same material. The walk computes the bounces instead: nearly the same
   // energy (within 5 % for F0 = 0.9), in another shape (docs/render.md).
-  if (o.multipleScattering == kMultipleScatteringScale && lobes != kLobesDiffuse) {
-    float e = albedoTableLookup(IBL_ALBEDO_ARG 0, max(v.z, 1e-4f), roughness);
-    b.multipleScattering = multipleScatteringCompensation(
-        filmFresnelAtView(reflectance, max(v.z, 1e-4f)), vec2(e, 0.0f));
-  }
+  if (o.multipleScattering == kMultipleScatteringScale && lobes != kLobesDiffuse)
+    b.multipleScattering = pathMultipleScattering(IBL_ALBEDO_ARG reflectance, roughness, v);
   if (o.multipleScattering == kMultipleScatteringWalk && lobes != kLobesDiffuse) b.walk = true;
   b.sheenColor = sheenColor;
   b.sheenVisibility = o.sheenVisibility;
@@ -165,6 +170,32 @@ IBL_FN PathBrdf withClearcoat(PathBrdf b, float clearcoat, float roughness, vec3
   b.coatAlpha = max(alphaFromRoughness(roughness), kMinPathAlpha);
   b.coatNormal = coatNormal;
   return b;
+}
+
+// The material b with KHR_materials_anisotropy of strength `strength` along `tangent` (local
+// frame; its XY part is taken, normalized): anisotropic GGX (anisotropicAlpha) in every
+// specular term, sampled by its visible normals, the walk's too. The split sum's compensation
+// (o.multipleScattering = scale) reads the isotropic albedo table at anisotropicTableRoughness
+// (material.h).
+IBL_FN PathBrdf withAnisotropy(IBL_ALBEDO_TABLES PathBrdf b, float strength, vec3 tangent, vec3 v,
+                               PathShading o) {
+  if (strength <= 0.0f) return b;
+  vec3 t = vec3(tangent.x, tangent.y, 0.0f);
+  b.lobe.t = dot(t, t) > 1e-12f ? normalize(t) : vec3(1.0f, 0.0f, 0.0f);
+  b.lobe.alpha = max(anisotropicAlpha(b.roughness, strength), vec2(kMinPathAlpha));
+  if (o.multipleScattering == kMultipleScatteringScale && b.lobes != kLobesDiffuse)
+    b.multipleScattering = pathMultipleScattering(IBL_ALBEDO_ARG b.reflectance,
+                                                  anisotropicTableRoughness(b.lobe.alpha), v);
+  return b;
+}
+
+// Local directions in the specular lobe's frame (x along lobe.t, z = n) and back.
+IBL_FN vec3 toLobeFrame(PathBrdf b, vec3 w) {
+  return ggxLobeCoordinates(b.lobe, vec3(0.0f, 0.0f, 1.0f), w);
+}
+IBL_FN vec3 fromLobeFrame(PathBrdf b, vec3 w) {
+  vec3 t = b.lobe.t;
+  return vec3(w.x * t.x - w.y * t.y, w.x * t.y + w.y * t.x, w.z);
 }
 
 // Whether the coat's lobe is shaded (a coat, and b.lobes asks for specular lobes).
@@ -190,9 +221,20 @@ IBL_FN float pathCoatPdf(PathBrdf b, vec3 v, vec3 l) {
          ggxDistribution(max(dot(b.coatNormal, h), 0.0f), b.coatAlpha) / (4.0f * NcoV);
 }
 
+// The specular lobe's D V at local v and l (n.l > 0), in the lobe's frame: the anisotropic forms
+// for every lobe, as pathBrdfPdf takes D, so that a sample's weight f / p keeps G2 / G1 exactly
+// (the isotropic D's 1 - (n.h)^2 (1 - alpha^2) loses its precision at a mirror's alpha).
+IBL_FN float pathSpecularDV(PathBrdf b, vec3 v, vec3 l) {
+  vec3 vl = toLobeFrame(b, v), ll = toLobeFrame(b, l);
+  vl.z = max(vl.z, 1e-4f);
+  return ggxDistributionAnisotropic(toLobeFrame(b, normalize(v + l)), b.lobe.alpha) *
+         smithGgxCorrelatedVisibilityAnisotropic(vl, ll, b.lobe.alpha);
+}
+
+// The walk's microsurface, in the lobe's frame (toLobeFrame).
 IBL_FN Microsurface pathMicrosurface(PathBrdf b) {
   Microsurface s;
-  s.alpha = b.alpha;
+  s.alpha = b.lobe.alpha;
   s.reflectance = b.reflectance;
   return s;
 }
@@ -215,14 +257,13 @@ IBL_FN vec3 evaluatePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v, vec3 l, PathS
   vec3 result = vec3(0.0f);
   if (pathSpecularLobe(b) && withSpecular) {
     float VoH = max(dot(v, h), 0.0f);
-    result += ggxDistribution(h.z, b.alpha) * smithGgxCorrelatedVisibility(NoV, NoL, b.alpha) *
-              fresnelOf(b.reflectance, VoH) * b.multipleScattering;
+    result += pathSpecularDV(b, v, l) * fresnelOf(b.reflectance, VoH) * b.multipleScattering;
     // The walk's orders 2 and up (f cos, hence the division): its order 1 has the expectation
     // of the term above, which is exact.
     if (b.walk) {
       PathSampler walkNumbers = pathSamplerBranch(numbers);
-      result += evaluateMicrofacetWalk(pathMicrosurface(b), walkView(v), l, walkNumbers, 2,
-                                       kWalkMaxOrder) /
+      result += evaluateMicrofacetWalk(pathMicrosurface(b), toLobeFrame(b, walkView(v)),
+                                       toLobeFrame(b, l), walkNumbers, 2, kWalkMaxOrder) /
                 NoL;
     }
   }
@@ -277,10 +318,11 @@ IBL_FN float pathBrdfPdf(PathBrdf b, vec3 v, vec3 l) {
   float ps = pathSpecularProbability(b);
   float p = (1.0f - ps) * l.z / kPi;
   if (ps > 0.0f) {
-    vec3 h = normalize(v + l);
-    float NoV = max(v.z, 1e-4f);
+    vec3 h = toLobeFrame(b, normalize(v + l)), vl = toLobeFrame(b, v);
+    vl.z = max(vl.z, 1e-4f);
     // Visible normals, reflected: pdf(l) = G1(v) D(h) / (4 n.v).
-    p += ps * smithGgxMasking(NoV, b.alpha) * ggxDistribution(h.z, b.alpha) / (4.0f * NoV);
+    p += ps * smithGgxMaskingAnisotropic(vl, b.lobe.alpha) *
+         ggxDistributionAnisotropic(h, b.lobe.alpha) / (4.0f * vl.z);
   }
   p = pSheen * l.z / kPi + (1.0f - pSheen) * p;
   float pCoat = pathCoatProbability(b);
@@ -336,7 +378,9 @@ IBL_FN PathBrdfSample samplePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v,
     float specular = (1.0f - pSheen) * pathSpecularProbability(b);
     if (choose < specular) {
       PathSampler walkNumbers = pathSamplerBranch(numbers);  // as in evaluatePathBrdf
-      WalkSample w = sampleMicrofacetWalk(pathMicrosurface(b), walkView(v), walkNumbers);
+      WalkSample w =
+          sampleMicrofacetWalk(pathMicrosurface(b), toLobeFrame(b, walkView(v)), walkNumbers);
+      w.wo = fromLobeFrame(b, w.wo);
       s.direction = w.wo;
       s.weight = w.weight * below / specular;
       if (pathHasSheen(b))
@@ -356,7 +400,8 @@ IBL_FN PathBrdfSample samplePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v,
   } else {
     choose = (choose - pSheen) / (1.0f - pSheen);
     if (choose < pathSpecularProbability(b)) {
-      vec3 h = sampleGgxVisibleNormal(v, xi, b.alpha);
+      vec3 h =
+          fromLobeFrame(b, sampleGgxVisibleNormalAnisotropic(toLobeFrame(b, v), xi, b.lobe.alpha));
       s.direction = 2.0f * dot(v, h) * h - v;
     } else {
       s.direction = sampleCosineHemisphere(xi);

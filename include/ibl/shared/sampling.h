@@ -73,14 +73,16 @@ IBL_FN mat3 tangentFrame(vec3 n) {
 
 // GGX normals visible from v (tangent frame, v.z > 0), distributed with pdf
 // G1(v) max(0, v.h) D(h) / (n.v): Heitz 2018, "Sampling the GGX Distribution of Visible
-// Normals", listing 1 (isotropic). The part that depends on v alone is computed once.
+// Normals", listing 1, anisotropic (alpha.x along x, alpha.y along y: the lobe's frame of
+// brdf.h's GgxLobe). The part that depends on v alone is computed once.
 struct VisibleNormalFrame {
   vec3 vh, t1, t2;  // the stretched view and a frame around it
-  float alpha, s;
+  vec2 alpha;
+  float s;
 };
-IBL_FN VisibleNormalFrame visibleNormalFrame(vec3 v, float alpha) {
+IBL_FN VisibleNormalFrame visibleNormalFrameAnisotropic(vec3 v, vec2 alpha) {
   VisibleNormalFrame f;
-  f.vh = normalize(vec3(alpha * v.x, alpha * v.y, v.z));
+  f.vh = normalize(vec3(alpha.x * v.x, alpha.y * v.y, v.z));
   float lensq = f.vh.x * f.vh.x + f.vh.y * f.vh.y;
   f.t1 = lensq > 0.0f ? vec3(-f.vh.y, f.vh.x, 0.0f) / sqrt(lensq) : vec3(1.0f, 0.0f, 0.0f);
   f.t2 = cross(f.vh, f.t1);
@@ -88,16 +90,22 @@ IBL_FN VisibleNormalFrame visibleNormalFrame(vec3 v, float alpha) {
   f.s = 0.5f * (1.0f + f.vh.z);
   return f;
 }
+IBL_FN VisibleNormalFrame visibleNormalFrame(vec3 v, float alpha) {
+  return visibleNormalFrameAnisotropic(v, vec2(alpha));
+}
 // Warps a uniform disk point onto the projection of the visible hemisphere, lifts it and
 // unstretches it. Reflecting v about the normal gives l with pdf G1 D / (4 n.v).
 IBL_FN vec3 visibleNormalFromDisk(VisibleNormalFrame f, vec2 disk) {
   float p1 = disk.x;
   float p2 = (1.0f - f.s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + f.s * disk.y;
   vec3 nh = p1 * f.t1 + p2 * f.t2 + sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * f.vh;
-  return normalize(vec3(f.alpha * nh.x, f.alpha * nh.y, max(0.0f, nh.z)));
+  return normalize(vec3(f.alpha.x * nh.x, f.alpha.y * nh.y, max(0.0f, nh.z)));
+}
+IBL_FN vec3 sampleGgxVisibleNormalAnisotropic(vec3 v, vec2 xi, vec2 alpha) {
+  return visibleNormalFromDisk(visibleNormalFrameAnisotropic(v, alpha), uniformDiskPoint(xi));
 }
 IBL_FN vec3 sampleGgxVisibleNormal(vec3 v, vec2 xi, float alpha) {
-  return visibleNormalFromDisk(visibleNormalFrame(v, alpha), uniformDiskPoint(xi));
+  return sampleGgxVisibleNormalAnisotropic(v, xi, vec2(alpha));
 }
 
 IBL_END

@@ -53,7 +53,29 @@ struct SplitSumMaterial {
   float iridescence IBL_DEFAULT(0.0f);
   float iridescenceIor IBL_DEFAULT(1.3f);
   float iridescenceThickness IBL_DEFAULT(400.0f);
+  // KHR_materials_anisotropy, its texture applied: strength (0: none) and the direction of the
+  // larger roughness (world, unit, orthogonal to the normal: anisotropyTangentOf in material.h).
+  float anisotropy IBL_DEFAULT(0.0f);
+  vec3 anisotropyTangent IBL_DEFAULT(vec3(1.0f, 0.0f, 0.0f));
 };
+
+// The roughness at which the material's specular lobe reads the isotropic tables (DFG, LTC):
+// its own, or with KHR_materials_anisotropy the isotropic lobe's nearest in albedo
+// (anisotropicTableRoughness).
+IBL_FN float tableRoughness(SplitSumMaterial m) {
+  if (m.anisotropy <= 0.0f) return m.roughness;
+  return anisotropicTableRoughness(anisotropicAlpha(m.roughness, m.anisotropy));
+}
+
+// The material's specular lobe: anisotropic GGX (anisotropicAlpha) along m.anisotropyTangent,
+// else isotropic; alpha at least 1e-3 (a mirror's delta in practice).
+IBL_FN GgxLobe materialGgxLobe(SplitSumMaterial m) {
+  if (m.anisotropy <= 0.0f) return isotropicGgxLobe(max(alphaFromRoughness(m.roughness), 1e-3f));
+  GgxLobe g;
+  g.t = m.anisotropyTangent;
+  g.alpha = max(anisotropicAlpha(m.roughness, m.anisotropy), vec2(1e-3f));
+  return g;
+}
 
 // The material's Fresnel reflectance (specularReflectance, withIridescence) under the switches'
 // micro-occlusion.
@@ -122,6 +144,21 @@ IBL_FN SplitSumLookup splitSumLookup(vec3 n, vec3 v, float roughness, SplitSumSw
   look.diffuseDirection = n;
   if (s.dominantDirections && s.disneyDiffuse)
     look.diffuseDirection = diffuseDominantDirection(n, v, look.NoV, alpha);
+  return look;
+}
+
+// KHR_materials_anisotropy: the lookup with the specular map read along the reflection about
+// anisotropicBentNormal (material.h) at unit normal n, and its dominant direction with the
+// switches', at the material's roughness (as the glTF Sample Viewer and Filament do: the map has
+// one roughness per level). Unchanged without anisotropy.
+IBL_FN SplitSumLookup anisotropicLookup(SplitSumLookup look, vec3 n, vec3 v, SplitSumMaterial m,
+                                        SplitSumSwitches s) {
+  if (m.anisotropy <= 0.0f) return look;
+  vec3 bent = anisotropicBentNormal(n, v, m.anisotropyTangent, m.anisotropy, m.roughness);
+  look.specularDirection = 2.0f * dot(bent, v) * bent - v;
+  if (s.dominantDirections)
+    look.specularDirection =
+        specularDominantDirection(bent, look.specularDirection, alphaFromRoughness(m.roughness));
   return look;
 }
 

@@ -73,6 +73,7 @@ IBL_MATERIAL_BINDING(ClearcoatRoughness, 10)  // its G
 IBL_MATERIAL_BINDING(ClearcoatNormal, 11)
 IBL_MATERIAL_BINDING(Iridescence, 12)  // KHR_materials_iridescence: its R
 IBL_MATERIAL_BINDING(IridescenceThickness, 13)  // its G
+IBL_MATERIAL_BINDING(Anisotropy, 14)  // KHR_materials_anisotropy: RG direction, B strength
 #ifdef __cplusplus
 Count
 };
@@ -80,7 +81,7 @@ Count
 #undef IBL_MATERIAL_BINDING
 // After the textures: the material's factors and UV transforms, a storage buffer
 // (MaterialFactors in src/gpu/scene_upload.hpp).
-const int kMaterialFactors = 14;
+const int kMaterialFactors = 15;
 // clang-format on
 
 IBL_END

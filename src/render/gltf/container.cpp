@@ -126,9 +126,10 @@ bool implemented(std::string_view ext) {
          ext == "KHR_materials_sheen" || ext == "KHR_materials_variants" ||
          ext == "KHR_materials_ior" || ext == "KHR_materials_specular" ||
          ext == "KHR_materials_unlit" || ext == "KHR_materials_clearcoat" ||
-         ext == "KHR_materials_iridescence" || ext == "EXT_texture_webp" ||
-         ext == "KHR_texture_transform" || ext == "KHR_mesh_quantization" ||
-         ext == "EXT_meshopt_compression" || ext == "KHR_lights_punctual";
+         ext == "KHR_materials_iridescence" || ext == "KHR_materials_anisotropy" ||
+         ext == "EXT_texture_webp" || ext == "KHR_texture_transform" ||
+         ext == "KHR_mesh_quantization" || ext == "EXT_meshopt_compression" ||
+         ext == "KHR_lights_punctual";
 }
 
 tinygltf::Model readModel(std::span<const std::uint8_t> bytes, const std::string& path,

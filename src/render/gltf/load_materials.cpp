@@ -1,5 +1,5 @@
 // Materials: glTF's metallic-roughness model, KHR_materials_emissive_strength,
-// KHR_materials_sheen, _ior, _specular, _clearcoat, _iridescence and _unlit, their
+// KHR_materials_sheen, _ior, _specular, _clearcoat, _iridescence, _anisotropy and _unlit, their
 // texture slots pointing at the textures images.cpp read, each with its KHR_texture_transform.
 #include <cmath>
 #include <map>
@@ -68,6 +68,7 @@ Material unlit(Material m) {
   m.sheenColor = glm::vec3(0.0f);
   m.clearcoat = 0.0f;
   m.iridescence = 0.0f;
+  m.anisotropy = 0.0f;
   return m;
 }
 
@@ -127,7 +128,8 @@ std::vector<SlotRef> materialSlots(const tinygltf::Material& m, const std::strin
       {"KHR_materials_specular", {"specularTexture", "specularColorTexture"}},
       {"KHR_materials_clearcoat",
        {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}},
-      {"KHR_materials_iridescence", {"iridescenceTexture", "iridescenceThicknessTexture"}}};
+      {"KHR_materials_iridescence", {"iridescenceTexture", "iridescenceThicknessTexture"}},
+      {"KHR_materials_anisotropy", {"anisotropyTexture"}}};
   for (const auto& [extension, names] : extensionSlots) {
     const auto x = m.extensions.find(extension);
     if (x == m.extensions.end()) continue;
@@ -211,6 +213,13 @@ void readExtensionFactors(const tinygltf::Material& m, const std::string& path,
     mat.iridescenceThicknessMaximum =
         extensionNumber(*x, "iridescenceThicknessMaximum", 400.0f, 0.0, 1e6, path, at);
   }
+  // KHR_materials_anisotropy: anisotropyStrength in [0, 1] (default 0: none; its texture's B),
+  // anisotropyRotation in radians (default 0; finite, |rotation| <= 1e6).
+  if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_anisotropy")) {
+    const std::string at = where + ": KHR_materials_anisotropy";
+    mat.anisotropy = extensionNumber(*x, "anisotropyStrength", 0.0f, 0.0, 1.0, path, at);
+    mat.anisotropyRotation = extensionNumber(*x, "anisotropyRotation", 0.0f, -1e6, 1e6, path, at);
+  }
 }
 
 std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& textures) {
@@ -263,6 +272,7 @@ std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& te
     mat.clearcoatNormalTexture = refs["clearcoatNormalTexture"];
     mat.iridescenceTexture = refs["iridescenceTexture"];
     mat.iridescenceThicknessTexture = refs["iridescenceThicknessTexture"];
+    mat.anisotropyTexture = refs["anisotropyTexture"];
     if (materialExtension(m, "KHR_materials_unlit")) mat = unlit(mat);
     materials.push_back(mat);
   }

@@ -37,15 +37,20 @@ glm::mat4 nodeTransform(const tinygltf::Node& node) {
   return t * r * s;
 }
 
-// The normal map whose UV set gives a mesh of material m its tangents: normalTexture, else
-// KHR_materials_clearcoat's (which the specification asks a tangent space for too).
-const TextureRef& tangentSource(const Material& m) {
-  return m.normalTexture.index >= 0 ? m.normalTexture : m.clearcoatNormalTexture;
+// The UV set (0 or 1) that gives a mesh of material m its tangents, or -1 where it needs none:
+// the normal map's, else KHR_materials_clearcoat's (which asks a tangent space too), else, for
+// KHR_materials_anisotropy (whose direction lies in the tangent frame), its texture's or
+// TEXCOORD_0.
+int tangentSource(const Material& m) {
+  if (m.normalTexture.index >= 0) return m.normalTexture.texCoord;
+  if (m.clearcoatNormalTexture.index >= 0) return m.clearcoatNormalTexture.texCoord;
+  if (m.anisotropy > 0.0f) return m.anisotropyTexture.index >= 0 ? m.anisotropyTexture.texCoord : 0;
+  return -1;
 }
 
 // Moves a mesh to world space; generates the normals it lacks, and the tangents it lacks when
-// it has a normal map (normalTexture.index >= 0), from the UV set that map reads.
-void placeInWorld(Mesh& mesh, const glm::mat4& world, const TextureRef& normalTexture) {
+// its material needs them (tangentSource: texCoord >= 0), from that UV set.
+void placeInWorld(Mesh& mesh, const glm::mat4& world, int texCoord) {
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
   for (auto& p : mesh.positions) p = glm::vec3(world * glm::vec4(p, 1.0f));
   if (mesh.normals.empty()) {
@@ -53,8 +58,8 @@ void placeInWorld(Mesh& mesh, const glm::mat4& world, const TextureRef& normalTe
   } else {
     for (auto& n : mesh.normals) n = glm::normalize(normalMatrix * n);
   }
-  const std::vector<glm::vec2>& uvs = normalTexture.texCoord == 1 ? mesh.uvs1 : mesh.uvs;
-  if (!uvs.empty() && normalTexture.index >= 0) {
+  const std::vector<glm::vec2>& uvs = texCoord == 1 ? mesh.uvs1 : mesh.uvs;
+  if (!uvs.empty() && texCoord >= 0) {
     if (mesh.tangents.empty()) {
       mesh.tangents = generateTangents(mesh, uvs);
     } else {

@@ -111,6 +111,8 @@ GltfSummary GltfDocument::describe() {
     info.iridescenceIor = factors.iridescenceIor;
     info.iridescenceThicknessMinimum = factors.iridescenceThicknessMinimum;
     info.iridescenceThicknessMaximum = factors.iridescenceThicknessMaximum;
+    info.anisotropy = factors.anisotropy;
+    info.anisotropyRotation = factors.anisotropyRotation;
     const shared::SpecularReflectance dielectric = shared::specularReflectance(
         glm::vec3(0.0f), 0.0f, factors.ior, factors.specular, factors.specularColor, false);
     info.dielectricF0 = dielectric.f0;
