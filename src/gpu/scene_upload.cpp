@@ -278,6 +278,8 @@ void SceneUpload::uploadMeshes(const Scene& scene) {
     d.indexCount = static_cast<std::uint32_t>(m.indices.size());
     d.material = m.material;
     d.sphere = sphere;
+    // A sphere's surface reads no textures (surfaceAt's spheres have no UVs).
+    if (sphere.w <= 0.0f) d.uvSets = (m.uvs.empty() ? 0u : 1u) | (m.uvs1.empty() ? 0u : 2u);
     meshes_.push_back(std::move(d));
   };
   for (const Mesh& m : scene.meshes) addMesh(m, glm::vec4(0.0f));
@@ -339,6 +341,7 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
       if (slots[b].texCoord == 1) factors.texCoordMask |= 1u << b;
     }
     textureMasks_.push_back(textureMask);
+    texCoordMasks_.push_back(factors.texCoordMask);
     materialBuffers_.push_back(
         std::make_unique<Buffer>(Buffer::of(context_, std::vector<MaterialFactors>{factors})));
     materialImages.push_back(images);
@@ -528,7 +531,11 @@ void SceneUpload::drawMeshes(VkCommandBuffer cmd, VkPipelineLayout layout, int l
   for (const DrawMesh& m : meshes_) {
     const auto mi = static_cast<std::size_t>(
         std::clamp(m.material, 0, static_cast<int>(materialBuffers_.size()) - 1));
-    const DrawConstants draw{m.sphere, layer, pass, textureMasks_[mi]};
+    // A slot whose UV set the mesh lacks is off, as surfaceAt's lookups are: its texel is the
+    // slot's default (white; the anisotropy's direction along the tangent).
+    const std::uint32_t readable =
+        ((m.uvSets & 1u) ? ~texCoordMasks_[mi] : 0u) | ((m.uvSets & 2u) ? texCoordMasks_[mi] : 0u);
+    const DrawConstants draw{m.sphere, layer, pass, textureMasks_[mi] & readable};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &materialSets_[mi],
                             0, nullptr);
     vkCmdPushConstants(cmd, layout, kDrawStages, 0, sizeof(draw), &draw);

@@ -156,11 +156,13 @@ class SceneUpload {
     std::unique_ptr<Buffer> vertices, indices;
     std::uint32_t indexCount = 0;
     int material = 0;
-    glm::vec4 sphere{0.0f};  // center, radius of the sphere this mesh bounds (radius 0: none)
+    glm::vec4 sphere{0.0f};    // center, radius of the sphere this mesh bounds (radius 0: none)
+    std::uint32_t uvSets = 0;  // bit 0: it has TEXCOORD_0, bit 1: TEXCOORD_1 (a sphere: none)
   };
   std::vector<DrawMesh> meshes_;
   std::vector<std::unique_ptr<Buffer>> materialBuffers_;  // MaterialFactors, one per material
   std::vector<std::uint32_t> textureMasks_;               // DrawConstants::textureMask of each
+  std::vector<std::uint32_t> texCoordMasks_;              // MaterialFactors::texCoordMask of each
   // The scene's textures with mip chains, sRGB or linear as each material slot reads them
   // (a texture used both ways is uploaded twice); the frame set's white stands in for none.
   std::map<std::pair<int, bool>, std::unique_ptr<DeviceImage>> textures_;

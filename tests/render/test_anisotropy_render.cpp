@@ -125,6 +125,16 @@ TEST(AnisotropyRender, GltfCarriesTheAnisotropyAndItsTexture) {
   std::ofstream(dir / "untangented.gltf") << gltf.dump();
   const SurfacePoint generated = quadSurface(loadGltf((dir / "untangented.gltf").string()));
   EXPECT_LT(glm::distance(generated.anisotropyTangent, glm::vec3(0.0f, -1.0f, 0.0f)), 1e-4f);
+  // A file's tangents turn with their node, UVs or none: the quad turned 90 degrees about +Z,
+  // without TEXCOORD_0, its tangent +X becomes +Y, and the direction 30 degrees from it toward
+  // the bitangent (now -X) is (-0.5, 0.866, 0).
+  gltf = nlohmann::json::parse(std::ifstream(dir / "plain.gltf"));
+  gltf["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
+  gltf["nodes"][0]["rotation"] = {0.0, 0.0, std::sqrt(0.5), std::sqrt(0.5)};
+  std::ofstream(dir / "turned.gltf") << gltf.dump();
+  const SurfacePoint turned = quadSurface(loadGltf((dir / "turned.gltf").string()));
+  EXPECT_LT(glm::distance(turned.anisotropyTangent, glm::vec3(-0.5f, std::sqrt(3.0f) / 2.0f, 0.0f)),
+            1e-4f);
 
   const CliRun info = runIbl("info " + quote(dir / "textured.gltf") + " --json");
   ASSERT_EQ(info.status, 0) << info.output;

@@ -86,7 +86,7 @@ IBL_FN float anisotropicTableRoughness(vec2 alpha) {
 
 // The normal the split sum reflects the view about for an anisotropic lobe (the glTF Sample
 // Viewer's and Filament's, after McAuley's bent reflection vector): the normal bent toward the
-// view's component across the direction t (unit, orthogonal to n), by
+// view projected on the plane of t (unit, orthogonal to n) and n, by
 // 1 - (1 - strength (1 - roughness))^4, so that the prefiltered map is read where the lobe
 // stretches. Unit.
 IBL_FN vec3 anisotropicBentNormal(vec3 n, vec3 v, vec3 t, float strength, float roughness) {

@@ -119,8 +119,8 @@ IBL_FN float pathSheenScaling(IBL_ALBEDO_TABLES PathBrdf b, float c) {
                             albedoTableLookup(IBL_ALBEDO_ARG 1, max(c, 1e-4f), b.sheenRoughness));
 }
 
-// The split sum's compensation of the specular lobe for reflectance r and perceptual roughness
-// r seen from v: 1 + F0 (1 / E(n.v) - 1).
+// The split sum's compensation of a specular lobe of reflectance r, read in the albedo table at
+// perceptual `roughness`, seen from v: 1 + F0 (1 / E(n.v) - 1).
 IBL_FN vec3 pathMultipleScattering(IBL_ALBEDO_TABLES SpecularReflectance r, float roughness,
                                    vec3 v) {
   float e = albedoTableLookup(IBL_ALBEDO_ARG 0, max(v.z, 1e-4f), roughness);

@@ -58,15 +58,15 @@ void placeInWorld(Mesh& mesh, const glm::mat4& world, int texCoord) {
   } else {
     for (auto& n : mesh.normals) n = glm::normalize(normalMatrix * n);
   }
-  const std::vector<glm::vec2>& uvs = texCoord == 1 ? mesh.uvs1 : mesh.uvs;
-  if (!uvs.empty() && texCoord >= 0) {
-    if (mesh.tangents.empty()) {
-      mesh.tangents = generateTangents(mesh, uvs);
-    } else {
-      for (auto& t : mesh.tangents)
-        t = glm::vec4(glm::normalize(glm::mat3(world) * glm::vec3(t)), t.w);
-    }
+  // The file's tangents move with the mesh (KHR_materials_anisotropy reads them without UVs).
+  for (auto& t : mesh.tangents) {
+    const glm::vec3 moved = glm::mat3(world) * glm::vec3(t);
+    const float length = glm::length(moved);
+    t = glm::vec4(length > 0.0f ? moved / length : moved, t.w);  // a zero tangent stays zero
   }
+  const std::vector<glm::vec2>& uvs = texCoord == 1 ? mesh.uvs1 : mesh.uvs;
+  if (mesh.tangents.empty() && !uvs.empty() && texCoord >= 0)
+    mesh.tangents = generateTangents(mesh, uvs);
 }
 
 // A node's camera, placed by the node's world transform.
