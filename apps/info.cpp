@@ -2,6 +2,7 @@
 // glTF scene.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -141,7 +142,14 @@ void runGltfInfo(const InfoOptions& o) {
            {"iridescence_thickness",
             {m.iridescenceThicknessMinimum, m.iridescenceThicknessMaximum}},
            {"anisotropy", m.anisotropy},
-           {"anisotropy_rotation", m.anisotropyRotation}});
+           {"anisotropy_rotation", m.anisotropyRotation},
+           {"transmission", m.transmission},
+           {"thickness", m.thickness},
+           // JSON has no infinity: null for no absorption.
+           {"attenuation_distance", std::isfinite(m.attenuationDistance)
+                                        ? nlohmann::json(m.attenuationDistance)
+                                        : nlohmann::json(nullptr)},
+           {"attenuation_color", vec(m.attenuationColor)}});
     for (const auto& t : s.textures)
       j["textures"].push_back({{"image", index(t.image)},
                                {"source", t.source},
@@ -258,12 +266,20 @@ void runGltfInfo(const InfoOptions& o) {
                                        ? fmt::format(", anisotropy {:.4g} (rotation {:.4g} rad)",
                                                      m.anisotropy, m.anisotropyRotation)
                                        : "";
+    std::string transmission =
+        m.transmission > 0.0f ? fmt::format(", transmission {:.4g}", m.transmission) : "";
+    if (m.transmission > 0.0f && m.thickness > 0.0f)
+      transmission += fmt::format(
+          " (volume: thickness {:.4g}, attenuation {:.4g} {:.4g} {:.4g} "
+          "after {:.4g})",
+          m.thickness, m.attenuationColor.x, m.attenuationColor.y, m.attenuationColor.z,
+          m.attenuationDistance);
     fmt::print(
         "  {}{}: base color {:.4g} {:.4g} {:.4g} {:.4g}, metallic {:.4g}, roughness "
-        "{:.4g}{}{}{}{}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
+        "{:.4g}{}{}{}{}{}, emissive {:.4g} {:.4g} {:.4g}, {}{}{}{}\n",
         i, quoted(m.name), m.baseColor.x, m.baseColor.y, m.baseColor.z, m.baseColor.w, m.metallic,
-        m.roughness, dielectric, coat, film, anisotropy, m.emissive.x, m.emissive.y, m.emissive.z,
-        m.alphaMode, m.doubleSided ? ", double-sided" : "",
+        m.roughness, dielectric, coat, film, anisotropy, transmission, m.emissive.x, m.emissive.y,
+        m.emissive.z, m.alphaMode, m.doubleSided ? ", double-sided" : "",
         textures.empty() ? "" : ", textures " + textures,
         extensions.empty() ? "" : "; extensions: " + extensions);
   }

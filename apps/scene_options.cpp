@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "ibl/core/error.hpp"
 #include "ibl/env/default_environment.hpp"
@@ -144,6 +145,26 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                   "Built-in scenes: the anisotropy's direction, in degrees counterclockwise from "
                   "the parallels toward the meridians")
       ->check(numberIn(-360.0f, 360.0f))
+      ->capture_default_str();
+  cmd->add_option("--transmission", o.transmission,
+                  "Built-in scenes: the share of the light below the specular layer that passes "
+                  "through the surface (KHR_materials_transmission: glass, thin plastic)")
+      ->check(numberIn(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--thickness", o.thickness,
+                  "Built-in scenes: 0, a thin wall; above, the spheres are solid and refract by "
+                  "--ior, and the real-time paths take this thickness in scene units "
+                  "(KHR_materials_volume)")
+      ->check(numberIn(0.0f, 1000.0f))
+      ->capture_default_str();
+  cmd->add_option("--attenuation-distance", o.attenuationDistance,
+                  "Built-in scenes: the distance (scene units) after which the light inside a "
+                  "volume keeps --attenuation-color of itself (inf: no absorption)")
+      ->check(numberIn(1e-4f, 1e6f))
+      ->capture_default_str();
+  cmd->add_option("--attenuation-color", o.attenuationColor,
+                  "Built-in scenes: the linear color R,G,B (0 to 1) left after "
+                  "--attenuation-distance inside a volume")
       ->capture_default_str();
   cmd->add_option("--diffuse", o.diffuse, "disney (Frostbite renormalized) or lambert")
       ->check(CLI::IsMember({"disney", "lambert"}))
@@ -282,6 +303,15 @@ void checkVariantOption(const SceneCliOptions& o) {
 
 namespace {
 
+// --attenuation-color, each channel from 0 to 1.
+glm::vec3 attenuationColorOf(const SceneCliOptions& o) {
+  const glm::vec3 c = parseVec3(o.attenuationColor, "--attenuation-color");
+  if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) || glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+    failUsage("--attenuation-color",
+              fmt::format("each channel must be from 0 to 1, not '{}'", o.attenuationColor));
+  return c;
+}
+
 Scene loadSceneAlone(const SceneCliOptions& o, const GlobalOptions& global) {
   if (o.scene != "sphere" && o.scene != "grid") {
     GltfLoadOptions options;
@@ -303,6 +333,10 @@ Scene loadSceneAlone(const SceneCliOptions& o, const GlobalOptions& global) {
   m.iridescenceThicknessMaximum = o.iridescenceThickness;
   m.anisotropy = o.anisotropy;
   m.anisotropyRotation = glm::radians(o.anisotropyRotation);
+  m.transmission = o.transmission;
+  m.thickness = o.thickness;
+  m.attenuationDistance = o.attenuationDistance;
+  m.attenuationColor = attenuationColorOf(o);
   if (o.scene == "grid") return makeSphereGrid(m);
   m.metallic = o.metallic;
   m.roughness = o.roughness;
@@ -368,7 +402,8 @@ void refuseIgnoredSceneOptions(const SceneCliOptions& o) {
   for (const char* option :
        {"--base-color", "--metallic", "--roughness", "--ior", "--specular", "--clearcoat",
         "--clearcoat-roughness", "--iridescence", "--iridescence-ior", "--iridescence-thickness",
-        "--anisotropy", "--anisotropy-rotation"})
+        "--anisotropy", "--anisotropy-rotation", "--transmission", "--thickness",
+        "--attenuation-distance", "--attenuation-color"})
     if (given(o, option) && !builtInScene(o))
       failUsage(option, fmt::format("sets the material of the built-in scenes (sphere, grid); "
                                     "the scene {} has its own",
@@ -378,6 +413,16 @@ void refuseIgnoredSceneOptions(const SceneCliOptions& o) {
       failUsage(option,
                 "sets the built-in sphere's material; the grid varies it over its "
                 "spheres");
+  // KHR_materials_volume's settings need a volume, and a volume needs transmission.
+  if (builtInScene(o)) {
+    for (const char* option : {"--attenuation-distance", "--attenuation-color"})
+      if (given(o, option) && o.thickness <= 0.0f)
+        failUsage(option,
+                  "sets the absorption inside a volume; add --thickness (above 0) to make the "
+                  "spheres solid");
+    if (given(o, "--thickness") && o.transmission <= 0.0f)
+      failUsage("--thickness", "makes a transmissive sphere solid; add --transmission");
+  }
   // Settings of what is off.
   const auto refuseWhenOff = [&](bool on, const char* option, const char* feature,
                                  const std::string& off) {
@@ -461,7 +506,10 @@ void checkSceneOptions(const SceneCliOptions& o) {
   if (!o.env.empty() && isSkySpec(o.env)) parseSkySpec(o.env);
   checkEnvScaleOptions(o.envScale, environmentIsNone(o) ? "--env none" : "");
   parseSize(o.size);
-  if (o.scene == "sphere" || o.scene == "grid") parseVec3(o.baseColor, "--base-color");
+  if (o.scene == "sphere" || o.scene == "grid") {
+    parseVec3(o.baseColor, "--base-color");
+    attenuationColorOf(o);
+  }
   if (o.strict && (o.scene == "sphere" || o.scene == "grid"))
     failUsage("--strict", fmt::format("applies to a glTF scene, not the built-in '{}'", o.scene));
   checkVariantOption(o);

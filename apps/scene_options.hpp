@@ -2,6 +2,7 @@
 // The options `ibl render` and `ibl view` share: the scene, the environment or bake, the camera,
 // the built-in scenes' material, the split sum's switches and the exposure.
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,6 +53,12 @@ struct SceneCliOptions {
   // KHR_materials_anisotropy: the strength and the rotation from the tangent (degrees)
   float anisotropy = 0.0f;
   float anisotropyRotation = 0.0f;
+  // KHR_materials_transmission and _volume: the share transmitted, the thickness (scene units; 0:
+  // a thin wall), the attenuation distance (scene units; infinite: none) and color (R,G,B)
+  float transmission = 0.0f;
+  float thickness = 0.0f;
+  float attenuationDistance = std::numeric_limits<float>::infinity();
+  std::string attenuationColor = "1,1,1";
   std::string diffuse = "disney";
   std::string only;
   std::string multiscatter = "walk";  // --multiscatter walk|scale|off

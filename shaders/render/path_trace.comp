@@ -246,8 +246,20 @@ bool unoccluded(vec3 origin, vec3 w, float distance) {
          !occluded(origin, w, distance < kInfinity * 0.5 ? distance * (1.0 - 1e-4) : kInfinity);
 }
 
+// The relative index below the surface (transmissionEta in src/render/path_tracer.cpp).
+float transmissionEta(Surface p) {
+  if (!p.volume || p.ior <= 0.0) return 0.0;
+  return p.frontFace ? p.ior : 1.0 / p.ior;
+}
+
+// The share of light that crosses `distance` of the medium sigma (1 without one).
+vec3 crossing(vec3 sigma, float distance) {
+  return sigma == vec3(0.0) ? vec3(1.0) : volumeTransmittance(sigma, distance);
+}
+
 vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
   vec3 sum = vec3(0.0), throughput = vec3(1.0);
+  vec3 medium = vec3(0.0);  // the volume the path travels in (KHR_materials_volume)
   for (int depth = 0;; ++depth) {
     if (depth == 0) sum += throughput * p.emissive;
     mat3 frame = tangentFrame(p.normal);
@@ -265,7 +277,10 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       brdf = withClearcoat(brdf, p.clearcoat, p.clearcoatRoughness, toLocal * p.clearcoatNormal, v);
     if (p.anisotropy > 0.0)
       brdf = withAnisotropy(brdf, p.anisotropy, toLocal * p.anisotropyTangent, v, shading);
-    vec3 origin = position + p.normal * 1e-4 * max(1.0, length(position));
+    if (p.transmission > 0.0)
+      brdf = withTransmission(brdf, p.transmission, p.baseColor, p.metallic, transmissionEta(p), v);
+    vec3 offset = p.normal * 1e-4 * max(1.0, length(position));
+    vec3 origin = position + offset;
     // Next-event estimation: one sample of each light, of the emitters and of the environment.
     for (uint i = 0u; i < params.counts.x; ++i) {
       ShadingLight light = lightAt(i);
@@ -292,7 +307,8 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       vec3 l = toLocal * direction;
       if (l.z <= 0.0 || !unoccluded(origin, direction, distance)) continue;
       float weight = delta ? 1.0 : powerHeuristic(pdf, pathBrdfPdf(brdf, v, l)) / pdf;
-      sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * radiance * weight;
+      sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * radiance * weight *
+             crossing(medium, distance);
     }
     if (params.counts.z > 0u) {
       float pick = pathUniform(numbers);
@@ -307,7 +323,8 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
           float weight = flag(kFlagVisibility)
                              ? powerHeuristic(es.pdf, pathBrdfPdf(brdf, v, l)) / es.pdf
                              : 1.0 / es.pdf;
-          sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * es.radiance * weight;
+          sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * es.radiance * weight *
+                 crossing(medium, es.distance);
         }
       }
     }
@@ -320,7 +337,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       if (l.z > 0.0 && pe > 0.0 && nearestLight(origin, w, ld, lr) < 0 &&
           unoccluded(origin, w, kInfinity))
         sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * environmentRadiance(w) *
-               (powerHeuristic(pe, pathBrdfPdf(brdf, v, l)) / pe);
+               (powerHeuristic(pe, pathBrdfPdf(brdf, v, l)) / pe) * crossing(medium, kInfinity);
     }
     // The BRDF's sample: it ends on a light or the environment, or goes on from what it meets.
     PathBrdfSample bs = samplePathBrdf(brdf, v, numbers);
@@ -329,6 +346,12 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     if (!(pb > 0.0) || bs.weight == vec3(0.0)) break;
     vec3 w = frame * l;
     vec3 f = bs.weight * pb;
+    // A transmitted sample (src/render/path_tracer.cpp): from below the surface, into or out of
+    // the volume, all the weight where it meets a light.
+    bool transmitted = l.z < 0.0;
+    if (transmitted && p.volume) medium = p.frontFace ? p.attenuation : vec3(0.0);
+    float misBelow = transmitted ? 0.0 : 1.0;
+    origin = transmitted ? position - offset : origin;
     SceneHit hit = flag(kFlagVisibility) ? intersectScene(origin, w, kInfinity, false)
                                          : SceneHit(false, kInfinity, false, 0u, 0u, 0.0, 0.0);
     float ld;
@@ -336,22 +359,26 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     int seen = nearestLight(origin, w, ld, lr);
     if (seen >= 0 && (!hit.found || ld < hit.t)) {
       ShadingLight light = lightAt(uint(seen));
-      float pl = areaLightPdf(light, origin, w);
-      sum += throughput * f * lr * lightRangeWindow(light, position) * (powerHeuristic(pb, pl) / pb);
+      float pl = misBelow * areaLightPdf(light, origin, w);
+      sum += throughput * f * lr * lightRangeWindow(light, position) *
+             (powerHeuristic(pb, pl) / pb) * crossing(medium, ld);
       break;
     }
     if (!hit.found) {
       if (flag(kFlagEnvironmentLight))
         sum += throughput * f * environmentRadiance(w) *
-               (powerHeuristic(pb, environmentPdf(w)) / pb);
+               (powerHeuristic(pb, misBelow * environmentPdf(w)) / pb) * crossing(medium, kInfinity);
       break;
     }
+    throughput *= crossing(medium, hit.t);
     Surface next;
     bool haveNext = false;
     if (materialEmits(hit)) {
       next = surfaceAt(hit, origin, w);
       haveNext = true;
-      float pe = hit.sphere || params.counts.z == 0u ? 0.0 : emitterPdf(w, hit.t, hit.mesh, hit.primitive);
+      float pe = hit.sphere || params.counts.z == 0u
+                     ? 0.0
+                     : misBelow * emitterPdf(w, hit.t, hit.mesh, hit.primitive);
       sum += throughput * f * next.emissive * (powerHeuristic(pb, pe) / pb);
     }
     if (depth >= params.path.x) break;

@@ -42,6 +42,7 @@ layout(std430, set = SCENE_SET, binding = 4) readonly buffer Words {
 #include "ibl/shared/color.h"
 #include "ibl/shared/light_record.h"
 #include "ibl/shared/material.h"
+#include "ibl/shared/transmission.h"
 #include "ibl/shared/view_bindings.h"
 #include "ibl/shared/bvh.h"
 
@@ -204,6 +205,14 @@ struct Surface {
   // roughness (unit, orthogonal to the normal).
   float anisotropy;
   vec3 anisotropyTangent;
+  // KHR_materials_transmission and _volume (textures applied; transmission 0: none): whether the
+  // mesh bounds a volume, its thickness, its attenuation coefficient, and whether the ray met
+  // the side the normals face (SurfacePoint's).
+  float transmission;
+  bool volume;
+  float thickness;
+  vec3 attenuation;
+  bool frontFace;
 };
 
 Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
@@ -227,6 +236,7 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     vec3 w = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
     n = normalize(vertexAt(tri.x, 1).xyz * w.x + vertexAt(tri.y, 1).xyz * w.y +
                   vertexAt(tri.z, 1).xyz * w.z);
+    p.frontFace = dot(n, dir) <= 0.0;  // before the normal map
     vec4 m0 = materialAt(material, 0), m1 = materialAt(material, 1), m2 = materialAt(material, 2),
          m3 = materialAt(material, 3), m4 = materialAt(material, 4);
     m5 = materialAt(material, 5);
@@ -253,6 +263,10 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     // No thickness texture: white, so the maximum.
     p.iridescenceThickness =
         mix(m6.z, m6.w, slotTexel(m, tri, material, kMaterialIridescenceThickness, w, false).g);
+    vec4 m8 = materialAt(material, 8);
+    p.transmission =
+        clamp(m8.x * slotTexel(m, tri, material, kMaterialTransmission, w, false).r, 0.0, 1.0);
+    p.thickness = m8.y * slotTexel(m, tri, material, kMaterialThickness, w, false).g;
     // The coat's normal: the interpolated one, unless it has a normal map of its own.
     coatNormal = n;
     vec2 uv;
@@ -288,8 +302,15 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     p.clearcoatRoughness = m5.z;
     p.iridescence = materialAt(material, 6).x;
     p.iridescenceThickness = materialAt(material, 6).w;
+    p.transmission = materialAt(material, 8).x;
+    p.thickness = materialAt(material, 8).y;
+    p.frontFace = dot(n, dir) <= 0.0;
     coatNormal = n;
   }
+  vec4 m8 = materialAt(material, 8);
+  p.volume = m8.y > 0.0;
+  p.attenuation =
+      p.volume ? volumeAttenuationCoefficient(materialAt(material, 9).rgb, m8.z) : vec3(0.0);
   p.ior = m5.x;
   p.iridescenceIor = materialAt(material, 6).y;
   // The anisotropy's direction in the frame of the side the mesh faces (surfaceAt's rule).

@@ -22,6 +22,8 @@ layout(set = 1, binding = kMaterialIridescence) uniform sampler2D iridescenceTex
 layout(set = 1, binding = kMaterialIridescenceThickness) uniform sampler2D
     iridescenceThicknessTexture;  // G
 layout(set = 1, binding = kMaterialAnisotropy) uniform sampler2D anisotropyTexture;  // RGB
+layout(set = 1, binding = kMaterialTransmission) uniform sampler2D transmissionTexture;  // R
+layout(set = 1, binding = kMaterialThickness) uniform sampler2D thicknessTexture;        // G
 layout(std430, set = 1, binding = kMaterialFactors) readonly buffer Material {
   vec4 baseColorMetallic;
   vec4 emissiveRoughness;
@@ -33,9 +35,13 @@ layout(std430, set = 1, binding = kMaterialFactors) readonly buffer Material {
   vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
   vec4 iridescence;  // KHR_materials_iridescence: factor, IOR, thickness minimum and maximum (nm)
   vec4 anisotropy;   // KHR_materials_anisotropy: strength, rotation (radians), 0, 0
+  // KHR_materials_transmission and _volume: transmission, thickness, attenuation distance, 0;
+  // the attenuation color, 0
+  vec4 transmission;
+  vec4 attenuation;
   uint texCoordMask;  // bit b: the texture at binding b reads TEXCOORD_1
   // KHR_texture_transform: binding b's UvTransform rows u and v at 2b and 2b + 1.
-  vec4 uvTransforms[2 * 15];
+  vec4 uvTransforms[2 * 17];
 } material;
 layout(push_constant) uniform Draw {
   vec4 sphere;     // center, radius: the mesh is a sphere's bounding polyhedron (radius 0: not)

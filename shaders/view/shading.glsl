@@ -178,6 +178,21 @@ vec2 localProbes(vec3 position, vec3 r, vec3 d, float roughness, int terms,
   return coverage;
 }
 
+// The prefiltered light along `direction` at `roughness`: the local probes first, the distant
+// environment for the rest (shadeSplitSum's prefilteredLight, as the coat and the transmission
+// read it).
+vec3 prefilteredAlong(vec3 position, vec3 direction, float roughness, int terms) {
+  vec3 light = vec3(0.0), unused;
+  float rest = 1.0;
+  if (frame.probes.x > 0.0)
+    rest -= localProbes(position, direction, direction, roughness, 2, light, unused).x;
+  if (frame.lods.w >= 0.5 && rest > 0.0 && terms != 1) {
+    float lod = specularLodForRoughness(roughness, frame.lods.x, frame.lods.y > 0.5);
+    light += rest * textureLod(specularMap, direction, lod).rgb;
+  }
+  return light;
+}
+
 // The environment's split sum plus the scene's lights (shadeSplitSum and shadeLightsRealTime in
 // src/render/renderer.cpp) at a point at `position`, under a sheen layer (sheen: color and
 // roughness of KHR_materials_sheen; color 0: none) that scales the rest by its albedo scaling.
@@ -285,6 +300,13 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
     composed.specularOcclusion = false;
   }
   vec3 color = belowScale * splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, composed);
+  // KHR_materials_transmission: the light straight through the surface, blurred by the
+  // transmission's roughness, under the sheen as the rest.
+  if (m.transmission > 0.0 && s.terms != 1 && !sheenOnly) {
+    vec3 transmitted =
+        prefilteredAlong(position, -view, transmissionRoughness(m.roughness, m.ior), s.terms);
+    color += belowScale * transmissionRadiance(m, dfg.xy, specularScale * transmitted, s);
+  }
   // The sheen chain has the specular chain's levels and mapping; it is read at the normal
   // (src/render/renderer.cpp says why).
   if (environment && shadeSheen) {
@@ -296,16 +318,8 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
   if (coat) {
     // The coat reads the same light as the base (probes, then the distant environment, the
     // volume's scale) at its reflection and roughness; the screen-space reflection is the base's.
-    vec3 light = vec3(0.0), unused;
-    float rest = 1.0;
-    if (frame.probes.x > 0.0)
-      rest -= localProbes(position, coatLook.specularDirection, coatLook.specularDirection,
-                          m.clearcoatRoughness, 2, light, unused)
-                  .x;
-    if (frame.lods.w >= 0.5 && rest > 0.0 && s.terms != 1) {
-      float lod = specularLodForRoughness(m.clearcoatRoughness, frame.lods.x, frame.lods.y > 0.5);
-      light += rest * textureLod(specularMap, coatLook.specularDirection, lod).rgb;
-    }
+    vec3 light =
+        prefilteredAlong(position, coatLook.specularDirection, m.clearcoatRoughness, s.terms);
     color += clearcoatRadiance(m, coatLook.NoV, coatDfg, specularScale * light, s);
   }
   return lit + color + emissive;

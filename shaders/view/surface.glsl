@@ -121,6 +121,14 @@ ShadedSurface fragmentSurface(int samples) {
   if (anisotropyStrength > 0.0)
     anisotropyTangent = anisotropyTangentOf(
         n, draw.sphere.w > 0.0 ? sphereTangent(n) : worldTangent, anisotropy.xy);
+  // KHR_materials_transmission and _volume: the share transmitted, the thickness, and the
+  // volume's attenuation (a thin wall's none).
+  float transmission =
+      clamp(material.transmission.x * slotTexel(transmissionTexture, kMaterialTransmission).r,
+            0.0, 1.0);
+  bool volume = material.transmission.y > 0.0;
+  float thickness =
+      volume ? material.transmission.y * slotTexel(thicknessTexture, kMaterialThickness).g : 0.0;
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
                                            : normalize(position - frame.cameraPosition.xyz);
   if (dot(n, ray) > 0.0) {  // shade the side the camera sees (the coat's normal alike)
@@ -148,6 +156,11 @@ ShadedSurface fragmentSurface(int samples) {
   m.clearcoatNormal = coatNormal;
   m.anisotropy = anisotropyStrength;
   m.anisotropyTangent = anisotropyTangent;
+  m.transmission = transmission;
+  m.thickness = thickness;
+  m.attenuation = volume ? volumeAttenuationCoefficient(material.attenuation.rgb,
+                                                        material.transmission.z)
+                         : vec3(0.0);
   surface.position = position;
   surface.normal = n;
   surface.view = -ray;

@@ -74,6 +74,9 @@ vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
   m.iridescenceThickness = p.iridescenceThickness;
   m.anisotropy = 0.0;  // the diffuse alone
   m.anisotropyTangent = vec3(1.0, 0.0, 0.0);
+  m.transmission = p.transmission;  // the diffuse's share
+  m.thickness = 0.0;
+  m.attenuation = vec3(0.0);
   // What a clear coat lets through of the diffuse below it (its own lobe is specular).
   float belowCoat =
       p.clearcoat > 0.0 ? 1.0 - clearcoatWeight(p.clearcoat, dot(p.clearcoatNormal, view)) : 1.0;

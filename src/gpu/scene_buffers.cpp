@@ -100,6 +100,9 @@ SceneBuffers uploadSceneBuffers(Context& context, const Scene& scene) {
                              mat.iridescenceThicknessMaximum));
     data.push_back(
         glm::vec4(mat.unlit ? 1.0f : 0.0f, mat.anisotropy, mat.anisotropyRotation, 0.0f));
+    data.push_back(glm::vec4(mat.transmission, mat.thickness,
+                             std::min(mat.attenuationDistance, 3.0e38f), 0.0f));
+    data.push_back(glm::vec4(mat.attenuationColor, 0.0f));
     const auto slots = mat.textureSlots();
     for (std::size_t b = 0; b < slots.size(); b += 4) {
       glm::vec4 four(-1.0f);

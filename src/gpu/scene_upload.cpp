@@ -315,6 +315,9 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
         glm::vec4(mat.iridescence, mat.iridescenceIor, mat.iridescenceThicknessMinimum,
                   mat.iridescenceThicknessMaximum);
     factors.anisotropy = glm::vec4(mat.anisotropy, mat.anisotropyRotation, 0.0f, 0.0f);
+    factors.transmission = glm::vec4(mat.transmission, mat.thickness,
+                                     std::min(mat.attenuationDistance, 3.0e38f), 0.0f);
+    factors.attenuation = glm::vec4(mat.attenuationColor, 0.0f);
     if (mat.sheenColor != glm::vec3(0.0f)) sceneHasSheen_ = true;
     static_assert(Material::kTextureSlots == kMaterialTextures, "MaterialBinding's order");
     const auto slots = mat.textureSlots();

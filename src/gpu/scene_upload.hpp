@@ -78,14 +78,17 @@ struct MaterialFactors {
   glm::vec4 specular;   // KHR_materials_specular: specularColorFactor, specularFactor
   // KHR_materials_iridescence: factor, the film's IOR, thickness minimum and maximum (nm)
   glm::vec4 iridescence;
-  glm::vec4 anisotropy;        // KHR_materials_anisotropy: strength, rotation (radians), 0, 0
+  glm::vec4 anisotropy;  // KHR_materials_anisotropy: strength, rotation (radians), 0, 0
+  // KHR_materials_transmission and _volume: transmission, thickness, attenuation distance (3e38:
+  // infinite), 0; the attenuation color, 0
+  glm::vec4 transmission, attenuation;
   std::uint32_t texCoordMask;  // bit b: binding b reads TEXCOORD_1 (else TEXCOORD_0)
   std::uint32_t padding[3];
   // KHR_texture_transform: binding b's rows u and v (shared::UvTransform) at 2b and 2b + 1.
   glm::vec4 uvTransforms[2 * kMaterialTextures];
 };
-static_assert(offsetof(MaterialFactors, uvTransforms) == 160 &&
-                  sizeof(MaterialFactors) == 160 + 32 * kMaterialTextures,
+static_assert(offsetof(MaterialFactors, uvTransforms) == 192 &&
+                  sizeof(MaterialFactors) == 192 + 32 * kMaterialTextures,
               "std430: the rows' array starts on 16 bytes");
 
 // The push constants of a draw (shaders/view/material.glsl): the sphere the mesh bounds, the

@@ -11,6 +11,7 @@
 #include "ibl/shared/material.h"
 #include "ibl/shared/path_brdf.h"
 #include "ibl/shared/split_sum.h"
+#include "ibl/shared/transmission.h"
 
 namespace ibl {
 
@@ -69,6 +70,14 @@ shared::SpecularReflectance reflectanceOf(const SurfacePoint& p, bool microOcclu
       p.iridescence, p.iridescenceIor, p.iridescenceThickness);
 }
 
+// The index of refraction below the surface at p over the side the ray came from
+// (shared::withTransmission's eta): the material's ior entering its volume, its inverse leaving
+// it; 0 for a thin wall (no volume, or KHR_materials_ior's infinite index 0).
+float transmissionEta(const SurfacePoint& p) {
+  if (!p.volume || p.ior <= 0.0f) return 0.0f;
+  return p.frontFace ? p.ior : 1.0f / p.ior;
+}
+
 // The material at one point (ibl/shared/path_brdf.h, which the GPU reference evaluates too).
 struct Brdf {
   shared::PathBrdf b;
@@ -86,6 +95,9 @@ struct Brdf {
       b = shared::withClearcoat(b, p.clearcoat, p.clearcoatRoughness, coatNormal, v);
     if (p.anisotropy > 0.0f)
       b = shared::withAnisotropy(tables, b, p.anisotropy, anisotropyTangent, v, pathShading(o));
+    if (p.transmission > 0.0f)
+      b = shared::withTransmission(tables, b, p.transmission, p.baseColor, p.metallic,
+                                   transmissionEta(p), v);
     return {b, tables};
   }
   // f(v, l) (n.l), with n = +Z of the local frame (with the walk, an unbiased estimate drawn
@@ -183,6 +195,13 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
   // with direct light alone.
   const bool visibility = o.shadows || o.bounces > 0;
   glm::vec3 sum(0.0f), throughput(1.0f);
+  // The attenuation coefficient of the volume the path travels in (KHR_materials_volume; 0:
+  // none), and the share of light that crosses `distance` of it.
+  glm::vec3 medium(0.0f);
+  const auto crossing = [&](const glm::vec3& sigma, float distance) {
+    return sigma == glm::vec3(0.0f) ? glm::vec3(1.0f)
+                                    : shared::volumeTransmittance(sigma, distance);
+  };
   for (int depth = 0;; ++depth) {
     // The emission of the first surface; further ones are counted where the BRDF's sample meets
     // them, weighed against the emitters' sampling.
@@ -196,7 +215,8 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     if (captured && o.captureMetalsAsDiffuse) p = metalAsDiffuse(p);
     const Brdf brdf =
         Brdf::of(p, v, toLocal * p.clearcoatNormal, toLocal * p.anisotropyTangent, only, o);
-    const glm::vec3 origin = position + p.normal * 1e-4f * std::max(1.0f, glm::length(position));
+    const glm::vec3 offset = p.normal * 1e-4f * std::max(1.0f, glm::length(position));
+    const glm::vec3 origin = position + offset;
     const auto unoccluded = [&](glm::vec3 w, float distance) {
       // Stop short of an area light's surface: the lights are not in the ray tracer.
       return !visibility ||
@@ -211,7 +231,8 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
       const glm::vec3 l = toLocal * ls.direction;
       if (l.z <= 0.0f || !unoccluded(ls.direction, ls.distance)) continue;
       const float weight = ls.delta ? 1.0f : powerHeuristic(ls.pdf, brdf.pdf(v, l)) / ls.pdf;
-      sum += throughput * brdf.evaluate(v, l, sampler) * ls.radiance * weight;
+      sum += throughput * brdf.evaluate(v, l, sampler) * ls.radiance * weight *
+             crossing(medium, ls.distance);
     }
     // One point on the emissive triangles (by power); without visibility the BRDF's samples are
     // not traced, so this sample takes all the weight. An analytic light in front hides it, as it
@@ -230,7 +251,8 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
           unoccluded(es.direction, es.distance) && !lightInFront()) {
         const float weight =
             visibility ? powerHeuristic(es.pdf, brdf.pdf(v, l)) / es.pdf : 1.0f / es.pdf;
-        sum += throughput * brdf.evaluate(v, l, sampler) * es.radiance * weight;
+        sum += throughput * brdf.evaluate(v, l, sampler) * es.radiance * weight *
+               crossing(medium, es.distance);
       }
     }
     if (o.environmentLight) {
@@ -240,7 +262,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
       if (l.z > 0.0f && pe > 0.0f && nearestLight(lights, origin, w).index < 0 &&
           unoccluded(w, INFINITY))
         sum += throughput * brdf.evaluate(v, l, sampler) * s.environment.radiance(w) *
-               (powerHeuristic(pe, brdf.pdf(v, l)) / pe);
+               (powerHeuristic(pe, brdf.pdf(v, l)) / pe) * crossing(medium, INFINITY);
     }
     // The BRDF's sample: it ends on a light or the environment (weighed against their
     // sampling), or goes on from the surface it meets.
@@ -252,22 +274,30 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     // f such that f / pb is the sample's weight: f cos / p of the sampled lobe (with the
     // microfacet walk an estimate of it, pb the MIS weights' approximate pdf; Brdf::sample).
     const glm::vec3 f = bs.weight * pb;
-    const Ray ray{origin, w};
+    // A transmitted sample leaves from below the surface, into the volume it enters (or out of
+    // the one it leaves; a thin wall keeps the medium). No light is sampled below the surface, so
+    // such a sample takes all the weight where it meets one.
+    const bool transmitted = l.z < 0.0f;
+    if (transmitted && p.volume) medium = p.frontFace ? p.attenuation : glm::vec3(0.0f);
+    const float misBelow = transmitted ? 0.0f : 1.0f;
+    const Ray ray{transmitted ? position - offset : origin, w};
     const RayTracer::Hit hit = visibility ? s.tracer.intersect(ray) : RayTracer::Hit{};
-    const NearestLight seen = nearestLight(lights, origin, w);
+    const NearestLight seen = nearestLight(lights, ray.origin, w);
     if (seen.index >= 0 && (!hit.found || seen.hit.distance < hit.t)) {
       const Light& light = lights[static_cast<std::size_t>(seen.index)];
-      const float pl = lightPdf(light, origin, w);
+      const float pl = misBelow * lightPdf(light, ray.origin, w);
       sum += throughput * f * seen.hit.radiance * lightWindow(light, position) *
-             (powerHeuristic(pb, pl) / pb);
+             (powerHeuristic(pb, pl) / pb) * crossing(medium, seen.hit.distance);
       break;
     }
     if (!hit.found) {
       if (o.environmentLight)
         sum += throughput * f * s.environment.radiance(w) *
-               (powerHeuristic(pb, s.environment.pdf(w)) / pb);
+               (powerHeuristic(pb, misBelow * s.environment.pdf(w)) / pb) *
+               crossing(medium, INFINITY);
       break;
     }
+    throughput *= crossing(medium, hit.t);
     // An emissive surface met: its emission, weighed against the sampling of the emitters.
     const bool sphere = s.tracer.isSphere(hit.geometry);
     const Material& met = s.scene.materials[static_cast<std::size_t>(
@@ -275,7 +305,8 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     std::optional<SurfacePoint> next;
     if (met.emissive != glm::vec3(0.0f)) {
       next = surfaceAt(s.scene, s.tracer, hit, ray);
-      const float pe = sphere ? 0.0f : s.emitters.pdf(w, hit.t, hit.geometry, hit.primitive);
+      const float pe =
+          sphere ? 0.0f : misBelow * s.emitters.pdf(w, hit.t, hit.geometry, hit.primitive);
       sum += throughput * f * next->emissive * (powerHeuristic(pb, pe) / pb);
     }
     if (depth >= o.bounces) break;

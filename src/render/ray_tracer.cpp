@@ -7,6 +7,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/shared/material.h"
+#include "ibl/shared/transmission.h"
 
 namespace ibl {
 
@@ -139,6 +140,8 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.clearcoatRoughness = mat->clearcoatRoughness;
     p.iridescence = mat->iridescence;
     p.iridescenceThickness = mat->iridescenceThicknessMaximum;
+    p.transmission = mat->transmission;
+    p.thickness = mat->thickness;
     coatNormal = n;
     tangent = shared::sphereTangent(n);
   } else {
@@ -148,6 +151,7 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
                         i2 = m.indices[3 * hit.primitive + 2];
     const float w0 = 1.0f - hit.u - hit.v, w1 = hit.u, w2 = hit.v;
     n = glm::normalize(m.normals[i0] * w0 + m.normals[i1] * w1 + m.normals[i2] * w2);
+    p.frontFace = glm::dot(n, ray.direction) <= 0.0f;  // before the normal map
     glm::vec3 base = mat->baseColor;
     float metallic = mat->metallic, roughness = mat->roughness;
     glm::vec3 emissive = mat->emissive;
@@ -198,6 +202,11 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     if (lookup(mat->iridescenceThicknessTexture, false, t))
       p.iridescenceThickness =
           glm::mix(mat->iridescenceThicknessMinimum, mat->iridescenceThicknessMaximum, t.y);
+    p.transmission = mat->transmission;
+    if (lookup(mat->transmissionTexture, false, t)) p.transmission *= t.x;
+    p.transmission = std::clamp(p.transmission, 0.0f, 1.0f);
+    p.thickness = mat->thickness;
+    if (lookup(mat->thicknessTexture, false, t)) p.thickness *= t.y;
     // The coat's normal: the interpolated one, unless it has a normal map of its own (not the
     // base's: KHR_materials_clearcoat).
     coatNormal = n;
@@ -222,6 +231,11 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
   p.anisotropy = std::clamp(mat->anisotropy * anisotropy.z, 0.0f, 1.0f);
   if (p.anisotropy > 0.0f)
     p.anisotropyTangent = shared::anisotropyTangentOf(n, tangent, glm::vec2(anisotropy));
+  if (tracer.isSphere(hit.geometry)) p.frontFace = glm::dot(n, ray.direction) <= 0.0f;
+  p.volume = mat->thickness > 0.0f;
+  if (p.volume)
+    p.attenuation =
+        shared::volumeAttenuationCoefficient(mat->attenuationColor, mat->attenuationDistance);
   // Shade the side the ray sees (the coat's normal on the same side).
   if (glm::dot(n, ray.direction) > 0.0f) {
     n = -n;

@@ -84,6 +84,9 @@ shared::SplitSumMaterial splitSumMaterial(const SurfacePoint& p, float occlusion
   m.iridescenceThickness = p.iridescenceThickness;
   m.anisotropy = p.anisotropy;
   m.anisotropyTangent = p.anisotropyTangent;
+  m.transmission = p.transmission;
+  m.thickness = p.volume ? p.thickness : 0.0f;
+  m.attenuation = p.attenuation;
   return m;
 }
 
@@ -178,6 +181,13 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
       o.only == ShadingTerms::Sheen
           ? glm::vec3(0.0f)
           : shared::splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, composed);
+  if (p.transmission > 0.0f && o.only != ShadingTerms::Diffuse && o.only != ShadingTerms::Sheen) {
+    // The light straight through the surface, blurred by the transmission's roughness.
+    const glm::vec3 transmitted =
+        specularScale *
+        prefilteredLight(-view, -view, shared::transmissionRoughness(p.roughness, p.ior), nullptr);
+    below += shared::transmissionRadiance(m, glm::vec2(dfg), transmitted, s);
+  }
   if (p.sheenColor != glm::vec3(0.0f)) {
     if (!bake.sheen || !bake.sheenDfg)
       fail("render",

@@ -163,6 +163,13 @@ struct QuadMaterial {
   // anisotropyTexture's linear codes (RG the direction, B the strength).
   float anisotropyStrength = -1.0f, anisotropyRotation = 0.0f;
   glm::ivec3 anisotropyCodes{-1, 0, 0};
+  // KHR_materials_transmission (written when the factor is not negative) and
+  // KHR_materials_volume (when thicknessFactor is not negative): the factors, and one texture
+  // (linear codes) for both transmissionTexture (R) and thicknessTexture (G).
+  float transmissionFactor = -1.0f, thicknessFactor = -1.0f;
+  float attenuationDistance = -1.0f;  // negative: not written (infinite)
+  glm::vec3 attenuationColor{1.0f};
+  glm::ivec3 transmissionCodes{-1, 0, 0};
 };
 
 // A dielectric of `baseColor` whose specular layer uses every part of KHR_materials_ior and
@@ -326,6 +333,20 @@ inline void writeMaterialQuad(const std::filesystem::path& path, const QuadMater
                                  {"anisotropyRotation", m.anisotropyRotation}};
     if (m.anisotropyCodes.x >= 0) anisotropy["anisotropyTexture"] = texture(m.anisotropyCodes);
     material["extensions"]["KHR_materials_anisotropy"] = anisotropy;
+  }
+  if (m.transmissionFactor >= 0.0f) {
+    nlohmann::json transmission = {{"transmissionFactor", m.transmissionFactor}};
+    if (m.transmissionCodes.x >= 0)
+      transmission["transmissionTexture"] = texture(m.transmissionCodes);
+    material["extensions"]["KHR_materials_transmission"] = transmission;
+  }
+  if (m.thicknessFactor >= 0.0f) {
+    nlohmann::json volume = {
+        {"thicknessFactor", m.thicknessFactor},
+        {"attenuationColor", {m.attenuationColor.x, m.attenuationColor.y, m.attenuationColor.z}}};
+    if (m.attenuationDistance >= 0.0f) volume["attenuationDistance"] = m.attenuationDistance;
+    if (m.transmissionCodes.x >= 0) volume["thicknessTexture"] = texture(m.transmissionCodes);
+    material["extensions"]["KHR_materials_volume"] = volume;
   }
   nlohmann::json j = {
       {"asset", {{"version", "2.0"}}},

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -92,6 +93,11 @@ struct GltfSummary {
     float iridescenceThicknessMinimum = 100.0f, iridescenceThicknessMaximum = 400.0f;
     // KHR_materials_anisotropy's factors (strength 0 when absent: none; rotation in radians).
     float anisotropy = 0.0f, anisotropyRotation = 0.0f;
+    // KHR_materials_transmission's and _volume's factors (transmission 0 when absent: none;
+    // thickness 0: a thin wall; the distance infinite: no absorption).
+    float transmission = 0.0f, thickness = 0.0f;
+    float attenuationDistance = std::numeric_limits<float>::infinity();
+    glm::vec3 attenuationColor{1.0f};
   };
   struct Texture {
     int image = -1;      // -1: none that ibl can read

@@ -186,6 +186,15 @@ struct SurfacePoint {
   // direction of the larger roughness (world, unit, orthogonal to `normal`).
   float anisotropy = 0.0f;
   glm::vec3 anisotropyTangent{1.0f, 0.0f, 0.0f};
+  // KHR_materials_transmission and _volume, textures applied (transmission 0: none): the share
+  // transmitted; whether the mesh bounds a volume (thicknessFactor > 0; else a thin wall), its
+  // thickness for the real-time paths (scene units) and its attenuation coefficient (per scene
+  // unit). frontFace: the ray met the side the mesh's normals face (it enters the volume).
+  float transmission = 0.0f;
+  bool volume = false;
+  float thickness = 0.0f;
+  glm::vec3 attenuation{0.0f};
+  bool frontFace = true;
 };
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
 // viewer's frame uniforms carry the same.

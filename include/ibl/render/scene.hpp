@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -120,6 +121,17 @@ struct Material {
   float anisotropy = 0.0f;          // 0 to 1, the strength
   float anisotropyRotation = 0.0f;  // radians, counterclockwise from the tangent
   TextureRef anisotropyTexture;     // RG the direction in [-1, 1], B multiplies the strength
+  // KHR_materials_transmission: the share of the light below the specular layer that the surface
+  // transmits instead of diffusing (shared::withTransmission). transmission 0: none.
+  float transmission = 0.0f;       // 0 to 1
+  TextureRef transmissionTexture;  // R multiplies transmission
+  // KHR_materials_volume: thickness 0 is a thin wall; above it the mesh bounds a volume that
+  // refracts (by `ior`) and absorbs by Beer-Lambert (shared::volumeAttenuationCoefficient).
+  float thickness = 0.0f;       // the mesh's units, for the real-time paths
+  TextureRef thicknessTexture;  // G multiplies thickness
+  float attenuationDistance =
+      std::numeric_limits<float>::infinity();  // scene units, > 0 (infinite: no absorption)
+  glm::vec3 attenuationColor{1.0f};            // linear, what is left after attenuationDistance
   // KHR_materials_unlit, as the loader converts it: the emission is the base color (and its
   // texture), so COLOR_0 multiplies the emission as it would the base color.
   bool unlit = false;
@@ -127,8 +139,8 @@ struct Material {
   // Its texture slots in the order of the device's bindings and records (MaterialBinding in
   // ibl/shared/view_bindings.h): base color, metallic-roughness, normal, occlusion, emissive,
   // sheen color, sheen roughness, specular, specular color, clear coat, its roughness, its normal,
-  // iridescence, its thickness, anisotropy.
-  static constexpr std::size_t kTextureSlots = 15;
+  // iridescence, its thickness, anisotropy, transmission, thickness.
+  static constexpr std::size_t kTextureSlots = 17;
   std::array<TextureRef, kTextureSlots> textureSlots() const {
     return {baseColorTexture,
             metallicRoughnessTexture,
@@ -144,7 +156,9 @@ struct Material {
             clearcoatNormalTexture,
             iridescenceTexture,
             iridescenceThicknessTexture,
-            anisotropyTexture};
+            anisotropyTexture,
+            transmissionTexture,
+            thicknessTexture};
   }
 };
 

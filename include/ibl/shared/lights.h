@@ -71,10 +71,11 @@ IBL_FN vec3 specularLightRadiance(SpecularReflectance r, GgxLobe lobe, vec3 n, v
 // The radiance the standard material (the BRDF of the IBL path) reflects toward v from a light's
 // incidence, per unit of the light's color: diffuse (Disney or Lambert) x the diffuse
 // illuminance, GGX x the specular illuminance, with the multiple-scattering compensation of the
-// split sum (dfg: the DFG table's A, B at n.v).
+// split sum (dfg: the DFG table's A, B at n.v). KHR_materials_transmission takes its share of
+// the diffuse; the light it would pass from behind the surface is left out (docs/materials.md).
 IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc, vec2 dfg,
                           SplitSumSwitches s) {
-  vec3 diffuseColor = m.baseColor * (1.0f - m.metallic);
+  vec3 diffuseColor = m.baseColor * ((1.0f - m.metallic) * (1.0f - m.transmission));
   SpecularReflectance r = splitSumReflectance(m, s);
   float NoV = max(dot(n, v), 1e-4f);
   vec3 color = vec3(0.0f);

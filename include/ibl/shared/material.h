@@ -164,12 +164,12 @@ IBL_FN vec2 transformUv(UvTransform t, vec2 uv) {
 }
 
 // A material's record in the GPU path tracer's scene buffer (written by
-// src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl): eight vec4s of factors,
-// four of texture slots (one float per MaterialBinding, in its order; -1 past the last) and two
+// src/gpu/scene_buffers.cpp, read by shaders/render/scene_buffers.glsl): ten vec4s of factors,
+// five of texture slots (one float per MaterialBinding, in its order; -1 past the last) and two
 // per slot of its UV transform's rows.
-const int kMaterialRecordSlots = 8;
-const int kMaterialRecordUvTransforms = 12;
-const int kMaterialRecordVec4s = 42;
+const int kMaterialRecordSlots = 10;
+const int kMaterialRecordUvTransforms = 15;
+const int kMaterialRecordVec4s = 49;
 // A vertex's record in the same buffers: (position, uv0.x), (normal, uv0.y), tangent,
 // (uv1, 0, 0), color (COLOR_0, or white).
 const int kVertexRecordVec4s = 5;

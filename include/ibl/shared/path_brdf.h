@@ -3,9 +3,10 @@
 // (shaders/render/path_trace.comp): glTF's metallic-roughness BRDF (GGX with the height-correlated
 // Smith term and Schlick's Fresnel, a Disney or Lambert diffuse), its multiple scattering (the
 // split sum's compensation, or Heitz et al. 2016's walk: microfacet_walk.h), the
-// KHR_materials_sheen layer, and how a path samples it: the lobe chosen by its weight, visible
-// normals for GGX (Heitz 2018; anisotropic with KHR_materials_anisotropy), cosines for the others,
-// with the pdf that multiple importance sampling weighs (Veach 1997, section 9.2); the
+// KHR_materials_sheen layer, KHR_materials_transmission's lobe below the surface (transmission.h),
+// and how a path samples it: the lobe chosen by its weight, visible normals for GGX (Heitz 2018;
+// anisotropic with KHR_materials_anisotropy; refracted for the transmission), cosines for the
+// others, with the pdf that multiple importance sampling weighs (Veach 1997, section 9.2); the
 // KHR_materials_clearcoat layer over all of it. C++ and GLSL (see lang.h).
 #ifndef IBL_SHARED_PATH_BRDF_H
 #define IBL_SHARED_PATH_BRDF_H
@@ -17,6 +18,7 @@
 #include "ibl/shared/path_sampler.h"
 #include "ibl/shared/sampling.h"
 #include "ibl/shared/split_sum.h"
+#include "ibl/shared/transmission.h"
 
 IBL_BEGIN
 
@@ -97,6 +99,12 @@ struct PathBrdf {
   float coatWeight;  // 0: no coat
   float coatAlpha;
   vec3 coatNormal;
+  // KHR_materials_transmission (withTransmission): the specular lobe's transmission below the
+  // surface, tinted by transmissionColor = (1 - metallic) baseColor transmission (0: none), which
+  // the diffuse gives up; refracted into (or out of) a volume of relative index
+  // transmissionEta (transmission.h's eta), or mirrored through a thin wall (0).
+  vec3 transmissionColor;
+  float transmissionEta;
 };
 
 // Whether the material has a sheen layer, and which lobes b.lobes asks to shade.
@@ -159,6 +167,8 @@ IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, flo
   b.coatWeight = 0.0f;
   b.coatAlpha = kMinPathAlpha;
   b.coatNormal = vec3(0.0f, 0.0f, 1.0f);
+  b.transmissionColor = vec3(0.0f);
+  b.transmissionEta = 0.0f;
   return b;
 }
 
@@ -186,6 +196,26 @@ IBL_FN PathBrdf withAnisotropy(IBL_ALBEDO_TABLES PathBrdf b, float strength, vec
   if (o.multipleScattering == kMultipleScatteringScale && b.lobes != kLobesDiffuse)
     b.multipleScattering = pathMultipleScattering(IBL_ALBEDO_ARG b.reflectance,
                                                   anisotropicTableRoughness(b.lobe.alpha), v);
+  return b;
+}
+
+// The material b with KHR_materials_transmission's share `transmission` of the light below the
+// specular layer (its base color and metallic as pathBrdfOf's) sent through the surface:
+// KHR_materials_volume's refraction with relative index eta (transmission.h), or a thin wall's
+// mirrored lobe (eta = 0), seen from v. The specular reflection's bounces between microfacets are
+// the split sum's compensation (o.multipleScattering = walk included: the walk is a conductor's,
+// and a view from inside a volume needs the Fresnel of its far side, fresnelCosine).
+IBL_FN PathBrdf withTransmission(IBL_ALBEDO_TABLES PathBrdf b, float transmission, vec3 baseColor,
+                                 float metallic, float eta, vec3 v) {
+  if (transmission <= 0.0f) return b;
+  b.diffuseColor *= 1.0f - transmission;
+  b.transmissionColor = baseColor * ((1.0f - metallic) * transmission);
+  b.transmissionEta = eta;
+  if (b.walk) {
+    b.walk = false;
+    b.multipleScattering = pathMultipleScattering(IBL_ALBEDO_ARG b.reflectance,
+                                                  anisotropicTableRoughness(b.lobe.alpha), v);
+  }
   return b;
 }
 
@@ -245,6 +275,54 @@ IBL_FN vec3 walkView(vec3 v) {
   return v.z >= 1e-4f ? v : normalize(vec3(v.x, v.y, 1e-4f));
 }
 
+// Whether the transmission's lobe is shaded (a transmission, and b.lobes asks for specular
+// lobes).
+IBL_FN bool pathTransmissionLobe(PathBrdf b) {
+  return b.transmissionColor != vec3(0.0f) && pathSpecularLobe(b);
+}
+
+// The transmission's f(v, l) |n.l| at l below the surface, without the layers above it: the
+// thin wall's specular lobe at l mirrored (KHR_materials_transmission), or Walter's refraction
+// (KHR_materials_volume), each times what the specular layer lets through at its microfacet
+// (diffuseWeight: glTF's fresnel_mix) and transmissionColor.
+IBL_FN vec3 pathTransmission(PathBrdf b, vec3 v, vec3 l) {
+  float eta = b.transmissionEta;
+  bool thin = eta == 0.0f;
+  // A thin wall: l mirrored, and its half vector. (Selected, not branched: see transmission.h.)
+  vec3 m = mirrorThroughSurface(l);
+  vec3 h = thin ? normalize(v + m) : refractionHalfVector(v, l, eta);
+  float value = thin ? pathSpecularDV(b, v, m) * m.z
+                     : ggxRefractionValue(toLobeFrame(b, v), toLobeFrame(b, l), toLobeFrame(b, h),
+                                          eta, b.lobe.alpha);
+  float VoH = fresnelCosine(max(dot(v, h), 0.0f), eta);
+  return b.transmissionColor * (value * diffuseWeight(b.reflectance, VoH));
+}
+
+// The density of samplePathTransmission's direction l (below the surface).
+IBL_FN float pathTransmissionPdf(PathBrdf b, vec3 v, vec3 l) {
+  float eta = b.transmissionEta;
+  bool thin = eta == 0.0f;
+  vec3 vl = toLobeFrame(b, v);
+  vl.z = max(vl.z, 1e-4f);
+  vec3 h = thin ? normalize(v + mirrorThroughSurface(l)) : refractionHalfVector(v, l, eta);
+  vec3 hl = toLobeFrame(b, h);
+  // A thin wall's l mirrored is v reflected: the reflection's density, G1(v) D(h) / (4 n.v).
+  float reflected = smithGgxMaskingAnisotropic(vl, b.lobe.alpha) *
+                    ggxDistributionAnisotropic(hl, b.lobe.alpha) / (4.0f * vl.z);
+  return thin ? reflected : ggxRefractionPdf(vl, toLobeFrame(b, l), hl, eta, b.lobe.alpha);
+}
+
+// The transmission sampled: a visible normal of the specular lobe, v refracted through it (or,
+// through a thin wall, reflected and mirrored). vec3(0) where the sample leaves no direction
+// below the surface (total internal reflection, a reflection below the horizon).
+IBL_FN vec3 samplePathTransmission(PathBrdf b, vec3 v, vec2 xi) {
+  vec3 h = fromLobeFrame(
+      b, sampleGgxVisibleNormalAnisotropic(toLobeFrame(b, walkView(v)), xi, b.lobe.alpha));
+  vec3 l = b.transmissionEta == 0.0f ? mirrorThroughSurface(2.0f * dot(v, h) * h - v)
+                                     : refractThrough(v, h, b.transmissionEta);
+  return l.z < 0.0f ? normalize(l) : vec3(0.0f);
+}
+
 // f(v, l) (n.l) (the coat's lobe: f_coat (n_c.l)). With the walk, an unbiased estimate, drawn
 // from a branch of `numbers` (the walk draws as many numbers as it takes bounces: from a stream of
 // its own, so that the path's later numbers keep their dimensions); withSpecular = false leaves
@@ -252,11 +330,16 @@ IBL_FN vec3 walkView(vec3 v) {
 IBL_FN vec3 evaluatePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v, vec3 l, PathSampler numbers,
                              bool withSpecular) {
   float NoV = max(v.z, 1e-4f), NoL = l.z;
-  if (NoL <= 0.0f) return vec3(0.0f);
+  if (NoL <= 0.0f) {
+    if (!pathTransmissionLobe(b) || !withSpecular || NoL == 0.0f) return vec3(0.0f);
+    vec3 t = pathTransmission(b, v, l);
+    if (pathHasSheen(b)) t *= min(b.sheenScaleV, pathSheenScaling(IBL_ALBEDO_ARG b, -NoL));
+    return t * (1.0f - b.coatWeight);
+  }
   vec3 h = normalize(v + l);
   vec3 result = vec3(0.0f);
   if (pathSpecularLobe(b) && withSpecular) {
-    float VoH = max(dot(v, h), 0.0f);
+    float VoH = fresnelCosine(max(dot(v, h), 0.0f), b.transmissionEta);
     result += pathSpecularDV(b, v, l) * fresnelOf(b.reflectance, VoH) * b.multipleScattering;
     // The walk's orders 2 and up (f cos, hence the division): its order 1 has the expectation
     // of the term above, which is exact.
@@ -271,7 +354,9 @@ IBL_FN vec3 evaluatePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v, vec3 l, PathS
     float fd =
         b.diffuseModel == 0 ? disneyDiffuseRenormalized(NoV, NoL, dot(l, h), b.roughness) : 1.0f;
     // glTF's fresnel_mix: the share the specular layer leaves (diffuseWeight, material.h).
-    result += b.diffuseColor * (fd * diffuseWeight(b.reflectance, dot(v, h)) / kPi);
+    result +=
+        b.diffuseColor *
+        (fd * diffuseWeight(b.reflectance, fresnelCosine(dot(v, h), b.transmissionEta)) / kPi);
   }
   if (pathHasSheen(b)) {
     result *= min(b.sheenScaleV, pathSheenScaling(IBL_ALBEDO_ARG b, NoL));
@@ -310,11 +395,25 @@ IBL_FN float pathSpecularProbability(PathBrdf b) {
   return clamp(s / (s + d), 0.1f, 0.9f);
 }
 
+// The probability of picking the transmission when sampling the layer below (then the specular
+// or the diffuse by pathSpecularProbability): by its color's share, kept within 0.05 to 0.95.
+IBL_FN float pathTransmissionProbability(PathBrdf b) {
+  if (!pathTransmissionLobe(b)) return 0.0f;
+  float t = luminance(b.transmissionColor);
+  float rest = luminance(b.reflectance.f0) + 0.04f + luminance(b.diffuseColor);
+  return clamp(t / (t + rest), 0.05f, 0.95f);
+}
+
 // The density per solid angle of samplePathBrdf's direction l (single scattering for the
 // walk's specular: see samplePathBrdf).
 IBL_FN float pathBrdfPdf(PathBrdf b, vec3 v, vec3 l) {
-  if (l.z <= 0.0f) return 0.0f;
   float pSheen = pathSheenProbability(b);
+  float pCoat = pathCoatProbability(b);
+  float pt = pathTransmissionProbability(b);
+  if (l.z <= 0.0f)
+    return pt > 0.0f && l.z < 0.0f
+               ? (1.0f - pCoat) * (1.0f - pSheen) * pt * pathTransmissionPdf(b, v, l)
+               : 0.0f;
   float ps = pathSpecularProbability(b);
   float p = (1.0f - ps) * l.z / kPi;
   if (ps > 0.0f) {
@@ -324,8 +423,7 @@ IBL_FN float pathBrdfPdf(PathBrdf b, vec3 v, vec3 l) {
     p += ps * smithGgxMaskingAnisotropic(vl, b.lobe.alpha) *
          ggxDistributionAnisotropic(h, b.lobe.alpha) / (4.0f * vl.z);
   }
-  p = pSheen * l.z / kPi + (1.0f - pSheen) * p;
-  float pCoat = pathCoatProbability(b);
+  p = pSheen * l.z / kPi + (1.0f - pSheen) * (1.0f - pt) * p;
   if (pCoat > 0.0f) p = mix(p, pathCoatPdf(b, v, l), pCoat);
   return p;
 }
@@ -393,13 +491,22 @@ IBL_FN PathBrdfSample samplePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v,
                         : vec3(0.0f);
     return s;
   }
+  // Each strategy's directions lie on its own side of the surface: one that falls on the other
+  // (a reflection below the horizon, total internal reflection) is no sample, as pathBrdfPdf
+  // counts the density of each side's strategies alone.
+  bool below = false;
   if (coat) {
     s.direction = samplePathCoat(b, v, xi);
   } else if (choose < pSheen) {
     s.direction = sampleCosineHemisphere(xi);
   } else {
     choose = (choose - pSheen) / (1.0f - pSheen);
-    if (choose < pathSpecularProbability(b)) {
+    float pt = pathTransmissionProbability(b);
+    below = choose < pt;
+    choose = below ? 0.0f : (choose - pt) / (1.0f - pt);
+    if (below) {
+      s.direction = samplePathTransmission(b, v, xi);
+    } else if (choose < pathSpecularProbability(b)) {
       vec3 h =
           fromLobeFrame(b, sampleGgxVisibleNormalAnisotropic(toLobeFrame(b, v), xi, b.lobe.alpha));
       s.direction = 2.0f * dot(v, h) * h - v;
@@ -408,8 +515,10 @@ IBL_FN PathBrdfSample samplePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v,
     }
   }
   float p = pathBrdfPdf(b, v, s.direction);
-  s.weight =
-      p > 0.0f ? evaluatePathBrdf(IBL_ALBEDO_ARG b, v, s.direction, numbers, true) / p : vec3(0.0f);
+  bool sideKept = below ? s.direction.z < 0.0f : s.direction.z > 0.0f;
+  s.weight = p > 0.0f && sideKept
+                 ? evaluatePathBrdf(IBL_ALBEDO_ARG b, v, s.direction, numbers, true) / p
+                 : vec3(0.0f);
   return s;
 }
 

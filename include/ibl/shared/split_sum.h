@@ -15,6 +15,7 @@
 #include "ibl/shared/brdf.h"
 #include "ibl/shared/lang.h"
 #include "ibl/shared/material.h"
+#include "ibl/shared/transmission.h"
 
 IBL_BEGIN
 
@@ -57,6 +58,12 @@ struct SplitSumMaterial {
   // larger roughness (world, unit, orthogonal to the normal: anisotropyTangentOf in material.h).
   float anisotropy IBL_DEFAULT(0.0f);
   vec3 anisotropyTangent IBL_DEFAULT(vec3(1.0f, 0.0f, 0.0f));
+  // KHR_materials_transmission and _volume, their textures applied: the share transmitted (0:
+  // none), the thickness the light crosses (scene units; 0: a thin wall) and the volume's
+  // attenuation coefficient (volumeAttenuationCoefficient in transmission.h).
+  float transmission IBL_DEFAULT(0.0f);
+  float thickness IBL_DEFAULT(0.0f);
+  vec3 attenuation IBL_DEFAULT(vec3(0.0f));
 };
 
 // The roughness at which the material's specular lobe reads the isotropic tables (DFG, LTC):
@@ -194,8 +201,10 @@ IBL_FN vec3 splitSumRadiance(SplitSumMaterial m, float NoV, vec3 dfg, vec3 prefi
     float fd = s.disneyDiffuse ? dfg.z : 1.0f;
     vec3 occlusion = s.multiBounceOcclusion ? multiBounceVisibility(m.occlusion, diffuseColor)
                                             : vec3(m.occlusion);
-    // fresnel_mix: the share the specular layer leaves, meanDiffuseWeight (material.h).
-    color += diffuseColor * irradiance * (fd * meanDiffuseWeight(r, NoV)) * occlusion;
+    // fresnel_mix: the share the specular layer leaves, meanDiffuseWeight (material.h); the
+    // transmission takes its own (transmissionRadiance).
+    color += diffuseColor * irradiance *
+             (fd * meanDiffuseWeight(r, NoV) * (1.0f - m.transmission)) * occlusion;
   }
   return color;
 }
@@ -214,6 +223,23 @@ IBL_FN vec3 clearcoatRadiance(SplitSumMaterial m, float NcoV, vec2 dfg, vec3 pre
   if (s.specularOcclusion && m.occlusion < 1.0f)
     coat *= specularOcclusion(NcoV, m.occlusion, alphaFromRoughness(m.clearcoatRoughness));
   return coat;
+}
+
+// KHR_materials_transmission over the split sum, after the glTF Sample Viewer: `transmitted` is
+// the specular map read straight through the surface (-v) at transmissionRoughness (the Sample
+// Viewer reads the opaque frame behind instead: docs/materials.md). It passes what the specular
+// layer leaves of the lobe's albedo, (A + B) - specular max(F0 A + B) (dfg: the DFG table's A, B
+// at n.v; exact under uniform light for a thin wall, whose transmitted lobe is the reflection's
+// mirrored), tinted by the base color, and through a volume loses exp(-attenuation thickness)
+// (Beer-Lambert over the thickness the extension gives, as the Sample Viewer takes it).
+IBL_FN vec3 transmissionRadiance(SplitSumMaterial m, vec2 dfg, vec3 transmitted,
+                                 SplitSumSwitches s) {
+  if (s.terms == 1 || m.transmission <= 0.0f) return vec3(0.0f);
+  SpecularReflectance r = splitSumReflectance(m, s);
+  vec3 reflected = r.specularWeight * (r.dielectricF0 * dfg.x + vec3(dfg.y));
+  float passed = max(dfg.x + dfg.y - max(reflected.x, max(reflected.y, reflected.z)), 0.0f);
+  return m.baseColor * ((1.0f - m.metallic) * m.transmission * passed) *
+         volumeTransmittance(m.attenuation, m.thickness) * transmitted;
 }
 
 // KHR_materials_sheen over the split sum: the layer below is scaled by the sheen's albedo

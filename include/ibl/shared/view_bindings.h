@@ -74,6 +74,8 @@ IBL_MATERIAL_BINDING(ClearcoatNormal, 11)
 IBL_MATERIAL_BINDING(Iridescence, 12)  // KHR_materials_iridescence: its R
 IBL_MATERIAL_BINDING(IridescenceThickness, 13)  // its G
 IBL_MATERIAL_BINDING(Anisotropy, 14)  // KHR_materials_anisotropy: RG direction, B strength
+IBL_MATERIAL_BINDING(Transmission, 15)  // KHR_materials_transmission: its R
+IBL_MATERIAL_BINDING(Thickness, 16)     // KHR_materials_volume: its G
 #ifdef __cplusplus
 Count
 };
@@ -81,7 +83,7 @@ Count
 #undef IBL_MATERIAL_BINDING
 // After the textures: the material's factors and UV transforms, a storage buffer
 // (MaterialFactors in src/gpu/scene_upload.hpp).
-const int kMaterialFactors = 15;
+const int kMaterialFactors = 17;
 // clang-format on
 
 IBL_END

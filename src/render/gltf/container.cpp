@@ -127,6 +127,7 @@ bool implemented(std::string_view ext) {
          ext == "KHR_materials_ior" || ext == "KHR_materials_specular" ||
          ext == "KHR_materials_unlit" || ext == "KHR_materials_clearcoat" ||
          ext == "KHR_materials_iridescence" || ext == "KHR_materials_anisotropy" ||
+         ext == "KHR_materials_transmission" || ext == "KHR_materials_volume" ||
          ext == "EXT_texture_webp" || ext == "KHR_texture_transform" ||
          ext == "KHR_mesh_quantization" || ext == "EXT_meshopt_compression" ||
          ext == "KHR_lights_punctual";

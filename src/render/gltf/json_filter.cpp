@@ -238,7 +238,8 @@ bool readsExtension(const std::string& kind, const std::string& name) {
           (name == "KHR_materials_sheen" || name == "KHR_materials_emissive_strength" ||
            name == "KHR_materials_ior" || name == "KHR_materials_specular" ||
            name == "KHR_materials_unlit" || name == "KHR_materials_clearcoat" ||
-           name == "KHR_materials_iridescence" || name == "KHR_materials_anisotropy")) ||
+           name == "KHR_materials_iridescence" || name == "KHR_materials_anisotropy" ||
+           name == "KHR_materials_transmission" || name == "KHR_materials_volume")) ||
          (kind == "primitives" && name == "KHR_draco_mesh_compression") ||
          (kind == "textures" && name == "EXT_texture_webp") ||
          (textureInfo(kind) && name == "KHR_texture_transform") ||

@@ -1,7 +1,9 @@
 // Materials: glTF's metallic-roughness model, KHR_materials_emissive_strength,
-// KHR_materials_sheen, _ior, _specular, _clearcoat, _iridescence, _anisotropy and _unlit, their
+// KHR_materials_sheen, _ior, _specular, _clearcoat, _iridescence, _anisotropy, _transmission,
+// _volume and _unlit, their
 // texture slots pointing at the textures images.cpp read, each with its KHR_texture_transform.
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include <fmt/format.h>
@@ -69,6 +71,7 @@ Material unlit(Material m) {
   m.clearcoat = 0.0f;
   m.iridescence = 0.0f;
   m.anisotropy = 0.0f;
+  m.transmission = 0.0f;
   return m;
 }
 
@@ -129,7 +132,9 @@ std::vector<SlotRef> materialSlots(const tinygltf::Material& m, const std::strin
       {"KHR_materials_clearcoat",
        {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}},
       {"KHR_materials_iridescence", {"iridescenceTexture", "iridescenceThicknessTexture"}},
-      {"KHR_materials_anisotropy", {"anisotropyTexture"}}};
+      {"KHR_materials_anisotropy", {"anisotropyTexture"}},
+      {"KHR_materials_transmission", {"transmissionTexture"}},
+      {"KHR_materials_volume", {"thicknessTexture"}}};
   for (const auto& [extension, names] : extensionSlots) {
     const auto x = m.extensions.find(extension);
     if (x == m.extensions.end()) continue;
@@ -220,6 +225,23 @@ void readExtensionFactors(const tinygltf::Material& m, const std::string& path,
     mat.anisotropy = extensionNumber(*x, "anisotropyStrength", 0.0f, 0.0, 1.0, path, at);
     mat.anisotropyRotation = extensionNumber(*x, "anisotropyRotation", 0.0f, -1e6, 1e6, path, at);
   }
+  // KHR_materials_transmission: transmissionFactor in [0, 1] (default 0: none; its texture's R).
+  if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_transmission")) {
+    const std::string at = where + ": KHR_materials_transmission";
+    mat.transmission = extensionNumber(*x, "transmissionFactor", 0.0f, 0.0, 1.0, path, at);
+  }
+  // KHR_materials_volume: thicknessFactor >= 0 (default 0: a thin wall; its texture's G),
+  // attenuationDistance > 0 (default infinite), attenuationColor in [0, 1] (default 1). Its
+  // thickness is the mesh's, before the node's scale.
+  if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_volume")) {
+    const std::string at = where + ": KHR_materials_volume";
+    mat.thickness = extensionNumber(*x, "thicknessFactor", 0.0f, 0.0, 1e6, path, at);
+    mat.attenuationDistance =
+        extensionNumber(*x, "attenuationDistance", std::numeric_limits<float>::infinity(), 1e-30,
+                        std::numeric_limits<double>::infinity(), path, at);
+    mat.attenuationColor =
+        extensionVector<3>(*x, "attenuationColor", glm::vec3(1.0f), 0.0, 1.0, path, at);
+  }
 }
 
 std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& textures) {
@@ -273,6 +295,8 @@ std::vector<Material> GltfDocument::readMaterials(const std::vector<Texture>& te
     mat.iridescenceTexture = refs["iridescenceTexture"];
     mat.iridescenceThicknessTexture = refs["iridescenceThicknessTexture"];
     mat.anisotropyTexture = refs["anisotropyTexture"];
+    mat.transmissionTexture = refs["transmissionTexture"];
+    mat.thicknessTexture = refs["thicknessTexture"];
     if (materialExtension(m, "KHR_materials_unlit")) mat = unlit(mat);
     materials.push_back(mat);
   }

@@ -113,6 +113,10 @@ GltfSummary GltfDocument::describe() {
     info.iridescenceThicknessMaximum = factors.iridescenceThicknessMaximum;
     info.anisotropy = factors.anisotropy;
     info.anisotropyRotation = factors.anisotropyRotation;
+    info.transmission = factors.transmission;
+    info.thickness = factors.thickness;
+    info.attenuationDistance = factors.attenuationDistance;
+    info.attenuationColor = factors.attenuationColor;
     const shared::SpecularReflectance dielectric = shared::specularReflectance(
         glm::vec3(0.0f), 0.0f, factors.ior, factors.specular, factors.specularColor, false);
     info.dielectricF0 = dielectric.f0;

@@ -1,0 +1,198 @@
+// KHR_materials_transmission and KHR_materials_volume in both render modes, against closed
+// forms: a thin wall at normal incidence passes (1 - F0) of the light behind it, tinted; a
+// smooth absorbing slab seen at 45 degrees reflects and transmits what Stokes's sums of its
+// two faces give, with the light refracted by Snell's law and absorbed along its path by
+// Beer-Lambert's; a glass ball in a white furnace keeps every path it traps. And glTF files
+// carry both extensions and their textures into the renderer and `ibl info`, forbidden values
+// refused.
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include "ibl/render/camera.hpp"
+#include "ibl/render/gltf.hpp"
+#include "ibl/render/renderer.hpp"
+#include "support/gltf_writer.hpp"
+#include "support/helpers.hpp"
+#include "support/material_quads.hpp"
+#include "support/sphere_renders.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+// A square of side 2 * half in the plane z = height, facing +Z (`up`) or -Z.
+Mesh squareFacing(float height, float half, bool up, int material) {
+  Mesh m;
+  m.positions = {
+      {-half, -half, height}, {half, -half, height}, {half, half, height}, {-half, half, height}};
+  const glm::vec3 n(0.0f, 0.0f, up ? 1.0f : -1.0f);
+  m.normals = {n, n, n, n};
+  m.indices = up ? std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}
+                 : std::vector<std::uint32_t>{0, 2, 1, 0, 3, 2};
+  m.material = material;
+  return m;
+}
+
+// The mean of the render's pixels.
+glm::dvec3 meanColor(const Image& img) {
+  glm::dvec3 sum(0.0);
+  for (const glm::vec3& c : img.pixels) sum += glm::dvec3(c);
+  return sum / static_cast<double>(img.pixels.size());
+}
+
+// A white furnace: radiance 1 from every direction.
+const Baked& whiteFurnace() {
+  static const Baked b = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
+  return b;
+}
+
+// Schlick's Fresnel of F0 0.04 (ior 1.5) at cosine c.
+double schlick(double c) {
+  return 0.04 + 0.96 * std::pow(1.0 - c, 5.0);
+}
+
+}  // namespace
+
+// A smooth thin wall of base color c, seen at normal incidence in a white furnace: it reflects
+// F0 = 0.04 and passes (1 - F0) c of the light behind it, in the reference and in the split sum.
+TEST(TransmissionRender, ThinWallPassesWhatTheSpecularLeaves) {
+  const glm::vec3 tint(0.2f, 0.5f, 0.8f);
+  Material m;
+  m.baseColor = tint;
+  m.metallic = 0.0f;
+  m.roughness = 0.0f;
+  m.transmission = 1.0f;
+  Scene scene;
+  scene.materials = {m};
+  scene.meshes = {squareFacing(0.0f, 50.0f, true, 0)};
+  Camera c;
+  c.perspective = false;
+  c.orthoWidth = 0.5f;
+  c.from = glm::vec3(0.0f, 0.0f, 3.0f);
+  c.width = c.height = 4;
+  for (RenderMode mode : {RenderMode::Reference, RenderMode::SplitSum}) {
+    RenderOptions o;
+    o.mode = mode;
+    o.spp = mode == RenderMode::Reference ? 256 : 1;
+    o.bounces = 4;
+    const glm::dvec3 mean =
+        meanColor(renderScene(scene, c, whiteFurnace().result, whiteFurnace().options, o).color);
+    const glm::dvec3 expected = 0.04 + 0.96 * glm::dvec3(tint);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(mean[k], expected[k], 0.01)
+          << (mode == RenderMode::Reference ? "reference" : "split sum") << ", channel " << k;
+  }
+}
+
+// A smooth slab of index 1.5 and thickness d = 0.5 between two faces (normals outward), whose
+// medium keeps 0.5 of the light per unit length, seen at 45 degrees in a white furnace. Inside,
+// the light runs at theta_t (sin theta_t = sin 45 / 1.5) and keeps T = 0.5^(d / cos theta_t) per
+// crossing; each face reflects F = Schlick at 45 degrees (the same from inside: Fresnel's outside
+// angle). Stokes's sums: R = F + (1 - F)^2 F T^2 / (1 - F^2 T^2), T_slab = (1 - F)^2 T / (1 - F^2
+// T^2); the pixel sees R + T_slab. Snell's law inverted (an index of 1 / 1.5 going in) reflects
+// it all; the absorption along d instead of the path is 3 % off.
+TEST(TransmissionRender, AbsorbingSlabMatchesStokesSums) {
+  Material m;
+  m.baseColor = glm::vec3(1.0f);
+  m.metallic = 0.0f;
+  m.roughness = 0.0f;
+  m.transmission = 1.0f;
+  m.thickness = 0.5f;
+  m.attenuationDistance = 1.0f;
+  m.attenuationColor = glm::vec3(0.5f);
+  Scene scene;
+  scene.materials = {m};
+  scene.meshes = {squareFacing(0.0f, 40.0f, true, 0), squareFacing(-0.5f, 40.0f, false, 0)};
+  Camera c;
+  c.perspective = false;
+  c.orthoWidth = 0.2f;
+  c.from = glm::vec3(0.0f, -3.0f, 3.0f);
+  c.width = c.height = 4;
+  RenderOptions o;
+  o.mode = RenderMode::Reference;
+  o.spp = 1024;
+  o.bounces = 24;
+  const glm::dvec3 mean =
+      meanColor(renderScene(scene, c, whiteFurnace().result, whiteFurnace().options, o).color);
+  const double F = schlick(std::sqrt(0.5));
+  const double cosT = std::sqrt(1.0 - 0.5 / 2.25);
+  const double T = std::pow(0.5, 0.5 / cosT);
+  const double echo = 1.0 - F * F * T * T;
+  const double expected = F + (1 - F) * (1 - F) * F * T * T / echo + (1 - F) * (1 - F) * T / echo;
+  EXPECT_NEAR(mean.x, expected, 0.01 * expected) << "expected " << expected;
+}
+
+// A smooth glass ball (index 1.5, no absorption) in a white furnace: every path that enters
+// leaves again (the light it traps by total internal reflection included), so the ball
+// disappears, 1 everywhere within the noise; tinted white, thin or solid.
+TEST(TransmissionRender, GlassBallVanishesInAWhiteFurnace) {
+  for (float thickness : {0.0f, 2.0f}) {
+    Material m;
+    m.baseColor = glm::vec3(1.0f);
+    m.metallic = 0.0f;
+    m.roughness = 0.0f;
+    m.transmission = 1.0f;
+    m.thickness = thickness;
+    const Scene scene = makeSphereScene(m);
+    RenderOptions o;
+    o.mode = RenderMode::Reference;
+    o.spp = 64;
+    o.bounces = 32;
+    const RenderResult r =
+        renderScene(scene, sphereCamera(16), whiteFurnace().result, whiteFurnace().options, o);
+    const glm::dvec3 mean = meanColor(r.color);
+    EXPECT_NEAR(mean.x, 1.0, 0.01) << "thickness " << thickness;
+  }
+}
+
+// glTF carries both extensions: transmissionFactor times the texture's R, thicknessFactor times
+// the texture's G; the attenuation into the volume's coefficient; `ibl info` reports them;
+// forbidden values are refused with the file, the material and the value.
+TEST(TransmissionRender, GltfCarriesTransmissionAndVolume) {
+  TempDir dir;
+  QuadMaterial q;
+  q.metallicFactor = 0.0f;
+  q.transmissionFactor = 0.8f;
+  q.thicknessFactor = 0.25f;
+  q.attenuationDistance = 2.0f;
+  q.attenuationColor = glm::vec3(0.5f, 0.25f, 1.0f);
+  writeMaterialQuad(dir / "plain.gltf", q);
+  q.transmissionCodes = glm::ivec3(128, 64, 0);
+  writeMaterialQuad(dir / "textured.gltf", q);
+
+  const SurfacePoint plain = quadSurface(loadGltf((dir / "plain.gltf").string()));
+  EXPECT_NEAR(plain.transmission, 0.8f, 1e-6f);
+  EXPECT_TRUE(plain.volume);
+  EXPECT_NEAR(plain.thickness, 0.25f, 1e-6f);
+  EXPECT_NEAR(plain.attenuation.x, std::log(2.0f) / 2.0f, 1e-5f);
+  EXPECT_NEAR(plain.attenuation.y, std::log(4.0f) / 2.0f, 1e-5f);
+  EXPECT_NEAR(plain.attenuation.z, 0.0f, 1e-6f);
+  EXPECT_TRUE(plain.frontFace);
+  const SurfacePoint textured = quadSurface(loadGltf((dir / "textured.gltf").string()));
+  EXPECT_NEAR(textured.transmission, 0.8f * 128.0f / 255.0f, 1e-5f);
+  EXPECT_NEAR(textured.thickness, 0.25f * 64.0f / 255.0f, 1e-5f);
+
+  const CliRun info = runIbl("info " + quote(dir / "textured.gltf") + " --json");
+  ASSERT_EQ(info.status, 0) << info.output;
+  const nlohmann::json j = nlohmann::json::parse(info.output);
+  const nlohmann::json& mj = j["materials"][0];
+  EXPECT_NEAR(mj["transmission"].get<double>(), 0.8, 1e-6);
+  EXPECT_NEAR(mj["thickness"].get<double>(), 0.25, 1e-6);
+  EXPECT_NEAR(mj["attenuation_distance"].get<double>(), 2.0, 1e-6);
+  EXPECT_NEAR(mj["attenuation_color"][1].get<double>(), 0.25, 1e-6);
+  EXPECT_TRUE(mj["unsupported_extensions"].empty()) << mj.dump();
+
+  expectExtensionRefused(
+      dir / "textured.gltf", "KHR_materials_transmission",
+      {{R"({"transmissionFactor": 1.5})", "KHR_materials_transmission transmissionFactor: 1.5"},
+       {R"({"transmissionFactor": "all"})", "transmissionFactor: not a number"}});
+  expectExtensionRefused(dir / "textured.gltf", "KHR_materials_volume",
+                         {{R"({"thicknessFactor": -1})", "thicknessFactor: -1"},
+                          {R"({"attenuationDistance": 0})", "attenuationDistance: 0"},
+                          {R"({"attenuationColor": [1, 2, 1]})", "attenuationColor[1]: 2"}});
+}

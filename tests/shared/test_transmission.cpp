@@ -1,0 +1,248 @@
+// KHR_materials_transmission's and _volume's math (ibl/shared/transmission.h) and the reference's
+// transmission lobe (ibl/shared/path_brdf.h), against what owes nothing to them: Snell's law by
+// sines, the microfacet that a refraction came through, the generalized reciprocity of a
+// transmission BTDF (Veach 1997, eq. 5.14: f(v, l) / eta_l^2 = f(l, v) / eta_v^2), a density
+// integrated by a midpoint rule against the share of samples that land, a smooth interface
+// that keeps all it receives (F + (1 - F) = 1, total internal reflection past the critical
+// angle), and Beer-Lambert's law from its definition.
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "ibl/shared/path_brdf.h"
+#include "ibl/shared/transmission.h"
+
+using namespace ibl;
+
+namespace {
+
+// A unit vector from spherical angles (theta from +Z).
+glm::vec3 direction(float theta, float phi) {
+  return glm::vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                   std::cos(theta));
+}
+
+// The sine of the angle between unit vectors a and b.
+float sineBetween(glm::vec3 a, glm::vec3 b) {
+  return glm::length(glm::cross(a, b));
+}
+
+const std::vector<float> kNoTable(static_cast<std::size_t>(shared::kAlbedoTableNodes) *
+                                      shared::kAlbedoTableNodes,
+                                  0.0f);
+const shared::AlbedoTables kNoTables{kNoTable.data(), kNoTable.data()};
+
+// A clear dielectric of index 1.5 (F0 = 0.04), transmission 1, white, of perceptual roughness r,
+// seen from v, whose far side has relative index eta (0: a thin wall); single scattering.
+shared::PathBrdf glass(float r, float eta, glm::vec3 v) {
+  shared::PathShading o;
+  o.diffuseModel = 1;
+  o.multipleScattering = shared::kMultipleScatteringOff;
+  o.specularMicroOcclusion = false;
+  o.sheenVisibility = 0;
+  const shared::SpecularReflectance f =
+      shared::specularReflectance(glm::vec3(1.0f), 0.0f, 1.5f, 1.0f, glm::vec3(1.0f), false);
+  shared::PathBrdf b = shared::pathBrdfOf(kNoTables, glm::vec3(1.0f), 0.0f, r, f, glm::vec3(0.0f),
+                                          0.0f, v, shared::kLobesAll, o);
+  return shared::withTransmission(kNoTables, b, 1.0f, glm::vec3(1.0f), 0.0f, eta, v);
+}
+
+// The mean weight of n samples of b's lobes from v.
+glm::dvec3 meanSampleWeight(const shared::PathBrdf& b, glm::vec3 v, int n) {
+  glm::dvec3 sum(0.0);
+  const std::uint32_t key = shared::pathSamplerKey(7u, 0u, 3u, 0u);
+  for (int i = 0; i < n; ++i) {
+    shared::PathSampler numbers = shared::pathSamplerAt(key, static_cast<std::uint32_t>(i));
+    sum += glm::dvec3(shared::samplePathBrdf(kNoTables, b, v, numbers).weight);
+  }
+  return sum / static_cast<double>(n);
+}
+
+}  // namespace
+
+// v refracted through h: a unit vector on the far side of the microfacet, in the plane of v and
+// h, with eta sin(theta_t) = sin(theta_v); none past the critical angle (eta < 1).
+TEST(Transmission, RefractionObeysSnellsLaw) {
+  for (float eta : {1.5f, 1.33f, 1.0f / 1.5f})
+    for (float theta : {0.0f, 0.3f, 0.7f, 1.2f, 1.5f}) {
+      const glm::vec3 h = glm::normalize(glm::vec3(0.2f, -0.1f, 1.0f));
+      const glm::mat3 frame = shared::tangentFrame(h);
+      const glm::vec3 v = frame * direction(theta, 0.8f);
+      const glm::vec3 l = shared::refractThrough(v, h, eta);
+      if (std::sin(theta) > eta) {
+        EXPECT_EQ(l, glm::vec3(0.0f)) << "total internal reflection, eta " << eta;
+        continue;
+      }
+      ASSERT_NEAR(glm::length(l), 1.0f, 1e-5f);
+      EXPECT_LT(glm::dot(l, h), 0.0f);
+      EXPECT_NEAR(glm::dot(glm::cross(v, h), l), 0.0f, 1e-5f) << "in the plane of v and h";
+      EXPECT_NEAR(eta * sineBetween(l, -h), sineBetween(v, h), 1e-5f)
+          << "eta " << eta << ", theta " << theta;
+    }
+}
+
+// The microfacet normal refractionHalfVector finds is the one the direction came through.
+TEST(Transmission, HalfVectorIsTheRefractingMicrofacet) {
+  for (float eta : {1.5f, 1.0f / 1.33f})
+    for (float tilt : {0.0f, 0.4f, 0.9f}) {
+      const glm::vec3 h = direction(tilt, 2.0f);
+      const glm::vec3 v = glm::normalize(glm::vec3(0.3f, 0.1f, 1.0f));
+      const glm::vec3 l = shared::refractThrough(v, h, eta);
+      if (l == glm::vec3(0.0f)) continue;
+      EXPECT_LT(glm::distance(shared::refractionHalfVector(v, l, eta), h), 1e-5f)
+          << "eta " << eta << ", tilt " << tilt;
+    }
+}
+
+// From inside (eta < 1), Fresnel's cosine is the refracted angle's outside; 0 (all reflected)
+// past the critical angle; from outside, the angle itself.
+TEST(Transmission, FresnelTakesTheOutsideAngle) {
+  const float eta = 1.0f / 1.5f;
+  for (float theta : {0.1f, 0.5f, 0.7f, 0.8f, 1.2f}) {
+    const float c = std::cos(theta), s = std::sin(theta);
+    const float expected = s * 1.5f >= 1.0f ? 0.0f : std::sqrt(1.0f - s * s * 2.25f);
+    EXPECT_NEAR(shared::fresnelCosine(c, eta), expected, 1e-5f) << theta;
+    EXPECT_EQ(shared::fresnelCosine(c, 1.5f), c);
+    EXPECT_EQ(shared::fresnelCosine(c, 0.0f), c);
+  }
+}
+
+// Veach 1997, eq. 5.14, for the form that KHR_materials_volume writes: f(v, l; eta) = eta^2
+// f(l, v; 1 / eta), each seen from its own side (the frame turned over: (x, -y, -z)).
+TEST(Transmission, RefractionIsReciprocal) {
+  const glm::vec2 alpha(0.3f, 0.12f);
+  const auto turned = [](glm::vec3 w) { return glm::vec3(w.x, -w.y, -w.z); };
+  for (float eta : {1.5f, 1.0f / 1.33f}) {
+    const glm::vec3 v = direction(0.5f, 0.3f), l = direction(2.6f, 3.0f);
+    const glm::vec3 h = shared::refractionHalfVector(v, l, eta);
+    const float forward = shared::ggxRefractionValue(v, l, h, eta, alpha) / -l.z;
+    const glm::vec3 vb = turned(l), lb = turned(v);
+    const glm::vec3 hb = shared::refractionHalfVector(vb, lb, 1.0f / eta);
+    const float backward = shared::ggxRefractionValue(vb, lb, hb, 1.0f / eta, alpha) / -lb.z;
+    ASSERT_GT(forward, 0.0f);
+    EXPECT_NEAR(forward / (eta * eta * backward), 1.0f, 1e-4f) << "eta " << eta;
+  }
+}
+
+// The density of a refracted visible normal, integrated over the lower hemisphere by a midpoint
+// rule, is the share of sampled directions that land there (those that leave above the horizon
+// or reflect totally are lost), counted from the samples.
+TEST(Transmission, RefractionDensityIntegratesToTheShareThatLands) {
+  const glm::vec2 alpha(0.5f, 0.2f);
+  for (float eta : {1.5f, 1.0f / 1.5f}) {
+    const glm::vec3 v = direction(1.1f, 0.4f);
+    constexpr int kCells = 768;
+    double integral = 0.0;
+    for (int i = 0; i < kCells; ++i)
+      for (int j = 0; j < kCells; ++j) {
+        const double c = -(i + 0.5) / kCells, phi = 2.0 * std::numbers::pi * (j + 0.5) / kCells;
+        const double s = std::sqrt(1.0 - c * c);
+        const glm::vec3 l(static_cast<float>(s * std::cos(phi)),
+                          static_cast<float>(s * std::sin(phi)), static_cast<float>(c));
+        const glm::vec3 h = shared::refractionHalfVector(v, l, eta);
+        integral += shared::ggxRefractionPdf(v, l, h, eta, alpha) *
+                    (2.0 * std::numbers::pi / (double(kCells) * kCells));
+      }
+    constexpr int kSamples = 1 << 16;
+    int landed = 0;
+    for (int k = 0; k < kSamples; ++k) {
+      const glm::vec3 h =
+          shared::sampleGgxVisibleNormalAnisotropic(v, shared::hammersley(k, kSamples), alpha);
+      const glm::vec3 l = shared::refractThrough(v, h, eta);
+      if (l.z < 0.0f) ++landed;
+    }
+    EXPECT_NEAR(integral, double(landed) / kSamples, 5e-3) << "eta " << eta;
+    EXPECT_GT(landed, kSamples / 4)
+        << "most of the directions land (past the critical angle, some)";
+  }
+}
+
+// A smooth interface (alpha 1e-3) keeps all it receives: the Fresnel share reflects, the rest
+// goes through, F + (1 - F) = 1 at every angle and from either side, all of it reflected past
+// the critical angle inside; a thin wall as well. The same clear glass, rough, loses only what
+// single scattering loses (under 10 % at roughness 0.3) and creates none.
+TEST(Transmission, SmoothInterfaceKeepsAllItReceives) {
+  for (float eta : {1.5f, 1.0f / 1.5f, 0.0f})
+    for (float theta : {0.05f, 0.6f, 1.0f, 1.35f}) {
+      const glm::vec3 v = direction(theta, 0.7f);
+      const glm::dvec3 mean = meanSampleWeight(glass(0.0f, eta, v), v, 4096);
+      EXPECT_NEAR(mean.x, 1.0, 2e-3) << "eta " << eta << ", theta " << theta;
+      const glm::dvec3 rough = meanSampleWeight(glass(0.3f, eta, v), v, 4096);
+      EXPECT_LT(rough.x, 1.0 + 2e-3) << "eta " << eta << ", theta " << theta;
+      EXPECT_GT(rough.x, 0.9) << "eta " << eta << ", theta " << theta;
+    }
+  // Past the critical angle inside, none goes through: every sample that is kept reflects.
+  const glm::vec3 v = direction(1.0f, 0.0f);  // sin 1.0 = 0.84 > 1 / 1.5
+  const shared::PathBrdf inside = glass(0.0f, 1.0f / 1.5f, v);
+  const std::uint32_t key = shared::pathSamplerKey(3u, 0u, 3u, 0u);
+  for (std::uint32_t i = 0; i < 256; ++i) {
+    shared::PathSampler numbers = shared::pathSamplerAt(key, i);
+    const shared::PathBrdfSample s = shared::samplePathBrdf(kNoTables, inside, v, numbers);
+    if (s.weight != glm::vec3(0.0f)) {
+      EXPECT_GT(s.direction.z, 0.0f) << i;
+    }
+  }
+}
+
+// Sampling draws transmitted directions with the density pathBrdfPdf gives them: the mean
+// weight of the samples that go through equals the transmission integrated by a midpoint rule
+// over the lower hemisphere, for a volume and a thin wall.
+TEST(Transmission, TransmittedSamplesWeighTheIntegral) {
+  for (float eta : {1.5f, 0.0f}) {
+    const glm::vec3 v = direction(0.6f, 1.0f);
+    const shared::PathBrdf b = glass(0.5f, eta, v);
+    constexpr int kCells = 768;
+    double integral = 0.0;
+    for (int i = 0; i < kCells; ++i)
+      for (int j = 0; j < kCells; ++j) {
+        const double c = -(i + 0.5) / kCells, phi = 2.0 * std::numbers::pi * (j + 0.5) / kCells;
+        const double s = std::sqrt(1.0 - c * c);
+        const glm::vec3 l(static_cast<float>(s * std::cos(phi)),
+                          static_cast<float>(s * std::sin(phi)), static_cast<float>(c));
+        integral += shared::pathTransmission(b, v, l).x *
+                    (2.0 * std::numbers::pi / (double(kCells) * kCells));
+      }
+    constexpr int kSamples = 1 << 15;
+    double below = 0.0;
+    const std::uint32_t key = shared::pathSamplerKey(11u, 0u, 3u, 0u);
+    for (int i = 0; i < kSamples; ++i) {
+      shared::PathSampler numbers = shared::pathSamplerAt(key, static_cast<std::uint32_t>(i));
+      const shared::PathBrdfSample s = shared::samplePathBrdf(kNoTables, b, v, numbers);
+      if (s.direction.z < 0.0f) below += s.weight.x;
+    }
+    EXPECT_NEAR(below / kSamples, integral, 0.01 * integral) << "eta " << eta;
+    EXPECT_GT(integral, 0.5);
+  }
+}
+
+// Beer-Lambert from KHR_materials_volume's definition: after attenuationDistance the light keeps
+// attenuationColor of itself, after twice that its square; nothing is lost without a distance,
+// and an infinite path through a medium keeps nothing.
+TEST(Transmission, BeerLambertKeepsTheColorAfterItsDistance) {
+  const glm::vec3 color(0.5f, 0.8f, 0.1f);
+  const glm::vec3 sigma = shared::volumeAttenuationCoefficient(color, 2.0f);
+  EXPECT_LT(glm::distance(shared::volumeTransmittance(sigma, 2.0f), color), 1e-6f);
+  EXPECT_LT(glm::distance(shared::volumeTransmittance(sigma, 4.0f), color * color), 1e-6f);
+  const float infinite = std::numeric_limits<float>::infinity();
+  EXPECT_EQ(shared::volumeAttenuationCoefficient(color, infinite), glm::vec3(0.0f));
+  EXPECT_EQ(shared::volumeTransmittance(glm::vec3(0.0f), infinite), glm::vec3(1.0f));
+  EXPECT_EQ(shared::volumeTransmittance(sigma, infinite), glm::vec3(0.0f));
+  EXPECT_EQ(shared::volumeTransmittance(
+                shared::volumeAttenuationCoefficient(glm::vec3(0.0f, 1.0f, 1.0f), 1.0f), 1e-3f)
+                .x,
+            0.0f)
+      << "a channel of color 0 absorbs all";
+}
+
+// The real-time transmission's blur: the roughness scaled by clamp(2 ior - 2, 0, 1), none at an
+// index of 1, all from 1.5 up.
+TEST(Transmission, RealTimeBlurGrowsWithTheIndex) {
+  EXPECT_EQ(shared::transmissionRoughness(0.6f, 1.0f), 0.0f);
+  EXPECT_NEAR(shared::transmissionRoughness(0.6f, 1.25f), 0.3f, 1e-6f);
+  EXPECT_EQ(shared::transmissionRoughness(0.6f, 1.5f), 0.6f);
+  EXPECT_EQ(shared::transmissionRoughness(0.6f, 2.4f), 0.6f);
+}
