@@ -159,9 +159,8 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
       ->capture_default_str();
   cmd->add_option("--attenuation-distance", o.attenuationDistance,
                   "Built-in scenes: the distance (scene units) after which the light inside a "
-                  "volume keeps --attenuation-color of itself (inf: no absorption)")
-      ->check(numberIn(1e-4f, 1e6f))
-      ->capture_default_str();
+                  "volume keeps --attenuation-color of itself (default: none absorbed)")
+      ->check(positiveNumber());
   cmd->add_option("--attenuation-color", o.attenuationColor,
                   "Built-in scenes: the linear color R,G,B (0 to 1) left after "
                   "--attenuation-distance inside a volume")

@@ -181,7 +181,9 @@ void BM_ViewerFrameWithClearcoat(benchmark::State& state) {
 // A frame (1 sample per pixel) of the sphere grid with a material extension on every sphere: 0
 // none, 1 a thin film (KHR_materials_iridescence, 420 nm: its Fresnel in the split sum, in the
 // diffuse's share and at each light), 2 anisotropy (KHR_materials_anisotropy, strength 0.8: the
-// bent reflection, anisotropic GGX at each light, the tangent frame).
+// bent reflection, anisotropic GGX at each light, the tangent frame), 3 transmission
+// (KHR_materials_transmission through a volume, KHR_materials_volume: a third lookup of the maps,
+// the absorption).
 void BM_ViewerFrameWithMaterialExtension(benchmark::State& state) {
   ibl::Material base;
   base.baseColor = glm::vec3(1.0f);
@@ -193,6 +195,12 @@ void BM_ViewerFrameWithMaterialExtension(benchmark::State& state) {
   } else if (state.range(0) == 2) {
     base.anisotropy = 0.8f;
     label = ", anisotropy";
+  } else if (state.range(0) == 3) {
+    base.transmission = 1.0f;
+    base.thickness = 2.0f;
+    base.attenuationDistance = 2.0f;
+    base.attenuationColor = glm::vec3(0.6f, 0.9f, 0.7f);
+    label = ", transmission";
   }
   viewerFrames(state, ibl::makeSphereGrid(base), frameShading(1), label);
 }
@@ -381,7 +389,7 @@ BENCHMARK(BM_ViewerFrameWithClearcoat)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithMaterialExtension)
-    ->DenseRange(0, 2)
+    ->DenseRange(0, 3)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_ViewerFrameWithLights)

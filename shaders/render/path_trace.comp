@@ -248,8 +248,18 @@ bool unoccluded(vec3 origin, vec3 w, float distance) {
 
 // The relative index below the surface (transmissionEta in src/render/path_tracer.cpp).
 float transmissionEta(Surface p) {
-  if (!p.volume || p.ior <= 0.0) return 0.0;
-  return p.frontFace ? p.ior : 1.0 / p.ior;
+  return p.volume ? volumeRelativeIndex(p.ior, p.frontFace) : 0.0;
+}
+
+// tracePath's rules for a surface that transmits (src/render/path_tracer.cpp): lit and left on
+// both sides, a direction below it (local l.z < 0) from below, into the volume it enters (out of
+// the one it leaves; a thin wall keeps the medium).
+bool leavesToward(bool twoSided, vec3 l) {
+  return l.z > 0.0 || (twoSided && l.z < 0.0);
+}
+vec3 mediumToward(Surface p, vec3 medium, vec3 l) {
+  if (!(l.z < 0.0 && p.volume)) return medium;
+  return p.frontFace ? p.attenuation : vec3(0.0);
 }
 
 // The share of light that crosses `distance` of the medium sigma (1 without one).
@@ -281,6 +291,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       brdf = withTransmission(brdf, p.transmission, p.baseColor, p.metallic, transmissionEta(p), v);
     vec3 offset = p.normal * 1e-4 * max(1.0, length(position));
     vec3 origin = position + offset;
+    bool twoSided = pathTransmissionLobe(brdf);
     // Next-event estimation: one sample of each light, of the emitters and of the environment.
     for (uint i = 0u; i < params.counts.x; ++i) {
       ShadingLight light = lightAt(i);
@@ -305,18 +316,19 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       }
       if (!(delta || pdf > 0.0) || radiance == vec3(0.0)) continue;
       vec3 l = toLocal * direction;
-      if (l.z <= 0.0 || !unoccluded(origin, direction, distance)) continue;
+      vec3 from = l.z < 0.0 ? position - offset : origin;
+      if (!leavesToward(twoSided, l) || !unoccluded(from, direction, distance)) continue;
       float weight = delta ? 1.0 : powerHeuristic(pdf, pathBrdfPdf(brdf, v, l)) / pdf;
       sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * radiance * weight *
-             crossing(medium, distance);
+             crossing(mediumToward(p, medium, l), distance);
     }
     if (params.counts.z > 0u) {
       float pick = pathUniform(numbers);
       vec2 point = pathUniform2(numbers);
       EmitterSample es = sampleEmitters(origin, vec3(pick, point));
       vec3 l = toLocal * es.direction;
-      if (es.pdf > 0.0 && es.radiance != vec3(0.0) && l.z > 0.0 &&
-          unoccluded(origin, es.direction, es.distance)) {
+      if (es.pdf > 0.0 && es.radiance != vec3(0.0) && leavesToward(twoSided, l) &&
+          unoccluded(l.z < 0.0 ? position - offset : origin, es.direction, es.distance)) {
         float ld;
         vec3 lr;
         if (!(nearestLight(origin, es.direction, ld, lr) >= 0 && ld < es.distance)) {
@@ -324,7 +336,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
                              ? powerHeuristic(es.pdf, pathBrdfPdf(brdf, v, l)) / es.pdf
                              : 1.0 / es.pdf;
           sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * es.radiance * weight *
-                 crossing(medium, es.distance);
+                 crossing(mediumToward(p, medium, l), es.distance);
         }
       }
     }
@@ -334,10 +346,11 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       float pe = environmentPdf(w);
       float ld;
       vec3 lr;
-      if (l.z > 0.0 && pe > 0.0 && nearestLight(origin, w, ld, lr) < 0 &&
-          unoccluded(origin, w, kInfinity))
+      if (leavesToward(twoSided, l) && pe > 0.0 && nearestLight(origin, w, ld, lr) < 0 &&
+          unoccluded(l.z < 0.0 ? position - offset : origin, w, kInfinity))
         sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * environmentRadiance(w) *
-               (powerHeuristic(pe, pathBrdfPdf(brdf, v, l)) / pe) * crossing(medium, kInfinity);
+               (powerHeuristic(pe, pathBrdfPdf(brdf, v, l)) / pe) *
+               crossing(mediumToward(p, medium, l), kInfinity);
     }
     // The BRDF's sample: it ends on a light or the environment, or goes on from what it meets.
     PathBrdfSample bs = samplePathBrdf(brdf, v, numbers);
@@ -346,12 +359,8 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     if (!(pb > 0.0) || bs.weight == vec3(0.0)) break;
     vec3 w = frame * l;
     vec3 f = bs.weight * pb;
-    // A transmitted sample (src/render/path_tracer.cpp): from below the surface, into or out of
-    // the volume, all the weight where it meets a light.
-    bool transmitted = l.z < 0.0;
-    if (transmitted && p.volume) medium = p.frontFace ? p.attenuation : vec3(0.0);
-    float misBelow = transmitted ? 0.0 : 1.0;
-    origin = transmitted ? position - offset : origin;
+    medium = mediumToward(p, medium, l);
+    if (l.z < 0.0) origin = position - offset;
     SceneHit hit = flag(kFlagVisibility) ? intersectScene(origin, w, kInfinity, false)
                                          : SceneHit(false, kInfinity, false, 0u, 0u, 0.0, 0.0);
     float ld;
@@ -359,7 +368,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     int seen = nearestLight(origin, w, ld, lr);
     if (seen >= 0 && (!hit.found || ld < hit.t)) {
       ShadingLight light = lightAt(uint(seen));
-      float pl = misBelow * areaLightPdf(light, origin, w);
+      float pl = areaLightPdf(light, origin, w);
       sum += throughput * f * lr * lightRangeWindow(light, position) *
              (powerHeuristic(pb, pl) / pb) * crossing(medium, ld);
       break;
@@ -367,7 +376,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     if (!hit.found) {
       if (flag(kFlagEnvironmentLight))
         sum += throughput * f * environmentRadiance(w) *
-               (powerHeuristic(pb, misBelow * environmentPdf(w)) / pb) * crossing(medium, kInfinity);
+               (powerHeuristic(pb, environmentPdf(w)) / pb) * crossing(medium, kInfinity);
       break;
     }
     throughput *= crossing(medium, hit.t);
@@ -378,7 +387,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       haveNext = true;
       float pe = hit.sphere || params.counts.z == 0u
                      ? 0.0
-                     : misBelow * emitterPdf(w, hit.t, hit.mesh, hit.primitive);
+                     : emitterPdf(w, hit.t, hit.mesh, hit.primitive);
       sum += throughput * f * next.emissive * (powerHeuristic(pb, pe) / pb);
     }
     if (depth >= params.path.x) break;

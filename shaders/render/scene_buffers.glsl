@@ -236,7 +236,12 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     vec3 w = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
     n = normalize(vertexAt(tri.x, 1).xyz * w.x + vertexAt(tri.y, 1).xyz * w.y +
                   vertexAt(tri.z, 1).xyz * w.z);
-    p.frontFace = dot(n, dir) <= 0.0;  // before the normal map
+    // The side the ray meets: the triangle's plane, turned to its normals' side (surfaceAt's).
+    vec3 a = vertexAt(tri.x, 0).xyz;
+    vec3 face = cross(vertexAt(tri.y, 0).xyz - a, vertexAt(tri.z, 0).xyz - a);
+    p.frontFace = dot(face, dir) * dot(face, vertexAt(tri.x, 1).xyz + vertexAt(tri.y, 1).xyz +
+                                                 vertexAt(tri.z, 1).xyz) <=
+                  0.0;
     vec4 m0 = materialAt(material, 0), m1 = materialAt(material, 1), m2 = materialAt(material, 2),
          m3 = materialAt(material, 3), m4 = materialAt(material, 4);
     m5 = materialAt(material, 5);

@@ -74,8 +74,7 @@ shared::SpecularReflectance reflectanceOf(const SurfacePoint& p, bool microOcclu
 // (shared::withTransmission's eta): the material's ior entering its volume, its inverse leaving
 // it; 0 for a thin wall (no volume, or KHR_materials_ior's infinite index 0).
 float transmissionEta(const SurfacePoint& p) {
-  if (!p.volume || p.ior <= 0.0f) return 0.0f;
-  return p.frontFace ? p.ior : 1.0f / p.ior;
+  return p.volume ? shared::volumeRelativeIndex(p.ior, p.frontFace) : 0.0f;
 }
 
 // The material at one point (ibl/shared/path_brdf.h, which the GPU reference evaluates too).
@@ -217,10 +216,20 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
         Brdf::of(p, v, toLocal * p.clearcoatNormal, toLocal * p.anisotropyTangent, only, o);
     const glm::vec3 offset = p.normal * 1e-4f * std::max(1.0f, glm::length(position));
     const glm::vec3 origin = position + offset;
-    const auto unoccluded = [&](glm::vec3 w, float distance) {
+    // A surface that transmits is lit and left on both sides: a direction below it (local l.z <
+    // 0) leaves from below, into the volume it enters (out of the one it leaves; a thin wall
+    // keeps the medium).
+    const bool twoSided = shared::pathTransmissionLobe(brdf.b);
+    const auto leaves = [&](glm::vec3 l) { return l.z > 0.0f || (twoSided && l.z < 0.0f); };
+    const auto originToward = [&](glm::vec3 l) { return l.z < 0.0f ? position - offset : origin; };
+    const auto mediumToward = [&](glm::vec3 l) {
+      if (!(l.z < 0.0f && p.volume)) return medium;
+      return p.frontFace ? p.attenuation : glm::vec3(0.0f);
+    };
+    const auto unoccluded = [&](glm::vec3 l, glm::vec3 w, float distance) {
       // Stop short of an area light's surface: the lights are not in the ray tracer.
       return !visibility ||
-             !s.tracer.occluded(origin, w,
+             !s.tracer.occluded(originToward(l), w,
                                 std::isfinite(distance) ? distance * (1.0f - 1e-4f) : INFINITY);
     };
     // Next-event estimation: one sample of each light (punctual lights exactly) and one of the
@@ -229,10 +238,10 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
       const LightSample ls = sampleLight(light, origin, sampler.uniform2());
       if (!(ls.delta || ls.pdf > 0.0f) || ls.radiance == glm::vec3(0.0f)) continue;
       const glm::vec3 l = toLocal * ls.direction;
-      if (l.z <= 0.0f || !unoccluded(ls.direction, ls.distance)) continue;
+      if (!leaves(l) || !unoccluded(l, ls.direction, ls.distance)) continue;
       const float weight = ls.delta ? 1.0f : powerHeuristic(ls.pdf, brdf.pdf(v, l)) / ls.pdf;
       sum += throughput * brdf.evaluate(v, l, sampler) * ls.radiance * weight *
-             crossing(medium, ls.distance);
+             crossing(mediumToward(l), ls.distance);
     }
     // One point on the emissive triangles (by power); without visibility the BRDF's samples are
     // not traced, so this sample takes all the weight. An analytic light in front hides it, as it
@@ -247,22 +256,22 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
         const NearestLight nl = nearestLight(lights, origin, es.direction);
         return nl.index >= 0 && nl.hit.distance < es.distance;
       };
-      if (es.pdf > 0.0f && es.radiance != glm::vec3(0.0f) && l.z > 0.0f &&
-          unoccluded(es.direction, es.distance) && !lightInFront()) {
+      if (es.pdf > 0.0f && es.radiance != glm::vec3(0.0f) && leaves(l) &&
+          unoccluded(l, es.direction, es.distance) && !lightInFront()) {
         const float weight =
             visibility ? powerHeuristic(es.pdf, brdf.pdf(v, l)) / es.pdf : 1.0f / es.pdf;
         sum += throughput * brdf.evaluate(v, l, sampler) * es.radiance * weight *
-               crossing(medium, es.distance);
+               crossing(mediumToward(l), es.distance);
       }
     }
     if (o.environmentLight) {
       const glm::vec3 w = s.environment.sample(sampler.uniform2());
       const glm::vec3 l = toLocal * w;
       const float pe = s.environment.pdf(w);
-      if (l.z > 0.0f && pe > 0.0f && nearestLight(lights, origin, w).index < 0 &&
-          unoccluded(w, INFINITY))
+      if (leaves(l) && pe > 0.0f && nearestLight(lights, origin, w).index < 0 &&
+          unoccluded(l, w, INFINITY))
         sum += throughput * brdf.evaluate(v, l, sampler) * s.environment.radiance(w) *
-               (powerHeuristic(pe, brdf.pdf(v, l)) / pe) * crossing(medium, INFINITY);
+               (powerHeuristic(pe, brdf.pdf(v, l)) / pe) * crossing(mediumToward(l), INFINITY);
     }
     // The BRDF's sample: it ends on a light or the environment (weighed against their
     // sampling), or goes on from the surface it meets.
@@ -274,18 +283,13 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     // f such that f / pb is the sample's weight: f cos / p of the sampled lobe (with the
     // microfacet walk an estimate of it, pb the MIS weights' approximate pdf; Brdf::sample).
     const glm::vec3 f = bs.weight * pb;
-    // A transmitted sample leaves from below the surface, into the volume it enters (or out of
-    // the one it leaves; a thin wall keeps the medium). No light is sampled below the surface, so
-    // such a sample takes all the weight where it meets one.
-    const bool transmitted = l.z < 0.0f;
-    if (transmitted && p.volume) medium = p.frontFace ? p.attenuation : glm::vec3(0.0f);
-    const float misBelow = transmitted ? 0.0f : 1.0f;
-    const Ray ray{transmitted ? position - offset : origin, w};
+    medium = mediumToward(l);
+    const Ray ray{originToward(l), w};
     const RayTracer::Hit hit = visibility ? s.tracer.intersect(ray) : RayTracer::Hit{};
     const NearestLight seen = nearestLight(lights, ray.origin, w);
     if (seen.index >= 0 && (!hit.found || seen.hit.distance < hit.t)) {
       const Light& light = lights[static_cast<std::size_t>(seen.index)];
-      const float pl = misBelow * lightPdf(light, ray.origin, w);
+      const float pl = lightPdf(light, ray.origin, w);
       sum += throughput * f * seen.hit.radiance * lightWindow(light, position) *
              (powerHeuristic(pb, pl) / pb) * crossing(medium, seen.hit.distance);
       break;
@@ -293,8 +297,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     if (!hit.found) {
       if (o.environmentLight)
         sum += throughput * f * s.environment.radiance(w) *
-               (powerHeuristic(pb, misBelow * s.environment.pdf(w)) / pb) *
-               crossing(medium, INFINITY);
+               (powerHeuristic(pb, s.environment.pdf(w)) / pb) * crossing(medium, INFINITY);
       break;
     }
     throughput *= crossing(medium, hit.t);
@@ -305,8 +308,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     std::optional<SurfacePoint> next;
     if (met.emissive != glm::vec3(0.0f)) {
       next = surfaceAt(s.scene, s.tracer, hit, ray);
-      const float pe =
-          sphere ? 0.0f : misBelow * s.emitters.pdf(w, hit.t, hit.geometry, hit.primitive);
+      const float pe = sphere ? 0.0f : s.emitters.pdf(w, hit.t, hit.geometry, hit.primitive);
       sum += throughput * f * next->emissive * (powerHeuristic(pb, pe) / pb);
     }
     if (depth >= o.bounces) break;

@@ -151,7 +151,13 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
                         i2 = m.indices[3 * hit.primitive + 2];
     const float w0 = 1.0f - hit.u - hit.v, w1 = hit.u, w2 = hit.v;
     n = glm::normalize(m.normals[i0] * w0 + m.normals[i1] * w1 + m.normals[i2] * w2);
-    p.frontFace = glm::dot(n, ray.direction) <= 0.0f;  // before the normal map
+    // The side the ray meets: the triangle's own plane, turned to its normals' side (an
+    // interpolated normal leans past the ray at a smooth mesh's silhouette).
+    const glm::vec3 face =
+        glm::cross(m.positions[i1] - m.positions[i0], m.positions[i2] - m.positions[i0]);
+    p.frontFace = glm::dot(face, ray.direction) *
+                      glm::dot(face, m.normals[i0] + m.normals[i1] + m.normals[i2]) <=
+                  0.0f;
     glm::vec3 base = mat->baseColor;
     float metallic = mat->metallic, roughness = mat->roughness;
     glm::vec3 emissive = mat->emissive;

@@ -121,7 +121,7 @@ std::vector<Misuse> sceneMisuses() {
        "--thickness: must be from 0 to 1000, not 5000"},
       {"--thickness", "--thickness 1", 2, "--thickness: makes a transmissive sphere solid"},
       {"--attenuation-distance", "--transmission 1 --thickness 1 --attenuation-distance 0", 2,
-       "--attenuation-distance: must be from 0.0001 to 1000000, not 0"},
+       "--attenuation-distance: must be positive, not 0"},
       {"--attenuation-distance", "--transmission 1 --attenuation-distance 2", 2,
        "--attenuation-distance: sets the absorption inside a volume; add --thickness"},
       {"--attenuation-color", "--transmission 1 --thickness 1 --attenuation-color 1,2,1", 2,

@@ -7,6 +7,7 @@
 // refused.
 #include <cmath>
 #include <fstream>
+#include <numbers>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -38,6 +39,30 @@ Mesh squareFacing(float height, float half, bool up, int material) {
   return m;
 }
 
+// A thin transmissive wall (transmission 1) of base color `tint` and roughness r: a square of
+// side 100 in the plane z = 0, facing +Z.
+Scene thinWall(glm::vec3 tint, float r) {
+  Material m;
+  m.baseColor = tint;
+  m.metallic = 0.0f;
+  m.roughness = r;
+  m.transmission = 1.0f;
+  Scene scene;
+  scene.materials = {m};
+  scene.meshes = {squareFacing(0.0f, 50.0f, true, 0)};
+  return scene;
+}
+
+// An orthographic view `width` wide, 4 x 4 pixels, from +Z straight down at the origin.
+Camera headOn(float width) {
+  Camera c;
+  c.perspective = false;
+  c.orthoWidth = width;
+  c.from = glm::vec3(0.0f, 0.0f, 3.0f);
+  c.width = c.height = 4;
+  return c;
+}
+
 // The mean of the render's pixels.
 glm::dvec3 meanColor(const Image& img) {
   glm::dvec3 sum(0.0);
@@ -46,13 +71,13 @@ glm::dvec3 meanColor(const Image& img) {
 }
 
 // A white furnace: radiance 1 from every direction.
-const Baked& whiteFurnace() {
+const Baked& uniformWhiteLight() {
   static const Baked b = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
   return b;
 }
 
 // Schlick's Fresnel of F0 0.04 (ior 1.5) at cosine c.
-double schlick(double c) {
+double glassSchlick(double c) {
   return 0.04 + 0.96 * std::pow(1.0 - c, 5.0);
 }
 
@@ -62,26 +87,15 @@ double schlick(double c) {
 // F0 = 0.04 and passes (1 - F0) c of the light behind it, in the reference and in the split sum.
 TEST(TransmissionRender, ThinWallPassesWhatTheSpecularLeaves) {
   const glm::vec3 tint(0.2f, 0.5f, 0.8f);
-  Material m;
-  m.baseColor = tint;
-  m.metallic = 0.0f;
-  m.roughness = 0.0f;
-  m.transmission = 1.0f;
-  Scene scene;
-  scene.materials = {m};
-  scene.meshes = {squareFacing(0.0f, 50.0f, true, 0)};
-  Camera c;
-  c.perspective = false;
-  c.orthoWidth = 0.5f;
-  c.from = glm::vec3(0.0f, 0.0f, 3.0f);
-  c.width = c.height = 4;
+  const Scene scene = thinWall(tint, 0.0f);
+  const Camera c = headOn(0.5f);
   for (RenderMode mode : {RenderMode::Reference, RenderMode::SplitSum}) {
     RenderOptions o;
     o.mode = mode;
     o.spp = mode == RenderMode::Reference ? 256 : 1;
     o.bounces = 4;
-    const glm::dvec3 mean =
-        meanColor(renderScene(scene, c, whiteFurnace().result, whiteFurnace().options, o).color);
+    const glm::dvec3 mean = meanColor(
+        renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o).color);
     const glm::dvec3 expected = 0.04 + 0.96 * glm::dvec3(tint);
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(mean[k], expected[k], 0.01)
@@ -117,9 +131,9 @@ TEST(TransmissionRender, AbsorbingSlabMatchesStokesSums) {
   o.mode = RenderMode::Reference;
   o.spp = 1024;
   o.bounces = 24;
-  const glm::dvec3 mean =
-      meanColor(renderScene(scene, c, whiteFurnace().result, whiteFurnace().options, o).color);
-  const double F = schlick(std::sqrt(0.5));
+  const glm::dvec3 mean = meanColor(
+      renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o).color);
+  const double F = glassSchlick(std::sqrt(0.5));
   const double cosT = std::sqrt(1.0 - 0.5 / 2.25);
   const double T = std::pow(0.5, 0.5 / cosT);
   const double echo = 1.0 - F * F * T * T;
@@ -127,24 +141,52 @@ TEST(TransmissionRender, AbsorbingSlabMatchesStokesSums) {
   EXPECT_NEAR(mean.x, expected, 0.01 * expected) << "expected " << expected;
 }
 
-// A smooth glass ball (index 1.5, no absorption) in a white furnace: every path that enters
-// leaves again (the light it traps by total internal reflection included), so the ball
-// disappears, 1 everywhere within the noise; tinted white, thin or solid.
+// A point light straight behind a thin wall of roughness 0.3 (alpha 0.09), the camera straight in
+// front, no environment: the wall sends c (1 - F0) D(n) V I / d^2 toward the camera, with
+// D(n) = 1 / (pi alpha^2) and V = 1 / 4 at normal incidence (Smith's Lambda is 0 there). A point
+// light is a delta: it reaches the camera only through next-event estimation from the wall's
+// back.
+TEST(TransmissionRender, PointLightShinesThroughAThinWall) {
+  const glm::vec3 tint(0.8f, 0.6f, 0.4f);
+  Scene scene = thinWall(tint, 0.3f);
+  Light light;
+  light.type = LightType::Point;
+  light.position = glm::vec3(0.0f, 0.0f, -2.0f);
+  light.intensity = 10.0f;
+  scene.lights.push_back(light);
+  const Camera c = headOn(0.002f);
+  RenderOptions o;
+  o.mode = RenderMode::Reference;
+  o.spp = 16;
+  o.bounces = 1;
+  o.environmentLight = false;
+  const glm::dvec3 mean = meanColor(
+      renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o).color);
+  const double alpha = 0.09, perCandela = 0.96 * 0.25 / (std::numbers::pi * alpha * alpha) / 4.0;
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(mean[k], tint[k] * 10.0 * perCandela, 0.01 * tint[k] * 10.0 * perCandela) << k;
+}
+
+// A smooth glass ball (index 1.5, and 1: no bending, no reflection at normal incidence; no
+// absorption) in a white furnace: every path that enters leaves again (the light it traps by
+// total internal reflection included), so the ball disappears, 1 everywhere within the noise;
+// tinted white, thin or solid.
 TEST(TransmissionRender, GlassBallVanishesInAWhiteFurnace) {
-  for (float thickness : {0.0f, 2.0f}) {
+  for (float thickness : {0.0f, 2.0f, -2.0f}) {
     Material m;
     m.baseColor = glm::vec3(1.0f);
     m.metallic = 0.0f;
     m.roughness = 0.0f;
     m.transmission = 1.0f;
-    m.thickness = thickness;
+    m.thickness = std::abs(thickness);
+    m.ior = thickness < 0.0f ? 1.0f : 1.5f;  // -2: a solid ball of index 1
     const Scene scene = makeSphereScene(m);
     RenderOptions o;
     o.mode = RenderMode::Reference;
     o.spp = 64;
     o.bounces = 32;
-    const RenderResult r =
-        renderScene(scene, sphereCamera(16), whiteFurnace().result, whiteFurnace().options, o);
+    const RenderResult r = renderScene(scene, sphereCamera(16), uniformWhiteLight().result,
+                                       uniformWhiteLight().options, o);
     const glm::dvec3 mean = meanColor(r.color);
     EXPECT_NEAR(mean.x, 1.0, 0.01) << "thickness " << thickness;
   }

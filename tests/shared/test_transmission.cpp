@@ -1,7 +1,7 @@
 // KHR_materials_transmission's and _volume's math (ibl/shared/transmission.h) and the reference's
 // transmission lobe (ibl/shared/path_brdf.h), against what owes nothing to them: Snell's law by
-// sines, the microfacet that a refraction came through, the generalized reciprocity of a
-// transmission BTDF (Veach 1997, eq. 5.14: f(v, l) / eta_l^2 = f(l, v) / eta_v^2), a density
+// sines, the microfacet that a refraction came through, the symmetry of the transmission's form
+// under an exchange of v and l (f(v, l; eta) = eta^2 f(l, v; 1 / eta)), a density
 // integrated by a midpoint rule against the share of samples that land, a smooth interface
 // that keeps all it receives (F + (1 - F) = 1, total internal reflection past the critical
 // angle), and Beer-Lambert's law from its definition.
@@ -21,7 +21,7 @@ using namespace ibl;
 namespace {
 
 // A unit vector from spherical angles (theta from +Z).
-glm::vec3 direction(float theta, float phi) {
+glm::vec3 unitFromAngles(float theta, float phi) {
   return glm::vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                    std::cos(theta));
 }
@@ -71,7 +71,7 @@ TEST(Transmission, RefractionObeysSnellsLaw) {
     for (float theta : {0.0f, 0.3f, 0.7f, 1.2f, 1.5f}) {
       const glm::vec3 h = glm::normalize(glm::vec3(0.2f, -0.1f, 1.0f));
       const glm::mat3 frame = shared::tangentFrame(h);
-      const glm::vec3 v = frame * direction(theta, 0.8f);
+      const glm::vec3 v = frame * unitFromAngles(theta, 0.8f);
       const glm::vec3 l = shared::refractThrough(v, h, eta);
       if (std::sin(theta) > eta) {
         EXPECT_EQ(l, glm::vec3(0.0f)) << "total internal reflection, eta " << eta;
@@ -89,7 +89,7 @@ TEST(Transmission, RefractionObeysSnellsLaw) {
 TEST(Transmission, HalfVectorIsTheRefractingMicrofacet) {
   for (float eta : {1.5f, 1.0f / 1.33f})
     for (float tilt : {0.0f, 0.4f, 0.9f}) {
-      const glm::vec3 h = direction(tilt, 2.0f);
+      const glm::vec3 h = unitFromAngles(tilt, 2.0f);
       const glm::vec3 v = glm::normalize(glm::vec3(0.3f, 0.1f, 1.0f));
       const glm::vec3 l = shared::refractThrough(v, h, eta);
       if (l == glm::vec3(0.0f)) continue;
@@ -111,13 +111,14 @@ TEST(Transmission, FresnelTakesTheOutsideAngle) {
   }
 }
 
-// Veach 1997, eq. 5.14, for the form that KHR_materials_volume writes: f(v, l; eta) = eta^2
-// f(l, v; 1 / eta), each seen from its own side (the frame turned over: (x, -y, -z)).
+// The form KHR_materials_volume writes, with its eta^2 from the side of l, is symmetric up to that
+// factor: f(v, l; eta) = eta^2 f(l, v; 1 / eta), each seen from its own side (the frame turned
+// over: (x, -y, -z)). An eta^2 taken from v's side, or a Jacobian's eta left out, breaks it.
 TEST(Transmission, RefractionIsReciprocal) {
   const glm::vec2 alpha(0.3f, 0.12f);
   const auto turned = [](glm::vec3 w) { return glm::vec3(w.x, -w.y, -w.z); };
   for (float eta : {1.5f, 1.0f / 1.33f}) {
-    const glm::vec3 v = direction(0.5f, 0.3f), l = direction(2.6f, 3.0f);
+    const glm::vec3 v = unitFromAngles(0.5f, 0.3f), l = unitFromAngles(2.6f, 3.0f);
     const glm::vec3 h = shared::refractionHalfVector(v, l, eta);
     const float forward = shared::ggxRefractionValue(v, l, h, eta, alpha) / -l.z;
     const glm::vec3 vb = turned(l), lb = turned(v);
@@ -134,7 +135,7 @@ TEST(Transmission, RefractionIsReciprocal) {
 TEST(Transmission, RefractionDensityIntegratesToTheShareThatLands) {
   const glm::vec2 alpha(0.5f, 0.2f);
   for (float eta : {1.5f, 1.0f / 1.5f}) {
-    const glm::vec3 v = direction(1.1f, 0.4f);
+    const glm::vec3 v = unitFromAngles(1.1f, 0.4f);
     constexpr int kCells = 768;
     double integral = 0.0;
     for (int i = 0; i < kCells; ++i)
@@ -168,7 +169,7 @@ TEST(Transmission, RefractionDensityIntegratesToTheShareThatLands) {
 TEST(Transmission, SmoothInterfaceKeepsAllItReceives) {
   for (float eta : {1.5f, 1.0f / 1.5f, 0.0f})
     for (float theta : {0.05f, 0.6f, 1.0f, 1.35f}) {
-      const glm::vec3 v = direction(theta, 0.7f);
+      const glm::vec3 v = unitFromAngles(theta, 0.7f);
       const glm::dvec3 mean = meanSampleWeight(glass(0.0f, eta, v), v, 4096);
       EXPECT_NEAR(mean.x, 1.0, 2e-3) << "eta " << eta << ", theta " << theta;
       const glm::dvec3 rough = meanSampleWeight(glass(0.3f, eta, v), v, 4096);
@@ -176,7 +177,7 @@ TEST(Transmission, SmoothInterfaceKeepsAllItReceives) {
       EXPECT_GT(rough.x, 0.9) << "eta " << eta << ", theta " << theta;
     }
   // Past the critical angle inside, none goes through: every sample that is kept reflects.
-  const glm::vec3 v = direction(1.0f, 0.0f);  // sin 1.0 = 0.84 > 1 / 1.5
+  const glm::vec3 v = unitFromAngles(1.0f, 0.0f);  // sin 1.0 = 0.84 > 1 / 1.5
   const shared::PathBrdf inside = glass(0.0f, 1.0f / 1.5f, v);
   const std::uint32_t key = shared::pathSamplerKey(3u, 0u, 3u, 0u);
   for (std::uint32_t i = 0; i < 256; ++i) {
@@ -193,7 +194,7 @@ TEST(Transmission, SmoothInterfaceKeepsAllItReceives) {
 // over the lower hemisphere, for a volume and a thin wall.
 TEST(Transmission, TransmittedSamplesWeighTheIntegral) {
   for (float eta : {1.5f, 0.0f}) {
-    const glm::vec3 v = direction(0.6f, 1.0f);
+    const glm::vec3 v = unitFromAngles(0.6f, 1.0f);
     const shared::PathBrdf b = glass(0.5f, eta, v);
     constexpr int kCells = 768;
     double integral = 0.0;

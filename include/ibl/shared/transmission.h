@@ -37,6 +37,16 @@ IBL_FN vec3 refractionHalfVector(vec3 v, vec3 l, float eta) {
   return h.z < 0.0f ? -h : h;
 }
 
+// The relative index below the surface of a volume of index `ior` (eta above): ior where a ray
+// enters it, 1 / ior where it leaves. An index under 1.001 is taken as 1.001, whose lobe is as
+// narrow as a mirror's: at exactly 1 every microfacet passes v unbent, a delta whose half vector
+// v + eta l vanishes. 0 (KHR_materials_ior's infinite index) is a thin wall.
+IBL_FN float volumeRelativeIndex(float ior, bool entering) {
+  if (ior <= 0.0f) return 0.0f;
+  float eta = max(ior, 1.001f);
+  return entering ? eta : 1.0f / eta;
+}
+
 // The cosine the Fresnel term takes at a microfacet where v meets it at cosine `cosine`: the
 // angle on the less dense side (Fresnel's equations are the same both ways through an
 // interface), so that a view from inside a volume (eta < 1) reflects all past the critical
@@ -50,10 +60,11 @@ IBL_FN float fresnelCosine(float cosine, float eta) {
 // Walter 2007's transmission for GGX in the lobe's frame (l below, a valid refraction: v.h > 0 >
 // l.h), without its Fresnel and tint, times |n.l|:
 //   |v.h| |l.h| eta^2 D(h) G2(v, l) / (|n.v| (v.h + eta l.h)^2),
-// in KHR_materials_volume's form (its "Implementation": eta^2 from the side of l), with G2 the
-// height-correlated Smith term as the reflection's. The form transports radiance through a
-// closed volume unchanged by the indices (its eta^2 and its inverse cancel on the way in and
-// out); Walter's importance form differs from it inside a volume alone.
+// the form KHR_materials_volume's implementation notes write (eta^2 from the side of l, Walter's
+// eq. 21 read with l as his o), G2 the height-correlated Smith term as the reflection's. It
+// carries radiance across a surface without the (eta_v / eta_l)^2 by which radiance physically
+// changes; the two factors cancel over a closed volume's way in and out, so the images agree
+// wherever the camera and the lights are outside every volume.
 // (Both functions select their result rather than return early: glslc's optimizer, Debian's
 // shaderc 2023, crashes on the early return in the path tracer's shader.)
 IBL_FN float ggxRefractionValue(vec3 v, vec3 l, vec3 h, float eta, vec2 alpha) {

@@ -235,10 +235,12 @@ void readExtensionFactors(const tinygltf::Material& m, const std::string& path,
   // thickness is the mesh's, before the node's scale.
   if (const tinygltf::Value* x = materialExtension(m, "KHR_materials_volume")) {
     const std::string at = where + ": KHR_materials_volume";
-    mat.thickness = extensionNumber(*x, "thicknessFactor", 0.0f, 0.0, 1e6, path, at);
+    // (The largest float bounds both: a larger number would not survive as one.)
+    const double largest = std::numeric_limits<float>::max();
+    mat.thickness = extensionNumber(*x, "thicknessFactor", 0.0f, 0.0, largest, path, at);
     mat.attenuationDistance =
-        extensionNumber(*x, "attenuationDistance", std::numeric_limits<float>::infinity(), 1e-30,
-                        std::numeric_limits<double>::infinity(), path, at);
+        extensionNumber(*x, "attenuationDistance", std::numeric_limits<float>::infinity(),
+                        std::numeric_limits<float>::min(), largest, path, at);
     mat.attenuationColor =
         extensionVector<3>(*x, "attenuationColor", glm::vec3(1.0f), 0.0, 1.0, path, at);
   }

@@ -69,7 +69,7 @@ TEST(GltfHostile, GlbChunkLengthsThatLie) {
 TEST(GltfHostile, UnimplementedExtensionsAreWarnings) {
   TempDir dir;
   json j = baseGltf();
-  j["extensionsUsed"].push_back("KHR_materials_transmission");
+  j["extensionsUsed"].push_back("KHR_materials_dispersion");
   j["extensionsUsed"].push_back("KHR_materials_variants");  // harmless: the default look
   const std::string path = write(dir, "ext.gltf", j);
   std::vector<std::string> warnings;
@@ -77,11 +77,11 @@ TEST(GltfHostile, UnimplementedExtensionsAreWarnings) {
   options.warn = [&](const std::string& w) { warnings.push_back(w); };
   loadGltf(path, options);
   EXPECT_EQ(warnings, std::vector<std::string>{path + ": uses the extension "
-                                                      "KHR_materials_transmission, which ibl does "
+                                                      "KHR_materials_dispersion, which ibl does "
                                                       "not implement; rendering without it"});
   options.strict = true;
   EXPECT_EQ(errorOf([&] { loadGltf(path, options); }),
-            path + ": uses the extension KHR_materials_transmission, which ibl does not implement");
+            path + ": uses the extension KHR_materials_dispersion, which ibl does not implement");
 }
 
 // A missing texture file (with strict: otherwise a warning, see GltfHostile) and an unsupported
