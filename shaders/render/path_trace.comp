@@ -252,14 +252,18 @@ float transmissionEta(Surface p) {
 }
 
 // tracePath's rules for a surface that transmits (src/render/path_tracer.cpp): lit and left on
-// both sides, a direction below it (local l.z < 0) from below, into the volume it enters (out of
-// the one it leaves; a thin wall keeps the medium).
+// both sides (local l.z < 0 too); the side of its own plane that world direction w goes to is
+// where it leaves from, and whether it goes on inside the volume (a thin wall keeps the medium).
 bool leavesToward(bool twoSided, vec3 l) {
   return l.z > 0.0 || (twoSided && l.z < 0.0);
 }
-vec3 mediumToward(Surface p, vec3 medium, vec3 l) {
-  if (!(l.z < 0.0 && p.volume)) return medium;
-  return p.frontFace ? p.attenuation : vec3(0.0);
+vec3 originToward(Surface p, bool twoSided, vec3 origin, vec3 position, vec3 offset, vec3 w) {
+  if (!twoSided) return origin;
+  return position + p.faceNormal * (dot(w, p.faceNormal) < 0.0 ? -1.0 : 1.0) * length(offset);
+}
+vec3 mediumToward(Surface p, bool twoSided, vec3 medium, vec3 w) {
+  if (!twoSided || !p.volume) return medium;
+  return dot(w, p.faceNormal) < 0.0 ? p.attenuation : vec3(0.0);
 }
 
 // The share of light that crosses `distance` of the medium sigma (1 without one).
@@ -316,11 +320,11 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       }
       if (!(delta || pdf > 0.0) || radiance == vec3(0.0)) continue;
       vec3 l = toLocal * direction;
-      vec3 from = l.z < 0.0 ? position - offset : origin;
+      vec3 from = originToward(p, twoSided, origin, position, offset, direction);
       if (!leavesToward(twoSided, l) || !unoccluded(from, direction, distance)) continue;
       float weight = delta ? 1.0 : powerHeuristic(pdf, pathBrdfPdf(brdf, v, l)) / pdf;
       sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * radiance * weight *
-             crossing(mediumToward(p, medium, l), distance);
+             crossing(mediumToward(p, twoSided, medium, direction), distance);
     }
     if (params.counts.z > 0u) {
       float pick = pathUniform(numbers);
@@ -328,7 +332,8 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       EmitterSample es = sampleEmitters(origin, vec3(pick, point));
       vec3 l = toLocal * es.direction;
       if (es.pdf > 0.0 && es.radiance != vec3(0.0) && leavesToward(twoSided, l) &&
-          unoccluded(l.z < 0.0 ? position - offset : origin, es.direction, es.distance)) {
+          unoccluded(originToward(p, twoSided, origin, position, offset, es.direction),
+                     es.direction, es.distance)) {
         float ld;
         vec3 lr;
         if (!(nearestLight(origin, es.direction, ld, lr) >= 0 && ld < es.distance)) {
@@ -336,7 +341,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
                              ? powerHeuristic(es.pdf, pathBrdfPdf(brdf, v, l)) / es.pdf
                              : 1.0 / es.pdf;
           sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * es.radiance * weight *
-                 crossing(mediumToward(p, medium, l), es.distance);
+                 crossing(mediumToward(p, twoSided, medium, es.direction), es.distance);
         }
       }
     }
@@ -347,10 +352,10 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       float ld;
       vec3 lr;
       if (leavesToward(twoSided, l) && pe > 0.0 && nearestLight(origin, w, ld, lr) < 0 &&
-          unoccluded(l.z < 0.0 ? position - offset : origin, w, kInfinity))
+          unoccluded(originToward(p, twoSided, origin, position, offset, w), w, kInfinity))
         sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * environmentRadiance(w) *
                (powerHeuristic(pe, pathBrdfPdf(brdf, v, l)) / pe) *
-               crossing(mediumToward(p, medium, l), kInfinity);
+               crossing(mediumToward(p, twoSided, medium, w), kInfinity);
     }
     // The BRDF's sample: it ends on a light or the environment, or goes on from what it meets.
     PathBrdfSample bs = samplePathBrdf(brdf, v, numbers);
@@ -359,8 +364,8 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     if (!(pb > 0.0) || bs.weight == vec3(0.0)) break;
     vec3 w = frame * l;
     vec3 f = bs.weight * pb;
-    medium = mediumToward(p, medium, l);
-    if (l.z < 0.0) origin = position - offset;
+    medium = mediumToward(p, twoSided, medium, w);
+    origin = originToward(p, twoSided, origin, position, offset, w);
     SceneHit hit = flag(kFlagVisibility) ? intersectScene(origin, w, kInfinity, false)
                                          : SceneHit(false, kInfinity, false, 0u, 0u, 0.0, 0.0);
     float ld;

@@ -212,6 +212,7 @@ struct Surface {
   bool volume;
   float thickness;
   vec3 attenuation;
+  vec3 faceNormal;
   bool frontFace;
 };
 
@@ -239,9 +240,11 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     // The side the ray meets: the triangle's plane, turned to its normals' side (surfaceAt's).
     vec3 a = vertexAt(tri.x, 0).xyz;
     vec3 face = cross(vertexAt(tri.y, 0).xyz - a, vertexAt(tri.z, 0).xyz - a);
-    p.frontFace = dot(face, dir) * dot(face, vertexAt(tri.x, 1).xyz + vertexAt(tri.y, 1).xyz +
-                                                 vertexAt(tri.z, 1).xyz) <=
-                  0.0;
+    if (dot(face, vertexAt(tri.x, 1).xyz + vertexAt(tri.y, 1).xyz + vertexAt(tri.z, 1).xyz) < 0.0)
+      face = -face;
+    float area2 = dot(face, face);
+    p.faceNormal = area2 > 0.0 ? face / sqrt(area2) : n;
+    p.frontFace = dot(p.faceNormal, dir) <= 0.0;
     vec4 m0 = materialAt(material, 0), m1 = materialAt(material, 1), m2 = materialAt(material, 2),
          m3 = materialAt(material, 3), m4 = materialAt(material, 4);
     m5 = materialAt(material, 5);
@@ -309,11 +312,12 @@ Surface surfaceAt(SceneHit hit, vec3 origin, vec3 dir) {
     p.iridescenceThickness = materialAt(material, 6).w;
     p.transmission = materialAt(material, 8).x;
     p.thickness = materialAt(material, 8).y;
+    p.faceNormal = n;
     p.frontFace = dot(n, dir) <= 0.0;
     coatNormal = n;
   }
   vec4 m8 = materialAt(material, 8);
-  p.volume = m8.y > 0.0;
+  p.volume = m8.y > 0.0 && m5.x > 0.0;  // an infinite index: a thin wall (surfaceAt's rule)
   p.attenuation =
       p.volume ? volumeAttenuationCoefficient(materialAt(material, 9).rgb, m8.z) : vec3(0.0);
   p.ior = m5.x;

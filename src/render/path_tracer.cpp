@@ -216,15 +216,20 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
         Brdf::of(p, v, toLocal * p.clearcoatNormal, toLocal * p.anisotropyTangent, only, o);
     const glm::vec3 offset = p.normal * 1e-4f * std::max(1.0f, glm::length(position));
     const glm::vec3 origin = position + offset;
-    // A surface that transmits is lit and left on both sides: a direction below it (local l.z <
-    // 0) leaves from below, into the volume it enters (out of the one it leaves; a thin wall
-    // keeps the medium).
+    // A surface that transmits is lit and left on both sides (local l.z < 0 too). The side of
+    // its own plane a direction goes to (faceNormal's, where a shading normal may lean past the
+    // ray) is where it leaves from, and whether it goes on inside the volume (a thin wall keeps
+    // the medium).
     const bool twoSided = shared::pathTransmissionLobe(brdf.b);
     const auto leaves = [&](glm::vec3 l) { return l.z > 0.0f || (twoSided && l.z < 0.0f); };
-    const auto originToward = [&](glm::vec3 l) { return l.z < 0.0f ? position - offset : origin; };
+    const auto inward = [&](glm::vec3 l) { return glm::dot(frame * l, p.faceNormal) < 0.0f; };
+    const auto originToward = [&](glm::vec3 l) {
+      if (!twoSided) return origin;
+      return position + p.faceNormal * (inward(l) ? -1.0f : 1.0f) * glm::length(offset);
+    };
     const auto mediumToward = [&](glm::vec3 l) {
-      if (!(l.z < 0.0f && p.volume)) return medium;
-      return p.frontFace ? p.attenuation : glm::vec3(0.0f);
+      if (!twoSided || !p.volume) return medium;
+      return inward(l) ? p.attenuation : glm::vec3(0.0f);
     };
     const auto unoccluded = [&](glm::vec3 l, glm::vec3 w, float distance) {
       // Stop short of an area light's surface: the lights are not in the ray tracer.

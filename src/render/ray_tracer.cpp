@@ -153,11 +153,12 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     n = glm::normalize(m.normals[i0] * w0 + m.normals[i1] * w1 + m.normals[i2] * w2);
     // The side the ray meets: the triangle's own plane, turned to its normals' side (an
     // interpolated normal leans past the ray at a smooth mesh's silhouette).
-    const glm::vec3 face =
+    glm::vec3 face =
         glm::cross(m.positions[i1] - m.positions[i0], m.positions[i2] - m.positions[i0]);
-    p.frontFace = glm::dot(face, ray.direction) *
-                      glm::dot(face, m.normals[i0] + m.normals[i1] + m.normals[i2]) <=
-                  0.0f;
+    if (glm::dot(face, m.normals[i0] + m.normals[i1] + m.normals[i2]) < 0.0f) face = -face;
+    const float area2 = glm::dot(face, face);
+    p.faceNormal = area2 > 0.0f ? face / std::sqrt(area2) : n;
+    p.frontFace = glm::dot(p.faceNormal, ray.direction) <= 0.0f;
     glm::vec3 base = mat->baseColor;
     float metallic = mat->metallic, roughness = mat->roughness;
     glm::vec3 emissive = mat->emissive;
@@ -237,8 +238,11 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
   p.anisotropy = std::clamp(mat->anisotropy * anisotropy.z, 0.0f, 1.0f);
   if (p.anisotropy > 0.0f)
     p.anisotropyTangent = shared::anisotropyTangentOf(n, tangent, glm::vec2(anisotropy));
-  if (tracer.isSphere(hit.geometry)) p.frontFace = glm::dot(n, ray.direction) <= 0.0f;
-  p.volume = mat->thickness > 0.0f;
+  if (tracer.isSphere(hit.geometry)) {
+    p.faceNormal = n;
+    p.frontFace = glm::dot(n, ray.direction) <= 0.0f;
+  }
+  p.volume = mat->thickness > 0.0f && mat->ior > 0.0f;  // an infinite index: a thin wall
   if (p.volume)
     p.attenuation =
         shared::volumeAttenuationCoefficient(mat->attenuationColor, mat->attenuationDistance);

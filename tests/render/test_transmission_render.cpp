@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "../../src/render/ray_tracer.hpp"
 #include "ibl/render/camera.hpp"
 #include "ibl/render/gltf.hpp"
 #include "ibl/render/renderer.hpp"
@@ -190,6 +191,34 @@ TEST(TransmissionRender, GlassBallVanishesInAWhiteFurnace) {
     const glm::dvec3 mean = meanColor(r.color);
     EXPECT_NEAR(mean.x, 1.0, 0.01) << "thickness " << thickness;
   }
+}
+
+// Which side of a surface a ray meets is the surface's own plane's, turned to its normals' side:
+// a square facing +Z whose vertex normals lean far toward +X is met from above (front) by a ray
+// falling steeply toward +X, though the ray runs along the leaning normal. A volume entered
+// there is entered, not left.
+TEST(TransmissionRender, SideIsTheSurfacesOwnPlane) {
+  Material m;
+  m.transmission = 1.0f;
+  m.thickness = 1.0f;
+  Scene scene;
+  scene.materials = {m};
+  Mesh square = squareFacing(0.0f, 5.0f, true, 0);
+  square.normals.assign(4, glm::normalize(glm::vec3(0.9f, 0.0f, 0.436f)));
+  scene.meshes = {square};
+  const RayTracer tracer(scene);
+  const Ray ray{glm::vec3(-0.8f, 0.0f, 0.6f), glm::normalize(glm::vec3(0.8f, 0.0f, -0.6f))};
+  const RayTracer::Hit hit = tracer.intersect(ray);
+  ASSERT_TRUE(hit.found);
+  ASSERT_GT(glm::dot(square.normals[0], ray.direction), 0.0f) << "the normal leans past the ray";
+  const SurfacePoint p = surfaceAt(scene, tracer, hit, ray);
+  EXPECT_TRUE(p.frontFace);
+  EXPECT_LT(glm::distance(p.faceNormal, glm::vec3(0.0f, 0.0f, 1.0f)), 1e-6f);
+  // Met from below: the back.
+  const Ray below{glm::vec3(-0.8f, 0.0f, -0.6f), glm::normalize(glm::vec3(0.8f, 0.0f, 0.6f))};
+  const SurfacePoint q = surfaceAt(scene, tracer, tracer.intersect(below), below);
+  EXPECT_FALSE(q.frontFace);
+  EXPECT_LT(glm::distance(q.faceNormal, glm::vec3(0.0f, 0.0f, 1.0f)), 1e-6f);
 }
 
 // glTF carries both extensions: transmissionFactor times the texture's R, thicknessFactor times

@@ -189,11 +189,14 @@ struct SurfacePoint {
   // KHR_materials_transmission and _volume, textures applied (transmission 0: none): the share
   // transmitted; whether the mesh bounds a volume (thicknessFactor > 0; else a thin wall), its
   // thickness for the real-time paths (scene units) and its attenuation coefficient (per scene
-  // unit). frontFace: the ray met the side the mesh's normals face (it enters the volume).
+  // unit). faceNormal: the surface's own plane (a triangle's, a sphere's normal), unit, turned to
+  // the side the mesh's normals face, which a direction crosses to enter the volume; frontFace:
+  // the ray met that side.
   float transmission = 0.0f;
   bool volume = false;
   float thickness = 0.0f;
   glm::vec3 attenuation{0.0f};
+  glm::vec3 faceNormal{0.0f, 0.0f, 1.0f};
   bool frontFace = true;
 };
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
