@@ -33,3 +33,31 @@ for light in park sunset point; do
     done
   done
 done
+# What the glass shows of the opaque surfaces behind it: data/scenes/glass.gltf (a solid ball of
+# absorbing glass and a thin frosted pane before a striped wall, on a checkered floor) at SCENE_SIZE
+# (default 320x240): the frame error and the median block error over the whole image and over the
+# glass alone (a mask: the same scene with every material unlit, the glass white, the rest black).
+SCENE_SIZE=${SCENE_SIZE:-320x240}
+python3 - "$OUT/glass_mask.gltf" <<'PY'
+import json, sys
+doc = json.load(open("data/scenes/glass.gltf"))
+for m in doc["materials"]:
+    glass = "KHR_materials_transmission" in m.get("extensions", {})
+    m["pbrMetallicRoughness"] = {"baseColorFactor": [1, 1, 1, 1] if glass else [0, 0, 0, 1]}
+    m["extensions"] = {"KHR_materials_unlit": {}}
+doc["extensionsUsed"] = ["KHR_materials_unlit"]
+json.dump(doc, open(sys.argv[1], "w"))
+PY
+"$IBL" render "$OUT/glass_mask.gltf" --env none --size "$SCENE_SIZE" --spp 1 --quiet \
+  -o "$OUT/glass_mask.png"
+printf '\n%-8s %-6s %10s %10s\n' light pixels frame median
+for light in park sunset; do
+  name="$OUT/scene-$light"
+  args=(data/scenes/glass.gltf --env "data/hdri/$light.exr" --size "$SCENE_SIZE" --quiet)
+  [ -f "$name-ref.exr" ] || "$IBL" render "${args[@]}" --mode reference --bounces 8 \
+    --spp "$REF_SPP" -o "$name-ref.exr"
+  [ -f "$name-rt.exr" ] || "$IBL" render "${args[@]}" --spp 16 -o "$name-rt.exr"
+  printf '%-8s %-6s %s\n' "$light" all "$(figures "$name-rt.exr" "$name-ref.exr")"
+  printf '%-8s %-6s %s\n' "$light" glass \
+    "$(figures "$name-rt.exr" "$name-ref.exr" --mask "$OUT/glass_mask.png")"
+done

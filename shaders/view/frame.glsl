@@ -9,7 +9,8 @@ layout(std140, set = 0, binding = kFrameUniforms) uniform Frame {
   vec4 cameraForward;   // unit
   vec4 cameraRight;     // scaled by aspect * tan(fov / 2), orthographic: by the half width
   vec4 cameraUp;        // scaled by tan(fov / 2), orthographic: by the half height
-  vec4 viewport;        // width, height, area lights (1 LTC, 0 Frostbite's)
+  vec4 viewport;        // width, height, area lights (1 LTC, 0 Frostbite's), 1 the transmission's
+                        // opaque frame is drawn (transmissionFrame)
   vec4 background;      // rgb; w: 1 the environment, 0 this color
   vec4 lods;            // specular levels - 1, 1 for the Frostbite roughness mapping, skybox lod,
                         // 1 lit by the environment (0: --env none)
@@ -139,3 +140,7 @@ layout(set = 0, binding = kFrameLitFrame) uniform sampler2D litFrame;
 // The reflection as traced (view/ssr.frag), before the resolve (view/ssr_resolve.frag) shares it
 // between neighbors.
 layout(set = 0, binding = kFrameTracedReflection) uniform sampler2D tracedReflection;
+// KHR_materials_transmission: the opaque frame behind transmissive surfaces (src/gpu/
+// transmission_pass.cpp: premultiplied radiance, coverage), its chain read through a trilinear
+// sampler where frame.viewport.w is 1; a 1 x 1 zero stand-in when the scene transmits nothing.
+layout(set = 0, binding = kFrameTransmissionFrame) uniform sampler2D transmissionFrame;

@@ -48,11 +48,13 @@ layout(push_constant) uniform Draw {
   int shadowLayer;  // the shadow maps' pass: the layer drawn (view/shadow.vert)
   int scenePass;  // 0 the frame's only scene pass; with screen-space reflections 1 the lit frame
                   // (no area light drawn over the surfaces), 2 the pass that composes them
-                  // (kFrameScreenReflection): ScenePass in src/gpu/scene_upload.hpp
+                  // (kFrameScreenReflection); 3 the opaque frame behind transmissive
+                  // surfaces (kFrameTransmissionFrame): ScenePass in src/gpu/scene_upload.hpp
   // bit b: the texture at binding b is the material's (else white). Here, not with the factors:
   // it decides where derivatives are taken (slotTexel), which needs a uniform condition that the
   // helper invocations read too.
   uint textureMask;
+  float thicknessScale;  // KHR_materials_volume: the node's scale of the thickness (Mesh)
 } draw;
 
 // Whether the material has a texture at `binding` (MaterialBinding).

@@ -20,9 +20,10 @@ layout(location = 0) out vec4 outColor;
 void main() {
   ShadedSurface surface = fragmentSurface(frame.models.z);
   vec3 bentNormal = vec3(0.0);
-  if (frame.ambientOcclusion.z > 0.0) {
+  if (frame.ambientOcclusion.z > 0.0 && draw.scenePass != 3) {
     // Screen-space ambient occlusion (view/gtao.frag) at this pixel: min with the material's
-    // (Lagarde & de Rousiers 2014, 4.10.3), and the bent normal for the irradiance.
+    // (Lagarde & de Rousiers 2014, 4.10.3), and the bent normal for the irradiance. Not in the
+    // opaque frame behind transmissive surfaces, whose pixels the view buffers give to them.
     vec4 ao = texelFetch(screenOcclusion, ivec2(gl_FragCoord.xy), 0);
     surface.material.occlusion = min(surface.material.occlusion, ao.x);
     // The pixel's bent normal, unless it is another surface's (an edge, with multisampling).
@@ -35,11 +36,12 @@ void main() {
   vec3 color = shadeSplitSum(surface.position, gl_FragCoord.xy, surface.normal, surface.view,
                              surface.material, surface.sheen, bentNormal, reflection);
   // An area light between the camera and the surface is what the pixel sees; not in the lit
-  // frame of the screen-space reflections, whose rays meet the surfaces of the view buffers.
+  // frame of the screen-space reflections, whose rays meet the surfaces of the view buffers, nor
+  // in the opaque frame behind transmissive surfaces (lit as that one).
   Ray center = primaryRay(gl_FragCoord.xy);
   vec3 emitted;
   bool isSurface;
-  if (draw.scenePass != 1 &&
+  if ((draw.scenePass == 0 || draw.scenePass == 2) &&
       nearestEmitter(center, gl_FragCoord.xy,
                      dot(surface.position - center.origin, center.direction), emitted, isSurface))
     color = emitted;

@@ -199,6 +199,24 @@ vec3 prefilteredAlong(vec3 position, vec3 direction, float roughness, int terms)
 // The lights evaluated are those of the point's cluster (seen at framebuffer point `pixel`).
 // bentNormal: the irradiance's direction from the screen-space occlusion (0: the normal).
 // reflection: the screen-space reflection (view/ssr.frag; 0: none), composed before the probes.
+// The opaque frame behind a transmissive surface at position (n its unit normal, view toward the
+// eye), where the refracted ray leaves its volume: TransmissionFrame::at on the CPU
+// (src/render/transmission_frame.cpp), the same projection (ibl/shared/ambient_occlusion.h).
+vec4 transmissionFrameTexel(vec3 position, vec3 n, vec3 view, SplitSumMaterial m) {
+  vec3 exit = position + volumeExitOffset(n, view, m.thickness, m.ior);
+  vec3 w = exit - frame.cameraPosition.xyz;
+  vec3 viewSpace = vec3(dot(w, normalize(frame.cameraRight.xyz)),
+                        dot(w, normalize(frame.cameraUp.xyz)), dot(w, frame.cameraForward.xyz));
+  if (!frameHoldsDepth(viewSpace.z, frame.projection.z)) return vec4(0.0);
+  ScreenProjection s;
+  s.size = frame.viewport.xy;
+  s.scale = frame.projection.xy;
+  s.perspective = frame.projection.z;
+  vec2 uv = projectToPixel(s, viewSpace) / s.size;
+  return textureLod(transmissionFrame, uv,
+                    transmissionFrameLod(frame.viewport.x, m.roughness, m.ior));
+}
+
 vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMaterial m, vec4 sheen,
                    vec3 bentNormal, vec4 reflection) {
   SplitSumSwitches s = frameSwitches();
@@ -303,9 +321,12 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
   // KHR_materials_transmission: the light straight through the surface, blurred by the
   // transmission's roughness, under the sheen as the rest.
   if (m.transmission > 0.0 && s.terms != 1 && !sheenOnly) {
-    vec3 transmitted =
-        prefilteredAlong(position, -view, transmissionRoughness(m.roughness, m.ior), s.terms);
-    color += belowScale * transmissionRadiance(m, dfg.xy, specularScale * transmitted, s);
+    vec3 transmitted = specularScale * prefilteredAlong(position, -view,
+                                                        transmissionRoughness(m.roughness, m.ior),
+                                                        s.terms);
+    if (frame.viewport.w > 0.5)
+      transmitted = behindSurface(transmissionFrameTexel(position, n, view, m), transmitted);
+    color += belowScale * transmissionRadiance(m, look.NoV, dfg.xy, transmitted, s);
   }
   // The sheen chain has the specular chain's levels and mapping; it is read at the normal
   // (src/render/renderer.cpp says why).

@@ -128,7 +128,9 @@ ShadedSurface fragmentSurface(int samples) {
             0.0, 1.0);
   bool volume = material.transmission.y > 0.0;
   float thickness =
-      volume ? material.transmission.y * slotTexel(thicknessTexture, kMaterialThickness).g : 0.0;
+      volume ? material.transmission.y * draw.thicknessScale *
+                   slotTexel(thicknessTexture, kMaterialThickness).g
+             : 0.0;
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
                                            : normalize(position - frame.cameraPosition.xyz);
   if (dot(n, ray) > 0.0) {  // shade the side the camera sees (the coat's normal alike)

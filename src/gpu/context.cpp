@@ -633,6 +633,14 @@ void transitionImage(VkCommandBuffer cmd, const DeviceImage& image, VkImageLayou
                      VkImageLayout newLayout, VkPipelineStageFlags fromStage,
                      VkAccessFlags fromAccess, VkPipelineStageFlags toStage,
                      VkAccessFlags toAccess) {
+  transitionImageLevels(cmd, image, 0, image.description().levels, oldLayout, newLayout, fromStage,
+                        fromAccess, toStage, toAccess);
+}
+
+void transitionImageLevels(VkCommandBuffer cmd, const DeviceImage& image, std::uint32_t level,
+                           std::uint32_t levels, VkImageLayout oldLayout, VkImageLayout newLayout,
+                           VkPipelineStageFlags fromStage, VkAccessFlags fromAccess,
+                           VkPipelineStageFlags toStage, VkAccessFlags toAccess) {
   const auto& d = image.description();
   VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
   b.srcAccessMask = fromAccess;
@@ -641,7 +649,7 @@ void transitionImage(VkCommandBuffer cmd, const DeviceImage& image, VkImageLayou
   b.newLayout = newLayout;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image.image();
-  b.subresourceRange = {d.aspect, 0, d.levels, 0, d.layers};
+  b.subresourceRange = {d.aspect, level, levels, 0, d.layers};
   vkCmdPipelineBarrier(cmd, fromStage, toStage, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 

@@ -89,7 +89,8 @@ FrameUniforms packFrameUniforms(const Camera& camera, const RenderOptions& o,
   u.cameraRight = glm::vec4(right * (aspect * halfHeight), 0.0f);
   u.cameraUp = glm::vec4(up * halfHeight, 0.0f);
   u.viewport = glm::vec4(static_cast<float>(state.width), static_cast<float>(state.height),
-                         o.areaLights == AreaLightModel::Ltc ? 1.0f : 0.0f, 0.0f);
+                         o.areaLights == AreaLightModel::Ltc ? 1.0f : 0.0f,
+                         state.transmissionFrame ? 1.0f : 0.0f);
   u.background = glm::vec4(o.backgroundColor, o.backgroundEnvironment ? 1.0f : 0.0f);
   u.lods = glm::vec4(state.specularMaxLod, state.frostbiteMapping ? 1.0f : 0.0f,
                      std::clamp(state.skyboxLod, 0.0f, state.skyboxMaxLod),

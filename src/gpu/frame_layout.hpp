@@ -88,6 +88,7 @@ struct FrameState {
   bool shadows = false;
   shared::LightClusterGrid clusterGrid{};    // the light clusters of this camera
   std::optional<shared::VolumeGrid> volume;  // the irradiance volume's grid (none: no volume)
+  bool transmissionFrame = false;  // the opaque frame behind transmissive surfaces is drawn
 };
 
 // World to clip space of `camera` (Vulkan: y down, depth 0..1), with depth planes around the

@@ -123,7 +123,7 @@ FrameSet::FrameSet(Context& context) : device_(context.impl().device) {
   const std::array<std::uint8_t, 4 * sizeof(float)> zero{};
   zero_ = uploadTexel(context, VK_FORMAT_R32G32B32A32_SFLOAT, zero);
   for (std::uint32_t b = bindingNumber(FrameBinding::ViewPositions);
-       b <= bindingNumber(FrameBinding::TracedReflection); ++b)
+       b <= bindingNumber(FrameBinding::TransmissionFrame); ++b)
     standIn(static_cast<FrameBinding>(b));
 }
 

@@ -29,8 +29,9 @@ class FrameSet {
   void writeImage(FrameBinding binding, VkSampler sampler, VkImageView view);
   // Points `binding` (a storage buffer) at the whole of `buffer`.
   void writeBuffer(FrameBinding binding, const Buffer& buffer);
-  // Points a screen-space pass's binding (ViewPositions to TracedReflection) back at its 1 x 1
-  // stand-in: white for the view buffers and the occlusion, zero for the reflections' images.
+  // Points a screen-space pass's binding (ViewPositions to TransmissionFrame) back at its 1 x 1
+  // stand-in: white for the view buffers and the occlusion, zero for the reflections' images and
+  // the transmission's frame (nothing covered: the environment shows through).
   void standIn(FrameBinding binding);
   // Copies the frame's uniforms into the buffer the shaders read (before the frame's commands).
   void setUniforms(const FrameUniforms& uniforms);

@@ -216,6 +216,13 @@ void SceneRenderer::Impl::prepareScreenOcclusion() {
     t.occlusion = std::make_unique<OcclusionPass>(context, frame, t.width, t.height);
 }
 
+void SceneRenderer::Impl::prepareTransmission() {
+  Targets& t = *targets;
+  if (!t.transmission)
+    t.transmission = std::make_unique<TransmissionPass>(context, frame, t.width, t.height,
+                                                        t.renderPass, t.color.get(), *t.depth);
+}
+
 void SceneRenderer::Impl::prepareScreenReflections() {
   prepareViewBuffers();
   Targets& t = *targets;
@@ -236,6 +243,7 @@ FrameState SceneRenderer::Impl::frameState(float skyboxLod, bool shadowed) const
   volume.describe(s);
   shadows.describe(s, shadowed);
   s.clusterGrid = clusters.grid();
+  s.transmissionFrame = scene.hasTransmission();
   return s;
 }
 
@@ -249,17 +257,27 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   const bool reflected = o.screenReflections.enabled;
   if (occluded) prepareScreenOcclusion();
   if (reflected) prepareScreenReflections();
+  const bool transmits = scene.hasTransmission();
+  if (transmits) prepareTransmission();
   const Targets& t = *targets;
   frame.setUniforms(packFrameUniforms(camera, o, frameState(skyboxLod, shadowed)));
+  // Before any pass binds the frame set: its images in the layout the pipelines read them in.
+  if (transmits) t.transmission->recordBeforeFrame(cmd);
+  if (reflected) t.reflections->recordBeforeLitFrame(cmd);
   if (updateVolume && volumeUpdate) volumeUpdate->record(cmd, o);
   if (shadowed) shadows.record(cmd, scene);  // none pending when traced on the CPU
   if (occluded || reflected) t.viewBuffers->record(cmd, scene);
   if (occluded) t.occlusion->record(cmd);
   const VkPipeline meshPipeline = scenePipeline(shadowed, o.areaLights == AreaLightModel::Ltc);
+  if (transmits) {
+    // KHR_materials_transmission: the opaque meshes' frame first, halved into its chain, which
+    // the transmissive meshes of the passes below read (the glTF Sample Viewer's order).
+    recordScenePass(cmd, t.transmission->framebuffer(), meshPipeline, kOpaqueFramePass);
+    t.transmission->record(cmd);
+  }
   if (reflected) {
     // The lit frame (without reflections), the reflections traced through it, then the frame.
     ReflectionPass& r = *t.reflections;
-    r.recordBeforeLitFrame(cmd);
     recordScenePass(cmd, r.litFramebuffer(), meshPipeline, kLitFramePass);
     r.record(cmd);
   }
@@ -307,8 +325,10 @@ void SceneRenderer::Impl::recordScenePass(VkCommandBuffer cmd, VkFramebuffer fra
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &begin.renderArea);
   frame.bind(cmd);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t.skyboxPipeline);
-  vkCmdDraw(cmd, 3, 1, 0, 0);
+  if (pass != kOpaqueFramePass) {  // that frame's background is zero: nothing covered
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, t.skyboxPipeline);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+  }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshPipeline);
   scene.drawMeshes(cmd, frame.pipelineLayout(), 0, pass);
   vkCmdEndRenderPass(cmd);

@@ -15,6 +15,7 @@
 #include "gpu/frame_set.hpp"
 #include "gpu/scene_upload.hpp"
 #include "gpu/shadow_pass.hpp"
+#include "gpu/transmission_pass.hpp"
 #include "gpu/view_buffer_pass.hpp"
 #include "gpu/volume_update.hpp"
 #include "gpu/volume_upload.hpp"
@@ -55,6 +56,7 @@ struct SceneRenderer::Impl {
     std::unique_ptr<ViewBufferPass> viewBuffers;
     std::unique_ptr<OcclusionPass> occlusion;
     std::unique_ptr<ReflectionPass> reflections;
+    std::unique_ptr<TransmissionPass> transmission;
   };
   std::optional<Targets> targets;
 
@@ -92,6 +94,7 @@ struct SceneRenderer::Impl {
   void prepareViewBuffers();
   void prepareScreenOcclusion();
   void prepareScreenReflections();
+  void prepareTransmission();
   // Records the scene's pass (skybox and meshes) into `framebuffer` as part `pass` of the frame.
   void recordScenePass(VkCommandBuffer cmd, VkFramebuffer framebuffer, VkPipeline meshPipeline,
                        ScenePass pass) const;

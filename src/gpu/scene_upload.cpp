@@ -278,6 +278,7 @@ void SceneUpload::uploadMeshes(const Scene& scene) {
     d.indexCount = static_cast<std::uint32_t>(m.indices.size());
     d.material = m.material;
     d.sphere = sphere;
+    d.thicknessScale = m.thicknessScale;
     // A sphere's surface reads no textures (surfaceAt's spheres have no UVs).
     if (sphere.w <= 0.0f) d.uvSets = (m.uvs.empty() ? 0u : 1u) | (m.uvs1.empty() ? 0u : 2u);
     meshes_.push_back(std::move(d));
@@ -319,6 +320,7 @@ void SceneUpload::uploadMaterials(const Scene& scene) {
                                      std::min(mat.attenuationDistance, 3.0e38f), 0.0f);
     factors.attenuation = glm::vec4(mat.attenuationColor, 0.0f);
     if (mat.sheenColor != glm::vec3(0.0f)) sceneHasSheen_ = true;
+    transmissive_.push_back(mat.transmission > 0.0f);
     static_assert(Material::kTextureSlots == kMaterialTextures, "MaterialBinding's order");
     const auto slots = mat.textureSlots();
     std::array<VkDescriptorImageInfo, kMaterialTextures> images{};
@@ -534,11 +536,12 @@ void SceneUpload::drawMeshes(VkCommandBuffer cmd, VkPipelineLayout layout, int l
   for (const DrawMesh& m : meshes_) {
     const auto mi = static_cast<std::size_t>(
         std::clamp(m.material, 0, static_cast<int>(materialBuffers_.size()) - 1));
+    if (pass == kOpaqueFramePass && transmissive_[mi]) continue;
     // A slot whose UV set the mesh lacks is off, as surfaceAt's lookups are: its texel is the
     // slot's default (white; the anisotropy's direction along the tangent).
     const std::uint32_t readable =
         ((m.uvSets & 1u) ? ~texCoordMasks_[mi] : 0u) | ((m.uvSets & 2u) ? texCoordMasks_[mi] : 0u);
-    const DrawConstants draw{m.sphere, layer, pass, textureMasks_[mi] & readable};
+    const DrawConstants draw{m.sphere, layer, pass, textureMasks_[mi] & readable, m.thicknessScale};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &materialSets_[mi],
                             0, nullptr);
     vkCmdPushConstants(cmd, layout, kDrawStages, 0, sizeof(draw), &draw);

@@ -3,6 +3,7 @@
 // one vertex layout, the materials (their textures, samplers, descriptor sets and push
 // constants), the bake's cube maps and tables, the local probes, the LTC and IES tables and the
 // lights' records; and the light clusters of the current camera.
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -101,11 +102,19 @@ struct DrawConstants {
   std::int32_t shadowLayer;   // the shadow maps' pass: the layer drawn (view/shadow.vert)
   std::int32_t scenePass;     // the scene pass's part: ScenePass
   std::uint32_t textureMask;  // the textures the material has, bit b for set 1 binding b
+  float thicknessScale;       // Mesh::thicknessScale: the node's scale of the volume's thickness
 };
 // Which of a frame's scene passes draws (view/material.glsl): the only one; with screen-space
 // reflections, the lit frame (the surfaces without the area lights in front of them: what the
-// view buffers hold, so that no reflection meets a light) or the pass that composes them.
-enum ScenePass : std::int32_t { kOnlyScenePass = 0, kLitFramePass = 1, kReflectedPass = 2 };
+// view buffers hold, so that no reflection meets a light) or the pass that composes them; with
+// transmissive materials, the opaque frame behind them (TransmissionPass: the other meshes alone,
+// lit as the lit frame is, without the screen's occlusion).
+enum ScenePass : std::int32_t {
+  kOnlyScenePass = 0,
+  kLitFramePass = 1,
+  kReflectedPass = 2,
+  kOpaqueFramePass = 3
+};
 static_assert(offsetof(DrawConstants, shadowLayer) == 16,
               "view/shadow.vert reads the layer at offset 16");
 
@@ -126,7 +135,8 @@ class SceneUpload {
   void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                       const std::vector<Light>& lights);
   // Binds and draws every mesh with its material (set 1, through `layout`) and its push
-  // constants (DrawConstants): its sphere, shadow layer `layer` and scene pass part `pass`.
+  // constants (DrawConstants): its sphere, shadow layer `layer` and scene pass part `pass`
+  // (kOpaqueFramePass: the meshes whose material transmits nothing).
   void drawMeshes(VkCommandBuffer cmd, VkPipelineLayout layout, int layer, ScenePass pass) const;
   // Sets the bake's, the probes' and the lights' parts of `state`.
   void describe(FrameState& state) const;
@@ -134,6 +144,10 @@ class SceneUpload {
   void checkSheen(const RenderOptions& options) const;
 
   const std::vector<Light>& lights() const { return lights_; }
+  // A material transmits light (KHR_materials_transmission): the frame draws the opaque frame.
+  bool hasTransmission() const {
+    return std::find(transmissive_.begin(), transmissive_.end(), true) != transmissive_.end();
+  }
   float skyboxMaxLod() const { return skyboxMaxLod_; }
 
  private:
@@ -159,8 +173,9 @@ class SceneUpload {
     std::unique_ptr<Buffer> vertices, indices;
     std::uint32_t indexCount = 0;
     int material = 0;
-    glm::vec4 sphere{0.0f};    // center, radius of the sphere this mesh bounds (radius 0: none)
-    std::uint32_t uvSets = 0;  // bit 0: it has TEXCOORD_0, bit 1: TEXCOORD_1 (a sphere: none)
+    glm::vec4 sphere{0.0f};       // center, radius of the sphere this mesh bounds (radius 0: none)
+    std::uint32_t uvSets = 0;     // bit 0: it has TEXCOORD_0, bit 1: TEXCOORD_1 (a sphere: none)
+    float thicknessScale = 1.0f;  // Mesh::thicknessScale
   };
   std::vector<DrawMesh> meshes_;
   std::vector<std::unique_ptr<Buffer>> materialBuffers_;  // MaterialFactors, one per material
@@ -177,6 +192,7 @@ class SceneUpload {
   // The sheen chain and its table (1 x 1 black when the bake has none).
   std::unique_ptr<DeviceImage> sheen_, sheenDfg_;
   std::unique_ptr<Buffer> charlieTable_;  // shared::kCharlieProjectedArea, for the sheen's Lambda
+  std::vector<bool> transmissive_;        // per material: its transmission factor is > 0
   bool sceneHasSheen_ = false;            // a material has a sheen: every bake must bring one
   SheenVisibility sheenVisibility_ = SheenVisibility::Charlie;  // the bake's sheen table's
   float specularMaxLod_ = 0.0f, skyboxMaxLod_ = 0.0f;

@@ -137,6 +137,11 @@ void transitionImage(VkCommandBuffer cmd, const DeviceImage& image, VkImageLayou
                      VkImageLayout newLayout, VkPipelineStageFlags fromStage,
                      VkAccessFlags fromAccess, VkPipelineStageFlags toStage,
                      VkAccessFlags toAccess);
+// The same for `levels` levels from `level` on.
+void transitionImageLevels(VkCommandBuffer cmd, const DeviceImage& image, std::uint32_t level,
+                           std::uint32_t levels, VkImageLayout oldLayout, VkImageLayout newLayout,
+                           VkPipelineStageFlags fromStage, VkAccessFlags fromAccess,
+                           VkPipelineStageFlags toStage, VkAccessFlags toAccess);
 
 // Records the copy of a shader-readable color image's level 0, layer 0 (texels as the image's
 // format holds them, row by row) into `readback`, a host-visible buffer of at least that size,

@@ -212,7 +212,7 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     p.transmission = mat->transmission;
     if (lookup(mat->transmissionTexture, false, t)) p.transmission *= t.x;
     p.transmission = std::clamp(p.transmission, 0.0f, 1.0f);
-    p.thickness = mat->thickness;
+    p.thickness = mat->thickness * m.thicknessScale;  // the node's scale (KHR_materials_volume)
     if (lookup(mat->thicknessTexture, false, t)) p.thickness *= t.y;
     // The coat's normal: the interpolated one, unless it has a normal map of its own (not the
     // base's: KHR_materials_clearcoat).

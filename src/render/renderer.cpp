@@ -47,6 +47,34 @@ float ambientOcclusion(const RayTracer& tracer, const SurfacePoint& p, int rays,
   return static_cast<float>(open) / static_cast<float>(rays);
 }
 
+// Whether a material of the scene lets light through (KHR_materials_transmission).
+bool sceneHasTransmission(const Scene& scene) {
+  return std::any_of(scene.materials.begin(), scene.materials.end(),
+                     [](const Material& m) { return m.transmission > 0.0f; });
+}
+
+// The first surface along `ray` whose material transmits nothing: the opaque frame's view, its
+// distance along `ray`.
+RayTracer::Hit firstOpaqueHit(const Scene& scene, const RayTracer& tracer, const Ray& ray) {
+  float crossed = 0.0f;
+  Ray rest = ray;
+  for (int surfaces = 0; surfaces < 256; ++surfaces) {
+    RayTracer::Hit hit = tracer.intersect(rest);
+    if (!hit.found) return hit;
+    const int material = tracer.isSphere(hit.geometry) ? scene.spheres[hit.primitive].material
+                                                       : scene.meshes[hit.geometry].material;
+    if (scene.materials[static_cast<std::size_t>(material)].transmission <= 0.0f) {
+      hit.t += crossed;
+      return hit;
+    }
+    const glm::vec3 at = rest.origin + hit.t * rest.direction;
+    const float step = hit.t + 1e-4f * std::max(1.0f, glm::length(at));
+    rest.origin += step * rest.direction;
+    crossed += step;
+  }
+  return {};
+}
+
 }  // namespace
 
 shared::SplitSumSwitches splitSumSwitches(const RenderOptions& o) {
@@ -183,10 +211,18 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
           : shared::splitSumRadiance(m, look.NoV, dfg, prefiltered, irradiance, composed);
   if (p.transmission > 0.0f && o.only != ShadingTerms::Diffuse && o.only != ShadingTerms::Sheen) {
     // The light straight through the surface, blurred by the transmission's roughness.
-    const glm::vec3 transmitted =
+    glm::vec3 transmitted =
         specularScale *
         prefilteredLight(-view, -view, shared::transmissionRoughness(p.roughness, p.ior), nullptr);
-    below += shared::transmissionRadiance(m, glm::vec2(dfg), transmitted, s);
+    if (const TransmissionFrame* frame = o.transmissionFrame) {
+      // The opaque surfaces behind, where the refracted ray leaves the volume (the glTF Sample
+      // Viewer's); the environment where they leave the frame uncovered.
+      const glm::vec3 exit =
+          p.position + shared::volumeExitOffset(p.normal, view, m.thickness, p.ior);
+      const float lod = shared::transmissionFrameLod(frame->projection.size.x, p.roughness, p.ior);
+      transmitted = shared::behindSurface(frame->at(exit, lod), transmitted);
+    }
+    below += shared::transmissionRadiance(m, look.NoV, glm::vec2(dfg), transmitted, s);
   }
   if (p.sheenColor != glm::vec3(0.0f)) {
     if (!bake.sheen || !bake.sheenDfg)
@@ -288,8 +324,9 @@ void checkSheenVisibility(SheenVisibility table, const RenderOptions& o) {
 std::uint64_t renderMemoryBytes(int width, int height) {
   // Measured: 52 bytes per pixel at 2048^2, 50 at 4096^2, and 40 MB besides; the screen-space
   // occlusion's view buffers and result add 40 bytes per pixel while it is computed, the
-  // reflections' lit frame, view buffers and result 56.
-  return static_cast<std::uint64_t>(60e6 + 152.0 * width * height);
+  // reflections' lit frame, view buffers and result 56, the transmission's opaque frame and its
+  // chain (a vec4 per texel, 4 / 3 of the pixels) 24.
+  return static_cast<std::uint64_t>(60e6 + 176.0 * width * height);
 }
 
 RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeResult& bake,
@@ -315,6 +352,38 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
     RenderOptions withOcclusion = o;
     withOcclusion.screenOcclusion = &occlusion;
     return renderScene(scene, camera, bake, bakeOptions, withOcclusion, progress);
+  }
+  if (o.mode == RenderMode::SplitSum && !o.transmissionFrame && o.cameraSeesTransmissive &&
+      o.only != ShadingTerms::Diffuse && o.only != ShadingTerms::Sheen &&
+      sceneHasTransmission(scene)) {
+    // KHR_materials_transmission: the opaque surfaces' frame first, the transmissive ones read
+    // it (the glTF Sample Viewer's order). It is lit as the frame of screen-space reflections is
+    // (no area light in front of a surface), without the screen's occlusion, whose view buffers
+    // hold the transmissive surfaces, and over a background of zero (the environment fills what
+    // it leaves uncovered).
+    RenderOptions opaque = o;
+    opaque.cameraSeesTransmissive = false;
+    opaque.cameraSeesEmitters = false;
+    opaque.screenOcclusion = nullptr;
+    opaque.screenReflection = nullptr;
+    opaque.backgroundEnvironment = false;
+    opaque.backgroundColor = glm::vec3(0.0f);
+    // The render itself is let go once its chain is made.
+    const TransmissionFrame frame = [&] {
+      const RenderResult behind = renderRays(
+          scene, camera.width, camera.height,
+          [&](glm::vec2 pixel) { return camera.generateRay(pixel.x, pixel.y); }, bake, bakeOptions,
+          opaque,
+          [&](float f) {
+            if (progress) progress(0.3f * f);
+          });
+      return transmissionFrameOf(behind.color, behind.alpha, camera);
+    }();
+    RenderOptions withFrame = o;
+    withFrame.transmissionFrame = &frame;
+    return renderScene(scene, camera, bake, bakeOptions, withFrame, [&](float f) {
+      if (progress) progress(0.3f + 0.7f * f);
+    });
   }
   if (o.mode == RenderMode::SplitSum && o.screenReflections.enabled && !o.screenReflection &&
       o.only != ShadingTerms::Diffuse && o.only != ShadingTerms::Sheen) {
@@ -406,7 +475,8 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
         const glm::vec2 j = spp == 1 ? glm::vec2(0.5f) : sampler.uniform2();
         const float jx = j.x, jy = j.y;
         const Ray ray = generateRay({static_cast<float>(x) + jx, static_cast<float>(y) + jy});
-        const RayTracer::Hit hit = tracer.intersect(ray);
+        const RayTracer::Hit hit =
+            o.cameraSeesTransmissive ? tracer.intersect(ray) : firstOpaqueHit(scene, tracer, ray);
         const NearestLight seen = o.cameraSeesEmitters
                                       ? nearestLight(scene.lights, ray.origin, ray.direction)
                                       : NearestLight{};

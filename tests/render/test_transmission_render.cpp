@@ -5,6 +5,7 @@
 // Beer-Lambert's; a glass ball in a white furnace keeps every path it traps. And glTF files
 // carry both extensions and their textures into the renderer and `ibl info`, forbidden values
 // refused.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -82,13 +83,9 @@ double glassSchlick(double c) {
   return 0.04 + 0.96 * std::pow(1.0 - c, 5.0);
 }
 
-}  // namespace
-
-// A smooth thin wall of base color c, seen at normal incidence in a white furnace: it reflects
-// F0 = 0.04 and passes (1 - F0) c of the light behind it, in the reference and in the split sum.
-TEST(TransmissionRender, ThinWallPassesWhatTheSpecularLeaves) {
-  const glm::vec3 tint(0.2f, 0.5f, 0.8f);
-  const Scene scene = thinWall(tint, 0.0f);
+// The mean of `scene` seen head-on (headOn(0.5)) in the white furnace, in the reference (256
+// samples, 4 bounces) and in the split sum, each within 0.01 of `expected`.
+void expectHeadOnInTheFurnace(const Scene& scene, glm::vec3 expected) {
   const Camera c = headOn(0.5f);
   for (RenderMode mode : {RenderMode::Reference, RenderMode::SplitSum}) {
     RenderOptions o;
@@ -97,11 +94,19 @@ TEST(TransmissionRender, ThinWallPassesWhatTheSpecularLeaves) {
     o.bounces = 4;
     const glm::dvec3 mean = meanColor(
         renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o).color);
-    const glm::dvec3 expected = 0.04 + 0.96 * glm::dvec3(tint);
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(mean[k], expected[k], 0.01)
           << (mode == RenderMode::Reference ? "reference" : "split sum") << ", channel " << k;
   }
+}
+
+}  // namespace
+
+// A smooth thin wall of base color c, seen at normal incidence in a white furnace: it reflects
+// F0 = 0.04 and passes (1 - F0) c of the light behind it, in the reference and in the split sum.
+TEST(TransmissionRender, ThinWallPassesWhatTheSpecularLeaves) {
+  const glm::vec3 tint(0.2f, 0.5f, 0.8f);
+  expectHeadOnInTheFurnace(thinWall(tint, 0.0f), 0.04f + 0.96f * tint);
 }
 
 // A smooth slab of index 1.5 and thickness d = 0.5 between two faces (normals outward), whose
@@ -166,6 +171,22 @@ TEST(TransmissionRender, PointLightShinesThroughAThinWall) {
   const double alpha = 0.09, perCandela = 0.96 * 0.25 / (std::numbers::pi * alpha * alpha) / 4.0;
   for (int k = 0; k < 3; ++k)
     EXPECT_NEAR(mean[k], tint[k] * 10.0 * perCandela, 0.01 * tint[k] * 10.0 * perCandela) << k;
+}
+
+// A smooth thin wall of base color c under a thin film (KHR_materials_iridescence: strength 1,
+// index 2, 200 nm: a film denser than the glass reflects up to 21 %), seen at normal incidence in a
+// white furnace: it reflects the film's Fresnel F and passes (1 - max F) c, in the reference and in
+// the split sum (whose transmission once took the bare layer's 1 - F0 instead).
+TEST(TransmissionRender, ThinFilmTakesItsShareOfTheTransmission) {
+  const glm::vec3 tint(0.2f, 0.5f, 0.8f);
+  Scene scene = thinWall(tint, 0.0f);
+  scene.materials[0].iridescence = 1.0f;
+  scene.materials[0].iridescenceIor = 2.0f;
+  scene.materials[0].iridescenceThicknessMaximum = 200.0f;
+  const glm::vec3 film = shared::thinFilmFresnel(1.0f, 2.0f, 200.0f, 1.0f, glm::vec3(0.04f));
+  const float filmMax = std::max(film.x, std::max(film.y, film.z));
+  ASSERT_GT((filmMax - 0.04f) * tint.z, 0.05f) << "the film must change the share";
+  expectHeadOnInTheFurnace(scene, film + (1.0f - filmMax) * tint);
 }
 
 // A smooth glass ball (index 1.5, and 1: no bending, no reflection at normal incidence; no
@@ -244,6 +265,13 @@ TEST(TransmissionRender, GltfCarriesTransmissionAndVolume) {
   EXPECT_NEAR(plain.attenuation.y, std::log(4.0f) / 2.0f, 1e-5f);
   EXPECT_NEAR(plain.attenuation.z, 0.0f, 1e-6f);
   EXPECT_TRUE(plain.frontFace);
+  // The node's scale multiplies the thickness (the extension gives it in the mesh's own units):
+  // by the volume's scale, the cube root of 2 x 2 x 0.5.
+  nlohmann::json scaled = nlohmann::json::parse(std::ifstream(dir / "plain.gltf"));
+  scaled["nodes"][0]["scale"] = {2.0, 2.0, 0.5};
+  std::ofstream(dir / "scaled.gltf") << scaled.dump();
+  EXPECT_NEAR(quadSurface(loadGltf((dir / "scaled.gltf").string())).thickness,
+              0.25f * std::cbrt(2.0f), 1e-5f);
   const SurfacePoint textured = quadSurface(loadGltf((dir / "textured.gltf").string()));
   EXPECT_NEAR(textured.transmission, 0.8f * 128.0f / 255.0f, 1e-5f);
   EXPECT_NEAR(textured.thickness, 0.25f * 64.0f / 255.0f, 1e-5f);

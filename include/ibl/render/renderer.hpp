@@ -13,6 +13,7 @@
 #include "ibl/render/scene.hpp"
 #include "ibl/render/screen_space_reflections.hpp"
 #include "ibl/render/shadows.hpp"
+#include "ibl/render/transmission_frame.hpp"
 #include "ibl/shared/split_sum.h"
 
 namespace ibl {
@@ -102,6 +103,13 @@ struct RenderOptions {
   ScreenReflectionSettings screenReflections;
   // Split sum: those reflections per pixel, computed beforehand (renderScene fills them in).
   const ScreenReflections* screenReflection = nullptr;
+  // Split sum: what transmissive surfaces (KHR_materials_transmission) show behind them: the
+  // opaque frame (transmission_frame.hpp), which renderScene draws first for its camera when the
+  // scene has any (null: the prefiltered environment alone, as a probe capture reads it).
+  const TransmissionFrame* transmissionFrame = nullptr;
+  // The camera sees the transmissive surfaces (false: its rays pass through them, as for the
+  // opaque frame).
+  bool cameraSeesTransmissive = true;
   bool environmentLight = true;       // false (--env none): the scene's lights alone
   bool backgroundEnvironment = true;  // else backgroundColor
   glm::vec3 backgroundColor{0.0f};    // linear Rec.709 radiance, the output's units
@@ -131,9 +139,10 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
 
 // The peak memory, bytes, of rendering a width x height image (pixels) with renderScene or the
 // viewer (`ibl render`, `ibl view`), estimated from measured renders (docs/render.md, "Memory"):
-// 60 MB besides and 152 bytes per pixel: the render's own buffers (measured 50 to 52 bytes per
-// pixel), the screen-space occlusion's view buffers and result (40) and the reflections' lit
-// frame, view buffers and result (56) while they are computed. For refusing, before any work,
+// 60 MB besides and 176 bytes per pixel: the render's own buffers (measured 50 to 52 bytes per
+// pixel), the screen-space occlusion's view buffers and result (40), the reflections' lit
+// frame, view buffers and result (56) while they are computed, and the opaque frame behind
+// transmissive surfaces with its chain (24). For refusing, before any work,
 // a size the machine cannot hold. width, height: pixels, >= 0.
 std::uint64_t renderMemoryBytes(int width, int height);
 

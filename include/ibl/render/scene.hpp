@@ -174,6 +174,10 @@ struct Mesh {
   std::vector<glm::vec4> colors;
   std::vector<std::uint32_t> indices;  // three per triangle, into the vertex arrays
   int material = 0;                    // index into Scene::materials
+  // KHR_materials_volume: the scale of the node the mesh was placed by, which multiplies the
+  // material's thickness (given in the mesh's own units): the cube root of its world matrix's
+  // determinant (the volume's scale; for a uniform scale, that scale).
+  float thicknessScale = 1.0f;
   // The names it answers to (--exclude): its glTF mesh's, its node's and that node's ancestors'
   // (unnamed ones left out).
   std::vector<std::string> names;

@@ -65,6 +65,7 @@ using glm::floor;
 using glm::fract;
 using glm::length;
 using glm::log;
+using glm::log2;
 using glm::max;
 using glm::min;
 using glm::mix;

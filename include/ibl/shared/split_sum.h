@@ -226,17 +226,24 @@ IBL_FN vec3 clearcoatRadiance(SplitSumMaterial m, float NcoV, vec2 dfg, vec3 pre
 }
 
 // KHR_materials_transmission over the split sum, after the glTF Sample Viewer: `transmitted` is
-// the specular map read straight through the surface (-v) at transmissionRoughness (the Sample
-// Viewer reads the opaque frame behind instead: docs/materials.md). It passes what the specular
-// layer leaves of the lobe's albedo, (A + B) - specular max(F0 A + B) (dfg: the DFG table's A, B
-// at n.v; exact under uniform light for a thin wall, whose transmitted lobe is the reflection's
-// mirrored), tinted by the base color, and through a volume loses exp(-attenuation thickness)
-// (Beer-Lambert over the thickness the extension gives, as the Sample Viewer takes it).
-IBL_FN vec3 transmissionRadiance(SplitSumMaterial m, vec2 dfg, vec3 transmitted,
+// what lies behind the surface (the opaque frame over the environment: behindSurface). It passes
+// what the specular layer leaves of the lobe's albedo, (A + B) - specular max(F0 A + B) (dfg: the
+// DFG table's A, B at n.v; exact under uniform light for a thin wall, whose transmitted lobe is
+// the reflection's mirrored), a thin film's reflectance at n.v mixed in by its strength as in
+// directionalReflectance, tinted by the base color, and through a volume loses
+// exp(-attenuation thickness) (Beer-Lambert over the thickness the extension gives, as the Sample
+// Viewer takes it).
+IBL_FN vec3 transmissionRadiance(SplitSumMaterial m, float NoV, vec2 dfg, vec3 transmitted,
                                  SplitSumSwitches s) {
   if (s.terms == 1 || m.transmission <= 0.0f) return vec3(0.0f);
   SpecularReflectance r = splitSumReflectance(m, s);
   vec3 reflected = r.specularWeight * (r.dielectricF0 * dfg.x + vec3(dfg.y));
+  if (r.iridescence > 0.0f)
+    reflected = mix(
+        reflected,
+        thinFilmFresnel(1.0f, r.filmIor, r.filmThickness, NoV, r.specularWeight * r.dielectricF0) *
+            (dfg.x + dfg.y),
+        r.iridescence);
   float passed = max(dfg.x + dfg.y - max(reflected.x, max(reflected.y, reflected.z)), 0.0f);
   return m.baseColor * ((1.0f - m.metallic) * m.transmission * passed) *
          volumeTransmittance(m.attenuation, m.thickness) * transmitted;

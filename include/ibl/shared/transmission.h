@@ -116,6 +116,37 @@ IBL_FN float transmissionRoughness(float roughness, float ior) {
   return roughness * clamp(ior * 2.0f - 2.0f, 0.0f, 1.0f);
 }
 
+// The opaque frame behind a transmissive surface (the glTF Sample Viewer's getIBLVolumeRefraction,
+// which KHR_materials_transmission's "Implementation Notes" recommend): the offset from the point
+// where the view's ray enters a volume of `thickness` (world units) to where it leaves, the ray
+// -v refracted at the smooth surface of normal n (unit, on the side of v) into index `ior` and
+// run for the thickness. A thin wall (thickness 0, or an ior of 0) is left where it is entered.
+IBL_FN vec3 volumeExitOffset(vec3 n, vec3 v, float thickness, float ior) {
+  if (thickness <= 0.0f || ior <= 0.0f) return vec3(0.0f);
+  vec3 through = refractThrough(v, n, max(ior, 1.0f));  // never total: entering a denser medium
+  return normalize(through) * thickness;
+}
+
+// The level of the opaque frame's chain (level 0 `width` pixels across) the transmission reads
+// at: log2(width) times transmissionRoughness, the Sample Viewer's rule; its last level is the
+// frame's mean where the lobe is as wide as it gets.
+IBL_FN float transmissionFrameLod(float width, float roughness, float ior) {
+  return log2(max(width, 1.0f)) * transmissionRoughness(roughness, ior);
+}
+
+// Whether the opaque frame holds a point at depth z along the camera's view (perspective: 1 or
+// 0): a perspective camera's frame holds nothing at or behind its own plane (where the
+// projection would mirror or blow up); an orthographic one's, every depth.
+IBL_FN bool frameHoldsDepth(float z, float perspective) {
+  return perspective < 0.5f || z > 1e-6f;
+}
+
+// What lies behind a transmissive surface: the opaque frame's texel there (premultiplied
+// radiance, and the share of it the opaque surfaces cover) over the light of the environment.
+IBL_FN vec3 behindSurface(vec4 frame, vec3 environment) {
+  return vec3(frame.x, frame.y, frame.z) + (1.0f - frame.w) * environment;
+}
+
 IBL_END
 
 #endif

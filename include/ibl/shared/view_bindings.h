@@ -45,6 +45,7 @@ IBL_FRAME_BINDING(ScreenOcclusion, 22)
 IBL_FRAME_BINDING(ScreenReflection, 23)
 IBL_FRAME_BINDING(LitFrame, 24)
 IBL_FRAME_BINDING(TracedReflection, 25)
+IBL_FRAME_BINDING(TransmissionFrame, 26) // the opaque frame behind transmissive surfaces
 #ifdef __cplusplus
 Count
 };

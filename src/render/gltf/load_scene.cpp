@@ -1,6 +1,7 @@
 // The scene: the node tree walked from the rendered scene's roots, each mesh instance placed in
 // the world (normals and tangents generated where it lacks them), the first camera and the
 // lights; the names each instance answers to.
+#include <cmath>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -103,6 +104,7 @@ Scene GltfDocument::load() {
       const int material = materialOf(m, p);
       mesh.material = material >= 0 ? material : defaultMaterial;
       mesh.names = namesOf(instance.node);
+      mesh.thicknessScale = std::cbrt(std::abs(glm::determinant(glm::mat3(instance.world))));
       placeInWorld(mesh, instance.world,
                    tangentSource(scene.materials[static_cast<std::size_t>(mesh.material)]));
       checkFinite(mesh, m, p, instance.node);
