@@ -141,6 +141,20 @@ TEST(TransmissionFrame, ChainProjectionAndTrilinearLookup) {
   EXPECT_THROW(transmissionFrameOf(Image(3, 3), std::vector<float>(9), c), Error);
 }
 
+// A perspective camera's frame holds nothing at or behind the camera's plane: a point there reads
+// as uncovered (where projecting it would mirror it onto the frame), a point in front reads the
+// frame.
+TEST(TransmissionFrame, NothingBehindAPerspectiveCamera) {
+  Camera c;
+  c.width = c.height = 8;
+  c.from = glm::vec3(0.0f, 0.0f, 5.0f);
+  const TransmissionFrame f =
+      transmissionFrameOf(Image(8, 8, glm::vec3(1.0f)), std::vector<float>(64, 1.0f), c);
+  EXPECT_FLOAT_EQ(f.at(glm::vec3(0.1f, 0.1f, 0.0f), 0.0f).w, 1.0f) << "in front";
+  EXPECT_FLOAT_EQ(f.at(glm::vec3(0.1f, 0.1f, 7.0f), 0.0f).w, 0.0f) << "behind";
+  EXPECT_FLOAT_EQ(f.at(glm::vec3(0.1f, 0.1f, 5.0f), 0.0f).w, 0.0f) << "on the camera's plane";
+}
+
 // A smooth thin wall of base color c in front of a surface that emits E, no other light: the
 // camera sees (1 - F0) c E through it at normal incidence, in the split sum as in the reference
 // (before the opaque frame, the split sum saw the black environment there: 0).
