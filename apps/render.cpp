@@ -97,7 +97,7 @@ RenderedImage renderImage(const RenderCliOptions& o, const GlobalOptions& global
   scene.lights.insert(scene.lights.end(), baked.lights.begin(), baked.lights.end());
   RenderOptions r = shadingOptions(o.scene, baked);
   if (o.mode != "reference" && r.realTimeShadows == ShadowMode::Map)
-    requireMemory(shadowMapBytes(scene.lights, r.shadowSettings),
+    requireMemory(shadowMapBytes(scene.lights, r.shadowSettings, hasTransmission(scene)),
                   fmt::format("shadow maps of {} texels for {} lights", o.scene.shadowMapSize,
                               scene.lights.size()),
                   "use a smaller --shadow-map-size or --shadows none");

@@ -161,7 +161,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   checkProbeShading(probes, shading, o.scene.force, warn);
   if (volume) checkCaptureShading(volume->capture, volume->path, shading, o.scene.force, warn);
   if (shading.realTimeShadows == ShadowMode::Map)
-    requireMemory(shadowMapBytes(scene.lights, shading.shadowSettings),
+    requireMemory(shadowMapBytes(scene.lights, shading.shadowSettings, hasTransmission(scene)),
                   fmt::format("shadow maps of {} texels for {} lights", o.scene.shadowMapSize,
                               scene.lights.size()),
                   "use a smaller --shadow-map-size or --shadows none");

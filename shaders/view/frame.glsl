@@ -24,7 +24,8 @@ layout(std140, set = 0, binding = kFrameUniforms) uniform Frame {
   ivec4 shading;        // the sheen lobe's visibility (kSheenVisibilityCharlie, ...Neubelt),
                         // specular micro-occlusion (1 on), multiple-bounce occlusion (1 on)
   vec4 shadows;         // the lights' shadow maps: texels per side, 1 when they are on, the first
-                        // layer's record in shadowData
+                        // layer's record in shadowData, the layers whose filters follow the
+                        // depths in shadowDepths (0: nothing transmits)
   ivec4 clusterGrid;    // the light clusters (ibl/shared/clusters.h): tile size in pixels, tiles
                         // across, tiles down, depth slices
   vec4 clusterDepths;   // near, far, 1 perspective (exponential slices), 0 orthographic

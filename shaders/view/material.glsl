@@ -3,6 +3,7 @@
 // and pass (push constants, DrawConstants), and the alpha coverage of glTF's MASK and BLEND
 // modes. The including shader declares the inputs texCoord0, texCoord1 and vertexColor first.
 #include "ibl/shared/material.h"
+#include "ibl/shared/split_sum.h"
 #include "ibl/shared/view_bindings.h"
 
 // Base color, emission, sheen color and specular color have sRGB formats: linear here.
@@ -49,7 +50,8 @@ layout(push_constant) uniform Draw {
   int scenePass;  // 0 the frame's only scene pass; with screen-space reflections 1 the lit frame
                   // (no area light drawn over the surfaces), 2 the pass that composes them
                   // (kFrameScreenReflection); 3 the opaque frame behind transmissive
-                  // surfaces (kFrameTransmissionFrame): ScenePass in src/gpu/scene_upload.hpp
+                  // surfaces (kFrameTransmissionFrame); 4 and 5 the shadow maps' depths and
+                  // filters (view/shadow.frag): ScenePass in src/gpu/scene_upload.hpp
   // bit b: the texture at binding b is the material's (else white). Here, not with the factors:
   // it decides where derivatives are taken (slotTexel), which needs a uniform condition that the
   // helper invocations read too.
@@ -99,4 +101,59 @@ bool materialCovers() {
   float alpha =
       material.alpha.x * slotTexel(baseColorTexture, kMaterialBaseColor).a * vertexColor.a;
   return alphaCovers(int(material.alpha.y), alpha, material.alpha.z, blendThreshold());
+}
+
+// The material at this fragment with its textures applied, as surfaceAt reads it: everything
+// but what takes the surface's frame (the coat's normal, the anisotropy's direction, which
+// view/surface.glsl adds) and the coat's share of the emission. Needs the fragment covered.
+SplitSumMaterial fragmentMaterial() {
+  SplitSumMaterial m;
+  // sRGB textures are decoded before filtering (their formats), as Texture::sample does.
+  m.baseColor = material.baseColorMetallic.rgb *
+                slotTexel(baseColorTexture, kMaterialBaseColor).rgb * vertexColor.rgb;
+  vec2 mr = applyMetallicRoughnessTexel(
+      material.baseColorMetallic.a, material.emissiveRoughness.a,
+      slotTexel(metallicRoughnessTexture, kMaterialMetallicRoughness));
+  m.metallic = clamp(mr.x, 0.0, 1.0);
+  m.roughness = clamp(mr.y, 0.0, 1.0);
+  m.occlusion =
+      occlusionFromTexel(material.scales.y, slotTexel(occlusionTexture, kMaterialOcclusion));
+  m.emissive =
+      material.emissiveRoughness.rgb * slotTexel(emissiveTexture, kMaterialEmissive).rgb;
+  if (material.alpha.w != 0.0) m.emissive *= vertexColor.rgb;  // unlit: the base color's place
+  m.ior = material.scales.z;
+  m.specular = material.specular.w * slotTexel(specularTexture, kMaterialSpecular).a;
+  m.specularColor =
+      material.specular.rgb * slotTexel(specularColorTexture, kMaterialSpecularColor).rgb;
+  // KHR_materials_clearcoat: factor, roughness.
+  vec2 coat = material.clearcoat.xy;
+  coat.x *= slotTexel(clearcoatTexture, kMaterialClearcoat).r;
+  coat.y *= slotTexel(clearcoatRoughnessTexture, kMaterialClearcoatRoughness).g;
+  coat = clamp(coat, 0.0, 1.0);
+  m.clearcoat = coat.x;
+  m.clearcoatRoughness = coat.y;
+  m.clearcoatNormal = vec3(0.0, 0.0, 1.0);
+  // KHR_materials_iridescence: factor, IOR, thicknesses.
+  vec4 iridescence = material.iridescence;
+  m.iridescence =
+      clamp(iridescence.x * slotTexel(iridescenceTexture, kMaterialIridescence).r, 0.0, 1.0);
+  m.iridescenceIor = iridescence.y;
+  m.iridescenceThickness =
+      mix(iridescence.z, iridescence.w,
+          slotTexel(iridescenceThicknessTexture, kMaterialIridescenceThickness).g);
+  m.anisotropy = 0.0;
+  m.anisotropyTangent = vec3(1.0, 0.0, 0.0);
+  // KHR_materials_transmission and _volume: the share transmitted, the thickness, and the
+  // volume's attenuation (a thin wall's none).
+  m.transmission =
+      clamp(material.transmission.x * slotTexel(transmissionTexture, kMaterialTransmission).r,
+            0.0, 1.0);
+  bool volume = material.transmission.y > 0.0;
+  m.thickness = volume ? material.transmission.y * draw.thicknessScale *
+                             slotTexel(thicknessTexture, kMaterialThickness).g
+                       : 0.0;
+  m.attenuation = volume ? volumeAttenuationCoefficient(material.attenuation.rgb,
+                                                        material.transmission.z)
+                         : vec3(0.0);
+  return m;
 }

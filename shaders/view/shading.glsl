@@ -260,12 +260,12 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
     for (uint k = list.x; k < list.x + list.y; ++k) {
       int i = int(clusterData[k]);
       // The light's shadow first: what it hides costs nothing more.
-      float visible = kCastShadows ? shadowVisibility(shadowCasterAt(i), position, n) : 1.0;
-      if (visible <= 0.0) continue;
+      vec3 visible = kCastShadows ? shadowVisibility(shadowCasterAt(i), position, n) : vec3(1.0);
+      if (visible == vec3(0.0)) continue;
       LightRecord record = lightRecordAt(i);
       ShadingLight l = unpackLight(record);
       LightIncidence inc = lightIncidence(l, position, n, view, lobeRoughness, s, ltc);
-      float profile = visible * iesProfileFactor(l, lightRecordProfile(record),
+      vec3 profile = visible * iesProfileFactor(l, lightRecordProfile(record),
                                                  normalize(position - l.position));
       vec3 radiance = belowScale * lightRadiance(direct, n, view, inc, dfg.xy, s);
       if (shadeSheen)

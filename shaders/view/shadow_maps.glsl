@@ -1,5 +1,7 @@
 // The shadow maps' records and depths (view/frame.glsl) as ibl/shared/shadows.h reads them: its
-// accessors over the storage buffers, and the casters' records. Needs view/frame.glsl.
+// accessors over the storage buffers, and the casters' records. Where the scene transmits, the
+// depths' buffer goes on with the layers' filters, four floats per texel (frame.shadows.w: the
+// number of layers; 0: none). Needs view/frame.glsl.
 #include "ibl/shared/shadows.h"
 
 ShadowCaster shadowCasterAt(int light) {
@@ -32,6 +34,15 @@ float shadowDepthTexel(int layer, ivec2 t) {
   int n = int(frame.shadows.x);
   ivec2 c = clamp(t, ivec2(0), ivec2(n - 1));
   return shadowDepths[(layer * n + c.y) * n + c.x];
+}
+vec4 shadowFilterTexel(int layer, ivec2 t) {
+  uint layers = uint(frame.shadows.w);
+  if (layers == 0u) return vec4(1.0);
+  int n = int(frame.shadows.x);
+  ivec2 c = clamp(t, ivec2(0), ivec2(n - 1));
+  uint at = layers * uint(n * n) + 4u * uint((layer * n + c.y) * n + c.x);
+  return vec4(shadowDepths[at], shadowDepths[at + 1u], shadowDepths[at + 2u],
+              shadowDepths[at + 3u]);
 }
 float shadowMapSize() {
   return frame.shadows.x;

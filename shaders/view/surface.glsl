@@ -72,35 +72,11 @@ ShadedSurface fragmentSurface(int samples) {
     gl_SampleMask[0] = -1;
     gl_FragDepth = gl_FragCoord.z;
   }
-  vec3 baseColor = material.baseColorMetallic.rgb;
-  float metallic = material.baseColorMetallic.a;
-  float roughness = material.emissiveRoughness.a;
-  vec3 emissive = material.emissiveRoughness.rgb;
-  // sRGB textures are decoded before filtering (their formats), as Texture::sample does.
-  baseColor *= slotTexel(baseColorTexture, kMaterialBaseColor).rgb * vertexColor.rgb;
   if (!materialCovers()) discard;
-  vec2 mr = applyMetallicRoughnessTexel(
-      metallic, roughness, slotTexel(metallicRoughnessTexture, kMaterialMetallicRoughness));
-  metallic = mr.x;
-  roughness = mr.y;
-  float occlusion =
-      occlusionFromTexel(material.scales.y, slotTexel(occlusionTexture, kMaterialOcclusion));
-  emissive *= slotTexel(emissiveTexture, kMaterialEmissive).rgb;
-  if (material.alpha.w != 0.0) emissive *= vertexColor.rgb;  // unlit: the base color's place
+  SplitSumMaterial m = fragmentMaterial();
   vec4 sheen = material.sheen;
   sheen.rgb *= slotTexel(sheenColorTexture, kMaterialSheenColor).rgb;
   sheen.w *= slotTexel(sheenRoughnessTexture, kMaterialSheenRoughness).a;
-  vec4 specular = material.specular;
-  specular.w *= slotTexel(specularTexture, kMaterialSpecular).a;
-  specular.rgb *= slotTexel(specularColorTexture, kMaterialSpecularColor).rgb;
-  vec2 coat = material.clearcoat.xy;  // KHR_materials_clearcoat: factor, roughness
-  coat.x *= slotTexel(clearcoatTexture, kMaterialClearcoat).r;
-  coat.y *= slotTexel(clearcoatRoughnessTexture, kMaterialClearcoatRoughness).g;
-  vec4 iridescence = material.iridescence;  // KHR_materials_iridescence: factor, IOR, thicknesses
-  iridescence.x *= slotTexel(iridescenceTexture, kMaterialIridescence).r;
-  float filmThickness =
-      mix(iridescence.z, iridescence.w,
-          slotTexel(iridescenceThicknessTexture, kMaterialIridescenceThickness).g);
   // The coat's normal: the interpolated one, unless it has a normal map of its own.
   vec3 coatNormal = n;
   if (hasTexture(kMaterialClearcoatNormal))
@@ -121,48 +97,18 @@ ShadedSurface fragmentSurface(int samples) {
   if (anisotropyStrength > 0.0)
     anisotropyTangent = anisotropyTangentOf(
         n, draw.sphere.w > 0.0 ? sphereTangent(n) : worldTangent, anisotropy.xy);
-  // KHR_materials_transmission and _volume: the share transmitted, the thickness, and the
-  // volume's attenuation (a thin wall's none).
-  float transmission =
-      clamp(material.transmission.x * slotTexel(transmissionTexture, kMaterialTransmission).r,
-            0.0, 1.0);
-  bool volume = material.transmission.y > 0.0;
-  float thickness =
-      volume ? material.transmission.y * draw.thicknessScale *
-                   slotTexel(thicknessTexture, kMaterialThickness).g
-             : 0.0;
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
                                            : normalize(position - frame.cameraPosition.xyz);
   if (dot(n, ray) > 0.0) {  // shade the side the camera sees (the coat's normal alike)
     n = -n;
     coatNormal = -coatNormal;
   }
-  coat = clamp(coat, 0.0, 1.0);
   // The coat lies over the emission too (KHR_materials_clearcoat, "Emission").
-  if (coat.x > 0.0) emissive *= 1.0 - clearcoatWeight(coat.x, dot(coatNormal, -ray));
-  ShadedSurface surface;
-  SplitSumMaterial m;
-  m.baseColor = baseColor;
-  m.metallic = clamp(metallic, 0.0, 1.0);
-  m.roughness = clamp(roughness, 0.0, 1.0);
-  m.occlusion = occlusion;
-  m.emissive = emissive;
-  m.ior = material.scales.z;
-  m.specular = specular.w;
-  m.specularColor = specular.rgb;
-  m.clearcoat = coat.x;
-  m.clearcoatRoughness = coat.y;
-  m.iridescence = clamp(iridescence.x, 0.0, 1.0);
-  m.iridescenceIor = iridescence.y;
-  m.iridescenceThickness = filmThickness;
+  if (m.clearcoat > 0.0) m.emissive *= 1.0 - clearcoatWeight(m.clearcoat, dot(coatNormal, -ray));
   m.clearcoatNormal = coatNormal;
   m.anisotropy = anisotropyStrength;
   m.anisotropyTangent = anisotropyTangent;
-  m.transmission = transmission;
-  m.thickness = thickness;
-  m.attenuation = volume ? volumeAttenuationCoefficient(material.attenuation.rgb,
-                                                        material.transmission.z)
-                         : vec3(0.0);
+  ShadedSurface surface;
   surface.position = position;
   surface.normal = n;
   surface.view = -ray;

@@ -764,13 +764,13 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDescrip
   VkPipelineDepthStencilStateCreateInfo depthState{
       VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depthState.depthTestEnable = d.depth ? VK_TRUE : VK_FALSE;
-  depthState.depthWriteEnable = d.depth ? VK_TRUE : VK_FALSE;
+  depthState.depthWriteEnable = d.depth && d.depthWrite ? VK_TRUE : VK_FALSE;
   depthState.depthCompareOp = VK_COMPARE_OP_LESS;
   VkPipelineColorBlendAttachmentState blendAttachment{};
   blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                                    VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  const std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(d.colorAttachments,
-                                                                          blendAttachment);
+  const std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(
+      d.colorAttachments, d.blend ? *d.blend : blendAttachment);
   VkPipelineColorBlendStateCreateInfo blend{
       VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = d.colorAttachments;

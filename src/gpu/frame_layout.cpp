@@ -109,7 +109,8 @@ FrameUniforms packFrameUniforms(const Camera& camera, const RenderOptions& o,
   u.shading = glm::ivec4(s.sheenVisibility, s.specularMicroOcclusion ? 1 : 0,
                          s.multiBounceOcclusion ? 1 : 0, 0);
   u.shadows = glm::vec4(static_cast<float>(state.shadowMapSize), state.shadows ? 1.0f : 0.0f,
-                        5.0f * static_cast<float>(state.shadowCasters), 0.0f);
+                        5.0f * static_cast<float>(state.shadowCasters),
+                        static_cast<float>(state.shadowFilterLayers));
   const shared::LightClusterGrid& g = state.clusterGrid;
   u.clusterGrid = glm::ivec4(g.tileSize, g.tilesX, g.tilesY, g.slices);
   u.clusterDepths = glm::vec4(g.near, g.far, static_cast<float>(g.perspective), 0.0f);

@@ -85,6 +85,7 @@ struct FrameState {
   // The shadow maps: texels per side, casters, whether this frame reads them.
   int shadowMapSize = 0;
   std::size_t shadowCasters = 0;
+  int shadowFilterLayers = 0;  // the layers whose filters follow the depths (0: none)
   bool shadows = false;
   shared::LightClusterGrid clusterGrid{};    // the light clusters of this camera
   std::optional<shared::VolumeGrid> volume;  // the irradiance volume's grid (none: no volume)

@@ -536,7 +536,8 @@ void SceneUpload::drawMeshes(VkCommandBuffer cmd, VkPipelineLayout layout, int l
   for (const DrawMesh& m : meshes_) {
     const auto mi = static_cast<std::size_t>(
         std::clamp(m.material, 0, static_cast<int>(materialBuffers_.size()) - 1));
-    if (pass == kOpaqueFramePass && transmissive_[mi]) continue;
+    if ((pass == kOpaqueFramePass || pass == kShadowPass) && transmissive_[mi]) continue;
+    if (pass == kShadowFilterPass && !transmissive_[mi]) continue;
     // A slot whose UV set the mesh lacks is off, as surfaceAt's lookups are: its texel is the
     // slot's default (white; the anisotropy's direction along the tangent).
     const std::uint32_t readable =

@@ -108,12 +108,16 @@ struct DrawConstants {
 // reflections, the lit frame (the surfaces without the area lights in front of them: what the
 // view buffers hold, so that no reflection meets a light) or the pass that composes them; with
 // transmissive materials, the opaque frame behind them (TransmissionPass: the other meshes alone,
-// lit as the lit frame is, without the screen's occlusion).
+// lit as the lit frame is, without the screen's occlusion). The shadow maps' (ShadowPass, not a
+// scene pass: view/shadow.frag) draw the meshes that transmit nothing into the depths, then those
+// that transmit into the filters.
 enum ScenePass : std::int32_t {
   kOnlyScenePass = 0,
   kLitFramePass = 1,
   kReflectedPass = 2,
-  kOpaqueFramePass = 3
+  kOpaqueFramePass = 3,
+  kShadowPass = 4,
+  kShadowFilterPass = 5
 };
 static_assert(offsetof(DrawConstants, shadowLayer) == 16,
               "view/shadow.vert reads the layer at offset 16");
@@ -136,7 +140,8 @@ class SceneUpload {
                       const std::vector<Light>& lights);
   // Binds and draws every mesh with its material (set 1, through `layout`) and its push
   // constants (DrawConstants): its sphere, shadow layer `layer` and scene pass part `pass`
-  // (kOpaqueFramePass: the meshes whose material transmits nothing).
+  // (kOpaqueFramePass and kShadowPass: the meshes whose material transmits nothing;
+  // kShadowFilterPass: those whose material transmits).
   void drawMeshes(VkCommandBuffer cmd, VkPipelineLayout layout, int layer, ScenePass pass) const;
   // Sets the bake's, the probes' and the lights' parts of `state`.
   void describe(FrameState& state) const;

@@ -2,9 +2,11 @@
 // Internal: the viewer's shadow maps (view/frame.glsl's ShadowRecords and ShadowDepths), planned
 // again when the camera (the sun's cascades), the lights or the settings change; a layer whose
 // record is unchanged keeps its depths. Rasterized on the device (view/shadow.vert and .frag: a
-// depth-only pass per layer into a D32_SFLOAT target, copied into the depths' buffer), or, on a
-// device without 32-bit float depth attachments or maps larger than it draws, traced on the CPU
-// through the scene's copy (ShadowMapBuilder).
+// pass per layer into a D32_SFLOAT target, copied into the depths' buffer; where the scene
+// transmits, a second draw blends the filters into an RGBA32F target copied after all the
+// depths), or, on a device without 32-bit float depth attachments (or blended RGBA32F ones,
+// where needed) or maps larger than it draws, traced on the CPU through the scene's copy
+// (ShadowMapBuilder).
 #include <memory>
 #include <utility>
 #include <vector>
@@ -62,8 +64,10 @@ class ShadowPass {
   int rasterLimit_ = 0;  // the largest map the device draws (image and framebuffer limits)
   UniqueShaderModule vertex_, fragment_;
   UniqueRenderPass pass_;
-  UniquePipeline pipeline_;
-  std::unique_ptr<DeviceImage> target_;  // mapSize^2, D32_SFLOAT
+  UniquePipeline pipeline_, filterPipeline_;
+  bool filtered_ = false;                      // the scene transmits: the maps have filters
+  std::unique_ptr<DeviceImage> target_;        // mapSize^2, D32_SFLOAT
+  std::unique_ptr<DeviceImage> filterTarget_;  // mapSize^2, R32G32B32A32_SFLOAT (filtered_)
   UniqueFramebuffer framebuffer_;
   std::vector<int> pending_;  // layers to draw before the frame (raster_)
   std::unique_ptr<Scene> scene_;

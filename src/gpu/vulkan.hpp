@@ -158,7 +158,10 @@ struct GraphicsPipelineDescription {
   std::span<const VkVertexInputAttributeDescription> attributes;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   bool depth = false;                  // depth test (less) and write
+  bool depthWrite = true;              // with `depth`: false tests alone
   std::uint32_t colorAttachments = 1;  // written without blending (0: a depth-only pass)
+  // Every color attachment's blending and write mask (null: written without blending).
+  const VkPipelineColorBlendAttachmentState* blend = nullptr;
   // The fragment shader's specialization constants (null: their defaults).
   const VkSpecializationInfo* fragmentSpecialization = nullptr;
 };

@@ -61,7 +61,7 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
     if (!r.on) return;
     const glm::vec3 origin = volumeProbePosition(g, probe) + r.offset;
     Sampler sampler(volume.capture.seed, (static_cast<std::uint64_t>(frame) << 32) + probe);
-    std::vector<float> visibility(scene.lights.size());
+    std::vector<glm::vec3> visibility(scene.lights.size());
     for (int i = 0; i < rays; ++i) {
       const std::size_t at = static_cast<std::size_t>(probe) * rays + i;
       const Ray ray{origin, directions[static_cast<std::size_t>(i)]};
@@ -79,7 +79,7 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
       sampler.startSample(static_cast<std::uint32_t>(i));
       for (std::size_t l = 0; l < scene.lights.size(); ++l)
         visibility[l] =
-            rayTracedVisibility(tracer, scene.lights[l], p.position, p.normal, 1, sampler);
+            rayTracedVisibility(scene, tracer, scene.lights[l], p.position, p.normal, 1, sampler);
       radiance[at] =
           shadeSplitSum(p, view, bake, bakeOptions, o) +
           shadeLightsRealTime(p, p.position, view, scene.lights, bake.dfg, o, 1.0f, visibility);

@@ -308,8 +308,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     throughput *= crossing(medium, hit.t);
     // An emissive surface met: its emission, weighed against the sampling of the emitters.
     const bool sphere = s.tracer.isSphere(hit.geometry);
-    const Material& met = s.scene.materials[static_cast<std::size_t>(
-        sphere ? s.scene.spheres[hit.primitive].material : s.scene.meshes[hit.geometry].material)];
+    const Material& met = hitMaterial(s.scene, s.tracer, hit);
     std::optional<SurfacePoint> next;
     if (met.emissive != glm::vec3(0.0f)) {
       next = surfaceAt(s.scene, s.tracer, hit, ray);

@@ -74,6 +74,10 @@ RTCRay embreeRay(glm::vec3 origin, glm::vec3 dir) {
   return ray;
 }
 
+unsigned RayTracer::maskOf(const Material& material) {
+  return material.transmission > 0.0f ? kTransmissive : kOpaque;
+}
+
 RayTracer::RayTracer(const Scene& scene) : scene_(scene) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) fail("embree", "cannot create a device");
@@ -97,23 +101,41 @@ RayTracer::RayTracer(const Scene& scene) : scene_(scene) {
       rtcSetGeometryIntersectFilterFunction(g, alphaFilter);
       rtcSetGeometryOccludedFilterFunction(g, alphaFilter);
     }
+    rtcSetGeometryMask(g, maskOf(mat));
     rtcCommitGeometry(g);
     rtcAttachGeometry(handle_, g);
     rtcReleaseGeometry(g);
   }
-  if (!scene.spheres.empty()) {
+  // The spheres in two geometries, those that transmit nothing and those that transmit (each
+  // its mask), their primitives mapped back to the scene's spheres.
+  for (int transmits = 0; transmits < 2; ++transmits) {
+    std::vector<std::uint32_t>& spheres = sphereIndices_[transmits];
+    for (std::size_t i = 0; i < scene.spheres.size(); ++i)
+      if ((maskOf(scene.materials[static_cast<std::size_t>(scene.spheres[i].material)]) ==
+           kTransmissive) == (transmits == 1))
+        spheres.push_back(static_cast<std::uint32_t>(i));
+    if (spheres.empty()) continue;
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), scene.spheres.size()));
-    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
-      for (int c = 0; c < 3; ++c) v[4 * i + c] = scene.spheres[i].center[c];
-      v[4 * i + 3] = scene.spheres[i].radius;
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), spheres.size()));
+    for (std::size_t i = 0; i < spheres.size(); ++i) {
+      const Sphere& s = scene.spheres[spheres[i]];
+      for (int c = 0; c < 3; ++c) v[4 * i + c] = s.center[c];
+      v[4 * i + 3] = s.radius;
     }
+    rtcSetGeometryMask(g, transmits == 1 ? kTransmissive : kOpaque);
     rtcCommitGeometry(g);
-    sphereGeometry_ = rtcAttachGeometry(handle_, g);
+    sphereGeometries_[transmits] = rtcAttachGeometry(handle_, g);
     rtcReleaseGeometry(g);
   }
   rtcCommitScene(handle_);
+}
+
+const Material& hitMaterial(const Scene& scene, const RayTracer& tracer,
+                            const RayTracer::Hit& hit) {
+  const int material = tracer.isSphere(hit.geometry) ? scene.spheres[hit.primitive].material
+                                                     : scene.meshes[hit.geometry].material;
+  return scene.materials[static_cast<std::size_t>(material)];
 }
 
 SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTracer::Hit& hit,

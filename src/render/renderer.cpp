@@ -47,34 +47,6 @@ float ambientOcclusion(const RayTracer& tracer, const SurfacePoint& p, int rays,
   return static_cast<float>(open) / static_cast<float>(rays);
 }
 
-// Whether a material of the scene lets light through (KHR_materials_transmission).
-bool sceneHasTransmission(const Scene& scene) {
-  return std::any_of(scene.materials.begin(), scene.materials.end(),
-                     [](const Material& m) { return m.transmission > 0.0f; });
-}
-
-// The first surface along `ray` whose material transmits nothing: the opaque frame's view, its
-// distance along `ray`.
-RayTracer::Hit firstOpaqueHit(const Scene& scene, const RayTracer& tracer, const Ray& ray) {
-  float crossed = 0.0f;
-  Ray rest = ray;
-  for (int surfaces = 0; surfaces < 256; ++surfaces) {
-    RayTracer::Hit hit = tracer.intersect(rest);
-    if (!hit.found) return hit;
-    const int material = tracer.isSphere(hit.geometry) ? scene.spheres[hit.primitive].material
-                                                       : scene.meshes[hit.geometry].material;
-    if (scene.materials[static_cast<std::size_t>(material)].transmission <= 0.0f) {
-      hit.t += crossed;
-      return hit;
-    }
-    const glm::vec3 at = rest.origin + hit.t * rest.direction;
-    const float step = hit.t + 1e-4f * std::max(1.0f, glm::length(at));
-    rest.origin += step * rest.direction;
-    crossed += step;
-  }
-  return {};
-}
-
 }  // namespace
 
 shared::SplitSumSwitches splitSumSwitches(const RenderOptions& o) {
@@ -91,9 +63,7 @@ shared::SplitSumSwitches splitSumSwitches(const RenderOptions& o) {
   return s;
 }
 
-namespace {
-
-// The point's material as the shared formulas take it (emission added by the caller).
+// The emission is left for the caller to add.
 shared::SplitSumMaterial splitSumMaterial(const SurfacePoint& p, float occlusion) {
   shared::SplitSumMaterial m;
   m.baseColor = p.baseColor;
@@ -117,6 +87,8 @@ shared::SplitSumMaterial splitSumMaterial(const SurfacePoint& p, float occlusion
   m.attenuation = p.attenuation;
   return m;
 }
+
+namespace {
 
 // What a clear coat (KHR_materials_clearcoat) lets through of the layers below it toward `view`.
 float belowCoat(const SurfacePoint& p, glm::vec3 view) {
@@ -263,7 +235,7 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
                               const std::vector<Light>& lights, const Image& dfgTable,
                               const RenderOptions& o, float belowScale,
-                              const std::vector<float>& visibility) {
+                              const std::vector<glm::vec3>& visibility) {
   const shared::SplitSumSwitches s = splitSumSwitches(o);
   // Ambient occlusion darkens indirect light only.
   const shared::SplitSumMaterial m = splitSumMaterial(p, 1.0f);
@@ -289,8 +261,8 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
   glm::vec3 sum(0.0f);
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const Light& light = lights[i];
-    const float visible = i < visibility.size() ? visibility[i] : 1.0f;
-    if (visible <= 0.0f) continue;
+    const glm::vec3 visible = i < visibility.size() ? visibility[i] : glm::vec3(1.0f);
+    if (visible == glm::vec3(0.0f)) continue;
     const shared::ShadingLight sl = shadingLightOf(light);
     const shared::LightIncidence inc =
         shared::lightIncidence(sl, position, p.normal, view, lobeRoughness, s, ltc);
@@ -309,7 +281,7 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
           shared::lightIncidence(sl, position, p.clearcoatNormal, view, p.clearcoatRoughness, s,
                                  coatLtc),
           coatDfg, s);
-    sum += sl.color * (profile * visible) * radiance;
+    sum += sl.color * profile * visible * radiance;
   }
   return sum;
 }
@@ -354,8 +326,7 @@ RenderResult renderScene(const Scene& scene, const Camera& camera, const BakeRes
     return renderScene(scene, camera, bake, bakeOptions, withOcclusion, progress);
   }
   if (o.mode == RenderMode::SplitSum && !o.transmissionFrame && o.cameraSeesTransmissive &&
-      o.only != ShadingTerms::Diffuse && o.only != ShadingTerms::Sheen &&
-      sceneHasTransmission(scene)) {
+      o.only != ShadingTerms::Diffuse && o.only != ShadingTerms::Sheen && hasTransmission(scene)) {
     // KHR_materials_transmission: the opaque surfaces' frame first, the transmissive ones read
     // it (the glTF Sample Viewer's order). It is lit as the frame of screen-space reflections is
     // (no area light in front of a surface), without the screen's occlusion, whose view buffers
@@ -435,7 +406,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   ShadowMaps ownMaps;
   const ShadowMaps* maps = o.shadowMaps;
   if (shadowed && o.realTimeShadows == ShadowMode::Map && !maps) {
-    ownMaps = buildShadowMaps(tracer, {lo, hi}, scene.lights, nullptr, o.shadowSettings);
+    ownMaps = buildShadowMaps(scene, tracer, {lo, hi}, scene.lights, nullptr, o.shadowSettings);
     maps = &ownMaps;
   }
   const ScreenOcclusion* screen = o.mode == RenderMode::SplitSum ? o.screenOcclusion : nullptr;
@@ -461,7 +432,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
   const shared::ShadowMapView shadowView = maps ? maps->view() : shared::ShadowMapView{};
   parallelFor(0, height, [&](int y) {
     std::uint64_t rowSamples = 0;
-    std::vector<float> visibility(shadowed ? scene.lights.size() : 0);  // per light, reused
+    std::vector<glm::vec3> visibility(shadowed ? scene.lights.size() : 0);  // per light, reused
     for (int x = 0; x < width; ++x) {
       Sampler sampler(o.seed, static_cast<std::uint64_t>(y) * width + x);
       glm::dvec3 sum(0.0);
@@ -476,7 +447,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
         const float jx = j.x, jy = j.y;
         const Ray ray = generateRay({static_cast<float>(x) + jx, static_cast<float>(y) + jy});
         const RayTracer::Hit hit =
-            o.cameraSeesTransmissive ? tracer.intersect(ray) : firstOpaqueHit(scene, tracer, ray);
+            o.cameraSeesTransmissive ? tracer.intersect(ray) : firstOpaqueHit(tracer, ray);
         const NearestLight seen = o.cameraSeesEmitters
                                       ? nearestLight(scene.lights, ray.origin, ray.direction)
                                       : NearestLight{};
@@ -521,7 +492,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                 for (std::size_t i = 0; i < scene.lights.size(); ++i)
                   visibility[i] =
                       o.realTimeShadows == ShadowMode::Ray
-                          ? rayTracedVisibility(tracer, scene.lights[i], position, p.normal,
+                          ? rayTracedVisibility(scene, tracer, scene.lights[i], position, p.normal,
                                                 o.shadowSettings.raySamples, sampler)
                           : shared::shadowVisibility(shadowView, maps->casters[i], position,
                                                      p.normal);

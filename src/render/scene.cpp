@@ -60,6 +60,11 @@ bool hasSheen(const Scene& scene) {
   return false;
 }
 
+bool hasTransmission(const Scene& scene) {
+  return std::any_of(scene.materials.begin(), scene.materials.end(),
+                     [](const Material& m) { return m.transmission > 0.0f; });
+}
+
 Scene withoutObjects(const Scene& scene, const std::vector<std::string>& names,
                      const std::string& option) {
   if (names.empty()) return scene;

@@ -217,6 +217,7 @@ shared::ShadowMapView ShadowMaps::view() const {
   v.size = mapSize;
   v.depths = depths.data();
   v.layers = layers.data();
+  v.filters = filters.empty() ? nullptr : filters.data();
   return v;
 }
 
@@ -226,11 +227,13 @@ int shadowLayerCount(const Light& light, const ShadowSettings& settings) {
   return 6;
 }
 
-std::size_t shadowMapBytes(const std::vector<Light>& lights, const ShadowSettings& settings) {
+std::size_t shadowMapBytes(const std::vector<Light>& lights, const ShadowSettings& settings,
+                           bool filtered) {
   std::size_t layers = 0;
   for (const Light& l : lights) layers += static_cast<std::size_t>(shadowLayerCount(l, settings));
   return layers * static_cast<std::size_t>(settings.mapSize) *
-         static_cast<std::size_t>(settings.mapSize) * sizeof(float);
+         static_cast<std::size_t>(settings.mapSize) *
+         (sizeof(float) + (filtered ? sizeof(glm::vec4) : 0));
 }
 
 bool sceneCastsShadows(const Scene& scene) {
@@ -293,14 +296,17 @@ ShadowMaps planShadowMaps(const std::vector<Light>& lights, std::pair<glm::vec3,
   return maps;
 }
 
-ShadowMaps buildShadowMaps(const RayTracer& tracer, std::pair<glm::vec3, glm::vec3> bounds,
-                           const std::vector<Light>& lights, const Camera* camera,
-                           const ShadowSettings& settings, const ShadowMaps* previous) {
+ShadowMaps buildShadowMaps(const Scene& scene, const RayTracer& tracer,
+                           std::pair<glm::vec3, glm::vec3> bounds, const std::vector<Light>& lights,
+                           const Camera* camera, const ShadowSettings& settings,
+                           const ShadowMaps* previous) {
   ShadowMaps maps = planShadowMaps(lights, bounds, camera, settings);
   const int n = maps.mapSize;
   const auto size = static_cast<float>(n);
   const std::size_t layerTexels = static_cast<std::size_t>(n) * n;
   maps.depths.assign(maps.layers.size() * layerTexels, 1.0f);
+  const bool filtered = hasTransmission(scene);
+  if (filtered) maps.filters.assign(maps.layers.size() * layerTexels, glm::vec4(1.0f));
   // Layers planned as before keep their depths; the others are traced.
   std::vector<int> traced;
   for (std::size_t i = 0; i < maps.layers.size(); ++i) {
@@ -311,6 +317,10 @@ ShadowMaps buildShadowMaps(const RayTracer& tracer, std::pair<glm::vec3, glm::ve
           std::copy_n(previous->depths.begin() + static_cast<std::ptrdiff_t>(j * layerTexels),
                       layerTexels,
                       maps.depths.begin() + static_cast<std::ptrdiff_t>(i * layerTexels));
+          if (filtered)
+            std::copy_n(previous->filters.begin() + static_cast<std::ptrdiff_t>(j * layerTexels),
+                        layerTexels,
+                        maps.filters.begin() + static_cast<std::ptrdiff_t>(i * layerTexels));
           kept = true;
         }
     if (!kept) traced.push_back(static_cast<int>(i));
@@ -322,13 +332,25 @@ ShadowMaps buildShadowMaps(const RayTracer& tracer, std::pair<glm::vec3, glm::ve
     const shared::ShadowLayer& l = maps.layers[static_cast<std::size_t>(layer)];
     const int y = row % n;
     float* out = maps.depths.data() + static_cast<std::size_t>(row) * n;
+    glm::vec4* filter =
+        filtered ? maps.filters.data() + static_cast<std::size_t>(row) * n : nullptr;
     for (int x = 0; x < n; ++x) {
       const glm::vec2 t(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
       const glm::vec3 d = shared::shadowRayDirection(l, t, size);
       const float length = glm::length(d);
-      const RayTracer::Hit hit =
-          tracer.intersect({shared::shadowRayOrigin(l, t, size), d / length});
+      const Ray ray{shared::shadowRayOrigin(l, t, size), d / length};
       // d's forward component is 1 (orthographic: d is forward): depth = t / |d|.
+      const RayTracer::Hit hit = firstOpaqueHit(tracer, ray);
+      if (filtered)
+        crossTransmissive(tracer, ray, hit.found ? hit.t : INFINITY,
+                          [&](const RayTracer::Hit& h, const Ray& segment, float at) {
+                            const shared::SplitSumMaterial m =
+                                splitSumMaterial(surfaceAt(scene, tracer, h, segment), 1.0f);
+                            glm::vec4& f = filter[x];
+                            f = glm::vec4(glm::vec3(f) * shared::shadowMapCrossing(
+                                                             m, glm::dot(h.ng, ray.direction)),
+                                          std::min(f.w, shared::shadowStoredDepth(l, at / length)));
+                          });
       if (hit.found) out[x] = shared::shadowStoredDepth(l, hit.t / length);
     }
   });
@@ -343,17 +365,36 @@ ShadowMapBuilder::~ShadowMapBuilder() = default;
 ShadowMaps ShadowMapBuilder::build(const std::vector<Light>& lights, const Camera* camera,
                                    const ShadowSettings& settings,
                                    const ShadowMaps* previous) const {
-  return buildShadowMaps(*owned_, scene_.bounds(), lights, camera, settings, previous);
+  return buildShadowMaps(scene_, *owned_, scene_.bounds(), lights, camera, settings, previous);
 }
 
-float rayTracedVisibility(const RayTracer& tracer, const Light& light, glm::vec3 p, glm::vec3 n,
-                          int samples, Sampler& sampler) {
+glm::vec3 straightTransmittance(const Scene& scene, const RayTracer& tracer, glm::vec3 origin,
+                                glm::vec3 direction, float distance) {
+  if (tracer.occluded(origin, direction, distance, RayTracer::kOpaque)) return glm::vec3(0.0f);
+  if (!hasTransmission(scene)) return glm::vec3(1.0f);
+  glm::vec3 passed(1.0f);
+  // Beer-Lambert over each chord, sigma (out - in), summed as -sigma in + sigma out: the order of
+  // the crossings does not matter, and a segment that starts inside a volume counts from 0.
+  glm::vec3 opticalDepth(0.0f);
+  crossTransmissive(tracer, {origin, direction}, distance,
+                    [&](const RayTracer::Hit& h, const Ray& segment, float at) {
+                      const SurfacePoint p = surfaceAt(scene, tracer, h, segment);
+                      passed *= shared::surfaceShadowTransmittance(splitSumMaterial(p, 1.0f),
+                                                                   glm::dot(h.ng, direction));
+                      if (p.volume) opticalDepth += (p.frontFace ? -at : at) * p.attenuation;
+                    });
+  return passed * glm::exp(-glm::max(opticalDepth, glm::vec3(0.0f)));
+}
+
+glm::vec3 rayTracedVisibility(const Scene& scene, const RayTracer& tracer, const Light& light,
+                              glm::vec3 p, glm::vec3 n, int samples, Sampler& sampler) {
   const int count = light.isPunctual() ? 1 : std::max(1, samples);
   const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<float>(count))));
   // Each sample weighs what it brings to a diffuse surface: its radiance times the cosine over
   // its density (the irradiance estimate), so that the visibility is the share of the light's
   // irradiance that arrives, as the reference shadows it.
-  double total = 0.0, open = 0.0;
+  double total = 0.0;
+  glm::dvec3 open(0.0);
   const float scale = 1e-4f * std::max(1.0f, glm::length(p));
   for (int i = 0; i < count; ++i) {
     // Stratified over a side x side grid (the rest uniform).
@@ -370,9 +411,9 @@ float rayTracedVisibility(const RayTracer& tracer, const Light& light, glm::vec3
     total += weight;
     const glm::vec3 origin = p + (glm::dot(n, s.direction) >= 0.0f ? n : -n) * scale;
     const float reach = std::isfinite(s.distance) ? s.distance * (1.0f - 1e-4f) : INFINITY;
-    if (!tracer.occluded(origin, s.direction, reach)) open += weight;
+    open += weight * glm::dvec3(straightTransmittance(scene, tracer, origin, s.direction, reach));
   }
-  return total > 0.0 ? static_cast<float>(open / total) : 1.0f;
+  return total > 0.0 ? glm::vec3(open / total) : glm::vec3(1.0f);
 }
 
 }  // namespace ibl

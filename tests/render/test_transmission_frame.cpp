@@ -185,6 +185,35 @@ TEST(TransmissionFrame, ThinWallShowsWhatLiesBehindIt) {
   }
 }
 
+// A thin wall lying on an emitting floor, in its plane (a glass resting on a table): the floor
+// behind it is still the opaque frame's, seen through the wall as through one a unit above it;
+// a frame that steps past each transmissive surface along the view would step past the floor
+// too and show nothing.
+TEST(TransmissionFrame, WallOnTheFloorShowsTheFloor) {
+  const glm::vec3 tint(0.2f, 0.5f, 0.8f), emitted(2.0f, 3.0f, 4.0f);
+  Material wall;
+  wall.baseColor = tint;
+  wall.metallic = 0.0f;
+  wall.roughness = 0.0f;
+  wall.transmission = 1.0f;
+  Camera c;
+  c.perspective = false;
+  c.orthoWidth = 0.5f;
+  c.from = glm::vec3(0.0f, 0.0f, 3.0f);
+  c.width = c.height = 4;
+  RenderOptions o;
+  o.spp = 1;
+  for (float height : {-1.0f, 0.0f}) {
+    Scene scene;
+    scene.materials = {wall, emitter(emitted)};
+    scene.meshes = {squareAt(0.0f, 50.0f, 0), squareAt(height, 50.0f, 1)};
+    const Image img = renderScene(scene, c, darkness().result, darkness().options, o).color;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(img.at(1, 2)[k], 0.96f * tint[k] * emitted[k], 0.01f * emitted[k])
+          << "the floor at " << height << ", channel " << k;
+  }
+}
+
 // A smooth slab of index 1.5 and thickness 2 over a floor that emits red for x < 2.6 and blue
 // beyond, seen at 45 degrees by an orthographic camera: each pixel shows the floor where the view's
 // ray, refracted into the slab (sin t = sin 45 / 1.5) and run for the thickness, leaves it, then

@@ -9,6 +9,7 @@
 
 #include "ibl/bake/prefilter.hpp"
 #include "ibl/render/renderer.hpp"
+#include "ibl/shared/split_sum.h"
 #include "support/synthetic_bake.hpp"
 
 using namespace ibl;
@@ -106,4 +107,35 @@ TEST(ShadingRules, SpecularOcclusion) {
   o.diffuse = DiffuseModel::Lambert;
   EXPECT_NEAR(shadeSplitSum(point({0, 0, 1}, 0.0f, r, 0.4f), v, s.bake, s.options, o).x, 0.4f,
               1e-5f);
+}
+
+// What a surface that transmits lets through of a shadow ray (surfaceShadowTransmittance), and a
+// shadow map's share per crossing (shadowMapCrossing), against fresnel_mix written out: base
+// color c, metallic m, transmission t, KHR_materials_specular's weight s and the index 1.5 (F0
+// 0.04) pass c (1 - m) t (1 - s F(cos)), Schlick's F at the ray's cosine to the surface either way
+// through it; a map's crossing also keeps exp(-sigma thickness / 2).
+TEST(ShadingRules, ShadowTransmittanceIsWhatTheSpecularLayerLeaves) {
+  shared::SplitSumMaterial m{};
+  m.baseColor = {0.9f, 0.6f, 0.3f};
+  m.metallic = 0.25f;
+  m.roughness = 0.4f;
+  m.occlusion = 1.0f;
+  m.transmission = 0.8f;
+  m.specular = 0.5f;
+  m.thickness = 0.3f;
+  m.attenuation = {2.0f, 1.0f, 0.0f};
+  for (double c : {1.0, 0.5, 0.1, -0.5}) {
+    const double ac = std::abs(c);
+    const double f = 0.04 + 0.96 * std::pow(1.0 - ac, 5.0);
+    const glm::vec3 surface = shared::surfaceShadowTransmittance(m, static_cast<float>(c));
+    const glm::vec3 crossing = shared::shadowMapCrossing(m, static_cast<float>(c));
+    for (int k = 0; k < 3; ++k) {
+      const double expected = m.baseColor[k] * 0.75 * 0.8 * (1.0 - 0.5 * f);
+      EXPECT_NEAR(surface[k], expected, 1e-6) << c << ", channel " << k;
+      EXPECT_NEAR(crossing[k], expected * std::exp(-m.attenuation[k] * 0.15), 1e-6)
+          << c << ", channel " << k;
+    }
+  }
+  m.transmission = 0.0f;
+  EXPECT_EQ(shared::surfaceShadowTransmittance(m, 1.0f), glm::vec3(0.0f));
 }

@@ -211,6 +211,8 @@ struct SurfacePoint {
 // The switches of the split-sum formulas (ibl/shared/split_sum.h) that the options select; the
 // viewer's frame uniforms carry the same.
 shared::SplitSumSwitches splitSumSwitches(const RenderOptions& options);
+// The point's material as ibl/shared/split_sum.h takes it, with ambient occlusion `occlusion`.
+shared::SplitSumMaterial splitSumMaterial(const SurfacePoint& p, float occlusion);
 // The real-time shading of a point from the bake: the formulas of ibl/shared/split_sum.h with
 // the CPU's lookups (seam-aware trilinear in the specular chain, bilinear in the irradiance
 // cube or SH9, bilinear in the DFG table). view: unit, from the point toward the eye. Returns
@@ -223,11 +225,11 @@ glm::vec3 shadeSplitSum(const SurfacePoint& p, glm::vec3 view, const BakeResult&
 // IES profiles applied on the CPU); dfgTable: the bake's DFG table (read at the point's n.v and
 // roughness, and the clear coat's; the LTC table is looked up here, once for all the lights). A
 // sheen layer adds its lobe (shared::sheenLightRadiance) and scales the layer below by `belowScale`
-// (its albedo scaling). visibility: the share of each light that reaches the point (its shadow;
-// empty: all of it).
+// (its albedo scaling). visibility: the share of each light that reaches the point, per channel
+// (its shadow, colored by what transmits; empty: all of it).
 glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::vec3 view,
                               const std::vector<Light>& lights, const Image& dfgTable,
                               const RenderOptions& options, float belowScale = 1.0f,
-                              const std::vector<float>& visibility = {});
+                              const std::vector<glm::vec3>& visibility = {});
 
 }  // namespace ibl

@@ -212,6 +212,10 @@ struct Scene {
 // than 0), so that its render needs the bake's sheen chain and table (BakeOptions::sheen).
 bool hasSheen(const Scene& scene);
 
+// Whether any material of `scene` lets light through (KHR_materials_transmission: a factor above
+// 0), so that its real-time paths draw the opaque frame behind it and filter its shadows.
+bool hasTransmission(const Scene& scene);
+
 // The scene without the meshes that answer to any of `names` (Mesh::names: a glTF mesh, or a
 // node and everything below it), as a probe capture leaves out dynamic objects. Throws
 // UsageError("<option>: ...") when a name matches no mesh or nothing would be left.

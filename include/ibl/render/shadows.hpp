@@ -30,13 +30,15 @@ struct ShadowSettings {
 };
 
 // Every light's shadow maps: one ShadowCaster per light (in the lights' order), the layers they
-// refer to, and the layers' depths (layer after layer, rows of mapSize texels; see
+// refer to, the layers' depths (layer after layer, rows of mapSize texels) and, where the scene
+// has surfaces that transmit, their filters in the same order (empty otherwise; see
 // ibl/shared/shadows.h for what a texel stores).
 struct ShadowMaps {
   int mapSize = 0;
   std::vector<shared::ShadowCaster> casters;
   std::vector<shared::ShadowLayer> layers;
   std::vector<float> depths;
+  std::vector<glm::vec4> filters;
   // What ibl/shared/shadows.h reads on the CPU.
   shared::ShadowMapView view() const;
 };
@@ -44,8 +46,10 @@ struct ShadowMaps {
 // The layers a light needs: the sun `cascades`, a spot of outer half-angle up to 60 degrees 1,
 // every other light 6 (a cube).
 int shadowLayerCount(const Light& light, const ShadowSettings& settings);
-// The bytes of the depths of all `lights`' maps (for the memory check before the work).
-std::size_t shadowMapBytes(const std::vector<Light>& lights, const ShadowSettings& settings);
+// The bytes of the depths of all `lights`' maps, and of their filters where `filtered` (for the
+// memory check before the work).
+std::size_t shadowMapBytes(const std::vector<Light>& lights, const ShadowSettings& settings,
+                           bool filtered);
 
 // Whether the scene's surfaces can shadow one another: not when it is one sphere alone. A convex
 // object's only surface between one of its points and a light is its own, below that point's
@@ -74,9 +78,12 @@ class ShadowMapBuilder {
   ~ShadowMapBuilder();
   ShadowMapBuilder(const ShadowMapBuilder&) = delete;
   ShadowMapBuilder& operator=(const ShadowMapBuilder&) = delete;
-  // planShadowMaps over the scene's bounds, then each texel's depth: the first surface along
-  // the texel center's ray (shared::shadowRayOrigin, shadowRayDirection), 1 where there is none.
-  // A layer planned exactly as one of `previous` (same size) takes its depths from there.
+  // planShadowMaps over the scene's bounds, then each texel's depth: the first surface that
+  // transmits nothing along the texel center's ray (shared::shadowRayOrigin,
+  // shadowRayDirection), 1 where there is none; where the scene transmits, its filter: the
+  // product of shared::shadowMapCrossing over the surfaces in front of it, and the first one's
+  // depth (1: none). A layer planned exactly as one of `previous` (same size) takes its depths
+  // and filters from there.
   ShadowMaps build(const std::vector<Light>& lights, const Camera* camera,
                    const ShadowSettings& settings, const ShadowMaps* previous = nullptr) const;
 
@@ -85,9 +92,10 @@ class ShadowMapBuilder {
   std::unique_ptr<RayTracer> owned_;
 };
 
-// The same over an existing tracer of the scene (the renderer's).
-ShadowMaps buildShadowMaps(const RayTracer& tracer, std::pair<glm::vec3, glm::vec3> bounds,
-                           const std::vector<Light>& lights, const Camera* camera,
-                           const ShadowSettings& settings, const ShadowMaps* previous = nullptr);
+// The same over an existing tracer of `scene` (the renderer's).
+ShadowMaps buildShadowMaps(const Scene& scene, const RayTracer& tracer,
+                           std::pair<glm::vec3, glm::vec3> bounds, const std::vector<Light>& lights,
+                           const Camera* camera, const ShadowSettings& settings,
+                           const ShadowMaps* previous = nullptr);
 
 }  // namespace ibl

@@ -8,10 +8,14 @@
 // surface along its texel's ray, normalized as (z - near) / (far - near) with z the distance
 // along the layer's forward axis (1: nothing). Layers are perspective (spot lights; the six
 // faces of a cube around point, sphere, tube, disk and rect lights) or orthographic (the sun's
-// cascades, fitted to slices of the view). What the maps hold is read through two accessors
-// that each language defines: shadowLayerAt(i) and shadowDepthTexel(layer, texel); in C++ they
-// take the maps as a first argument (IBL_SHADOW_MAPS / IBL_SHADOW_ARG below), in GLSL the
-// shader defines them over its storage buffers before including this header.
+// cascades, fitted to slices of the view). Where the scene has surfaces that transmit
+// (KHR_materials_transmission), each texel also holds a filter: the product of what the
+// transmissive surfaces in front of its opaque depth let through (shadowMapCrossing in
+// split_sum.h), and the stored depth of the first of them; the depth skips them. What the maps
+// hold is read through accessors that each language defines: shadowLayerAt(i),
+// shadowDepthTexel(layer, texel) and shadowFilterTexel(layer, texel); in C++ they take the maps
+// as a first argument (IBL_SHADOW_MAPS / IBL_SHADOW_ARG below), in GLSL the shader defines them
+// over its storage buffers before including this header.
 #ifndef IBL_SHARED_SHADOWS_H
 #define IBL_SHARED_SHADOWS_H
 #include "ibl/shared/cube.h"
@@ -166,6 +170,7 @@ struct ShadowMapView {
   int size = 0;                         // texels per side of every layer
   const float* depths = nullptr;        // layer after layer, rows of `size` texels
   const ShadowLayer* layers = nullptr;  // the layers' records
+  const vec4* filters = nullptr;        // as the depths; null: nothing transmits
 };
 inline ShadowLayer shadowLayerAt(const ShadowMapView& maps, int i) {
   return maps.layers[i];
@@ -175,6 +180,13 @@ inline float shadowDepthTexel(const ShadowMapView& maps, int layer, ivec2 t) {
   const int x = t.x < 0 ? 0 : (t.x >= n ? n - 1 : t.x);
   const int y = t.y < 0 ? 0 : (t.y >= n ? n - 1 : t.y);
   return maps.depths[(static_cast<std::size_t>(layer) * n + y) * n + x];
+}
+inline vec4 shadowFilterTexel(const ShadowMapView& maps, int layer, ivec2 t) {
+  if (!maps.filters) return vec4(1.0f);
+  const int n = maps.size;
+  const int x = t.x < 0 ? 0 : (t.x >= n ? n - 1 : t.x);
+  const int y = t.y < 0 ? 0 : (t.y >= n ? n - 1 : t.y);
+  return maps.filters[(static_cast<std::size_t>(layer) * n + y) * n + x];
 }
 inline float shadowMapSize(const ShadowMapView& maps) {
   return float(maps.size);
@@ -189,41 +201,50 @@ inline float shadowMapSize(const ShadowMapView& maps) {
 // Defined by the shader over its buffers (shaders/view/shading.glsl).
 ShadowLayer shadowLayerAt(int i);
 float shadowDepthTexel(int layer, ivec2 t);
+vec4 shadowFilterTexel(int layer, ivec2 t);  // rgb: what passes; a: the stored depth
 float shadowMapSize();
 #endif
 
 // Whether the receiver at depth receiverDepth (world) is lit at texel coordinates t, by bilinear
 // percentage-closer filtering of the 2 x 2 texels around t: each compared with the receiver
-// plane's depth at its center, less `bias`. Returns the lit share, or with `blockers` the sum
-// and count of the depths (world) that block it, in (x, y).
-IBL_FN vec2 shadowCompareBilinear(IBL_SHADOW_MAPS int layer, ShadowLayer l, vec3 p, vec3 n, vec2 t,
+// plane's depth at its center, less `bias`; a texel whose filter lies in front of the receiver
+// passes its color. Returns the light that passes (rgb), or with `blockers` the sum and count of
+// the depths (world) of the nearest surfaces, opaque or transmissive, that block or tint it, in
+// (x, y).
+IBL_FN vec3 shadowCompareBilinear(IBL_SHADOW_MAPS int layer, ShadowLayer l, vec3 p, vec3 n, vec2 t,
                                   float depth, float bias, float limit, bool blockers) {
   float mapSize = shadowMapSize(IBL_SHADOW_ONLY);
   vec2 base = floor(t - vec2(0.5f));
   vec2 f = t - vec2(0.5f) - base;
-  vec2 result = vec2(0.0f);
+  vec3 result = vec3(0.0f);
   for (int k = 0; k < 4; ++k) {
     vec2 offset = vec2(float(k & 1), float(k >> 1));
     vec2 center = base + offset + vec2(0.5f);
     float stored = shadowDepthTexel(IBL_SHADOW_ARG layer, ivec2(base + offset));
+    vec4 passed = shadowFilterTexel(IBL_SHADOW_ARG layer, ivec2(base + offset));
     float occluder = shadowWorldDepth(l, stored);
+    float tint = shadowWorldDepth(l, passed.w);
     float receiver = receiverPlaneDepth(l, p, n, center, mapSize, depth, limit) - bias;
     float w = (offset.x > 0.5f ? f.x : 1.0f - f.x) * (offset.y > 0.5f ? f.y : 1.0f - f.y);
     bool blocked = stored < 1.0f && occluder < receiver;
+    bool tinted = passed.w < 1.0f && tint < receiver;
     if (blockers) {
-      if (blocked) result += vec2(occluder, 1.0f);
+      if (tinted)
+        result += vec3(tint, 1.0f, 0.0f);
+      else if (blocked)
+        result += vec3(occluder, 1.0f, 0.0f);
     } else if (!blocked) {
-      result.x += w;
+      result += w * (tinted ? vec3(passed) : vec3(1.0f));
     }
   }
   return result;
 }
 
 // The share of `c`'s light that reaches point p (normal n, facing the light's side) in layer
-// `layer`: the blocker search, then percentage-closer filtering over the penumbra the light's
-// size gives at the blockers' mean depth (at least kShadowMinFilterTexels, at most
-// shadowMaxFilterTexels). Outside the layer: 1.
-IBL_FN float shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec3 p, vec3 n) {
+// `layer`, per channel (colored by the surfaces that transmit): the blocker search, then
+// percentage-closer filtering over the penumbra the light's size gives at the blockers' mean
+// depth (at least kShadowMinFilterTexels, at most shadowMaxFilterTexels). Outside the layer: 1.
+IBL_FN vec3 shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec3 p, vec3 n) {
   float mapSize = shadowMapSize(IBL_SHADOW_ONLY);
   ShadowLayer l = shadowLayerAt(IBL_SHADOW_ARG layer);
   ShadowProjection at = shadowProject(l, p, mapSize);
@@ -236,7 +257,7 @@ IBL_FN float shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, ve
   at = shadowProject(l, q, mapSize);
   if (at.depth <= l.near || at.texel.x < 0.0f || at.texel.y < 0.0f || at.texel.x > mapSize ||
       at.texel.y > mapSize)
-    return 1.0f;
+    return vec3(1.0f);
   float slope = min(sinAngle / max(cosAngle, 1e-4f), kShadowMaxSlope);
   float bias = (kShadowDepthBiasTexels + kShadowSlopeBiasTexels * slope) * at.texelSize;
   float maxFilter = shadowMaxFilterTexels(mapSize);
@@ -252,10 +273,10 @@ IBL_FN float shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, ve
     search = clamp(search, 1.0f, maxFilter);
     vec2 found = vec2(0.0f);
     for (int i = 0; i < kShadowTaps; ++i)
-      found +=
-          shadowCompareBilinear(IBL_SHADOW_ARG layer, l, q, n, at.texel + search * shadowDiskTap(i),
-                                at.depth, bias, limit, true);
-    if (found.y == 0.0f) return 1.0f;
+      found += vec2(shadowCompareBilinear(IBL_SHADOW_ARG layer, l, q, n,
+                                          at.texel + search * shadowDiskTap(i), at.depth, bias,
+                                          limit, true));
+    if (found.y == 0.0f) return vec3(1.0f);
     float blocker = found.x / found.y;
     // The penumbra's half width at the receiver (similar triangles, PCSS eq. 1): r (z_r - z_b)
     // / z_b from a light of radius r; (z_r - z_b) tan(angular radius) from the sun.
@@ -263,23 +284,22 @@ IBL_FN float shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, ve
                                         : (at.depth - blocker) * c.size;
     filterTexels = clamp(penumbra / at.texelSize, kShadowMinFilterTexels, maxFilter);
   }
-  float lit = 0.0f;
+  vec3 lit = vec3(0.0f);
   for (int i = 0; i < kShadowTaps; ++i)
     lit += shadowCompareBilinear(IBL_SHADOW_ARG layer, l, q, n,
                                  at.texel + filterTexels * shadowDiskTap(i), at.depth, bias, limit,
-                                 false)
-               .x;
+                                 false);
   return lit / float(kShadowTaps);
 }
 
-// The share of `c`'s light that reaches p (normal n, turned toward the light's side): the
-// layer that holds p (the cascade of its view depth, the cube face of its direction from the
-// light, the single layer), filtered. 1 without a shadow.
-IBL_FN float shadowVisibility(IBL_SHADOW_MAPS ShadowCaster c, vec3 p, vec3 n) {
-  if (c.kind == kShadowNone || c.layerCount == 0) return 1.0f;
+// The share of `c`'s light that reaches p (normal n, turned toward the light's side), per
+// channel: the layer that holds p (the cascade of its view depth, the cube face of its direction
+// from the light, the single layer), filtered. 1 without a shadow.
+IBL_FN vec3 shadowVisibility(IBL_SHADOW_MAPS ShadowCaster c, vec3 p, vec3 n) {
+  if (c.kind == kShadowNone || c.layerCount == 0) return vec3(1.0f);
   if (c.kind == kShadowCascades) {
     int i = shadowCascadeIndex(dot(p - c.viewOrigin, c.viewForward), c.splits, c.layerCount);
-    if (i < 0) return 1.0f;
+    if (i < 0) return vec3(1.0f);
     return shadowLayerVisibility(IBL_SHADOW_ARG c, c.firstLayer + i, p, n);
   }
   if (c.kind == kShadowCube)

@@ -249,6 +249,28 @@ IBL_FN vec3 transmissionRadiance(SplitSumMaterial m, float NoV, vec2 dfg, vec3 t
          volumeTransmittance(m.attenuation, m.thickness) * transmitted;
 }
 
+// What a surface that transmits lets through of a light's ray that crosses it unbent, at cosine
+// `cosine` to its normal: the specular layer's leave, fresnel_mix's 1 - specular max(F) at that
+// cosine (diffuseWeight, a thin film's Fresnel mixed in), tinted by the base color, times the
+// share transmitted; no volume. Exact for a smooth thin wall, whose transmitted ray goes on
+// unbent (KHR_materials_transmission); through a volume, or a rough wall, the straight ray
+// stands for the refracted and scattered light that the shadows of real-time paths leave out.
+IBL_FN vec3 surfaceShadowTransmittance(SplitSumMaterial m, float cosine) {
+  if (m.transmission <= 0.0f) return vec3(0.0f);
+  SpecularReflectance r = withIridescence(
+      specularReflectance(m.baseColor, m.metallic, m.ior, m.specular, m.specularColor, false),
+      m.iridescence, m.iridescenceIor, m.iridescenceThickness);
+  return m.baseColor * ((1.0f - m.metallic) * m.transmission * diffuseWeight(r, abs(cosine)));
+}
+
+// A shadow map's share for one crossing of the surface: surfaceShadowTransmittance and, through a
+// volume, Beer-Lambert over half its thickness (a map sees a closed volume's way in and out; the
+// extension's thickness stands for the chord it cannot measure, as transmissionRadiance's).
+IBL_FN vec3 shadowMapCrossing(SplitSumMaterial m, float cosine) {
+  return surfaceShadowTransmittance(m, cosine) *
+         volumeTransmittance(m.attenuation, 0.5f * m.thickness);
+}
+
 // KHR_materials_sheen over the split sum: the layer below is scaled by the sheen's albedo
 // scaling 1 - max(sheenColor) E (the specification's, with E at n.v: image-based light has no
 // single l), and the sheen adds sheenColor * prefilteredSheen * E, where E = the sheen table at
