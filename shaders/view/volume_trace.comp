@@ -26,37 +26,15 @@ layout(push_constant) uniform Update {
   vec4 rotation0;  // the frame's rotation by columns; w of the first: the farthest distance
   vec4 rotation1;
   vec4 rotation2;
-  ivec4 counts;  // rays per probe, probes, flags (1 metals as diffuse)
+  ivec4 counts;  // rays per probe, probes, flags (1 metals as diffuse, 2 the scene transmits)
   ivec4 keys;    // the capture's seed, the frame
 } update;
 
 const float kFar = 1e30;
 
-// The share of light l's irradiance that reaches p (rayTracedVisibility in
-// src/render/shadows.cpp with one sample): 1 or 0.
-float tracedVisibility(ShadingLight l, vec3 p, vec3 n, vec2 xi) {
-  vec3 direction;
-  float distance;
-  if (l.type == kLightPoint || l.type == kLightSpot) {
-    vec3 d = l.position - p;
-    distance = length(d);
-    direction = d / distance;
-  } else {
-    AreaLightSample s = sampleAreaLight(l, p, xi);
-    if (!(s.pdf > 0.0) || !(luminance(s.radiance) * abs(dot(n, s.direction)) > 0.0)) return 1.0;
-    direction = s.direction;
-    distance = s.distance;
-  }
-  vec3 origin = p + (dot(n, direction) >= 0.0 ? n : -n) * (1e-4 * max(1.0, length(p)));
-  float reach = distance < kSunDistance ? distance * (1.0 - 1e-4) : kFar;
-  return occluded(origin, direction, reach) ? 0.0 : 1.0;
-}
-
-// The radiance a hit p sends back along `view` (shadeSplitSum with --only diffuse plus
-// shadeLightsRealTime, their visibility traced, in src/render/renderer.cpp).
-vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
-  SplitSumSwitches s = frameSwitches();
-  s.terms = 1;  // diffuse
+// The material of a hit as the split sum's formulas take it (splitSumMaterial in
+// src/render/renderer.cpp), without ambient occlusion or emission.
+SplitSumMaterial hitMaterial(Surface p) {
   SplitSumMaterial m;
   m.baseColor = p.baseColor;
   m.metallic = p.metallic;
@@ -72,11 +50,65 @@ vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
   m.iridescence = p.iridescence;
   m.iridescenceIor = p.iridescenceIor;
   m.iridescenceThickness = p.iridescenceThickness;
-  m.anisotropy = 0.0;  // the diffuse alone
-  m.anisotropyTangent = vec3(1.0, 0.0, 0.0);
-  m.transmission = p.transmission;  // the diffuse's share
-  m.thickness = 0.0;
-  m.attenuation = vec3(0.0);
+  m.anisotropy = p.anisotropy;
+  m.anisotropyTangent = p.anisotropyTangent;
+  m.transmission = p.transmission;
+  m.thickness = p.volume ? p.thickness : 0.0;
+  m.attenuation = p.attenuation;
+  return m;
+}
+
+// The share of light that crosses from `origin` along unit `dir` for `reach` in a straight line
+// (straightTransmittance in src/render/shadows.cpp): 0 behind a surface that transmits nothing;
+// through those that transmit, surfaceShadowTransmittance at each, and Beer-Lambert over the
+// chords of the volumes (summed as -sigma in + sigma out).
+vec3 straightTransmittance(vec3 origin, vec3 dir, float reach) {
+  vec3 passed = vec3(1.0), opticalDepth = vec3(0.0);
+  float travelled = 0.0;
+  for (int surfaces = 0; surfaces < 64; ++surfaces) {
+    SceneHit hit = intersectScene(origin, dir, reach - travelled, false);
+    if (!hit.found) break;
+    Surface s = surfaceAt(hit, origin, dir);
+    if (s.transmission <= 0.0) return vec3(0.0);
+    float at = travelled + hit.t;
+    passed *= surfaceShadowTransmittance(hitMaterial(s), dot(s.faceNormal, dir));
+    if (s.volume) opticalDepth += (s.frontFace ? -at : at) * s.attenuation;
+    float step = hit.t + 1e-4 * max(1.0, length(s.position));
+    origin += step * dir;
+    travelled += step;
+  }
+  return passed * exp(-max(opticalDepth, vec3(0.0)));
+}
+
+// The share of light l's irradiance that reaches p, per channel (rayTracedVisibility in
+// src/render/shadows.cpp with one sample).
+vec3 tracedVisibility(ShadingLight l, vec3 p, vec3 n, vec2 xi) {
+  vec3 direction;
+  float distance;
+  if (l.type == kLightPoint || l.type == kLightSpot) {
+    vec3 d = l.position - p;
+    distance = length(d);
+    direction = d / distance;
+  } else {
+    AreaLightSample s = sampleAreaLight(l, p, xi);
+    if (!(s.pdf > 0.0) || !(luminance(s.radiance) * abs(dot(n, s.direction)) > 0.0))
+      return vec3(1.0);
+    direction = s.direction;
+    distance = s.distance;
+  }
+  vec3 origin = p + (dot(n, direction) >= 0.0 ? n : -n) * (1e-4 * max(1.0, length(p)));
+  float reach = distance < kSunDistance ? distance * (1.0 - 1e-4) : kFar;
+  if ((update.counts.z & 2) != 0) return straightTransmittance(origin, direction, reach);
+  return vec3(occluded(origin, direction, reach) ? 0.0 : 1.0);
+}
+
+// The radiance a hit p sends back along `view` (shadeSplitSum with --only diffuse plus
+// shadeLightsRealTime, their visibility traced, in src/render/renderer.cpp).
+vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
+  SplitSumSwitches s = frameSwitches();
+  s.terms = 1;  // diffuse
+  SplitSumMaterial m = hitMaterial(p);
+  m.anisotropy = 0.0;  // the diffuse alone (the transmission: the diffuse's share)
   // What a clear coat lets through of the diffuse below it (its own lobe is specular).
   float belowCoat =
       p.clearcoat > 0.0 ? 1.0 - clearcoatWeight(p.clearcoat, dot(p.clearcoatNormal, view)) : 1.0;
@@ -99,11 +131,11 @@ vec3 shadeHit(Surface p, vec3 view, inout PathSampler numbers) {
   for (int i = 0; i < frame.models.w; ++i) {
     LightRecord record = lightRecordAt(i);
     ShadingLight l = unpackLight(record);
-    float visible = tracedVisibility(l, p.position, n, pathUniform2(numbers));
-    if (visible <= 0.0) continue;
+    vec3 visible = tracedVisibility(l, p.position, n, pathUniform2(numbers));
+    if (visible == vec3(0.0)) continue;
     LightIncidence inc = lightIncidence(l, p.position, n, view, m.roughness, s, ltc);
-    float profile = visible * iesProfileFactor(l, lightRecordProfile(record),
-                                               normalize(p.position - l.position));
+    vec3 profile = visible * iesProfileFactor(l, lightRecordProfile(record),
+                                              normalize(p.position - l.position));
     color += l.color * (profile * belowCoat) * lightRadiance(m, n, view, inc, dfg.xy, s);
   }
   return color + p.emissive;

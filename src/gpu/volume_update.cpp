@@ -17,8 +17,9 @@ namespace {
 // volume_trace.comp's push constants.
 struct TraceConstants {
   glm::vec4 rotation0, rotation1, rotation2;  // w of the first: the farthest distance
-  glm::ivec4 counts;                          // rays per probe, probes, flags, 0
-  glm::ivec4 keys;                            // seed, frame
+  glm::ivec4
+      counts;       // rays per probe, probes, flags (1 metals as diffuse, 2 the scene transmits), 0
+  glm::ivec4 keys;  // seed, frame
 };
 static_assert(sizeof(TraceConstants) == 80);
 
@@ -74,6 +75,7 @@ VolumeUpdate::VolumeUpdate(Context& context, const FrameSet& frame, const Volume
       options_(options),
       seed_(volume.capture.seed),
       metalsAsDiffuse_(volume.capture.metalsAsDiffuse),
+      transmits_(hasTransmission(scene)),
       probes_(volumeProbeCount(volume.grid)) {
   options_.raysPerProbe = std::max(1, options_.raysPerProbe);
   scene_ = uploadSceneBuffers(context, scene);
@@ -194,7 +196,7 @@ void VolumeUpdate::record(VkCommandBuffer cmd, const RenderOptions& options) {
   t.rotation0 = glm::vec4(rotation[0], 2.0f * glm::length(grid_.spacing));
   t.rotation1 = glm::vec4(rotation[1], 0.0f);
   t.rotation2 = glm::vec4(rotation[2], 0.0f);
-  t.counts = {rays, probes_, metalsAsDiffuse_ ? 1 : 0, 0};
+  t.counts = {rays, probes_, (metalsAsDiffuse_ ? 1 : 0) | (transmits_ ? 2 : 0), 0};
   t.keys = {static_cast<int>(seed_), static_cast<int>(frames_), 0, 0};
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, tracePipeline(options));
   frame_.bindCompute(cmd, traceLayout_);

@@ -55,6 +55,7 @@ class VolumeUpdate {
   VolumeUpdateOptions options_;
   unsigned seed_ = 0;
   bool metalsAsDiffuse_ = false;
+  bool transmits_ = false;  // a material transmits: the lights' visibility crosses it, colored
   int probes_ = 0;
   unsigned frames_ = 0;
   SceneBuffers scene_;
