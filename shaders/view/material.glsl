@@ -51,7 +51,7 @@ layout(push_constant) uniform Draw {
                   // (no area light drawn over the surfaces), 2 the pass that composes them
                   // (kFrameScreenReflection); 3 the opaque frame behind transmissive
                   // surfaces (kFrameTransmissionFrame); 4 and 5 the shadow maps' depths and
-                  // filters (view/shadow.frag): ScenePass in src/gpu/scene_upload.hpp
+                  // filters (view/shadow.glsl): ScenePass in src/gpu/scene_upload.hpp
   // bit b: the texture at binding b is the material's (else white). Here, not with the factors:
   // it decides where derivatives are taken (slotTexel), which needs a uniform condition that the
   // helper invocations read too.

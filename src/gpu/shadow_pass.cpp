@@ -75,6 +75,7 @@ ShadowPass::ShadowPass(Context& context, FrameSet& frame, const Scene& scene)
     : context_(context), device_(context.impl().device), frame_(frame) {
   vertex_ = {device_, context.impl().shaderModule("shadow_vert")};
   fragment_ = {device_, context.impl().shaderModule("shadow_frag")};
+  filterFragment_ = {device_, context.impl().shaderModule("shadow_filter_frag")};
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(context.impl().physical, &props);
   // Shadow maps are rasterized where 32-bit float depth can be drawn and copied out (the depth
@@ -183,6 +184,7 @@ void ShadowPass::prepareTarget(int size) {
       product.alphaBlendOp = VK_BLEND_OP_MIN;
       product.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                                VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+      p.fragment = filterFragment_;
       p.blend = &product;
       p.depthWrite = false;
       filterPipeline_ = {device_, createMeshPipeline(device_, p, true)};

@@ -3,8 +3,8 @@
 // again when the camera (the sun's cascades), the lights or the settings change; a layer whose
 // record is unchanged keeps its depths. Rasterized on the device (view/shadow.vert and .frag: a
 // pass per layer into a D32_SFLOAT target, copied into the depths' buffer; where the scene
-// transmits, a second draw blends the filters into an RGBA32F target copied after all the
-// depths), or, on a device without 32-bit float depth attachments (or blended RGBA32F ones,
+// transmits, a second draw, view/shadow_filter.frag, blends the filters into an RGBA32F target
+// copied after all the depths), or, on a device without 32-bit float depth attachments (or blended RGBA32F ones,
 // where needed) or maps larger than it draws, traced on the CPU through the scene's copy
 // (ShadowMapBuilder).
 #include <memory>
@@ -62,7 +62,7 @@ class ShadowPass {
   FrameSet& frame_;
   bool raster_ = false;  // the device draws the maps
   int rasterLimit_ = 0;  // the largest map the device draws (image and framebuffer limits)
-  UniqueShaderModule vertex_, fragment_;
+  UniqueShaderModule vertex_, fragment_, filterFragment_;
   UniqueRenderPass pass_;
   UniquePipeline pipeline_, filterPipeline_;
   bool filtered_ = false;                      // the scene transmits: the maps have filters
