@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -17,6 +18,26 @@
 using namespace ibl;
 using namespace ibl::test;
 using namespace ibl::test::viewer;
+
+namespace {
+
+// Of `count` texels whose difference between two maps is difference(i): the share that differ by
+// more than `tolerance`, and the largest difference of the others.
+template <typename F>
+std::pair<double, double> texelDifferences(std::size_t count, double tolerance, F difference) {
+  std::size_t differ = 0;
+  double largestOther = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double d = difference(i);
+    if (d > tolerance)
+      ++differ;
+    else
+      largestOther = std::max(largestOther, d);
+  }
+  return {static_cast<double>(differ) / static_cast<double>(count), largestOther};
+}
+
+}  // namespace
 
 // The shadow maps the viewer rasterizes (view/shadow.vert and .frag, a depth-only pass per
 // layer) hold the depths the CPU traces through Embree at the texel centers (ShadowMapBuilder):
@@ -54,17 +75,11 @@ TEST(Viewer, RasterizedShadowMapsHoldTheTracedDepths) {
       const ShadowMaps traced = builder.build(scene.lights, &view, o.shadowSettings);
       ASSERT_EQ(drawn.layers.size(), traced.layers.size()) << lightTypeName(type);
       ASSERT_EQ(drawn.depths.size(), traced.depths.size()) << lightTypeName(type);
-      std::size_t differ = 0, surfaces = 0;
-      double largestOther = 0.0;
-      for (std::size_t i = 0; i < traced.depths.size(); ++i) {
-        const double d = std::abs(static_cast<double>(drawn.depths[i]) - traced.depths[i]);
-        surfaces += traced.depths[i] < 1.0f ? 1 : 0;
-        if (d > 1e-4)
-          ++differ;
-        else
-          largestOther = std::max(largestOther, d);
-      }
-      const double share = static_cast<double>(differ) / static_cast<double>(traced.depths.size());
+      std::size_t surfaces = 0;
+      for (float depth : traced.depths) surfaces += depth < 1.0f ? 1 : 0;
+      const auto [share, largestOther] = texelDifferences(
+          traced.depths.size(), 1e-4,
+          [&](std::size_t i) { return std::abs(double(drawn.depths[i]) - traced.depths[i]); });
       std::printf("%s: %zu layers, %.3f %% of the texels differ, the others by at most %.2g\n",
                   std::string(lightTypeName(type)).c_str(), traced.layers.size(), 100.0 * share,
                   largestOther);
@@ -157,19 +172,13 @@ TEST(Viewer, RasterizedShadowFiltersHoldTheTracedOnes) {
         ShadowMapBuilder(scene).build(scene.lights, &camera, o.shadowSettings);
     ASSERT_EQ(drawn.filters.size(), traced.filters.size()) << lightTypeName(type);
     ASSERT_EQ(traced.filters.size(), traced.depths.size()) << lightTypeName(type);
-    std::size_t differ = 0, tinted = 0;
-    double largestOther = 0.0;
-    for (std::size_t i = 0; i < traced.filters.size(); ++i) {
+    std::size_t tinted = 0;
+    for (const glm::vec4& f : traced.filters) tinted += f.w < 1.0f ? 1 : 0;
+    const auto [share,
+                largestOther] = texelDifferences(traced.filters.size(), 1e-3, [&](std::size_t i) {
       const glm::vec4 d = glm::abs(drawn.filters[i] - traced.filters[i]);
-      const double largest =
-          std::max({d.x, d.y, d.z, d.w, std::abs(drawn.depths[i] - traced.depths[i])});
-      tinted += traced.filters[i].w < 1.0f ? 1 : 0;
-      if (largest > 1e-3)
-        ++differ;
-      else
-        largestOther = std::max(largestOther, largest);
-    }
-    const double share = static_cast<double>(differ) / static_cast<double>(traced.filters.size());
+      return double(std::max({d.x, d.y, d.z, d.w, std::abs(drawn.depths[i] - traced.depths[i])}));
+    });
     std::printf("%s: %.3f %% of the texels differ, the others by at most %.2g\n",
                 std::string(lightTypeName(type)).c_str(), 100.0 * share, largestOther);
     EXPECT_GT(tinted, traced.filters.size() / 100) << lightTypeName(type);  // they see glass

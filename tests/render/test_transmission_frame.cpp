@@ -155,11 +155,12 @@ TEST(TransmissionFrame, NothingBehindAPerspectiveCamera) {
   EXPECT_FLOAT_EQ(f.at(glm::vec3(0.1f, 0.1f, 5.0f), 0.0f).w, 0.0f) << "on the camera's plane";
 }
 
-// A smooth thin wall of base color c in front of a surface that emits E, no other light: the
-// camera sees (1 - F0) c E through it at normal incidence, in the split sum as in the reference
-// (before the opaque frame, the split sum saw the black environment there: 0).
-TEST(TransmissionFrame, ThinWallShowsWhatLiesBehindIt) {
-  const glm::vec3 tint(0.2f, 0.5f, 0.8f), emitted(2.0f, 3.0f, 4.0f);
+namespace {
+
+// A smooth thin wall (transmission 1) of base color `tint` in the plane z = 0, 100 wide, over a
+// floor that emits `emitted` at z = floorHeight; and an orthographic view 0.5 wide straight down
+// at them, 4 x 4 pixels.
+Scene wallOverFloor(glm::vec3 tint, glm::vec3 emitted, float floorHeight) {
   Material wall;
   wall.baseColor = tint;
   wall.metallic = 0.0f;
@@ -167,18 +168,33 @@ TEST(TransmissionFrame, ThinWallShowsWhatLiesBehindIt) {
   wall.transmission = 1.0f;
   Scene scene;
   scene.materials = {wall, emitter(emitted)};
-  scene.meshes = {squareAt(0.0f, 50.0f, 0), squareAt(-1.0f, 50.0f, 1)};
+  scene.meshes = {squareAt(0.0f, 50.0f, 0), squareAt(floorHeight, 50.0f, 1)};
+  return scene;
+}
+Camera downOntoTheWall() {
   Camera c;
   c.perspective = false;
   c.orthoWidth = 0.5f;
   c.from = glm::vec3(0.0f, 0.0f, 3.0f);
   c.width = c.height = 4;
+  return c;
+}
+
+}  // namespace
+
+// A smooth thin wall of base color c in front of a surface that emits E, no other light: the
+// camera sees (1 - F0) c E through it at normal incidence, in the split sum as in the reference
+// (before the opaque frame, the split sum saw the black environment there: 0).
+TEST(TransmissionFrame, ThinWallShowsWhatLiesBehindIt) {
+  const glm::vec3 tint(0.2f, 0.5f, 0.8f), emitted(2.0f, 3.0f, 4.0f);
+  const Scene scene = wallOverFloor(tint, emitted, -1.0f);
   for (RenderMode mode : {RenderMode::Reference, RenderMode::SplitSum}) {
     RenderOptions o;
     o.mode = mode;
     o.spp = mode == RenderMode::Reference ? 64 : 1;
     o.bounces = 4;
-    const Image img = renderScene(scene, c, darkness().result, darkness().options, o).color;
+    const Image img =
+        renderScene(scene, downOntoTheWall(), darkness().result, darkness().options, o).color;
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(img.at(1, 2)[k], 0.96f * tint[k] * emitted[k], 0.01f * emitted[k])
           << (mode == RenderMode::Reference ? "reference" : "split sum") << ", channel " << k;
@@ -191,23 +207,12 @@ TEST(TransmissionFrame, ThinWallShowsWhatLiesBehindIt) {
 // too and show nothing.
 TEST(TransmissionFrame, WallOnTheFloorShowsTheFloor) {
   const glm::vec3 tint(0.2f, 0.5f, 0.8f), emitted(2.0f, 3.0f, 4.0f);
-  Material wall;
-  wall.baseColor = tint;
-  wall.metallic = 0.0f;
-  wall.roughness = 0.0f;
-  wall.transmission = 1.0f;
-  Camera c;
-  c.perspective = false;
-  c.orthoWidth = 0.5f;
-  c.from = glm::vec3(0.0f, 0.0f, 3.0f);
-  c.width = c.height = 4;
   RenderOptions o;
   o.spp = 1;
   for (float height : {-1.0f, 0.0f}) {
-    Scene scene;
-    scene.materials = {wall, emitter(emitted)};
-    scene.meshes = {squareAt(0.0f, 50.0f, 0), squareAt(height, 50.0f, 1)};
-    const Image img = renderScene(scene, c, darkness().result, darkness().options, o).color;
+    const Image img = renderScene(wallOverFloor(tint, emitted, height), downOntoTheWall(),
+                                  darkness().result, darkness().options, o)
+                          .color;
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(img.at(1, 2)[k], 0.96f * tint[k] * emitted[k], 0.01f * emitted[k])
           << "the floor at " << height << ", channel " << k;
