@@ -148,7 +148,7 @@ SplitSumMaterial fragmentMaterial() {
   m.transmission =
       clamp(material.transmission.x * slotTexel(transmissionTexture, kMaterialTransmission).r,
             0.0, 1.0);
-  bool volume = material.transmission.y > 0.0;
+  bool volume = material.transmission.y > 0.0 && material.scales.z > 0.0;  // ior 0: a thin wall
   m.thickness = volume ? material.transmission.y * draw.thicknessScale *
                              slotTexel(thicknessTexture, kMaterialThickness).g
                        : 0.0;

@@ -7,9 +7,10 @@
 // view/material.glsl.
 
 // The stored depth of this fragment's surface in the layer drawn (discarded where it has none),
-// and with `filtered` what it lets through (shadowMapCrossing at its geometric normal; a
-// sphere's two crossings, at the same angle, in one fragment: those of the polyhedron's faces
-// behind the sphere are discarded).
+// and with `filtered` what it lets through (shadowMapCrossing at its geometric normal). A
+// sphere's surface along the texel's ray: the first (the depths); with `filtered`, the way in
+// where the polyhedron's face lies in front of the sphere and the way out where it lies behind,
+// each a crossing tested against the depths on its own, as the CPU crosses them.
 float shadowFragmentDepth(bool filtered, out vec3 passed) {
   ShadowLayer l = shadowLayerAt(draw.shadowLayer);
   float z = dot(worldPosition - l.origin, l.forward);
@@ -20,16 +21,19 @@ float shadowFragmentDepth(bool filtered, out vec3 passed) {
     float len = length(d);
     Ray ray = Ray(shadowRayOrigin(l, gl_FragCoord.xy, shadowMapSize()), d / len);
     float t = intersectSphere(ray, draw.sphere);
-    if (t < 0.0 || (filtered && z > t / len)) discard;
+    if (filtered) {
+      vec3 oc = ray.origin - draw.sphere.xyz;
+      float b = dot(oc, ray.direction);
+      float disc = b * b - dot(oc, oc) + draw.sphere.w * draw.sphere.w;
+      float s = sqrt(max(disc, 0.0));
+      t = disc < 0.0 ? -1.0 : (z * len < -b ? -b - s : -b + s);  // d's length per unit depth
+    }
+    if (t < 0.0) discard;
     z = t / len;  // d's forward component is 1 (orthographic: d is forward)
     cosine = dot(normalize(ray.origin + t * ray.direction - draw.sphere.xyz), ray.direction);
   } else if (!materialCovers()) {
     discard;
   }
-  passed = vec3(1.0);
-  if (filtered) {
-    passed = shadowMapCrossing(fragmentMaterial(), cosine);
-    if (draw.sphere.w > 0.0) passed *= passed;
-  }
+  passed = filtered ? shadowMapCrossing(fragmentMaterial(), cosine) : vec3(1.0);
   return shadowStoredDepth(l, z);
 }

@@ -61,22 +61,27 @@ SplitSumMaterial hitMaterial(Surface p) {
 // The share of light that crosses from `origin` along unit `dir` for `reach` in a straight line
 // (straightTransmittance in src/render/shadows.cpp): 0 behind a surface that transmits nothing;
 // through those that transmit, surfaceShadowTransmittance at each, and Beer-Lambert over the
-// chords of the volumes (summed as -sigma in + sigma out).
+// chords of the volumes (summed as -sigma in + sigma out; to the end of the segment for the
+// volumes entered and not left).
 vec3 straightTransmittance(vec3 origin, vec3 dir, float reach) {
-  vec3 passed = vec3(1.0), opticalDepth = vec3(0.0);
+  vec3 passed = vec3(1.0), opticalDepth = vec3(0.0), inside = vec3(0.0);
   float travelled = 0.0;
-  for (int surfaces = 0; surfaces < 64; ++surfaces) {
+  for (int surfaces = 0; surfaces < 256; ++surfaces) {
     SceneHit hit = intersectScene(origin, dir, reach - travelled, false);
     if (!hit.found) break;
     Surface s = surfaceAt(hit, origin, dir);
     if (s.transmission <= 0.0) return vec3(0.0);
     float at = travelled + hit.t;
     passed *= surfaceShadowTransmittance(hitMaterial(s), dot(s.faceNormal, dir));
-    if (s.volume) opticalDepth += (s.frontFace ? -at : at) * s.attenuation;
+    if (s.volume) {
+      opticalDepth += (s.frontFace ? -at : at) * s.attenuation;
+      inside = max(inside + (s.frontFace ? 1.0 : -1.0) * s.attenuation, vec3(0.0));
+    }
     float step = hit.t + 1e-4 * max(1.0, length(s.position));
     origin += step * dir;
     travelled += step;
   }
+  if (reach < kFar) opticalDepth += inside * reach;
   return passed * exp(-max(opticalDepth, vec3(0.0)));
 }
 

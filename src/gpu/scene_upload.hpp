@@ -109,8 +109,8 @@ struct DrawConstants {
 // view buffers hold, so that no reflection meets a light) or the pass that composes them; with
 // transmissive materials, the opaque frame behind them (TransmissionPass: the other meshes alone,
 // lit as the lit frame is, without the screen's occlusion). The shadow maps' (ShadowPass, not a
-// scene pass: view/shadow.frag and shadow_filter.frag) draw the meshes that transmit nothing into the depths, then those
-// that transmit into the filters.
+// scene pass: view/shadow.frag and shadow_filter.frag) draw the meshes that transmit nothing into
+// the depths, then those that transmit into the filters.
 enum ScenePass : std::int32_t {
   kOnlyScenePass = 0,
   kLitFramePass = 1,

@@ -5,6 +5,10 @@
 #include <array>
 #include <cstring>
 
+#include <fmt/format.h>
+
+#include "ibl/core/error.hpp"
+
 #include "gpu/frame_set.hpp"
 #include "gpu/scene_upload.hpp"
 
@@ -95,6 +99,7 @@ ShadowPass::ShadowPass(Context& context, FrameSet& frame, const Scene& scene)
         VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
     raster_ = raster_ && (rgba32.optimalTilingFeatures & blended) == blended;
   }
+  storageLimit_ = props.limits.maxStorageBufferRange;
   rasterLimit_ =
       static_cast<int>(std::min({props.limits.maxImageDimension2D, props.limits.maxFramebufferWidth,
                                  props.limits.maxFramebufferHeight}));
@@ -139,6 +144,11 @@ bool ShadowPass::prepare(const Camera& camera, const RenderOptions& o,
   // The depths, then the filters (four floats a texel) where the scene transmits.
   const std::size_t depthBytes =
       std::max<std::size_t>(texels * (filtered_ ? 5 : 1), 1) * sizeof(float);
+  if (depthBytes > storageLimit_)
+    fail("view", fmt::format("shadow maps of {} texels for {} lights take {} MB, more than the "
+                             "device's storage buffers hold ({} MB): use a smaller "
+                             "--shadow-map-size or --shadows none",
+                             maps_.mapSize, lights.size(), depthBytes >> 20, storageLimit_ >> 20));
   bool rebind = false;
   if (!records_ || records_->size() < recordBytes) {
     records_ = std::make_unique<Buffer>(context_, recordBytes, BufferMemory::Host);

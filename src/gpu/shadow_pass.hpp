@@ -4,9 +4,9 @@
 // record is unchanged keeps its depths. Rasterized on the device (view/shadow.vert and .frag: a
 // pass per layer into a D32_SFLOAT target, copied into the depths' buffer; where the scene
 // transmits, a second draw, view/shadow_filter.frag, blends the filters into an RGBA32F target
-// copied after all the depths), or, on a device without 32-bit float depth attachments (or blended RGBA32F ones,
-// where needed) or maps larger than it draws, traced on the CPU through the scene's copy
-// (ShadowMapBuilder).
+// copied after all the depths), or, on a device without 32-bit float depth attachments (or blended
+// RGBA32F ones, where needed) or maps larger than it draws, traced on the CPU through the scene's
+// copy (ShadowMapBuilder).
 #include <memory>
 #include <utility>
 #include <vector>
@@ -60,8 +60,9 @@ class ShadowPass {
   Context& context_;
   VkDevice device_;
   FrameSet& frame_;
-  bool raster_ = false;  // the device draws the maps
-  int rasterLimit_ = 0;  // the largest map the device draws (image and framebuffer limits)
+  bool raster_ = false;           // the device draws the maps
+  int rasterLimit_ = 0;           // the largest map the device draws (image and framebuffer limits)
+  std::size_t storageLimit_ = 0;  // the largest depths' buffer a shader reads
   UniqueShaderModule vertex_, fragment_, filterFragment_;
   UniqueRenderPass pass_;
   UniquePipeline pipeline_, filterPipeline_;

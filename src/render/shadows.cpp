@@ -242,10 +242,11 @@ bool sceneCastsShadows(const Scene& scene) {
 
 ShadowMaps planShadowMaps(const std::vector<Light>& lights, std::pair<glm::vec3, glm::vec3> bounds,
                           const Camera* camera, const ShadowSettings& settings) {
-  if (settings.mapSize < 16 || settings.mapSize > 8192 || settings.cascades < 1 ||
+  if (settings.mapSize < 16 || settings.mapSize > 8192 ||
+      (settings.mapSize & (settings.mapSize - 1)) != 0 || settings.cascades < 1 ||
       settings.cascades > 4)
-    fail("shadows", fmt::format("a map of {} texels and {} cascades is out of range (16 to 8192 "
-                                "texels, 1 to 4 cascades)",
+    fail("shadows", fmt::format("a map of {} texels and {} cascades is out of range (a power of "
+                                "two from 16 to 8192 texels, 1 to 4 cascades)",
                                 settings.mapSize, settings.cascades));
   ShadowMaps maps;
   maps.mapSize = settings.mapSize;
@@ -307,11 +308,13 @@ ShadowMaps buildShadowMaps(const Scene& scene, const RayTracer& tracer,
   maps.depths.assign(maps.layers.size() * layerTexels, 1.0f);
   const bool filtered = hasTransmission(scene);
   if (filtered) maps.filters.assign(maps.layers.size() * layerTexels, glm::vec4(1.0f));
-  // Layers planned as before keep their depths; the others are traced.
+  // Layers planned as before keep their depths (and filters); the others are traced.
   std::vector<int> traced;
+  const bool reusable = previous && previous->mapSize == n &&
+                        previous->filters.size() == (filtered ? previous->depths.size() : 0);
   for (std::size_t i = 0; i < maps.layers.size(); ++i) {
     bool kept = false;
-    if (previous && previous->mapSize == n)
+    if (reusable)
       for (std::size_t j = 0; j < previous->layers.size() && !kept; ++j)
         if (sameShadowLayer(previous->layers[j], maps.layers[i])) {
           std::copy_n(previous->depths.begin() + static_cast<std::ptrdiff_t>(j * layerTexels),
@@ -374,15 +377,21 @@ glm::vec3 straightTransmittance(const Scene& scene, const RayTracer& tracer, glm
   if (!hasTransmission(scene)) return glm::vec3(1.0f);
   glm::vec3 passed(1.0f);
   // Beer-Lambert over each chord, sigma (out - in), summed as -sigma in + sigma out: the order of
-  // the crossings does not matter, and a segment that starts inside a volume counts from 0.
-  glm::vec3 opticalDepth(0.0f);
+  // the crossings does not matter, a segment that starts inside a volume counts from 0, and one
+  // that ends inside (a light in a glass globe) up to its end (`inside`: the coefficients of the
+  // volumes entered and not left).
+  glm::vec3 opticalDepth(0.0f), inside(0.0f);
   crossTransmissive(tracer, {origin, direction}, distance,
                     [&](const RayTracer::Hit& h, const Ray& segment, float at) {
                       const SurfacePoint p = surfaceAt(scene, tracer, h, segment);
                       passed *= shared::surfaceShadowTransmittance(splitSumMaterial(p, 1.0f),
                                                                    glm::dot(h.ng, direction));
-                      if (p.volume) opticalDepth += (p.frontFace ? -at : at) * p.attenuation;
+                      if (!p.volume) return;
+                      opticalDepth += (p.frontFace ? -at : at) * p.attenuation;
+                      inside = glm::max(inside + (p.frontFace ? 1.0f : -1.0f) * p.attenuation,
+                                        glm::vec3(0.0f));
                     });
+  if (std::isfinite(distance)) opticalDepth += inside * distance;
   return passed * glm::exp(-glm::max(opticalDepth, glm::vec3(0.0f)));
 }
 

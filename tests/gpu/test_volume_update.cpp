@@ -47,7 +47,8 @@ double atlasDifference(const IrradianceVolume& v, const Image& a, const Image& b
 // under the sunset and the room's lights (their visibility traced: one random point of an area
 // light per ray, drawn differently on each side). The irradiance texels agree within 1 % of
 // their mean (256 rays per probe, each texel a cosine-weighted mean of about 128 of them), the
-// distance moments within 0.5 %; and the frames changed the volume (from black) by far more.
+// distance moments within 0.5 %; and the frames changed the volume (from black) by far more. The
+// same with an orange pane of glass under the lights, which must change the volume too.
 TEST(Viewer, VolumeUpdateMatchesTheCpu) {
   const Scene plain = loadGltf((dataDir() / "scenes" / "room.gltf").string());
   // The same with an orange pane of glass across half the room, 1.8 m up: the lights' visibility
@@ -61,6 +62,7 @@ TEST(Viewer, VolumeUpdateMatchesTheCpu) {
   glazed.materials.push_back(glass);
   addQuad(glazed, {-2.4f, 1.8f, -2.4f}, {2.4f, 0.0f, 0.0f}, {0.0f, 0.0f, 4.8f},
           static_cast<int>(glazed.materials.size()) - 1, {0.0f, 3.0f, 0.0f});
+  Image plainIrradiance;  // the plain room's, which the glass must change
   for (const Scene* scene : std::initializer_list<const Scene*>{&plain, &glazed}) {
     const Scene& room = *scene;
     const Baked& b = sunsetBake();
@@ -90,6 +92,13 @@ TEST(Viewer, VolumeUpdateMatchesTheCpu) {
     EXPECT_LT(e, 0.01);
     EXPECT_LT(d, 0.005);
     EXPECT_GT(changed, 0.5);
+    if (scene == &plain) {
+      plainIrradiance = volume.irradiance;
+    } else {
+      const double glazing = atlasDifference(volume, plainIrradiance, volume.irradiance, 8);
+      std::printf("the glass changed the irradiance by %.1f %%\n", 100.0 * glazing);
+      EXPECT_GT(glazing, 0.05);
+    }
   }
 }
 

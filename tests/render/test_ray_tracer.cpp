@@ -1,6 +1,7 @@
 // The scene in Embree (src/render/ray_tracer.hpp) against intersections solved here: the
 // distance to a sphere and to a quad, the quad's geometric normal, occlusion within a distance,
-// and a MASK material below its cutoff letting rays through.
+// a MASK material below its cutoff letting rays through, and the masks that see opaque and
+// transmissive surfaces apart.
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -76,4 +77,46 @@ TEST(RayTracer, MaskedSurfacesBelowTheCutoffLetRaysThrough) {
   cut.alphaCutoff = 0.25f;
   const Scene above = sphereBeforeAQuad(cut);
   EXPECT_TRUE(RayTracer(above).intersect(pastTheSphere).found);
+}
+
+// Spheres that transmit and spheres that do not, interleaved (opaque, glass, opaque, glass along
+// X, each of radius 0.4 at x = -1.5, -0.5, 0.5, 1.5; z = -5), before the quad: each ray toward one
+// meets that sphere (its index and material), the opaque view passes the glass ones to the quad,
+// the transmissive view sees the glass ones alone, and crossTransmissive hands over each glass
+// surface in front of the first opaque one, in order.
+TEST(RayTracer, MasksSeeOpaqueAndTransmissiveSurfacesApart) {
+  Material glass;
+  glass.transmission = 1.0f;
+  Scene scene = sphereBeforeAQuad(Material{});
+  scene.spheres.clear();
+  scene.materials.push_back(glass);  // material 2
+  for (int i = 0; i < 4; ++i)
+    scene.spheres.push_back(
+        {glm::vec3(static_cast<float>(i) - 1.5f, 0.0f, -5.0f), 0.4f, i % 2 == 0 ? 0 : 2});
+  const RayTracer tracer(scene);
+  for (int i = 0; i < 4; ++i) {
+    const Ray ray{glm::vec3(static_cast<float>(i) - 1.5f, 0.0f, 0.0f),
+                  glm::vec3(0.0f, 0.0f, -1.0f)};
+    const bool transmits = i % 2 == 1;
+    const RayTracer::Hit all = tracer.intersect(ray);
+    ASSERT_TRUE(all.found) << i;
+    EXPECT_TRUE(tracer.isSphere(all.geometry)) << i;
+    EXPECT_EQ(all.primitive, static_cast<unsigned>(i));
+    EXPECT_NEAR(all.t, 4.6f, 1e-4f) << i;
+    EXPECT_EQ(hitMaterial(scene, tracer, all).transmission, transmits ? 1.0f : 0.0f) << i;
+    const RayTracer::Hit opaque = firstOpaqueHit(tracer, ray);
+    ASSERT_TRUE(opaque.found) << i;
+    EXPECT_NEAR(opaque.t, transmits ? 10.0f : 4.6f, 1e-4f) << i;  // the quad behind glass
+    EXPECT_EQ(tracer.intersect(ray, RayTracer::kTransmissive).found, transmits) << i;
+    std::vector<float> crossed;
+    crossTransmissive(tracer, ray, opaque.t, [&](const RayTracer::Hit& h, const Ray&, float at) {
+      EXPECT_EQ(h.primitive, static_cast<unsigned>(i));
+      crossed.push_back(at);
+    });
+    ASSERT_EQ(crossed.size(), transmits ? 2u : 0u) << i;
+    if (transmits) {
+      EXPECT_NEAR(crossed[0], 4.6f, 1e-3f);
+      EXPECT_NEAR(crossed[1], 5.4f, 1e-3f);
+    }
+  }
 }
