@@ -199,6 +199,40 @@ int main(int argc, char** argv) {
     row("the sky kept in the capture, no coverage (before)", &before, DiffuseModel::Disney);
   }
 
+  // The same room under a glass roof (a smooth thin pane tinted green, KHR_materials_transmission
+  // 1): the probe sees the sky through it, tinted, where it used to see the glass as a black
+  // surface (its diffuse, none) covering the whole roof.
+  {
+    Scene glazed = scene;
+    Material glass;
+    glass.baseColor = glm::vec3(0.75f, 0.95f, 0.85f);
+    glass.metallic = 0.0f;
+    glass.roughness = 0.0f;
+    glass.transmission = 1.0f;
+    glazed.materials.push_back(glass);
+    addQuad(glazed, glm::vec3(room.lo.x, room.hi.y, room.lo.z),
+            glm::vec3(room.hi.x - room.lo.x, 0.0f, 0.0f),
+            glm::vec3(0.0f, 0.0f, room.hi.z - room.lo.z),
+            static_cast<int>(glazed.materials.size()) - 1, probeAt);
+    reference.diffuse = DiffuseModel::Disney;
+    const RenderResult glazedTruth =
+        renderScene(glazed, camera, park.result, park.options, reference);
+    const auto glazedRow = [&](const std::string& what, const std::vector<LocalProbe>* probes) {
+      RenderOptions o = splitSum;
+      o.probes = probes;
+      const RenderResult r = renderScene(glazed, camera, park.result, park.options, o);
+      const Errors e = relativeErrors(r.color, glazedTruth.color, mask);
+      fmt::print("| {} | {:.3f} | {:.3f} |\n", what, e.median, e.mean);
+    };
+    fmt::print(
+        "\nthe room under a tinted glass roof\n| probe | median relative error | mean |\n"
+        "| --- | --- | --- |\n");
+    glazedRow("none (the distant environment)", nullptr);
+    const std::vector<LocalProbe> through = {probeWith(glazed, capture)};
+    glazedRow("captured through the glass, tinted (now)", &through);
+    glazedRow("the glass left out of the capture (`--exclude`): the sky untinted", &now);
+  }
+
   // A Cornell box lit by its emissive ceiling alone (the path tracer's closed box of
   // tests/render/test_path_tracer.cpp, a smaller lamp): black pixels and the time.
   fmt::print(

@@ -274,15 +274,15 @@ vec3 crossing(vec3 sigma, float distance) {
 vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
   vec3 sum = vec3(0.0), throughput = vec3(1.0);
   vec3 medium = vec3(0.0);  // the volume the path travels in (KHR_materials_volume)
+  // A probe capture keeps the diffuse of the surfaces it sees, and of those seen through them.
+  bool seenByProbe = !flag(kFlagCameraSeesSpecular);
   for (int depth = 0;; ++depth) {
     if (depth == 0) sum += throughput * p.emissive;
     mat3 frame = tangentFrame(p.normal);
     mat3 toLocal = transpose(frame);
     vec3 v = toLocal * view;
-    // A probe capture leaves out the view-dependent specular of the surfaces the camera sees.
-    bool captured = depth == 0 && !flag(kFlagCameraSeesSpecular);
-    int lobes = captured ? kLobesDiffuse : params.path.y;
-    if (captured && flag(kFlagCaptureMetalsAsDiffuse)) p = metalAsDiffuse(p);
+    int lobes = seenByProbe ? kLobesCapture : params.path.y;
+    if (seenByProbe && flag(kFlagCaptureMetalsAsDiffuse)) p = metalAsDiffuse(p);
     PathShading shading = pathShading();
     PathBrdf brdf = pathBrdfOf(p.baseColor, p.metallic, p.roughness,
                                surfaceReflectance(p, shading.specularMicroOcclusion), p.sheenColor,
@@ -365,6 +365,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     vec3 w = frame * l;
     vec3 f = bs.weight * pb;
     medium = mediumToward(p, twoSided, medium, w);
+    seenByProbe = seenByProbe && twoSided && l.z < 0.0;
     origin = originToward(p, twoSided, origin, position, offset, w);
     SceneHit hit = flag(kFlagVisibility) ? intersectScene(origin, w, kInfinity, false)
                                          : SceneHit(false, kInfinity, false, 0u, 0u, 0.0, 0.0);

@@ -58,31 +58,47 @@ SplitSumMaterial hitMaterial(Surface p) {
   return m;
 }
 
-// The share of light that crosses from `origin` along unit `dir` for `reach` in a straight line
-// (straightTransmittance in src/render/shadows.cpp): 0 behind a surface that transmits nothing;
-// through those that transmit, surfaceShadowTransmittance at each, and Beer-Lambert over the
-// chords of the volumes (summed as -sigma in + sigma out; to the end of the segment for the
-// volumes entered and not left).
-vec3 straightTransmittance(vec3 origin, vec3 dir, float reach) {
-  vec3 passed = vec3(1.0), opticalDepth = vec3(0.0), inside = vec3(0.0);
+// The first surface that transmits nothing from `origin` along unit `dir` within `reach` (t from
+// `origin`; found false: none), and in `passed` the share of light that the surfaces that
+// transmit before it let through in a straight line (straightTransmittance in
+// src/render/shadows.cpp): surfaceShadowTransmittance at each, and Beer-Lambert over the chords of
+// the volumes (summed as -sigma in + sigma out; to the opaque hit, or the end of the segment, for
+// the volumes entered and not left).
+SceneHit firstOpaqueHitThrough(vec3 origin, vec3 dir, float reach, out vec3 passed) {
+  passed = vec3(1.0);
+  vec3 opticalDepth = vec3(0.0), inside = vec3(0.0);
   float travelled = 0.0;
+  vec3 from = origin;
+  SceneHit opaque = SceneHit(false, reach, false, 0u, 0u, 0.0, 0.0);
   for (int surfaces = 0; surfaces < 256; ++surfaces) {
-    SceneHit hit = intersectScene(origin, dir, reach - travelled, false);
+    SceneHit hit = intersectScene(from, dir, reach - travelled, false);
     if (!hit.found) break;
-    Surface s = surfaceAt(hit, origin, dir);
-    if (s.transmission <= 0.0) return vec3(0.0);
+    Surface s = surfaceAt(hit, from, dir);
     float at = travelled + hit.t;
+    if (s.transmission <= 0.0) {
+      opaque = hit;
+      opaque.t = at;
+      break;
+    }
     passed *= surfaceShadowTransmittance(hitMaterial(s), dot(s.faceNormal, dir));
     if (s.volume) {
       opticalDepth += (s.frontFace ? -at : at) * s.attenuation;
       inside = max(inside + (s.frontFace ? 1.0 : -1.0) * s.attenuation, vec3(0.0));
     }
     float step = hit.t + 1e-4 * max(1.0, length(s.position));
-    origin += step * dir;
+    from += step * dir;
     travelled += step;
   }
-  if (reach < kFar) opticalDepth += inside * reach;
-  return passed * exp(-max(opticalDepth, vec3(0.0)));
+  if (opaque.found || reach < kFar) opticalDepth += inside * opaque.t;
+  passed *= exp(-max(opticalDepth, vec3(0.0)));
+  return opaque;
+}
+
+// The share of light that crosses from `origin` along unit `dir` for `reach` in a straight line:
+// 0 behind a surface that transmits nothing.
+vec3 straightTransmittance(vec3 origin, vec3 dir, float reach) {
+  vec3 passed;
+  return firstOpaqueHitThrough(origin, dir, reach, passed).found ? vec3(0.0) : passed;
 }
 
 // The share of light l's irradiance that reaches p, per channel (rayTracedVisibility in
@@ -158,14 +174,18 @@ void main() {
   vec3 dir = volumeRayDirection(ray, count, rotation);
   float farthest = update.rotation0.w;
   uint slot = uint(probe * count + ray);
-  SceneHit hit = intersectScene(origin, dir, kFar, false);
+  // Through the surfaces that transmit, as the shadows see (updateVolume in
+  // src/render/irradiance_volume_update.cpp): what lies behind them, tinted.
+  vec3 through = vec3(1.0);
+  SceneHit hit = (update.counts.z & 2) != 0 ? firstOpaqueHitThrough(origin, dir, kFar, through)
+                                            : intersectScene(origin, dir, kFar, false);
   if (!hit.found) {
     vec3 sky = frame.lods.w >= 0.5 ? textureLod(sourceMap, dir, 0.0).rgb : vec3(0.0);
-    rays[slot] = vec4(sky, farthest);
+    rays[slot] = vec4(through * sky, farthest);
     return;
   }
   Surface p = surfaceAt(hit, origin, dir);
   if ((update.counts.z & 1) != 0) p = metalAsDiffuse(p);
   PathSampler numbers = pathSamplerAt(pathSamplerKey(uint(update.keys.x), uint(update.keys.y), slot, 0u), 0u);
-  rays[slot] = vec4(shadeHit(p, -dir, numbers), min(hit.t, farthest));
+  rays[slot] = vec4(through * shadeHit(p, -dir, numbers), min(hit.t, farthest));
 }

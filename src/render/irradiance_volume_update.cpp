@@ -65,12 +65,19 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
     for (int i = 0; i < rays; ++i) {
       const std::size_t at = static_cast<std::size_t>(probe) * rays + i;
       const Ray ray{origin, directions[static_cast<std::size_t>(i)]};
-      const RayTracer::Hit hit = tracer.intersect(ray);
+      // The ray sees through the surfaces that transmit, as the shadows do: what lies behind
+      // them, times the share they let through (straightTransmittance; their own diffuse is left
+      // out), and they hide nothing from the volume's visibility test.
+      const RayTracer::Hit hit = firstOpaqueHit(tracer, ray);
       const float distance = hit.found ? std::min(hit.t, farthest) : farthest;
       moments[at] = glm::vec3(distance, distance * distance, 0.0f);
+      const glm::vec3 through =
+          tracer.transmits() ? straightTransmittance(scene, tracer, origin, ray.direction,
+                                                     hit.found ? hit.t * (1.0f - 1e-4f) : INFINITY)
+                             : glm::vec3(1.0f);
       if (!hit.found) {
-        radiance[at] =
-            o.environmentLight ? sampleBilinear(bake.source, 0, ray.direction) : glm::vec3(0.0f);
+        radiance[at] = o.environmentLight ? through * sampleBilinear(bake.source, 0, ray.direction)
+                                          : glm::vec3(0.0f);
         continue;
       }
       SurfacePoint p = surfaceAt(scene, tracer, hit, ray);
@@ -80,9 +87,9 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
       for (std::size_t l = 0; l < scene.lights.size(); ++l)
         visibility[l] =
             rayTracedVisibility(scene, tracer, scene.lights[l], p.position, p.normal, 1, sampler);
-      radiance[at] =
-          shadeSplitSum(p, view, bake, bakeOptions, o) +
-          shadeLightsRealTime(p, p.position, view, scene.lights, bake.dfg, o, 1.0f, visibility);
+      radiance[at] = through * (shadeSplitSum(p, view, bake, bakeOptions, o) +
+                                shadeLightsRealTime(p, p.position, view, scene.lights, bake.dfg, o,
+                                                    1.0f, visibility));
     }
   });
   // Each texel: the frame's weighted mean blended with what it held.

@@ -83,13 +83,14 @@ struct Brdf {
   shared::AlbedoTables tables;
 
   // The material at p seen from local direction v, its coat's normal `coatNormal` and its
-  // anisotropy's direction `anisotropyTangent` (both local); `only` selects lobes.
+  // anisotropy's direction `anisotropyTangent` (both local); `lobes` (shared::kLobes...)
+  // selects lobes.
   static Brdf of(const SurfacePoint& p, glm::vec3 v, glm::vec3 coatNormal,
-                 glm::vec3 anisotropyTangent, ShadingTerms only, const RenderOptions& o) {
+                 glm::vec3 anisotropyTangent, int lobes, const RenderOptions& o) {
     const shared::AlbedoTables tables = referenceAlbedoTables(o.sheenVisibility);
     shared::PathBrdf b = shared::pathBrdfOf(
         tables, p.baseColor, p.metallic, p.roughness, reflectanceOf(p, o.specularMicroOcclusion),
-        p.sheenColor, p.sheenRoughness, v, static_cast<int>(only), pathShading(o));
+        p.sheenColor, p.sheenRoughness, v, lobes, pathShading(o));
     if (p.clearcoat > 0.0f)
       b = shared::withClearcoat(b, p.clearcoat, p.clearcoatRoughness, coatNormal, v);
     if (p.anisotropy > 0.0f)
@@ -197,6 +198,10 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
   // The attenuation coefficient of the volume the path travels in (KHR_materials_volume; 0:
   // none), and the share of light that crosses `distance` of it.
   glm::vec3 medium(0.0f);
+  // A probe capture (Lagarde & de Rousiers 2014, 4.9.1.2) keeps the diffuse of the surfaces it
+  // sees and the light they let through, but not their view-dependent reflections: the surfaces
+  // seen through glass are seen by the probe too.
+  bool seenByProbe = !o.cameraSeesSpecular;
   const auto crossing = [&](const glm::vec3& sigma, float distance) {
     return sigma == glm::vec3(0.0f) ? glm::vec3(1.0f)
                                     : shared::volumeTransmittance(sigma, distance);
@@ -208,12 +213,10 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     const glm::mat3 frame = tangentFrame(p.normal);
     const glm::mat3 toLocal = glm::transpose(frame);
     const glm::vec3 v = toLocal * view;
-    // A probe capture leaves out the view-dependent specular of the surfaces the camera sees.
-    const bool captured = depth == 0 && !o.cameraSeesSpecular;
-    const ShadingTerms only = captured ? ShadingTerms::Diffuse : o.only;
-    if (captured && o.captureMetalsAsDiffuse) p = metalAsDiffuse(p);
+    const int lobes = seenByProbe ? shared::kLobesCapture : static_cast<int>(o.only);
+    if (seenByProbe && o.captureMetalsAsDiffuse) p = metalAsDiffuse(p);
     const Brdf brdf =
-        Brdf::of(p, v, toLocal * p.clearcoatNormal, toLocal * p.anisotropyTangent, only, o);
+        Brdf::of(p, v, toLocal * p.clearcoatNormal, toLocal * p.anisotropyTangent, lobes, o);
     const glm::vec3 offset = p.normal * 1e-4f * std::max(1.0f, glm::length(position));
     const glm::vec3 origin = position + offset;
     // A surface that transmits is lit and left on both sides (local l.z < 0 too). The side of
@@ -289,6 +292,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     // microfacet walk an estimate of it, pb the MIS weights' approximate pdf; Brdf::sample).
     const glm::vec3 f = bs.weight * pb;
     medium = mediumToward(l);
+    seenByProbe = seenByProbe && twoSided && l.z < 0.0f;  // through the surface: still in view
     const Ray ray{originToward(l), w};
     const RayTracer::Hit hit = visibility ? s.tracer.intersect(ray) : RayTracer::Hit{};
     const NearestLight seen = nearestLight(lights, ray.origin, w);

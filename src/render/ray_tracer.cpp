@@ -78,7 +78,7 @@ unsigned RayTracer::maskOf(const Material& material) {
   return material.transmission > 0.0f ? kTransmissive : kOpaque;
 }
 
-RayTracer::RayTracer(const Scene& scene) : scene_(scene) {
+RayTracer::RayTracer(const Scene& scene) : scene_(scene), transmits_(hasTransmission(scene)) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) fail("embree", "cannot create a device");
   handle_ = rtcNewScene(device_);

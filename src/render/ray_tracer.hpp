@@ -87,6 +87,9 @@ class RayTracer {
     return ray.tfar < 0.0f;
   }
 
+  // Whether any material transmits (hasTransmission): where none does, kOpaque sees everything.
+  bool transmits() const { return transmits_; }
+
   bool isSphere(unsigned geometry) const {
     return geometry != RTC_INVALID_GEOMETRY_ID &&
            (geometry == sphereGeometries_[0] || geometry == sphereGeometries_[1]);
@@ -101,6 +104,7 @@ class RayTracer {
   // there are none) and the scene's sphere of each of their primitives.
   unsigned sphereGeometries_[2] = {RTC_INVALID_GEOMETRY_ID, RTC_INVALID_GEOMETRY_ID};
   std::vector<std::uint32_t> sphereIndices_[2];
+  bool transmits_ = false;
 };
 
 // The shading point of a hit: interpolated attributes, material textures, normal mapping; the

@@ -179,3 +179,56 @@ TEST(IrradianceVolumeUpdate, AGlowingEnclosureConvergesToItsClosedForm) {
   // The contraction per frame is 0.85 + 0.15 x 0.5: after 80 frames 0.2 % of the start is left.
   EXPECT_LT(worst, 0.01);
 }
+
+// Probes within 0.05 m of the center of a glass ball of radius 5 under a sky of radiance 1: their
+// rays leave through the ball at nearly normal incidence, so every irradiance texel (E / pi)
+// holds what one smooth face passes, c (1 - F0) with F0 = 0.04 (ior 1.5), for a thin-walled ball;
+// a solid one (KHR_materials_volume) absorbs over the 5 m to its surface too, exp(-sigma 5) with
+// sigma = ln 2 / 10 in red: the rays see through the glass, as the shadows do, from inside a
+// volume as well.
+TEST(IrradianceVolumeUpdate, ProbesInAGlassBallSeeTheSkyTintedByIt) {
+  Material glass;
+  glass.baseColor = glm::vec3(0.9f, 0.7f, 0.5f);
+  glass.metallic = 0.0f;
+  glass.roughness = 0.0f;
+  glass.transmission = 1.0f;
+  Material solid = glass;
+  solid.thickness = 1.0f;
+  solid.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);
+  solid.attenuationDistance = 10.0f;
+  BakeOptions options;
+  options.specular.size = 16;
+  options.irradianceSize = 8;
+  options.dfgSize = 16;
+  options.dfgSamples = 64;
+  const BakeResult sky = bakeEnvironment(
+      equirectEnvironment(equirectFromFunction(64, [](glm::vec3) { return glm::vec3(1.0f); })),
+      options);
+  VolumeOptions volumeOptions;
+  volumeOptions.irradianceTexels = 6;
+  volumeOptions.distanceTexels = 8;
+  const glm::vec3 face = glass.baseColor * (1.0f - 0.04f);
+  for (const bool thick : {false, true}) {
+    Scene scene;
+    scene.materials = {thick ? solid : glass};
+    scene.spheres.push_back({glm::vec3(0.0f), 5.0f, 0});
+    IrradianceVolume live =
+        makeVolume(glm::vec3(-0.05f), glm::vec3(0.05f), {2, 2, 2}, volumeOptions, CaptureOptions{});
+    VolumeUpdateOptions update;
+    update.hysteresis = 0.0f;
+    updateVolume(scene, live, sky, options, shadingOf(live), update, 0);
+    const glm::vec3 expected =
+        face *
+        (thick ? glm::vec3(std::exp(-std::log(2.0f) / 10.0f * 5.0f), 1.0f, 1.0f) : glm::vec3(1.0f));
+    double worst = 0.0;
+    const int texels = live.grid.irradianceTexels, perRow = live.grid.counts.x * live.grid.counts.y;
+    for (int probe = 0; probe < volumeProbeCount(live.grid); ++probe)
+      for (int y = 1; y <= texels; ++y)
+        for (int x = 1; x <= texels; ++x) {
+          const glm::ivec2 tile = glm::ivec2(probe % perRow, probe / perRow) * (texels + 2);
+          worst = std::max(worst,
+                           maxRelativeError(live.irradiance.at(tile.x + x, tile.y + y), expected));
+        }
+    EXPECT_LT(worst, 0.01) << (thick ? "solid ball" : "thin-walled ball");
+  }
+}

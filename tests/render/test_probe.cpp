@@ -18,6 +18,7 @@
 #include "support/helpers.hpp"
 #include "support/probe_capture.hpp"
 #include "support/room.hpp"
+#include "support/shadow_scenes.hpp"
 
 using namespace ibl;
 using namespace ibl::test;
@@ -513,6 +514,67 @@ TEST(Probes, CaptureSeesAMetalAsADiffuseSurfaceOfAlbedoF0) {
   const glm::vec3 seen = faceCenter(h.radiance, down);
   for (int k = 0; k < 3; ++k)
     EXPECT_NEAR(seen[k] / (0.75f * halfMetal.baseColor[k] + 0.01f), 1.0f, 0.03f) << k;
+}
+
+// A metal floor lit by the sun 60 degrees from the zenith, captured from 0.5 m above through
+// glass (none, a smooth thin pane of color c at y = 0.25, a smooth slab of that color 0.1 m
+// thick absorbing red over y = 0.2 to 0.3), in the sun's clear way: each glass passes what lies
+// behind it to the probe, as to any point near it, c (1 - F) per face (Schlick's F of F0 = 0.04,
+// at normal incidence here: 0.04) and Beer-Lambert over the slab's chord, and what the probe sees
+// through it is still seen as a capture sees it: the metal as a diffuse surface of albedo F0
+// (its specular, away from the probe, would be nearly black). Ratios to the open floor, per
+// channel; the figures written out, not computed by the renderer's helpers.
+TEST(Probes, ACaptureSeesThroughGlassWhatLiesBehindTinted) {
+  Material metal;
+  metal.baseColor = glm::vec3(0.9f, 0.6f, 0.3f);
+  metal.metallic = 1.0f;
+  metal.roughness = 0.2f;
+  Material glass;
+  glass.baseColor = glm::vec3(0.9f, 0.7f, 0.5f);
+  glass.metallic = 0.0f;
+  glass.roughness = 0.0f;
+  glass.transmission = 1.0f;
+  Material slab = glass;
+  slab.thickness = 0.1f;
+  slab.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);
+  slab.attenuationDistance = 0.5f;  // sigma = ln 2 / 0.5 in red
+  Light sun = shadowStudyLight(LightType::Sun);
+  sun.direction = glm::vec3(std::sin(glm::radians(60.0f)), 0.5f, 0.0f);
+  const auto sceneWith = [&](int glassKind) {
+    Scene s;
+    s.materials = {metal, glassKind == 2 ? slab : glass};
+    s.meshes.push_back(planeMesh(3.0f));
+    // Small: the sun's rays to the floor the probe sees pass 0.25 m to the side of them.
+    if (glassKind == 1)
+      addQuad(s, glm::vec3(-0.1f, 0.25f, -0.1f), glm::vec3(0.2f, 0.0f, 0.0f),
+              glm::vec3(0.0f, 0.0f, 0.2f), 1, glm::vec3(0.0f, 1.0f, 0.0f));
+    if (glassKind == 2) addBox(s, glm::vec3(0.0f, 0.25f, 0.0f), glm::vec3(0.1f, 0.05f, 0.1f), 1);
+    s.lights = {sun};
+    return s;
+  };
+  const Bake dark = probeBakeOf([](glm::vec3) { return glm::vec3(0.0f); }, 16);
+  CaptureOptions capture;
+  capture.size = 8;
+  capture.spp = 512;
+  capture.bounces = 2;
+  capture.diffuse = DiffuseModel::Lambert;
+  const int down = faceAlong(glm::vec3(0.0f, -1.0f, 0.0f));
+  ASSERT_GE(down, 0);
+  const auto floorSeen = [&](int glassKind) {
+    const ProbeCapture c = captureProbe(sceneWith(glassKind), glm::vec3(0.0f, 0.5f, 0.0f),
+                                        dark.result, dark.options, capture);
+    EXPECT_NEAR(faceCenter(c.coverage, down).x, 1.0f, 1e-6f) << glassKind;
+    return faceCenter(c.radiance, down);
+  };
+  const glm::vec3 open = floorSeen(0);
+  ASSERT_GT(open.z, 0.0f);
+  const glm::vec3 face = glass.baseColor * (1.0f - 0.04f);
+  const glm::vec3 pane = floorSeen(1) / open, thick = floorSeen(2) / open;
+  const glm::vec3 absorbed(std::exp(-std::log(2.0f) / 0.5f * 0.1f), 1.0f, 1.0f);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(pane[k] / face[k], 1.0f, 0.03f) << "pane, channel " << k;
+    EXPECT_NEAR(thick[k] / (face[k] * face[k] * absorbed[k]), 1.0f, 0.03f) << "slab, channel " << k;
+  }
 }
 
 TEST(Probes, TheDistantEnvironmentFillsWhatACaptureDoesNotCover) {

@@ -264,11 +264,10 @@ double schlick004(double c) {
   return 0.04 + 0.96 * std::pow(1.0 - c, 5.0);
 }
 
-// A white floor lit by the sun `degrees` from the zenith (toward +X) through `blocker`'s surfaces
-// of `glass`, seen from above without them (the camera sees past what transmits): the floor's
-// color with `mode`'s shadows over its color without, per channel, at the origin (the mean of
-// 4 x 4 pixels 2 cm wide).
-glm::dvec3 passedToTheFloor(const Material& glass, float degrees, ShadowMode mode,
+// A white floor lit by `light` through `blocker`'s surfaces of `glass`, seen from above without
+// them (the camera sees past what transmits): the floor's color with `mode`'s shadows over its
+// color without, per channel, at the origin (the mean of 4 x 4 pixels 2 cm wide).
+glm::dvec3 passedToTheFloor(const Material& glass, const Light& light, ShadowMode mode,
                             void (*blocker)(Scene&)) {
   Material floor;
   floor.baseColor = glm::vec3(1.0f);
@@ -277,10 +276,7 @@ glm::dvec3 passedToTheFloor(const Material& glass, float degrees, ShadowMode mod
   scene.materials = {floor, glass};
   scene.meshes.push_back(planeMesh(3.0f));
   blocker(scene);
-  Light sun = shadowStudyLight(LightType::Sun);
-  const float a = glm::radians(degrees);
-  sun.direction = {std::sin(a), std::cos(a), 0.0f};
-  scene.lights = {sun};
+  scene.lights = {light};
   RenderOptions o = shadowOptions(mode, 256);
   o.shadowSettings.raySamples = 16;
   o.environmentLight = false;
@@ -296,6 +292,15 @@ glm::dvec3 passedToTheFloor(const Material& glass, float degrees, ShadowMode mod
     a1 += glm::dvec3(open.color.pixels[i]);
   }
   return a0 / a1;
+}
+
+// The same, lit by the sun `degrees` from the zenith (toward +X).
+glm::dvec3 passedToTheFloor(const Material& glass, float degrees, ShadowMode mode,
+                            void (*blocker)(Scene&)) {
+  Light sun = shadowStudyLight(LightType::Sun);
+  const float a = glm::radians(degrees);
+  sun.direction = {std::sin(a), std::cos(a), 0.0f};
+  return passedToTheFloor(glass, sun, mode, blocker);
 }
 
 // A pane 1 m above the floor, 6 m wide, facing up.
@@ -367,6 +372,38 @@ TEST(Shadows, AnAbsorbingSlabPassesBeerLambertOverItsChord) {
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(passed[c], k.expected[c], 2e-3 * k.expected[c])
           << shadowModeName(k.mode) << ", " << k.degrees << " degrees, channel " << c;
+  }
+}
+
+// A ball of radius 0.5 m centered 1.5 m above the floor.
+void ballAbove(Scene& scene) {
+  scene.spheres.push_back({glm::vec3(0.0f, 1.5f, 0.0f), 0.5f, 1});
+}
+
+// A point light at the center of a smooth ball of absorbing glass (KHR_materials_volume:
+// thickness 1 m, its diameter; half the light left after 0.5 m in red): every ray from it leaves
+// through one face at normal incidence after 0.5 m of glass, so the floor receives
+// c (1 - F0) exp(-sigma 0.5) of its light, F0 = 0.04, sigma = ln 2 / 0.5 in red: through rays
+// (the segment starts inside the volume, seen from the floor: it ends there) and through the map
+// (Beer-Lambert over half the thickness, the radius here).
+TEST(Shadows, ALightInsideAGlassBallIsDimmedByTheGlassOnItsWayOut) {
+  Material glass;
+  glass.baseColor = {0.95f, 0.9f, 0.8f};
+  glass.metallic = 0.0f;
+  glass.roughness = 0.0f;
+  glass.transmission = 1.0f;
+  glass.thickness = 1.0f;
+  glass.attenuationColor = {0.5f, 1.0f, 1.0f};
+  glass.attenuationDistance = 0.5f;
+  Light point = shadowStudyLight(LightType::Point);
+  point.position = glm::vec3(0.0f, 1.5f, 0.0f);
+  const glm::dvec3 expected =
+      glm::dvec3(glass.baseColor) * 0.96 * glm::dvec3(std::exp(-std::log(2.0) / 0.5 * 0.5), 1, 1);
+  for (ShadowMode mode : {ShadowMode::Ray, ShadowMode::Map}) {
+    const glm::dvec3 passed = passedToTheFloor(glass, point, mode, ballAbove);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(passed[c], expected[c], 2e-3 * expected[c])
+          << shadowModeName(mode) << ", channel " << c;
   }
 }
 

@@ -27,6 +27,10 @@ const int kLobesAll = 0;
 const int kLobesDiffuse = 1;
 const int kLobesSpecular = 2;
 const int kLobesSheen = 3;
+// What a probe capture keeps of the surfaces it sees (Lagarde & de Rousiers 2014, 4.9.1.2): the
+// diffuse, and the transmission through them (the light behind a pane reaches the probe as it
+// would any point near it); the view-dependent reflections (specular, coat, sheen) are left out.
+const int kLobesCapture = 4;
 // MultipleScattering's values (ibl/render/renderer.hpp).
 const int kMultipleScatteringOff = 0;
 const int kMultipleScatteringScale = 1;
@@ -115,7 +119,7 @@ IBL_FN bool pathSpecularLobe(PathBrdf b) {
   return b.lobes == kLobesAll || b.lobes == kLobesSpecular;
 }
 IBL_FN bool pathDiffuseLobe(PathBrdf b) {
-  return b.lobes == kLobesAll || b.lobes == kLobesDiffuse;
+  return b.lobes == kLobesAll || b.lobes == kLobesDiffuse || b.lobes == kLobesCapture;
 }
 IBL_FN bool pathSheenLobe(PathBrdf b) {
   return pathHasSheen(b) && (b.lobes == kLobesAll || b.lobes == kLobesSheen);
@@ -154,9 +158,9 @@ IBL_FN PathBrdf pathBrdfOf(IBL_ALBEDO_TABLES vec3 baseColor, float metallic, flo
   // by 1 + F0 (1 / E(n.v) - 1). With F0 = 1 it reflects everything (a white furnace); both render
   // modes compute the same material. The walk computes the bounces instead: nearly the same
   // energy (within 5 % for F0 = 0.9), in another shape (docs/render.md).
-  if (o.multipleScattering == kMultipleScatteringScale && lobes != kLobesDiffuse)
+  if (o.multipleScattering == kMultipleScatteringScale && pathSpecularLobe(b))
     b.multipleScattering = pathMultipleScattering(IBL_ALBEDO_ARG reflectance, roughness, v);
-  if (o.multipleScattering == kMultipleScatteringWalk && lobes != kLobesDiffuse) b.walk = true;
+  if (o.multipleScattering == kMultipleScatteringWalk && pathSpecularLobe(b)) b.walk = true;
   b.sheenColor = sheenColor;
   b.sheenVisibility = o.sheenVisibility;
   // The split sum's sheen prefilter stops at kMinSheenRoughness: the same material here.
@@ -193,7 +197,7 @@ IBL_FN PathBrdf withAnisotropy(IBL_ALBEDO_TABLES PathBrdf b, float strength, vec
   vec3 t = vec3(tangent.x, tangent.y, 0.0f);
   b.lobe.t = dot(t, t) > 1e-12f ? normalize(t) : vec3(1.0f, 0.0f, 0.0f);
   b.lobe.alpha = max(anisotropicAlpha(b.roughness, strength), vec2(kMinPathAlpha));
-  if (o.multipleScattering == kMultipleScatteringScale && b.lobes != kLobesDiffuse)
+  if (o.multipleScattering == kMultipleScatteringScale && pathSpecularLobe(b))
     b.multipleScattering = pathMultipleScattering(IBL_ALBEDO_ARG b.reflectance,
                                                   anisotropicTableRoughness(b.lobe.alpha), v);
   return b;
@@ -278,7 +282,7 @@ IBL_FN vec3 walkView(vec3 v) {
 // Whether the transmission's lobe is shaded (a transmission, and b.lobes asks for specular
 // lobes).
 IBL_FN bool pathTransmissionLobe(PathBrdf b) {
-  return b.transmissionColor != vec3(0.0f) && pathSpecularLobe(b);
+  return b.transmissionColor != vec3(0.0f) && (pathSpecularLobe(b) || b.lobes == kLobesCapture);
 }
 
 // The transmission's f(v, l) |n.l| at l below the surface, without the layers above it: the
