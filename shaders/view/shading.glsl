@@ -268,6 +268,13 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
       vec3 profile = visible * iesProfileFactor(l, lightRecordProfile(record),
                                                  normalize(position - l.position));
       vec3 radiance = belowScale * lightRadiance(direct, n, view, inc, dfg.xy, s);
+      // KHR_materials_transmission: the light from behind the surface, through it.
+      if (direct.transmission > 0.0)
+        radiance += belowScale * transmittedLightRadiance(
+                                     direct, n, view,
+                                     lightIncidence(mirroredLight(l, position, n), position, n,
+                                                    view, lobeRoughness, s, ltc),
+                                     dfg.xy, s);
       if (shadeSheen)
         radiance += sheenLightRadiance(sheen.rgb, sheenAlpha, s.sheenVisibility, n, view, inc);
       radiance *= belowCoat;

@@ -271,6 +271,14 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
     glm::vec3 radiance(0.0f);
     if (o.only != ShadingTerms::Sheen)
       radiance += belowScale * shared::lightRadiance(m, p.normal, view, inc, dfg, s);
+    // KHR_materials_transmission: the light from behind the surface, through it.
+    if (o.only != ShadingTerms::Sheen && m.transmission > 0.0f)
+      radiance +=
+          belowScale * shared::transmittedLightRadiance(
+                           m, p.normal, view,
+                           shared::lightIncidence(shared::mirroredLight(sl, position, p.normal),
+                                                  position, p.normal, view, lobeRoughness, s, ltc),
+                           dfg, s);
     if (sheen)
       radiance += shared::sheenLightRadiance(p.sheenColor, sheenAlpha, s.sheenVisibility, p.normal,
                                              view, inc);

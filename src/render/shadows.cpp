@@ -237,7 +237,7 @@ std::size_t shadowMapBytes(const std::vector<Light>& lights, const ShadowSetting
 }
 
 bool sceneCastsShadows(const Scene& scene) {
-  return !scene.meshes.empty() || scene.spheres.size() > 1;
+  return !scene.meshes.empty() || scene.spheres.size() > 1 || hasTransmission(scene);
 }
 
 ShadowMaps planShadowMaps(const std::vector<Light>& lights, std::pair<glm::vec3, glm::vec3> bounds,

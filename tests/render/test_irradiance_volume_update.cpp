@@ -24,6 +24,23 @@ struct WindowRoom {
   BakeResult bake;
 };
 
+// A small bake: the update reads the irradiance and the source.
+BakeOptions smallBakeOptions() {
+  BakeOptions options;
+  options.specular.size = 16;
+  options.irradianceSize = 8;
+  options.dfgSize = 16;
+  options.dfgSamples = 64;
+  return options;
+}
+
+// A sky of the same radiance in every direction, baked with `options`.
+BakeResult uniformSky(float radiance, const BakeOptions& options) {
+  return bakeEnvironment(
+      equirectEnvironment(equirectFromFunction(64, [&](glm::vec3) { return glm::vec3(radiance); })),
+      options);
+}
+
 WindowRoom windowRoom(float skyRadiance) {
   WindowRoom r;
   RoomDescription room;
@@ -35,13 +52,8 @@ WindowRoom windowRoom(float skyRadiance) {
   for (auto& w : room.walls) w = {wall, wall};
   room.window = true;
   r.scene = makeRoom(room);
-  r.options.specular.size = 16;
-  r.options.irradianceSize = 8;
-  r.options.dfgSize = 16;
-  r.options.dfgSamples = 64;
-  r.bake = bakeEnvironment(equirectEnvironment(equirectFromFunction(
-                               64, [&](glm::vec3) { return glm::vec3(skyRadiance); })),
-                           r.options);
+  r.options = smallBakeOptions();
+  r.bake = uniformSky(skyRadiance, r.options);
   return r;
 }
 
@@ -67,6 +79,20 @@ IrradianceVolume emptyVolume() {
   // The room's inside: its walls within the volume's reach (at its cells' border), or the
   // distant environment would light them through the fade (volumeCoverage).
   return makeVolume({-2.0f, 0.0f, -2.0f}, {2.0f, 3.0f, 2.0f}, {3, 2, 3}, options, capture);
+}
+
+// The largest relative error of the volume's interior irradiance texels against `expected`.
+double worstTexelError(const IrradianceVolume& v, glm::vec3 expected) {
+  const int texels = v.grid.irradianceTexels, perRow = v.grid.counts.x * v.grid.counts.y;
+  double worst = 0.0;
+  for (int probe = 0; probe < volumeProbeCount(v.grid); ++probe)
+    for (int y = 1; y <= texels; ++y)
+      for (int x = 1; x <= texels; ++x) {
+        const glm::ivec2 tile = glm::ivec2(probe % perRow, probe / perRow) * (texels + 2);
+        worst =
+            std::max(worst, maxRelativeError(v.irradiance.at(tile.x + x, tile.y + y), expected));
+      }
+  return worst;
 }
 
 RenderOptions shadingOf(const IrradianceVolume& v) {
@@ -150,14 +176,8 @@ TEST(IrradianceVolumeUpdate, AGlowingEnclosureConvergesToItsClosedForm) {
   wall.emissive = glm::vec3(1.0f, 0.5f, 0.25f);
   for (auto& w : room.walls) w = {wall, wall};
   const Scene scene = makeRoom(room);
-  BakeOptions options;
-  options.specular.size = 16;
-  options.irradianceSize = 8;
-  options.dfgSize = 16;
-  options.dfgSamples = 64;
-  const BakeResult dark = bakeEnvironment(
-      equirectEnvironment(equirectFromFunction(64, [](glm::vec3) { return glm::vec3(0.0f); })),
-      options);
+  const BakeOptions options = smallBakeOptions();
+  const BakeResult dark = uniformSky(0.0f, options);
   IrradianceVolume live = emptyVolume();
   RenderOptions o = shadingOf(live);
   o.environmentLight = false;
@@ -165,19 +185,8 @@ TEST(IrradianceVolumeUpdate, AGlowingEnclosureConvergesToItsClosedForm) {
   update.hysteresis = 0.85f;
   for (unsigned frame = 0; frame < 80; ++frame)
     updateVolume(scene, live, dark, options, o, update, frame);
-  const glm::vec3 expected = wall.emissive / (1.0f - 0.5f);
-  double worst = 0.0;
-  for (int probe = 0; probe < volumeProbeCount(live.grid); ++probe)
-    for (int y = 1; y <= live.grid.irradianceTexels; ++y)
-      for (int x = 1; x <= live.grid.irradianceTexels; ++x) {
-        const int perRow = live.grid.counts.x * live.grid.counts.y;
-        const glm::ivec2 tile =
-            glm::ivec2(probe % perRow, probe / perRow) * (live.grid.irradianceTexels + 2);
-        worst =
-            std::max(worst, maxRelativeError(live.irradiance.at(tile.x + x, tile.y + y), expected));
-      }
   // The contraction per frame is 0.85 + 0.15 x 0.5: after 80 frames 0.2 % of the start is left.
-  EXPECT_LT(worst, 0.01);
+  EXPECT_LT(worstTexelError(live, wall.emissive / (1.0f - 0.5f)), 0.01);
 }
 
 // Probes within 0.05 m of the center of a glass ball of radius 5 under a sky of radiance 1: their
@@ -187,23 +196,13 @@ TEST(IrradianceVolumeUpdate, AGlowingEnclosureConvergesToItsClosedForm) {
 // sigma = ln 2 / 10 in red: the rays see through the glass, as the shadows do, from inside a
 // volume as well.
 TEST(IrradianceVolumeUpdate, ProbesInAGlassBallSeeTheSkyTintedByIt) {
-  Material glass;
-  glass.baseColor = glm::vec3(0.9f, 0.7f, 0.5f);
-  glass.metallic = 0.0f;
-  glass.roughness = 0.0f;
-  glass.transmission = 1.0f;
+  const Material glass = smoothGlass(glm::vec3(0.9f, 0.7f, 0.5f));
   Material solid = glass;
   solid.thickness = 1.0f;
   solid.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);
   solid.attenuationDistance = 10.0f;
-  BakeOptions options;
-  options.specular.size = 16;
-  options.irradianceSize = 8;
-  options.dfgSize = 16;
-  options.dfgSamples = 64;
-  const BakeResult sky = bakeEnvironment(
-      equirectEnvironment(equirectFromFunction(64, [](glm::vec3) { return glm::vec3(1.0f); })),
-      options);
+  const BakeOptions options = smallBakeOptions();
+  const BakeResult sky = uniformSky(1.0f, options);
   VolumeOptions volumeOptions;
   volumeOptions.irradianceTexels = 6;
   volumeOptions.distanceTexels = 8;
@@ -220,15 +219,6 @@ TEST(IrradianceVolumeUpdate, ProbesInAGlassBallSeeTheSkyTintedByIt) {
     const glm::vec3 expected =
         face *
         (thick ? glm::vec3(std::exp(-std::log(2.0f) / 10.0f * 5.0f), 1.0f, 1.0f) : glm::vec3(1.0f));
-    double worst = 0.0;
-    const int texels = live.grid.irradianceTexels, perRow = live.grid.counts.x * live.grid.counts.y;
-    for (int probe = 0; probe < volumeProbeCount(live.grid); ++probe)
-      for (int y = 1; y <= texels; ++y)
-        for (int x = 1; x <= texels; ++x) {
-          const glm::ivec2 tile = glm::ivec2(probe % perRow, probe / perRow) * (texels + 2);
-          worst = std::max(worst,
-                           maxRelativeError(live.irradiance.at(tile.x + x, tile.y + y), expected));
-        }
-    EXPECT_LT(worst, 0.01) << (thick ? "solid ball" : "thin-walled ball");
+    EXPECT_LT(worstTexelError(live, expected), 0.01) << (thick ? "solid ball" : "thin-walled ball");
   }
 }

@@ -529,11 +529,7 @@ TEST(Probes, ACaptureSeesThroughGlassWhatLiesBehindTinted) {
   metal.baseColor = glm::vec3(0.9f, 0.6f, 0.3f);
   metal.metallic = 1.0f;
   metal.roughness = 0.2f;
-  Material glass;
-  glass.baseColor = glm::vec3(0.9f, 0.7f, 0.5f);
-  glass.metallic = 0.0f;
-  glass.roughness = 0.0f;
-  glass.transmission = 1.0f;
+  const Material glass = smoothGlass(glm::vec3(0.9f, 0.7f, 0.5f));
   Material slab = glass;
   slab.thickness = 0.1f;
   slab.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);

@@ -387,11 +387,7 @@ void ballAbove(Scene& scene) {
 // (the segment starts inside the volume, seen from the floor: it ends there) and through the map
 // (Beer-Lambert over half the thickness, the radius here).
 TEST(Shadows, ALightInsideAGlassBallIsDimmedByTheGlassOnItsWayOut) {
-  Material glass;
-  glass.baseColor = {0.95f, 0.9f, 0.8f};
-  glass.metallic = 0.0f;
-  glass.roughness = 0.0f;
-  glass.transmission = 1.0f;
+  Material glass = smoothGlass({0.95f, 0.9f, 0.8f});
   glass.thickness = 1.0f;
   glass.attenuationColor = {0.5f, 1.0f, 1.0f};
   glass.attenuationDistance = 0.5f;

@@ -7,8 +7,10 @@
 // refused.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <numbers>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -76,6 +78,18 @@ glm::dvec3 meanColor(const Image& img) {
 const Baked& uniformWhiteLight() {
   static const Baked b = bakeOf([](glm::vec3) { return glm::vec3(1.0f); }, 16);
   return b;
+}
+
+// The mean color of `scene` seen by c in `mode` (16 samples per pixel, one bounce, no
+// environment: the lights alone).
+glm::dvec3 meanUnderLights(const Scene& scene, const Camera& c, RenderMode mode) {
+  RenderOptions o;
+  o.mode = mode;
+  o.spp = 16;
+  o.bounces = 1;
+  o.environmentLight = false;
+  return meanColor(
+      renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o).color);
 }
 
 // Schlick's Fresnel of F0 0.04 (ior 1.5) at cosine c.
@@ -151,7 +165,8 @@ TEST(TransmissionRender, AbsorbingSlabMatchesStokesSums) {
 // front, no environment: the wall sends c (1 - F0) D(n) V I / d^2 toward the camera, with
 // D(n) = 1 / (pi alpha^2) and V = 1 / 4 at normal incidence (Smith's Lambda is 0 there). A point
 // light is a delta: it reaches the camera only through next-event estimation from the wall's
-// back.
+// back. The split sum shades the same lobe (transmittedLightRadiance, from the light mirrored
+// through the wall), which the Sample Viewer adds for punctual lights.
 TEST(TransmissionRender, PointLightShinesThroughAThinWall) {
   const glm::vec3 tint(0.8f, 0.6f, 0.4f);
   Scene scene = thinWall(tint, 0.3f);
@@ -161,16 +176,98 @@ TEST(TransmissionRender, PointLightShinesThroughAThinWall) {
   light.intensity = 10.0f;
   scene.lights.push_back(light);
   const Camera c = headOn(0.002f);
-  RenderOptions o;
-  o.mode = RenderMode::Reference;
-  o.spp = 16;
-  o.bounces = 1;
-  o.environmentLight = false;
-  const glm::dvec3 mean = meanColor(
-      renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o).color);
-  const double alpha = 0.09, perCandela = 0.96 * 0.25 / (std::numbers::pi * alpha * alpha) / 4.0;
-  for (int k = 0; k < 3; ++k)
-    EXPECT_NEAR(mean[k], tint[k] * 10.0 * perCandela, 0.01 * tint[k] * 10.0 * perCandela) << k;
+  for (RenderMode mode : {RenderMode::Reference, RenderMode::SplitSum}) {
+    const glm::dvec3 mean = meanUnderLights(scene, c, mode);
+    const double alpha = 0.09, perCandela = 0.96 * 0.25 / (std::numbers::pi * alpha * alpha) / 4.0;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(mean[k], tint[k] * 10.0 * perCandela, 0.01 * tint[k] * 10.0 * perCandela)
+          << (mode == RenderMode::SplitSum ? "split sum, " : "reference, ") << k;
+  }
+}
+
+// A thin wall of roughness 0.5 lit from behind, 30 and 60 degrees off its axis, by a point light,
+// a spot aimed at it and the sun: the reference's transmitted lobe (next-event estimation through
+// the wall's back) and the split sum's (the lobe lit by the light mirrored through the wall) are
+// the same function for punctual lights, f(v, l) = c D V (1 - F) at the mirrored half vector,
+// and agree within the reference's noise (1 %). Seen at 20 degrees, so that the lobe is read off
+// its peak, and the Fresnel at the half vector is not the view's.
+TEST(TransmissionRender, PunctualLightsShineThroughAThinWallAlikeInBothModes) {
+  const glm::vec3 tint(0.8f, 0.6f, 0.4f);
+  Camera c = headOn(0.002f);
+  c.from =
+      glm::vec3(3.0f * std::sin(glm::radians(20.0f)), 0.0f, 3.0f * std::cos(glm::radians(20.0f)));
+  for (LightType type : {LightType::Point, LightType::Spot, LightType::Sun})
+    for (float degrees : {30.0f, 60.0f}) {
+      Scene scene = thinWall(tint, 0.5f);
+      const glm::vec3 toLight(-std::sin(glm::radians(degrees)), 0.0f,
+                              -std::cos(glm::radians(degrees)));
+      Light light;
+      light.type = type;
+      light.position = 2.0f * toLight;
+      light.direction = type == LightType::Sun ? toLight : -toLight;
+      light.innerAngle = 0.3f;
+      light.outerAngle = 0.6f;
+      light.intensity = 10.0f;
+      scene.lights.push_back(light);
+      const glm::dvec3 means[2] = {meanUnderLights(scene, c, RenderMode::Reference),
+                                   meanUnderLights(scene, c, RenderMode::SplitSum)};
+      ASSERT_GT(means[0].x, 0.0);
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(means[1][k] / means[0][k], 1.0, 0.01)
+            << lightTypeName(type) << ", " << degrees << " degrees, channel " << k;
+    }
+}
+
+// The area lights behind the same wall (roughness 0.5; a sphere, a disk and a rect 0.3 m across
+// facing it, a tube 0.8 m long, each 1.5 m away, 45 degrees off its axis): the split sum's
+// transmitted lobe, through the LTCs and through Frostbite's representative points, against the
+// reference. The approximations are the reflection's, lit by the light mirrored through the wall;
+// their errors are the reflection's too (docs/lights.md).
+TEST(TransmissionRender, AreaLightsShineThroughAThinWallWithinTheirApproximations) {
+  const glm::vec3 tint(0.8f, 0.6f, 0.4f);
+  Camera c = headOn(0.002f);
+  c.from =
+      glm::vec3(3.0f * std::sin(glm::radians(20.0f)), 0.0f, 3.0f * std::cos(glm::radians(20.0f)));
+  const glm::vec3 toLight = glm::normalize(glm::vec3(-1.0f, 0.0f, -1.0f));
+  for (LightType type : {LightType::Sphere, LightType::Disk, LightType::Tube, LightType::Rect}) {
+    Scene scene = thinWall(tint, 0.5f);
+    Light light;
+    light.type = type;
+    light.position = 1.5f * toLight;
+    light.direction = type == LightType::Tube ? glm::vec3(0.0f, 1.0f, 0.0f) : -toLight;
+    light.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    light.radius = type == LightType::Tube ? 0.05f : 0.15f;
+    light.length = 0.8f;
+    light.width = 0.3f;
+    light.height = 0.3f;
+    light.intensity = 100.0f;
+    checkLight(light);
+    scene.lights.push_back(light);
+    RenderOptions o;
+    o.mode = RenderMode::Reference;
+    o.spp = 1024;
+    o.bounces = 1;
+    o.environmentLight = false;
+    const double reference = luminance(glm::vec3(meanColor(
+        renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o).color)));
+    ASSERT_GT(reference, 0.0);
+    o.mode = RenderMode::SplitSum;
+    o.spp = 1;
+    for (AreaLightModel model : {AreaLightModel::Ltc, AreaLightModel::Frostbite}) {
+      o.areaLights = model;
+      const double ratio =
+          luminance(glm::vec3(meanColor(
+              renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o)
+                  .color))) /
+          reference;
+      std::printf("%s behind a thin wall, %s: split sum / reference %.3f\n",
+                  std::string(lightTypeName(type)).c_str(),
+                  model == AreaLightModel::Ltc ? "LTC" : "Frostbite", ratio);
+      // Measured: LTC 1.012 for each (the fit's error at this roughness and angle: the lights
+      // are small), Frostbite 0.95 to 0.97, the tube's representative point 0.73.
+      EXPECT_NEAR(ratio, 1.0, model == AreaLightModel::Ltc ? 0.03 : 0.3) << lightTypeName(type);
+    }
+  }
 }
 
 // A smooth thin wall of base color c under a thin film (KHR_materials_iridescence: strength 1,

@@ -21,6 +21,7 @@
 #include "ibl/env/environment.hpp"
 #include "ibl/env/equirect.hpp"
 #include "ibl/render/camera.hpp"
+#include "ibl/render/scene.hpp"
 #include "support/run_command.hpp"
 
 namespace ibl::test {
@@ -141,6 +142,17 @@ inline std::string errorOf(const std::function<void()>& f) {
     return e.what();
   }
   return "";
+}
+
+// A smooth glass of color c that transmits everything below its specular layer
+// (KHR_materials_transmission 1, ior 1.5: F0 = 0.04), thin-walled unless given a thickness.
+inline Material smoothGlass(glm::vec3 c) {
+  Material m;
+  m.baseColor = c;
+  m.metallic = 0.0f;
+  m.roughness = 0.0f;
+  m.transmission = 1.0f;
+  return m;
 }
 
 }  // namespace ibl::test

@@ -72,7 +72,7 @@ IBL_FN vec3 specularLightRadiance(SpecularReflectance r, GgxLobe lobe, vec3 n, v
 // incidence, per unit of the light's color: diffuse (Disney or Lambert) x the diffuse
 // illuminance, GGX x the specular illuminance, with the multiple-scattering compensation of the
 // split sum (dfg: the DFG table's A, B at n.v). KHR_materials_transmission takes its share of
-// the diffuse; the light it would pass from behind the surface is left out (docs/materials.md).
+// the diffuse; the light it passes from behind the surface is transmittedLightRadiance's.
 IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc, vec2 dfg,
                           SplitSumSwitches s) {
   vec3 diffuseColor = m.baseColor * ((1.0f - m.metallic) * (1.0f - m.transmission));
@@ -96,6 +96,40 @@ IBL_FN vec3 lightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc
     color += specular;
   }
   return color;
+}
+
+// The light mirrored through the plane of unit normal n at p: what lies below the surface seen
+// from above. A thin wall's transmitted lobe toward v from a light below is its specular lobe
+// from the mirrored light (the transmission's "mirrored" microfacet lobe,
+// KHR_materials_transmission), so the incidence of the mirrored light, through any of the
+// lights' approximations, is the transmission's.
+IBL_FN ShadingLight mirroredLight(ShadingLight light, vec3 p, vec3 n) {
+  light.position -= 2.0f * dot(light.position - p, n) * n;
+  light.direction -= 2.0f * dot(light.direction, n) * n;
+  light.up -= 2.0f * dot(light.up, n) * n;
+  return light;
+}
+
+// The light a surface that transmits (KHR_materials_transmission) passes toward v from a light
+// behind it, per unit of the light's color (the glTF Sample Viewer's
+// getPunctualRadianceTransmission, for every light type): the specular lobe lit by the mirrored
+// light (`inc`: the incidence of mirroredLight at the lobe's roughness), times what the specular
+// layer leaves at the half vector (fresnel_mix's diffuseWeight; with the LTCs, transmittedShare
+// of the lobe's fraction), tinted by transmissionTint. Exact for a thin wall; a volume's
+// refraction is left out (the lobe is the mirrored reflection's, its absorption over the
+// thickness), as in the Sample Viewer.
+IBL_FN vec3 transmittedLightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc,
+                                     vec2 dfg, SplitSumSwitches s) {
+  if (s.terms == 1 || m.transmission <= 0.0f) return vec3(0.0f);
+  float NoV = max(dot(n, v), 1e-4f);
+  if (inc.specularLobeFraction > 0.0f)
+    return transmissionTint(m) * (transmittedShare(m, NoV, dfg, s) * inc.specularLobeFraction);
+  if (inc.specularIlluminance <= 0.0f) return vec3(0.0f);
+  vec3 l = inc.specularDirection;
+  float dv = ggxLobeValue(materialGgxLobe(m), n, v, l) * inc.specularNormalization;
+  SpecularReflectance r = splitSumReflectance(m, s);
+  return transmissionTint(m) *
+         (dv * diffuseWeight(r, max(dot(v, normalize(v + l)), 0.0f)) * inc.specularIlluminance);
 }
 
 // KHR_materials_clearcoat's lobe lit by one light, per unit of the light's color: GGX of the

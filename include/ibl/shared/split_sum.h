@@ -225,17 +225,11 @@ IBL_FN vec3 clearcoatRadiance(SplitSumMaterial m, float NcoV, vec2 dfg, vec3 pre
   return coat;
 }
 
-// KHR_materials_transmission over the split sum, after the glTF Sample Viewer: `transmitted` is
-// what lies behind the surface (the opaque frame over the environment: behindSurface). It passes
-// what the specular layer leaves of the lobe's albedo, (A + B) - specular max(F0 A + B) (dfg: the
-// DFG table's A, B at n.v; exact under uniform light for a thin wall, whose transmitted lobe is
-// the reflection's mirrored), a thin film's reflectance at n.v mixed in by its strength as in
-// directionalReflectance, tinted by the base color, and through a volume loses
-// exp(-attenuation thickness) (Beer-Lambert over the thickness the extension gives, as the Sample
-// Viewer takes it).
-IBL_FN vec3 transmissionRadiance(SplitSumMaterial m, float NoV, vec2 dfg, vec3 transmitted,
-                                 SplitSumSwitches s) {
-  if (s.terms == 1 || m.transmission <= 0.0f) return vec3(0.0f);
+// The share of the specular lobe's albedo that the specular layer leaves to the transmission
+// seen from n.v: (A + B) - specular max(F0 A + B) (dfg: the DFG table's A, B at n.v; exact under
+// uniform light for a thin wall, whose transmitted lobe is the reflection's mirrored), a thin
+// film's reflectance at n.v mixed in by its strength as in directionalReflectance.
+IBL_FN float transmittedShare(SplitSumMaterial m, float NoV, vec2 dfg, SplitSumSwitches s) {
   SpecularReflectance r = splitSumReflectance(m, s);
   vec3 reflected = r.specularWeight * (r.dielectricF0 * dfg.x + vec3(dfg.y));
   if (r.iridescence > 0.0f)
@@ -244,9 +238,25 @@ IBL_FN vec3 transmissionRadiance(SplitSumMaterial m, float NoV, vec2 dfg, vec3 t
         thinFilmFresnel(1.0f, r.filmIor, r.filmThickness, NoV, r.specularWeight * r.dielectricF0) *
             (dfg.x + dfg.y),
         r.iridescence);
-  float passed = max(dfg.x + dfg.y - max(reflected.x, max(reflected.y, reflected.z)), 0.0f);
-  return m.baseColor * ((1.0f - m.metallic) * m.transmission * passed) *
-         volumeTransmittance(m.attenuation, m.thickness) * transmitted;
+  return max(dfg.x + dfg.y - max(reflected.x, max(reflected.y, reflected.z)), 0.0f);
+}
+
+// The color a surface that transmits gives the light it passes in real time: its base color,
+// times the share transmitted (KHR_materials_transmission), and through a volume
+// exp(-attenuation thickness) (Beer-Lambert over the thickness the extension gives, as the glTF
+// Sample Viewer takes it).
+IBL_FN vec3 transmissionTint(SplitSumMaterial m) {
+  return m.baseColor * ((1.0f - m.metallic) * m.transmission) *
+         volumeTransmittance(m.attenuation, m.thickness);
+}
+
+// KHR_materials_transmission over the split sum, after the glTF Sample Viewer: `transmitted` is
+// what lies behind the surface (the opaque frame over the environment: behindSurface), of which
+// it passes transmittedShare, tinted by transmissionTint.
+IBL_FN vec3 transmissionRadiance(SplitSumMaterial m, float NoV, vec2 dfg, vec3 transmitted,
+                                 SplitSumSwitches s) {
+  if (s.terms == 1 || m.transmission <= 0.0f) return vec3(0.0f);
+  return transmissionTint(m) * (transmittedShare(m, NoV, dfg, s) * transmitted);
 }
 
 // What a surface that transmits lets through of a light's ray that crosses it unbent, at cosine
