@@ -144,11 +144,19 @@ bool ShadowPass::prepare(const Camera& camera, const RenderOptions& o,
   // The depths, then the filters (four floats a texel) where the scene transmits.
   const std::size_t depthBytes =
       std::max<std::size_t>(texels * (filtered_ ? 5 : 1), 1) * sizeof(float);
-  if (depthBytes > storageLimit_)
-    fail("view", fmt::format("shadow maps of {} texels for {} lights take {} MB, more than the "
-                             "device's storage buffers hold ({} MB): use a smaller "
-                             "--shadow-map-size or --shadows none",
-                             maps_.mapSize, lights.size(), depthBytes >> 20, storageLimit_ >> 20));
+  if (depthBytes > storageLimit_) {
+    // The bytes go as the size squared: the largest power of two below that fits.
+    int fits = maps_.mapSize;
+    while (fits > 16 && depthBytes / (static_cast<std::size_t>(maps_.mapSize / fits) *
+                                      static_cast<std::size_t>(maps_.mapSize / fits)) >
+                            storageLimit_)
+      fits /= 2;
+    fail("view",
+         fmt::format("shadow maps of {} texels for {} lights take {} MB, more than the "
+                     "device's storage buffers hold ({} MB): use --shadow-map-size {} "
+                     "or smaller, or --shadows none",
+                     maps_.mapSize, lights.size(), depthBytes >> 20, storageLimit_ >> 20, fits));
+  }
   bool rebind = false;
   if (!records_ || records_->size() < recordBytes) {
     records_ = std::make_unique<Buffer>(context_, recordBytes, BufferMemory::Host);
