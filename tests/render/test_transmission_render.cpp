@@ -185,22 +185,28 @@ TEST(TransmissionRender, PointLightShinesThroughAThinWall) {
   }
 }
 
-// A thin wall of roughness 0.5 lit from behind, 30 and 60 degrees off its axis, by a point light,
-// a spot aimed at it and the sun: the reference's transmitted lobe (next-event estimation through
-// the wall's back) and the split sum's (the lobe lit by the light mirrored through the wall) are
-// the same function for punctual lights, f(v, l) = c D V (1 - F) at the mirrored half vector,
-// and agree within the reference's noise (1 %). Seen at 20 degrees, so that the lobe is read off
-// its peak, and the Fresnel at the half vector is not the view's.
+// A thin wall of roughness 0.5 and index 2.5 (F0 = 0.18) lit from behind by a point light, a
+// spot aimed at it and the sun: 30 and 60 degrees off its axis away from the camera (20 degrees
+// off it), and 10 degrees off it toward a camera at 70 degrees, where the Fresnel at the half
+// vector (0.18) and at the view (0.29) differ by 14 % in what the layer leaves. The reference's
+// transmitted lobe (next-event estimation through the wall's back) and the split sum's (the lobe
+// lit by the light mirrored through the wall) are the same function for punctual lights,
+// f(v, l) = c D V (1 - F) at the mirrored half vector, and agree within the reference's noise
+// (1 %).
 TEST(TransmissionRender, PunctualLightsShineThroughAThinWallAlikeInBothModes) {
   const glm::vec3 tint(0.8f, 0.6f, 0.4f);
-  Camera c = headOn(0.002f);
-  c.from =
-      glm::vec3(3.0f * std::sin(glm::radians(20.0f)), 0.0f, 3.0f * std::cos(glm::radians(20.0f)));
+  const struct {
+    float light, camera;  // degrees off the axis toward +X: the light behind, the camera in front
+  } cases[] = {{-30.0f, 20.0f}, {-60.0f, 20.0f}, {10.0f, 70.0f}};
   for (LightType type : {LightType::Point, LightType::Spot, LightType::Sun})
-    for (float degrees : {30.0f, 60.0f}) {
+    for (const auto& k : cases) {
+      Camera c = headOn(0.002f);
+      c.from = glm::vec3(3.0f * std::sin(glm::radians(k.camera)), 0.0f,
+                         3.0f * std::cos(glm::radians(k.camera)));
       Scene scene = thinWall(tint, 0.5f);
-      const glm::vec3 toLight(-std::sin(glm::radians(degrees)), 0.0f,
-                              -std::cos(glm::radians(degrees)));
+      scene.materials[0].ior = 2.5f;
+      const glm::vec3 toLight(std::sin(glm::radians(k.light)), 0.0f,
+                              -std::cos(glm::radians(k.light)));
       Light light;
       light.type = type;
       light.position = 2.0f * toLight;
@@ -212,17 +218,51 @@ TEST(TransmissionRender, PunctualLightsShineThroughAThinWallAlikeInBothModes) {
       const glm::dvec3 means[2] = {meanUnderLights(scene, c, RenderMode::Reference),
                                    meanUnderLights(scene, c, RenderMode::SplitSum)};
       ASSERT_GT(means[0].x, 0.0);
-      for (int k = 0; k < 3; ++k)
-        EXPECT_NEAR(means[1][k] / means[0][k], 1.0, 0.01)
-            << lightTypeName(type) << ", " << degrees << " degrees, channel " << k;
+      for (int ch = 0; ch < 3; ++ch)
+        EXPECT_NEAR(means[1][ch] / means[0][ch], 1.0, 0.01)
+            << lightTypeName(type) << ", light " << k.light << ", camera " << k.camera
+            << " degrees, channel " << ch;
     }
 }
 
-// The area lights behind the same wall (roughness 0.5; a sphere, a disk and a rect 0.3 m across
-// facing it, a tube 0.8 m long, each 1.5 m away, 45 degrees off its axis): the split sum's
-// transmitted lobe, through the LTCs and through Frostbite's representative points, against the
-// reference. The approximations are the reflection's, lit by the light mirrored through the wall;
-// their errors are the reflection's too (docs/lights.md).
+// A point light 2 m behind a slab of absorbing glass 0.2 m thick (two rough faces of roughness
+// 0.3, KHR_materials_volume: half the red left after 0.5 m), seen head-on, in the split sum with
+// ray-traced shadows: the near face's transmitted lobe c (1 - F0) D V I / d^2 (the thin wall's
+// closed form), times what the shadow ray to the light passes, the far face's c (1 - F0) and
+// exp(-sigma 0.2) over the chord: the absorption counted once.
+TEST(TransmissionRender, ALightBehindAnAbsorbingSlabIsAbsorbedOnce) {
+  const glm::vec3 tint(0.8f, 0.6f, 0.4f);
+  Scene scene = thinWall(tint, 0.3f);
+  Material& glass = scene.materials[0];
+  glass.thickness = 0.2f;
+  glass.attenuationDistance = 0.5f;
+  glass.attenuationColor = glm::vec3(0.5f, 1.0f, 1.0f);
+  scene.meshes.push_back(squareFacing(-0.2f, 50.0f, false, 0));
+  Light light;
+  light.type = LightType::Point;
+  light.position = glm::vec3(0.0f, 0.0f, -2.0f);
+  light.intensity = 10.0f;
+  scene.lights.push_back(light);
+  RenderOptions o;
+  o.spp = 1;
+  o.environmentLight = false;
+  o.realTimeShadows = ShadowMode::Ray;
+  const glm::dvec3 mean = meanColor(
+      renderScene(scene, headOn(0.002f), uniformWhiteLight().result, uniformWhiteLight().options, o)
+          .color);
+  const double alpha = 0.09, lobe = 0.96 * 0.25 / (std::numbers::pi * alpha * alpha) * 10.0 / 4.0;
+  const glm::dvec3 absorbed(std::exp(-std::log(2.0) / 0.5 * 0.2), 1.0, 1.0);
+  for (int k = 0; k < 3; ++k) {
+    const double expected = tint[k] * lobe * tint[k] * 0.96 * absorbed[k];
+    EXPECT_NEAR(mean[k], expected, 0.01 * expected) << k;
+  }
+}
+
+// The area lights behind the same wall (roughness 0.5; a sphere and a disk 0.3 m across and a
+// rect 0.4 x 0.2 m facing it, a tube 0.8 m long, each 1.5 m away, 45 degrees off its axis): the
+// split sum's transmitted lobe, through the LTCs and through Frostbite's representative points,
+// against the reference. The approximations are the reflection's, lit by the light mirrored through
+// the wall; their errors are the reflection's too (docs/lights.md).
 TEST(TransmissionRender, AreaLightsShineThroughAThinWallWithinTheirApproximations) {
   const glm::vec3 tint(0.8f, 0.6f, 0.4f);
   Camera c = headOn(0.002f);
@@ -234,12 +274,15 @@ TEST(TransmissionRender, AreaLightsShineThroughAThinWallWithinTheirApproximation
     Light light;
     light.type = type;
     light.position = 1.5f * toLight;
-    light.direction = type == LightType::Tube ? glm::vec3(0.0f, 1.0f, 0.0f) : -toLight;
-    light.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    // Tilted out of the wall's plane, so that mirroring turns them: the tube's axis and the
+    // rect's up (the rect 0.4 x 0.2 m).
+    light.direction =
+        type == LightType::Tube ? glm::normalize(glm::vec3(0.5f, 1.0f, 0.7f)) : -toLight;
+    light.up = glm::normalize(glm::vec3(-1.0f, 1.0f, 1.0f));
     light.radius = type == LightType::Tube ? 0.05f : 0.15f;
     light.length = 0.8f;
-    light.width = 0.3f;
-    light.height = 0.3f;
+    light.width = 0.4f;
+    light.height = 0.2f;
     light.intensity = 100.0f;
     checkLight(light);
     scene.lights.push_back(light);
@@ -264,8 +307,11 @@ TEST(TransmissionRender, AreaLightsShineThroughAThinWallWithinTheirApproximation
                   std::string(lightTypeName(type)).c_str(),
                   model == AreaLightModel::Ltc ? "LTC" : "Frostbite", ratio);
       // Measured: LTC 1.012 for each (the fit's error at this roughness and angle: the lights
-      // are small), Frostbite 0.95 to 0.97, the tube's representative point 0.73.
-      EXPECT_NEAR(ratio, 1.0, model == AreaLightModel::Ltc ? 0.03 : 0.3) << lightTypeName(type);
+      // are small), Frostbite 0.95 to 1.06, its tube's representative point 0.58 (the
+      // reflection's own error: docs/lights.md).
+      const double tolerance =
+          model == AreaLightModel::Ltc ? 0.03 : (type == LightType::Tube ? 0.5 : 0.1);
+      EXPECT_NEAR(ratio, 1.0, tolerance) << lightTypeName(type);
     }
   }
 }

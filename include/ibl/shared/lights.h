@@ -114,21 +114,24 @@ IBL_FN ShadingLight mirroredLight(ShadingLight light, vec3 p, vec3 n) {
 // behind it, per unit of the light's color (the glTF Sample Viewer's
 // getPunctualRadianceTransmission, for every light type): the specular lobe lit by the mirrored
 // light (`inc`: the incidence of mirroredLight at the lobe's roughness), times what the specular
-// layer leaves at the half vector (fresnel_mix's diffuseWeight; with the LTCs, transmittedShare
-// of the lobe's fraction), tinted by transmissionTint. Exact for a thin wall; a volume's
-// refraction is left out (the lobe is the mirrored reflection's, its absorption over the
-// thickness), as in the Sample Viewer.
+// layer leaves at the (mirrored) half vector (fresnel_mix's diffuseWeight, as the reference and
+// the extension take it; the Sample Viewer takes F at the unmirrored one; with the LTCs,
+// transmittedShare of the lobe's fraction), tinted by surfaceTransmissionTint. Exact for a thin
+// wall. Through a volume the lobe is the thin wall's (no refraction, as in the Sample Viewer), and
+// the absorption is left to the light's shadow, which crosses the volume on its way to the light
+// (an unshadowed light is not absorbed).
 IBL_FN vec3 transmittedLightRadiance(SplitSumMaterial m, vec3 n, vec3 v, LightIncidence inc,
                                      vec2 dfg, SplitSumSwitches s) {
   if (s.terms == 1 || m.transmission <= 0.0f) return vec3(0.0f);
   float NoV = max(dot(n, v), 1e-4f);
   if (inc.specularLobeFraction > 0.0f)
-    return transmissionTint(m) * (transmittedShare(m, NoV, dfg, s) * inc.specularLobeFraction);
+    return surfaceTransmissionTint(m) *
+           (transmittedShare(m, NoV, dfg, s) * inc.specularLobeFraction);
   if (inc.specularIlluminance <= 0.0f) return vec3(0.0f);
   vec3 l = inc.specularDirection;
   float dv = ggxLobeValue(materialGgxLobe(m), n, v, l) * inc.specularNormalization;
   SpecularReflectance r = splitSumReflectance(m, s);
-  return transmissionTint(m) *
+  return surfaceTransmissionTint(m) *
          (dv * diffuseWeight(r, max(dot(v, normalize(v + l)), 0.0f)) * inc.specularIlluminance);
 }
 

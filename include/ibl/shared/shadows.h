@@ -240,8 +240,8 @@ IBL_FN vec3 shadowCompareBilinear(IBL_SHADOW_MAPS int layer, ShadowLayer l, vec3
   return result;
 }
 
-// The share of `c`'s light that reaches point p (normal n, facing the light's side) in layer
-// `layer`, per channel (colored by the surfaces that transmit): the blocker search, then
+// The share of `c`'s light that reaches point p (normal n, turned here toward the light's side) in
+// layer `layer`, per channel (colored by the surfaces that transmit): the blocker search, then
 // percentage-closer filtering over the penumbra the light's size gives at the blockers' mean
 // depth (at least kShadowMinFilterTexels, at most shadowMaxFilterTexels). Outside the layer: 1.
 IBL_FN vec3 shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec3 p, vec3 n) {
@@ -251,6 +251,8 @@ IBL_FN vec3 shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec
   // Normal offset: the point is moved off its surface by a texel's size (the more, the more
   // the surface turns from the light), then projected again.
   vec3 toLight = l.perspective != 0 ? normalize(l.origin - p) : -l.forward;
+  // On the light's side of the surface (a light behind a surface that transmits).
+  if (dot(n, toLight) < 0.0f) n = -n;
   float cosAngle = abs(dot(n, toLight));
   float sinAngle = sqrt(max(1.0f - cosAngle * cosAngle, 0.0f));
   vec3 q = p + n * (kShadowNormalOffsetTexels * at.texelSize * sinAngle);
@@ -292,7 +294,7 @@ IBL_FN vec3 shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec
   return lit / float(kShadowTaps);
 }
 
-// The share of `c`'s light that reaches p (normal n, turned toward the light's side), per
+// The share of `c`'s light that reaches p (normal n, turned here toward the light's side), per
 // channel: the layer that holds p (the cascade of its view depth, the cube face of its direction
 // from the light, the single layer), filtered. 1 without a shadow.
 IBL_FN vec3 shadowVisibility(IBL_SHADOW_MAPS ShadowCaster c, vec3 p, vec3 n) {

@@ -241,13 +241,17 @@ IBL_FN float transmittedShare(SplitSumMaterial m, float NoV, vec2 dfg, SplitSumS
   return max(dfg.x + dfg.y - max(reflected.x, max(reflected.y, reflected.z)), 0.0f);
 }
 
-// The color a surface that transmits gives the light it passes in real time: its base color,
-// times the share transmitted (KHR_materials_transmission), and through a volume
-// exp(-attenuation thickness) (Beer-Lambert over the thickness the extension gives, as the glTF
-// Sample Viewer takes it).
+// The color a surface that transmits gives the light it passes: its base color times the share
+// transmitted (KHR_materials_transmission).
+IBL_FN vec3 surfaceTransmissionTint(SplitSumMaterial m) {
+  return m.baseColor * ((1.0f - m.metallic) * m.transmission);
+}
+
+// The same, and through a volume exp(-attenuation thickness) (Beer-Lambert over the thickness the
+// extension gives, as the glTF Sample Viewer takes it): what the split sum passes of what lies
+// behind the surface.
 IBL_FN vec3 transmissionTint(SplitSumMaterial m) {
-  return m.baseColor * ((1.0f - m.metallic) * m.transmission) *
-         volumeTransmittance(m.attenuation, m.thickness);
+  return surfaceTransmissionTint(m) * volumeTransmittance(m.attenuation, m.thickness);
 }
 
 // KHR_materials_transmission over the split sum, after the glTF Sample Viewer: `transmitted` is
