@@ -147,10 +147,7 @@ bool ShadowPass::prepare(const Camera& camera, const RenderOptions& o,
   if (depthBytes > storageLimit_) {
     // The bytes go as the size squared: the largest power of two below that fits.
     int fits = maps_.mapSize;
-    while (fits > 16 && depthBytes / (static_cast<std::size_t>(maps_.mapSize / fits) *
-                                      static_cast<std::size_t>(maps_.mapSize / fits)) >
-                            storageLimit_)
-      fits /= 2;
+    for (std::size_t bytes = depthBytes; fits > 16 && bytes > storageLimit_; bytes /= 4) fits /= 2;
     fail("view",
          fmt::format("shadow maps of {} texels for {} lights take {} MB, more than the "
                      "device's storage buffers hold ({} MB): use --shadow-map-size {} "

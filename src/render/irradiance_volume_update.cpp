@@ -66,15 +66,13 @@ void updateVolume(const Scene& scene, IrradianceVolume& volume, const BakeResult
       const std::size_t at = static_cast<std::size_t>(probe) * rays + i;
       const Ray ray{origin, directions[static_cast<std::size_t>(i)]};
       // The ray sees through the surfaces that transmit, as the shadows do: what lies behind
-      // them, times the share they let through (straightTransmittance; their own diffuse is left
-      // out), and they hide nothing from the volume's visibility test.
+      // them, times the share they let through (transmissiveTransmittance; their own diffuse is
+      // left out), and they hide nothing from the volume's visibility test.
       const RayTracer::Hit hit = firstOpaqueHit(tracer, ray);
       const float distance = hit.found ? std::min(hit.t, farthest) : farthest;
       moments[at] = glm::vec3(distance, distance * distance, 0.0f);
-      const glm::vec3 through =
-          tracer.transmits() ? straightTransmittance(scene, tracer, origin, ray.direction,
-                                                     hit.found ? hit.t * (1.0f - 1e-4f) : INFINITY)
-                             : glm::vec3(1.0f);
+      const glm::vec3 through = transmissiveTransmittance(
+          scene, tracer, origin, ray.direction, hit.found ? hit.t * (1.0f - 1e-4f) : INFINITY);
       if (!hit.found) {
         radiance[at] = o.environmentLight ? through * sampleBilinear(bake.source, 0, ray.direction)
                                           : glm::vec3(0.0f);

@@ -17,6 +17,11 @@ struct Scene;
 glm::vec3 straightTransmittance(const Scene& scene, const RayTracer& tracer, glm::vec3 origin,
                                 glm::vec3 direction, float distance);
 
+// The same where nothing opaque lies on the segment (a segment that ends at the first opaque
+// surface): the surfaces that transmit alone.
+glm::vec3 transmissiveTransmittance(const Scene& scene, const RayTracer& tracer, glm::vec3 origin,
+                                    glm::vec3 direction, float distance);
+
 // The share of the light's irradiance at p (normal n) that arrives, per channel, estimated from
 // `samples` stratified samples of the light (sampleLight; one for punctual lights), each traced
 // to the sampled point (the sun: to infinity; straightTransmittance where the scene transmits)

@@ -374,6 +374,11 @@ ShadowMaps ShadowMapBuilder::build(const std::vector<Light>& lights, const Camer
 glm::vec3 straightTransmittance(const Scene& scene, const RayTracer& tracer, glm::vec3 origin,
                                 glm::vec3 direction, float distance) {
   if (tracer.occluded(origin, direction, distance, RayTracer::kOpaque)) return glm::vec3(0.0f);
+  return transmissiveTransmittance(scene, tracer, origin, direction, distance);
+}
+
+glm::vec3 transmissiveTransmittance(const Scene& scene, const RayTracer& tracer, glm::vec3 origin,
+                                    glm::vec3 direction, float distance) {
   if (!tracer.transmits()) return glm::vec3(1.0f);
   glm::vec3 passed(1.0f);
   // Beer-Lambert over each chord, sigma (out - in), summed as -sigma in + sigma out: the order of
