@@ -37,19 +37,21 @@ RenderOptions optionsFor(ShadowMode mode) {
 
 // Glass over a white floor (the camera under it, looking down at the floor), lit by a sun 30
 // degrees from the zenith and 5 degrees wide: a frosted pane (thin, roughness 0.3, orange), a
-// frosted slab (0.2 m of glass that keeps (0.3, 0.7, 0.9) after 0.5 m) and a frosted ball (0.3 m
-// across as thick, the same glass). `withGlass` false: the floor alone.
+// frosted slab (0.2 m of glass that keeps (0.3, 0.7, 0.9) after 0.5 m), a frosted ball (0.3 m
+// across as thick, the same glass) and a smooth pane (the first, roughness 0: the light goes on
+// unbent, as the straight shadows have it). `withGlass` false: the floor alone.
 Scene glassOverFloor(int kind, bool withGlass) {
   Material floor;
   floor.baseColor = glm::vec3(0.8f);
   floor.metallic = 0.0f;
   floor.roughness = 1.0f;
   Material glass;
-  glass.baseColor = kind == 0 ? glm::vec3(0.9f, 0.5f, 0.2f) : glm::vec3(1.0f);
+  const bool pane = kind == 0 || kind == 3;
+  glass.baseColor = pane ? glm::vec3(0.9f, 0.5f, 0.2f) : glm::vec3(1.0f);
   glass.metallic = 0.0f;
-  glass.roughness = 0.3f;
+  glass.roughness = kind == 3 ? 0.0f : 0.3f;
   glass.transmission = 1.0f;
-  if (kind > 0) {
+  if (!pane) {
     glass.thickness = kind == 1 ? 0.2f : 0.6f;
     glass.attenuationColor = {0.3f, 0.7f, 0.9f};
     glass.attenuationDistance = 0.5f;
@@ -58,7 +60,7 @@ Scene glassOverFloor(int kind, bool withGlass) {
   s.materials = {floor, glass};
   s.meshes.push_back(planeMesh(3.0f));
   if (withGlass) {
-    if (kind == 0)
+    if (pane)
       addQuad(s, {-0.4f, 1.0f, -0.4f}, {0.8f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.8f}, 1,
               {0.0f, 2.0f, 0.0f});
     else if (kind == 1)
@@ -79,17 +81,18 @@ Scene glassOverFloor(int kind, bool withGlass) {
 // paths' (each as its render with the glass over its render without).
 void glassShadows(const BlackBake& bake, int spp) {
   fmt::print(
-      "\nShadows through frosted glass (roughness 0.3) on the floor below, a sun 5 degrees wide "
+      "\nShadows through glass (frosted: roughness 0.3) on the floor below, a sun 5 degrees wide "
       "30 degrees from the zenith; what passes per channel (R, G, B) over the straight shadow, and "
       "the median per-pixel error of its luminance against the reference ({} spp, 4 bounces)\n\n",
       spp);
   fmt::print("| glass | reference | map | ray | map: median error | ray: median error |\n");
   fmt::print("| --- | --- | --- | --- | --- | --- |\n");
-  const char* names[] = {"thin pane, orange", "slab 0.2 m, absorbing", "ball 0.6 m, absorbing"};
+  const char* names[] = {"thin pane, orange", "slab 0.2 m, absorbing", "ball 0.6 m, absorbing",
+                         "smooth thin pane, orange"};
   // The floor where the shadows fall, tan 30 degrees of the glass's height toward -X.
   Camera camera = topDownCamera(glm::vec3(-0.6f, 0.0f, 0.0f), 1.6f, 64);
   camera.from = {-0.6f, 0.5f, 0.0f};  // below the glass
-  for (int kind = 0; kind < 3; ++kind) {
+  for (int kind = 0; kind < 4; ++kind) {
     RenderOptions o;
     o.environmentLight = false;
     o.backgroundEnvironment = false;

@@ -34,6 +34,7 @@ const int kFlagCameraSeesEmitters = 8;
 const int kFlagCameraSeesSpecular = 16;
 const int kFlagCaptureMetalsAsDiffuse = 32;
 const int kFlagPixelCenter = 64;
+const int kFlagTransmits = 128;  // some material transmits (hasTransmission)
 const float kInfinity = 1e30;
 
 bool flag(int f) {
@@ -241,11 +242,6 @@ PathShading pathShading() {
   return o;
 }
 
-bool unoccluded(vec3 origin, vec3 w, float distance) {
-  return !flag(kFlagVisibility) ||
-         !occluded(origin, w, distance < kInfinity * 0.5 ? distance * (1.0 - 1e-4) : kInfinity);
-}
-
 // The relative index below the surface (transmissionEta in src/render/path_tracer.cpp).
 float transmissionEta(Surface p) {
   return p.volume ? volumeRelativeIndex(p.ior, p.frontFace) : 0.0;
@@ -271,102 +267,166 @@ vec3 crossing(vec3 sigma, float distance) {
   return sigma == vec3(0.0) ? vec3(1.0) : volumeTransmittance(sigma, distance);
 }
 
+// The material at p (a capture's metals as diffuse) as the path shades it, seen from local
+// direction v in the frame toLocal (vertexBrdf in src/render/path_tracer.cpp).
+PathBrdf vertexBrdf(inout Surface p, mat3 toLocal, vec3 v, bool seenByProbe) {
+  int lobes = seenByProbe ? kLobesCapture : params.path.y;
+  if (seenByProbe && flag(kFlagCaptureMetalsAsDiffuse)) p = metalAsDiffuse(p);
+  PathShading shading = pathShading();
+  PathBrdf brdf = pathBrdfOf(p.baseColor, p.metallic, p.roughness,
+                             surfaceReflectance(p, shading.specularMicroOcclusion), p.sheenColor,
+                             p.sheenRoughness, v, lobes, shading);
+  if (p.clearcoat > 0.0)
+    brdf = withClearcoat(brdf, p.clearcoat, p.clearcoatRoughness, toLocal * p.clearcoatNormal, v);
+  if (p.anisotropy > 0.0)
+    brdf = withAnisotropy(brdf, p.anisotropy, toLocal * p.anisotropyTangent, v, shading);
+  if (p.transmission > 0.0)
+    brdf = withTransmission(brdf, p.transmission, p.baseColor, p.metallic, transmissionEta(p), v);
+  return brdf;
+}
+
+// What arrives at origin of the light that leaves origin + distance w toward it: nothing behind a
+// surface the path would scatter on, through those it crosses straight their transmittance
+// (shadowTransmittance in src/render/path_tracer.cpp).
+vec3 shadowTransmittance(vec3 origin, vec3 w, float distance, bool seenByProbe) {
+  if (!flag(kFlagVisibility)) return vec3(1.0);
+  float reach = distance < kInfinity * 0.5 ? distance * (1.0 - 1e-4) : kInfinity;
+  if (!flag(kFlagTransmits)) return vec3(occluded(origin, w, reach) ? 0.0 : 1.0);
+  vec3 passed = vec3(1.0);
+  for (int surfaces = 0; surfaces < 256 && reach > 0.0; ++surfaces) {
+    SceneHit hit = intersectScene(origin, w, reach, false);
+    if (!hit.found) return passed;
+    if (!materialTransmits(hit)) return vec3(0.0);
+    Surface q = surfaceAt(hit, origin, w);
+    mat3 toLocal = transpose(tangentFrame(q.normal));
+    vec3 v = toLocal * -w;
+    PathBrdf b = vertexBrdf(q, toLocal, v, seenByProbe);
+    if (!pathCrossesStraight(b)) return vec3(0.0);
+    passed *= pathStraightTransmittance(b, v);
+    // On from just past it, as crossTransmissive (src/render/ray_tracer.hpp) steps.
+    float step = hit.t + 1e-4 * max(1.0, length(origin + hit.t * w));
+    origin += step * w;
+    reach -= step;
+  }
+  return passed;
+}
+
+// The most surfaces one path crosses straight (kMaxCrossings in src/render/path_tracer.cpp).
+const int kMaxCrossings = 256;
+
 vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
   vec3 sum = vec3(0.0), throughput = vec3(1.0);
   vec3 medium = vec3(0.0);  // the volume the path travels in (KHR_materials_volume)
   // A probe capture keeps the diffuse of the surfaces it sees, and of those seen through them.
   bool seenByProbe = !flag(kFlagCameraSeesSpecular);
-  for (int depth = 0;; ++depth) {
-    if (depth == 0) sum += throughput * p.emissive;
+  // Where the path last scattered (Scattering in src/render/path_tracer.cpp): its sample's
+  // density (0: the camera's ray), the points it left from, and how far it has gone since.
+  float lastPdf = 0.0, travelled = 0.0;
+  vec3 lastOrigin = position, lastPosition = position;
+  // Bounces count scatterings; past the last one the path goes on through straight surfaces only.
+  int bounce = 0, crossings = 0;
+  bool pastLastBounce = false;
+  sum += p.emissive;
+  for (;;) {
     mat3 frame = tangentFrame(p.normal);
     mat3 toLocal = transpose(frame);
     vec3 v = toLocal * view;
-    int lobes = seenByProbe ? kLobesCapture : params.path.y;
-    if (seenByProbe && flag(kFlagCaptureMetalsAsDiffuse)) p = metalAsDiffuse(p);
-    PathShading shading = pathShading();
-    PathBrdf brdf = pathBrdfOf(p.baseColor, p.metallic, p.roughness,
-                               surfaceReflectance(p, shading.specularMicroOcclusion), p.sheenColor,
-                               p.sheenRoughness, v, lobes, shading);
-    if (p.clearcoat > 0.0)
-      brdf = withClearcoat(brdf, p.clearcoat, p.clearcoatRoughness, toLocal * p.clearcoatNormal, v);
-    if (p.anisotropy > 0.0)
-      brdf = withAnisotropy(brdf, p.anisotropy, toLocal * p.anisotropyTangent, v, shading);
-    if (p.transmission > 0.0)
-      brdf = withTransmission(brdf, p.transmission, p.baseColor, p.metallic, transmissionEta(p), v);
+    PathBrdf brdf = vertexBrdf(p, toLocal, v, seenByProbe);
     vec3 offset = p.normal * 1e-4 * max(1.0, length(position));
+    // A smooth thin wall is crossed (its transmission's share) or met (its other lobes).
+    bool straight = false;
+    if (pathCrossesStraight(brdf) && ++crossings <= kMaxCrossings) {
+      float chance = pastLastBounce ? 1.0 : pathTransmissionProbability(brdf);
+      straight = pastLastBounce || pathUniform(numbers) < chance;
+      if (straight)
+        throughput *= pathStraightTransmittance(brdf, v) / chance;
+      else
+        throughput /= 1.0 - chance;
+      brdf = withoutTransmission(brdf);
+    }
+    if (pastLastBounce && !straight) break;
     vec3 origin = position + offset;
     bool twoSided = pathTransmissionLobe(brdf);
-    // Next-event estimation: one sample of each light, of the emitters and of the environment.
-    for (uint i = 0u; i < params.counts.x; ++i) {
-      ShadingLight light = lightAt(i);
-      vec2 xi = pathUniform2(numbers);
-      vec3 direction, radiance;
-      float distance, pdf;
-      bool delta = light.type == kLightPoint || light.type == kLightSpot;
-      if (delta) {
-        vec3 d = light.position - origin;
-        distance = length(d);
-        direction = d / distance;
-        radiance = light.color * punctualLightIrradiance(light, origin);
-        float ies = lightRecordProfile(lightRecordAt(i));
-        if (ies >= 0.0) radiance *= iesIntensity(light, ies, -direction);
-        pdf = 0.0;
-      } else {
-        AreaLightSample ls = sampleAreaLight(light, origin, xi);
-        direction = ls.direction;
-        distance = ls.distance;
-        radiance = ls.radiance * lightRangeWindow(light, origin);
-        pdf = ls.pdf;
-      }
-      if (!(delta || pdf > 0.0) || radiance == vec3(0.0)) continue;
-      vec3 l = toLocal * direction;
-      vec3 from = originToward(p, twoSided, origin, position, offset, direction);
-      if (!leavesToward(twoSided, l) || !unoccluded(from, direction, distance)) continue;
-      float weight = delta ? 1.0 : powerHeuristic(pdf, pathBrdfPdf(brdf, v, l)) / pdf;
-      sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * radiance * weight *
-             crossing(mediumToward(p, twoSided, medium, direction), distance);
-    }
-    if (params.counts.z > 0u) {
-      float pick = pathUniform(numbers);
-      vec2 point = pathUniform2(numbers);
-      EmitterSample es = sampleEmitters(origin, vec3(pick, point));
-      vec3 l = toLocal * es.direction;
-      if (es.pdf > 0.0 && es.radiance != vec3(0.0) && leavesToward(twoSided, l) &&
-          unoccluded(originToward(p, twoSided, origin, position, offset, es.direction),
-                     es.direction, es.distance)) {
-        float ld;
-        vec3 lr;
-        if (!(nearestLight(origin, es.direction, ld, lr) >= 0 && ld < es.distance)) {
-          float weight = flag(kFlagVisibility)
-                             ? powerHeuristic(es.pdf, pathBrdfPdf(brdf, v, l)) / es.pdf
-                             : 1.0 / es.pdf;
-          sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * es.radiance * weight *
-                 crossing(mediumToward(p, twoSided, medium, es.direction), es.distance);
+    vec3 w;
+    if (straight) {
+      origin = position + p.faceNormal * (dot(view, p.faceNormal) > 0.0 ? -1.0 : 1.0) * length(offset);
+      w = -view;
+    } else {
+      // Next-event estimation: one sample of each light, one of the emitters and one of the
+      // environment, in this order (their draws' dimensions), each weighed against the BRDF's
+      // sampling and passed through one shadow ray (one call of each function: a shader's code
+      // is inlined, and lavapipe compiles every copy).
+      for (uint k = 0u; k < params.counts.x + 2u; ++k) {
+        vec3 direction = vec3(0.0, 0.0, 1.0), radiance = vec3(0.0);
+        float distance = kInfinity, pdf = 0.0;
+        bool delta = false, weighed = true;
+        if (k < params.counts.x) {
+          ShadingLight light = lightAt(k);
+          vec2 xi = pathUniform2(numbers);
+          delta = light.type == kLightPoint || light.type == kLightSpot;
+          if (delta) {
+            vec3 d = light.position - origin;
+            distance = length(d);
+            direction = d / distance;
+            radiance = light.color * punctualLightIrradiance(light, origin);
+            float ies = lightRecordProfile(lightRecordAt(k));
+            if (ies >= 0.0) radiance *= iesIntensity(light, ies, -direction);
+          } else {
+            AreaLightSample ls = sampleAreaLight(light, origin, xi);
+            direction = ls.direction;
+            distance = ls.distance;
+            radiance = ls.radiance * lightRangeWindow(light, origin);
+            pdf = ls.pdf;
+          }
+        } else if (k == params.counts.x) {
+          if (params.counts.z == 0u) continue;
+          float pick = pathUniform(numbers);
+          vec2 point = pathUniform2(numbers);
+          EmitterSample es = sampleEmitters(origin, vec3(pick, point));
+          float ld;
+          vec3 lr;
+          // An analytic light in front hides it, as it stops the BRDF's samples; without
+          // visibility those are not traced, and this sample takes all the weight.
+          if (nearestLight(origin, es.direction, ld, lr) >= 0 && ld < es.distance) continue;
+          direction = es.direction;
+          distance = es.distance;
+          radiance = es.radiance;
+          pdf = es.pdf;
+          weighed = flag(kFlagVisibility);
+        } else {
+          if (!flag(kFlagEnvironmentLight)) continue;
+          direction = sampleEnvironment(pathUniform2(numbers));
+          float ld;
+          vec3 lr;
+          if (nearestLight(origin, direction, ld, lr) >= 0) continue;
+          radiance = environmentRadiance(direction);
+          pdf = environmentPdf(direction);
         }
+        vec3 l = toLocal * direction;
+        if (!(delta || pdf > 0.0) || radiance == vec3(0.0) || !leavesToward(twoSided, l)) continue;
+        float weight = delta     ? 1.0
+                       : weighed ? powerHeuristic(pdf, pathBrdfPdf(brdf, v, l)) / pdf
+                                 : 1.0 / pdf;
+        sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * radiance * weight *
+               shadowTransmittance(originToward(p, twoSided, origin, position, offset, direction),
+                                   direction, distance, seenByProbe && l.z < 0.0) *
+               crossing(mediumToward(p, twoSided, medium, direction), distance);
       }
+      // The BRDF's sample: it ends on a light or the environment, or goes on from what it meets.
+      PathBrdfSample bs = samplePathBrdf(brdf, v, numbers);
+      vec3 l = bs.direction;
+      float pb = pathBrdfPdf(brdf, v, l);
+      if (!(pb > 0.0) || bs.weight == vec3(0.0)) break;
+      throughput *= bs.weight;
+      w = frame * l;
+      medium = mediumToward(p, twoSided, medium, w);
+      seenByProbe = seenByProbe && twoSided && l.z < 0.0;
+      origin = originToward(p, twoSided, origin, position, offset, w);
+      lastPdf = pb;
+      lastOrigin = origin;
+      lastPosition = position;
+      travelled = 0.0;
     }
-    if (flag(kFlagEnvironmentLight)) {
-      vec3 w = sampleEnvironment(pathUniform2(numbers));
-      vec3 l = toLocal * w;
-      float pe = environmentPdf(w);
-      float ld;
-      vec3 lr;
-      if (leavesToward(twoSided, l) && pe > 0.0 && nearestLight(origin, w, ld, lr) < 0 &&
-          unoccluded(originToward(p, twoSided, origin, position, offset, w), w, kInfinity))
-        sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * environmentRadiance(w) *
-               (powerHeuristic(pe, pathBrdfPdf(brdf, v, l)) / pe) *
-               crossing(mediumToward(p, twoSided, medium, w), kInfinity);
-    }
-    // The BRDF's sample: it ends on a light or the environment, or goes on from what it meets.
-    PathBrdfSample bs = samplePathBrdf(brdf, v, numbers);
-    vec3 l = bs.direction;
-    float pb = pathBrdfPdf(brdf, v, l);
-    if (!(pb > 0.0) || bs.weight == vec3(0.0)) break;
-    vec3 w = frame * l;
-    vec3 f = bs.weight * pb;
-    medium = mediumToward(p, twoSided, medium, w);
-    seenByProbe = seenByProbe && twoSided && l.z < 0.0;
-    origin = originToward(p, twoSided, origin, position, offset, w);
     SceneHit hit = flag(kFlagVisibility) ? intersectScene(origin, w, kInfinity, false)
                                          : SceneHit(false, kInfinity, false, 0u, 0u, 0.0, 0.0);
     float ld;
@@ -374,37 +434,43 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     int seen = nearestLight(origin, w, ld, lr);
     if (seen >= 0 && (!hit.found || ld < hit.t)) {
       ShadingLight light = lightAt(uint(seen));
-      float pl = areaLightPdf(light, origin, w);
-      sum += throughput * f * lr * lightRangeWindow(light, position) *
-             (powerHeuristic(pb, pl) / pb) * crossing(medium, ld);
+      float weight = lastPdf > 0.0 ? powerHeuristic(lastPdf, areaLightPdf(light, lastOrigin, w))
+                                   : 1.0;
+      sum += throughput * lr * lightRangeWindow(light, lastPosition) * weight * crossing(medium, ld);
       break;
     }
     if (!hit.found) {
       if (flag(kFlagEnvironmentLight))
-        sum += throughput * f * environmentRadiance(w) *
-               (powerHeuristic(pb, environmentPdf(w)) / pb) * crossing(medium, kInfinity);
+        sum += throughput * environmentRadiance(w) *
+               (lastPdf > 0.0 ? powerHeuristic(lastPdf, environmentPdf(w)) : 1.0) *
+               crossing(medium, kInfinity);
       break;
     }
     throughput *= crossing(medium, hit.t);
-    Surface next;
-    bool haveNext = false;
-    if (materialEmits(hit)) {
-      next = surfaceAt(hit, origin, w);
-      haveNext = true;
+    travelled += hit.t;
+    // The surface met (read once: a shader inlines every call), and its emission weighed
+    // against the sampling of the emitters.
+    Surface next = surfaceAt(hit, origin, w);
+    if (next.emissive != vec3(0.0)) {
       float pe = hit.sphere || params.counts.z == 0u
                      ? 0.0
-                     : emitterPdf(w, hit.t, hit.mesh, hit.primitive);
-      sum += throughput * f * next.emissive * (powerHeuristic(pb, pe) / pb);
+                     : emitterPdf(w, travelled, hit.mesh, hit.primitive);
+      sum += throughput * next.emissive * (lastPdf > 0.0 ? powerHeuristic(lastPdf, pe) : 1.0);
     }
-    if (depth >= params.path.x) break;
-    throughput *= f / pb;
-    // Russian roulette after two bounces: go on with the probability of the throughput.
-    if (depth >= 1) {
-      float q = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
-      if (!(pathUniform(numbers) < q)) break;
-      throughput /= q;
+    if (!straight) {
+      if (bounce >= params.path.x) {
+        // Only a surface that may be crossed straight is worth going on to.
+        if (!materialTransmits(hit)) break;
+        pastLastBounce = true;
+      } else if (bounce >= 1) {
+        // Russian roulette after two bounces: go on with the probability of the throughput.
+        float q = min(max(throughput.x, max(throughput.y, throughput.z)), 0.95);
+        if (!(pathUniform(numbers) < q)) break;
+        throughput /= q;
+      }
+      ++bounce;
     }
-    p = haveNext ? next : surfaceAt(hit, origin, w);
+    p = next;
     position = origin + hit.t * w;
     view = -w;
   }

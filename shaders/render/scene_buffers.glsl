@@ -357,8 +357,12 @@ Surface metalAsDiffuse(Surface p) {
   return p;
 }
 
-bool materialEmits(SceneHit hit) {
-  uint material = hit.sphere ? floatBitsToUint(sceneData[params.offsets2.x + 2u * hit.mesh + 1u].x)
-                             : meshAt(hit.mesh).material;
-  return materialAt(material, 1).rgb != vec3(0.0);
+// The material of the surface a hit met.
+uint hitMaterialIndex(SceneHit hit) {
+  return hit.sphere ? floatBitsToUint(sceneData[params.offsets2.x + 2u * hit.mesh + 1u].x)
+                    : meshAt(hit.mesh).material;
+}
+// Whether it may transmit (KHR_materials_transmission's factor; its texture may still say not).
+bool materialTransmits(SceneHit hit) {
+  return materialAt(hitMaterialIndex(hit), 8).x > 0.0;
 }

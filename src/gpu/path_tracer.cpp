@@ -33,6 +33,7 @@ enum Flag : int {
   kFlagCameraSeesSpecular = 16,
   kFlagCaptureMetalsAsDiffuse = 32,
   kFlagPixelCenter = 64,
+  kFlagTransmits = 128,
 };
 
 }  // namespace
@@ -45,6 +46,7 @@ struct PathTracer::Impl {
   std::vector<float> tableHost;  // what `tables` holds
   std::size_t iesFloats = 0;     // at its end: the IES lights' tables
   int albedoVisibility = -1;     // the sheen visibility whose albedo tables `tables` holds
+  bool transmits = false;        // some material transmits (hasTransmission)
   int width = 0, height = 0, spp = 0;
   double milliseconds = 0.0;
   double compileMilliseconds = 0.0;
@@ -62,6 +64,7 @@ PathTracer::PathTracer(Context& context, const Scene& scene, const BakeResult& b
 
   // The scene, then what the reference adds: the environment and its tables.
   r.scene = uploadSceneBuffers(context, scene);
+  r.transmits = hasTransmission(scene);
   r.parameters.counts = r.scene.counts;
   r.parameters.offsets = r.scene.offsets;
   r.parameters.offsets2 = r.scene.offsets2;
@@ -145,6 +148,7 @@ void PathTracer::reset(const Camera& camera, const RenderOptions& o) {
   if (o.cameraSeesSpecular) flags |= kFlagCameraSeesSpecular;
   if (o.captureMetalsAsDiffuse) flags |= kFlagCaptureMetalsAsDiffuse;
   if (o.spp == 1) flags |= kFlagPixelCenter;
+  if (r.transmits) flags |= kFlagTransmits;
   p.path = {std::max(0, o.bounces), static_cast<int>(o.only), flags, static_cast<int>(o.seed)};
   // The albedo tables of this render's sheen visibility, after the environment's: uploaded
   // again only when it changes (the viewer resets at every move of the camera).

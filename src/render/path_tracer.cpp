@@ -187,6 +187,58 @@ SurfacePoint metalAsDiffuse(SurfacePoint p) {
   return p;
 }
 
+namespace {
+
+// The material at p (a capture's metals as diffuse) as the path shades it, seen from local
+// direction v in the frame toLocal: a capture's lobes while the path is seen by the probe.
+Brdf vertexBrdf(const RenderOptions& o, SurfacePoint& p, const glm::mat3& toLocal, glm::vec3 v,
+                bool seenByProbe) {
+  const int lobes = seenByProbe ? shared::kLobesCapture : static_cast<int>(o.only);
+  if (seenByProbe && o.captureMetalsAsDiffuse) p = metalAsDiffuse(p);
+  return Brdf::of(p, v, toLocal * p.clearcoatNormal, toLocal * p.anisotropyTangent, lobes, o);
+}
+
+// What arrives at origin of the light that leaves origin + distance w toward it: nothing behind a
+// surface the path would scatter on, and through those it crosses straight (smooth thin walls:
+// shared::pathCrossesStraight) their transmittance, as the path that crosses them weighs it.
+glm::vec3 shadowTransmittance(const PathTracerScene& s, glm::vec3 origin, glm::vec3 w,
+                              float distance, bool seenByProbe) {
+  const RayTracer& tracer = s.tracer;
+  if (!tracer.transmits()) return glm::vec3(tracer.occluded(origin, w, distance) ? 0.0f : 1.0f);
+  if (tracer.occluded(origin, w, distance, RayTracer::kOpaque)) return glm::vec3(0.0f);
+  glm::vec3 passed(1.0f);
+  crossTransmissive(tracer, {origin, w}, distance,
+                    [&](const RayTracer::Hit& hit, const Ray& segment, float) {
+                      if (passed == glm::vec3(0.0f)) return;
+                      SurfacePoint q = surfaceAt(s.scene, tracer, hit, segment);
+                      const glm::mat3 toLocal = glm::transpose(tangentFrame(q.normal));
+                      const glm::vec3 v = toLocal * -w;
+                      const Brdf brdf = vertexBrdf(s.options, q, toLocal, v, seenByProbe);
+                      passed *= shared::pathCrossesStraight(brdf.b)
+                                    ? shared::pathStraightTransmittance(brdf.tables, brdf.b, v)
+                                    : glm::vec3(0.0f);
+                    });
+  return passed;
+}
+
+// The most surfaces one path crosses straight (crossTransmissive's bound).
+constexpr int kMaxCrossings = 256;
+
+// Where the path last scattered: the density of its sample (0 for the camera's ray, which no
+// other strategy samples) and the points it left from, for the MIS weight of a light the ray meets
+// past the surfaces it crosses straight, and how far it has gone since.
+struct Scattering {
+  float pdf = 0.0f;
+  glm::vec3 origin{0.0f}, position{0.0f};
+  float travelled = 0.0f;
+
+  // The weight of what the ray meets against the strategy of density `other` that samples it
+  // from `origin`.
+  float weight(float other) const { return pdf > 0.0f ? powerHeuristic(pdf, other) : 1.0f; }
+};
+
+}  // namespace
+
 glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position, glm::vec3 view,
                     Sampler& sampler) {
   const RenderOptions& o = s.options;
@@ -206,18 +258,34 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     return sigma == glm::vec3(0.0f) ? glm::vec3(1.0f)
                                     : shared::volumeTransmittance(sigma, distance);
   };
-  for (int depth = 0;; ++depth) {
-    // The emission of the first surface; further ones are counted where the BRDF's sample meets
-    // them, weighed against the emitters' sampling.
-    if (depth == 0) sum += throughput * p.emissive;
+  // The camera's ray first: what it meets through surfaces crossed straight is seen as it is.
+  Scattering last{0.0f, position, position, 0.0f};
+  // Bounces count scatterings: a surface crossed straight is none. Past the last one the path
+  // goes on only through such surfaces, to meet the lights a shadow ray through them reached.
+  int bounce = 0, crossings = 0;
+  bool pastLastBounce = false;
+  // The emission of the first surface; further ones are counted where the BRDF's sample meets
+  // them, weighed against the emitters' sampling.
+  sum += p.emissive;
+  for (;;) {
     const glm::mat3 frame = tangentFrame(p.normal);
     const glm::mat3 toLocal = glm::transpose(frame);
     const glm::vec3 v = toLocal * view;
-    const int lobes = seenByProbe ? shared::kLobesCapture : static_cast<int>(o.only);
-    if (seenByProbe && o.captureMetalsAsDiffuse) p = metalAsDiffuse(p);
-    const Brdf brdf =
-        Brdf::of(p, v, toLocal * p.clearcoatNormal, toLocal * p.anisotropyTangent, lobes, o);
+    Brdf brdf = vertexBrdf(o, p, toLocal, v, seenByProbe);
     const glm::vec3 offset = p.normal * 1e-4f * std::max(1.0f, glm::length(position));
+    // A smooth thin wall is crossed (its transmission's share, with the probability of choosing
+    // its transmission) or met (its other lobes).
+    bool straight = false;
+    if (shared::pathCrossesStraight(brdf.b) && ++crossings <= kMaxCrossings) {
+      const float chance = pastLastBounce ? 1.0f : shared::pathTransmissionProbability(brdf.b);
+      straight = pastLastBounce || sampler.uniform() < chance;
+      if (straight)
+        throughput *= shared::pathStraightTransmittance(brdf.tables, brdf.b, v) / chance;
+      else
+        throughput /= 1.0f - chance;
+      brdf.b = shared::withoutTransmission(brdf.b);
+    }
+    if (pastLastBounce && !straight) break;
     const glm::vec3 origin = position + offset;
     // A surface that transmits is lit and left on both sides (local l.z < 0 too). The side of
     // its own plane a direction goes to (faceNormal's, where a shading normal may lean past the
@@ -234,98 +302,113 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
       if (!twoSided || !p.volume) return medium;
       return inward(l) ? p.attenuation : glm::vec3(0.0f);
     };
-    const auto unoccluded = [&](glm::vec3 l, glm::vec3 w, float distance) {
-      // Stop short of an area light's surface: the lights are not in the ray tracer.
-      return !visibility ||
-             !s.tracer.occluded(originToward(l), w,
-                                std::isfinite(distance) ? distance * (1.0f - 1e-4f) : INFINITY);
-    };
-    // Next-event estimation: one sample of each light (punctual lights exactly) and one of the
-    // environment where no light hides it, each weighed against the BRDF's sampling.
-    for (const Light& light : lights) {
-      const LightSample ls = sampleLight(light, origin, sampler.uniform2());
-      if (!(ls.delta || ls.pdf > 0.0f) || ls.radiance == glm::vec3(0.0f)) continue;
-      const glm::vec3 l = toLocal * ls.direction;
-      if (!leaves(l) || !unoccluded(l, ls.direction, ls.distance)) continue;
-      const float weight = ls.delta ? 1.0f : powerHeuristic(ls.pdf, brdf.pdf(v, l)) / ls.pdf;
-      sum += throughput * brdf.evaluate(v, l, sampler) * ls.radiance * weight *
-             crossing(mediumToward(l), ls.distance);
-    }
-    // One point on the emissive triangles (by power); without visibility the BRDF's samples are
-    // not traced, so this sample takes all the weight. An analytic light in front hides it, as it
-    // stops the BRDF's samples.
-    if (!s.emitters.empty()) {
-      // In this order on every compiler: the draws' order is their dimensions'.
-      const float pick = sampler.uniform();
-      const glm::vec2 point = sampler.uniform2();
-      const EmitterSample es = s.emitters.sample(origin, glm::vec3(pick, point));
-      const glm::vec3 l = toLocal * es.direction;
-      const auto lightInFront = [&] {
-        const NearestLight nl = nearestLight(lights, origin, es.direction);
-        return nl.index >= 0 && nl.hit.distance < es.distance;
+    Ray ray;
+    if (straight) {
+      // On along the same direction, from the surface's far side.
+      const float side = glm::dot(view, p.faceNormal) > 0.0f ? -1.0f : 1.0f;
+      ray = {position + p.faceNormal * side * glm::length(offset), -view};
+    } else {
+      // What reaches the point from w (up to distance): the shadow ray's, and the medium's.
+      const auto unoccluded = [&](glm::vec3 l, glm::vec3 w, float distance) {
+        // Stop short of an area light's surface: the lights are not in the ray tracer.
+        if (!visibility) return crossing(mediumToward(l), distance);
+        return shadowTransmittance(s, originToward(l), w,
+                                   std::isfinite(distance) ? distance * (1.0f - 1e-4f) : INFINITY,
+                                   seenByProbe && l.z < 0.0f) *
+               crossing(mediumToward(l), distance);
       };
-      if (es.pdf > 0.0f && es.radiance != glm::vec3(0.0f) && leaves(l) &&
-          unoccluded(l, es.direction, es.distance) && !lightInFront()) {
-        const float weight =
-            visibility ? powerHeuristic(es.pdf, brdf.pdf(v, l)) / es.pdf : 1.0f / es.pdf;
-        sum += throughput * brdf.evaluate(v, l, sampler) * es.radiance * weight *
-               crossing(mediumToward(l), es.distance);
+      // Next-event estimation: one sample of each light (punctual lights exactly) and one of the
+      // environment where no light hides it, each weighed against the BRDF's sampling.
+      for (const Light& light : lights) {
+        const LightSample ls = sampleLight(light, origin, sampler.uniform2());
+        if (!(ls.delta || ls.pdf > 0.0f) || ls.radiance == glm::vec3(0.0f)) continue;
+        const glm::vec3 l = toLocal * ls.direction;
+        if (!leaves(l)) continue;
+        const float weight = ls.delta ? 1.0f : powerHeuristic(ls.pdf, brdf.pdf(v, l)) / ls.pdf;
+        sum += throughput * brdf.evaluate(v, l, sampler) * ls.radiance * weight *
+               unoccluded(l, ls.direction, ls.distance);
       }
+      // One point on the emissive triangles (by power); without visibility the BRDF's samples
+      // are not traced, so this sample takes all the weight. An analytic light in front hides
+      // it, as it stops the BRDF's samples.
+      if (!s.emitters.empty()) {
+        // In this order on every compiler: the draws' order is their dimensions'.
+        const float pick = sampler.uniform();
+        const glm::vec2 point = sampler.uniform2();
+        const EmitterSample es = s.emitters.sample(origin, glm::vec3(pick, point));
+        const glm::vec3 l = toLocal * es.direction;
+        const auto lightInFront = [&] {
+          const NearestLight nl = nearestLight(lights, origin, es.direction);
+          return nl.index >= 0 && nl.hit.distance < es.distance;
+        };
+        if (es.pdf > 0.0f && es.radiance != glm::vec3(0.0f) && leaves(l) && !lightInFront()) {
+          const float weight =
+              visibility ? powerHeuristic(es.pdf, brdf.pdf(v, l)) / es.pdf : 1.0f / es.pdf;
+          sum += throughput * brdf.evaluate(v, l, sampler) * es.radiance * weight *
+                 unoccluded(l, es.direction, es.distance);
+        }
+      }
+      if (o.environmentLight) {
+        const glm::vec3 w = s.environment.sample(sampler.uniform2());
+        const glm::vec3 l = toLocal * w;
+        const float pe = s.environment.pdf(w);
+        if (leaves(l) && pe > 0.0f && nearestLight(lights, origin, w).index < 0)
+          sum += throughput * brdf.evaluate(v, l, sampler) * s.environment.radiance(w) *
+                 (powerHeuristic(pe, brdf.pdf(v, l)) / pe) * unoccluded(l, w, INFINITY);
+      }
+      // The BRDF's sample: it ends on a light or the environment (weighed against their
+      // sampling), or goes on from the surface it meets.
+      const shared::PathBrdfSample bs = brdf.sample(v, sampler);
+      const glm::vec3 l = bs.direction;
+      const float pb = brdf.pdf(v, l);
+      if (!(pb > 0.0f) || bs.weight == glm::vec3(0.0f)) break;
+      // bs.weight is f cos / p of the sampled lobe (with the microfacet walk an estimate of it,
+      // pb the MIS weights' approximate pdf; Brdf::sample).
+      throughput *= bs.weight;
+      medium = mediumToward(l);
+      seenByProbe = seenByProbe && twoSided && l.z < 0.0f;  // through the surface: still in view
+      ray = {originToward(l), frame * l};
+      last = {pb, ray.origin, position, 0.0f};
     }
-    if (o.environmentLight) {
-      const glm::vec3 w = s.environment.sample(sampler.uniform2());
-      const glm::vec3 l = toLocal * w;
-      const float pe = s.environment.pdf(w);
-      if (leaves(l) && pe > 0.0f && nearestLight(lights, origin, w).index < 0 &&
-          unoccluded(l, w, INFINITY))
-        sum += throughput * brdf.evaluate(v, l, sampler) * s.environment.radiance(w) *
-               (powerHeuristic(pe, brdf.pdf(v, l)) / pe) * crossing(mediumToward(l), INFINITY);
-    }
-    // The BRDF's sample: it ends on a light or the environment (weighed against their
-    // sampling), or goes on from the surface it meets.
-    const shared::PathBrdfSample bs = brdf.sample(v, sampler);
-    const glm::vec3 l = bs.direction;
-    const float pb = brdf.pdf(v, l);
-    if (!(pb > 0.0f) || bs.weight == glm::vec3(0.0f)) break;
-    const glm::vec3 w = frame * l;
-    // f such that f / pb is the sample's weight: f cos / p of the sampled lobe (with the
-    // microfacet walk an estimate of it, pb the MIS weights' approximate pdf; Brdf::sample).
-    const glm::vec3 f = bs.weight * pb;
-    medium = mediumToward(l);
-    seenByProbe = seenByProbe && twoSided && l.z < 0.0f;  // through the surface: still in view
-    const Ray ray{originToward(l), w};
+    const glm::vec3 w = ray.direction;
     const RayTracer::Hit hit = visibility ? s.tracer.intersect(ray) : RayTracer::Hit{};
     const NearestLight seen = nearestLight(lights, ray.origin, w);
     if (seen.index >= 0 && (!hit.found || seen.hit.distance < hit.t)) {
       const Light& light = lights[static_cast<std::size_t>(seen.index)];
-      const float pl = lightPdf(light, ray.origin, w);
-      sum += throughput * f * seen.hit.radiance * lightWindow(light, position) *
-             (powerHeuristic(pb, pl) / pb) * crossing(medium, seen.hit.distance);
+      sum += throughput * seen.hit.radiance * lightWindow(light, last.position) *
+             last.weight(lightPdf(light, last.origin, w)) * crossing(medium, seen.hit.distance);
       break;
     }
     if (!hit.found) {
       if (o.environmentLight)
-        sum += throughput * f * s.environment.radiance(w) *
-               (powerHeuristic(pb, s.environment.pdf(w)) / pb) * crossing(medium, INFINITY);
+        sum += throughput * s.environment.radiance(w) * last.weight(s.environment.pdf(w)) *
+               crossing(medium, INFINITY);
       break;
     }
     throughput *= crossing(medium, hit.t);
+    last.travelled += hit.t;
     // An emissive surface met: its emission, weighed against the sampling of the emitters.
     const bool sphere = s.tracer.isSphere(hit.geometry);
     const Material& met = hitMaterial(s.scene, s.tracer, hit);
     std::optional<SurfacePoint> next;
     if (met.emissive != glm::vec3(0.0f)) {
       next = surfaceAt(s.scene, s.tracer, hit, ray);
-      const float pe = sphere ? 0.0f : s.emitters.pdf(w, hit.t, hit.geometry, hit.primitive);
-      sum += throughput * f * next->emissive * (powerHeuristic(pb, pe) / pb);
+      const float pe =
+          sphere ? 0.0f : s.emitters.pdf(w, last.travelled, hit.geometry, hit.primitive);
+      sum += throughput * next->emissive * last.weight(pe);
     }
-    if (depth >= o.bounces) break;
-    throughput *= f / pb;
-    // Russian roulette after two bounces: go on with the probability of the throughput.
-    if (depth >= 1) {
-      const float q = std::min(maxComponent(throughput), 0.95f);
-      if (!(sampler.uniform() < q)) break;
-      throughput /= q;
+    if (!straight) {
+      if (bounce >= o.bounces) {
+        // Only a surface that may be crossed straight is worth going on to.
+        if (met.transmission <= 0.0f) break;
+        pastLastBounce = true;
+      } else if (bounce >= 1) {
+        // Russian roulette after two bounces: go on with the probability of the throughput.
+        const float q = std::min(maxComponent(throughput), 0.95f);
+        if (!(sampler.uniform() < q)) break;
+        throughput /= q;
+      }
+      ++bounce;
     }
     p = next ? *next : surfaceAt(s.scene, s.tracer, hit, ray);
     position = ray.origin + hit.t * ray.direction;

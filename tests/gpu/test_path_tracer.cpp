@@ -359,6 +359,38 @@ TEST(GpuReference, TransmissionEqualsTheCpu) {
   }
 }
 
+// Smooth thin walls, which the path crosses straight and the shadow rays pass
+// (pathCrossesStraight in ibl/shared/path_brdf.h): the grid lit through the smooth wall behind it
+// (its share from a texture, 0 in one texel) by the point light and the sky beyond, and seen
+// through a smooth tinted pane over the left half of the view.
+TEST(GpuReference, SmoothThinWallsPassLightAsOnTheCpu) {
+  REQUIRE_DEVICE();
+  Material base;
+  base.baseColor = glm::vec3(0.8f, 0.7f, 0.6f);
+  Material wall;
+  wall.baseColor = glm::vec3(0.8f, 0.5f, 0.3f);
+  wall.metallic = 0.0f;
+  wall.roughness = 0.0f;
+  wall.transmission = 1.0f;
+  wall.transmissionTexture.index = 0;
+  const Texture share =
+      nearestTexture({255, 0, 0, 255, 60, 0, 0, 255, 0, 0, 0, 255, 180, 0, 0, 255});
+  Scene scene = gridBeforeTexturedWall(base, share, wall);
+  Material pane = wall;
+  pane.baseColor = glm::vec3(0.9f, 0.8f, 0.6f);
+  pane.transmissionTexture.index = -1;
+  scene.materials.push_back(pane);
+  Mesh glass = textureWall(static_cast<int>(scene.materials.size()) - 1);
+  for (glm::vec3& q : glass.positions) q = glm::vec3(std::min(q.x, 0.0f), q.y, 6.0f);
+  scene.meshes.push_back(glass);
+  RenderOptions o;
+  o.bounces = 2;
+  const Agreement a = compare(scene, gridCamera(), skyBake().result, skyBake().options, o, 64);
+  std::printf("smooth thin walls: GPU / CPU mean %.4f, outliers %.4f, same seed median %.2e\n",
+              a.meanRatio, a.outliers, a.sameSeedMedian);
+  expectAgreement(a);
+}
+
 // KHR_materials_sheen at a sheen roughness of 0.15, where the Charlie Lambda is the tabulated
 // exact one over most angles (shared::charlieLambda): the device reads the table from its buffer,
 // the CPU from the header's array. A point light adds the lobe's direct light.

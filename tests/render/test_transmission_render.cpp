@@ -114,6 +114,43 @@ void expectHeadOnInTheFurnace(const Scene& scene, glm::vec3 expected) {
   }
 }
 
+// A Lambert floor in the plane z = 0 (material 0: base color 0.5, no specular layer,
+// KHR_materials_specular 0) and, when `roofed`, a smooth thin roof of base color `tint` in the
+// plane z = 1 (material 1: transmission 1), both 100 m wide.
+Scene floorUnderRoof(glm::vec3 tint, bool roofed) {
+  Material floor;
+  floor.baseColor = glm::vec3(0.5f);
+  floor.metallic = 0.0f;
+  floor.specular = 0.0f;
+  Material roof;
+  roof.baseColor = tint;
+  roof.metallic = 0.0f;
+  roof.roughness = 0.0f;
+  roof.transmission = 1.0f;
+  Scene scene;
+  scene.materials = {floor, roof};
+  scene.meshes = {squareFacing(0.0f, 50.0f, true, 0)};
+  if (roofed) scene.meshes.push_back(squareFacing(1.0f, 50.0f, true, 1));
+  return scene;
+}
+
+// The mean color of the floor at the origin in the reference, seen from 0.5 m above it (below the
+// roof): direct light alone (no bounce, ray-traced visibility), a Lambert diffuse, `spp` samples
+// per pixel, the sky (the white furnace's) when `sky`.
+glm::dvec3 floorUnderTheRoof(const Scene& scene, bool sky, int spp) {
+  Camera c = headOn(0.002f);
+  c.from = glm::vec3(0.0f, 0.0f, 0.5f);
+  RenderOptions o;
+  o.mode = RenderMode::Reference;
+  o.spp = spp;
+  o.bounces = 0;
+  o.shadows = true;
+  o.diffuse = DiffuseModel::Lambert;
+  o.environmentLight = sky;
+  return meanColor(
+      renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o).color);
+}
+
 }  // namespace
 
 // A smooth thin wall of base color c, seen at normal incidence in a white furnace: it reflects
@@ -255,6 +292,78 @@ TEST(TransmissionRender, ALightBehindAnAbsorbingSlabIsAbsorbedOnce) {
   for (int k = 0; k < 3; ++k) {
     const double expected = tint[k] * lobe * tint[k] * 0.96 * absorbed[k];
     EXPECT_NEAR(mean[k], expected, 0.01 * expected) << k;
+  }
+}
+
+// Lights above a smooth thin roof (tinted c, index 1.5) light the floor under it in the
+// reference: the roof passes c (1 - F) of what crosses it at angle theta, F Schlick's at theta
+// (the smooth wall's transmission, whose lobe is a delta: a shadow ray could not meet it, nor a
+// path sampled from the floor a punctual light). Each case is the floor's color under the roof
+// over the same without it:
+// - a point light 70 degrees off the vertical (F = 0.158): exactly c (1 - F(70));
+// - the uniform sky: 2 int c (1 - F(theta)) cos sin dtheta (quadrature here; the roof's edge, 50
+//   m away, leaves 4e-4 of the sky open), reached by both the sky's samples through the roof and
+//   the floor's samples that cross it: counted twice, or once but weighed as if both strategies
+//   had not, it would be off by up to its whole share;
+// - a sphere light 0.9 m across above the floor, its bottom 0.2 m above the roof, and an emissive
+//   square 2 m wide 0.5 m above it: c (1 - F0) within 0.2 % over their extent; each both sampled
+//   and met by the floor's samples past the roof, whose weight needs the light's density seen
+//   from the floor, not from the roof.
+TEST(TransmissionRender, LightsReachTheFloorThroughASmoothRoof) {
+  const glm::vec3 tint(0.8f, 0.6f, 0.4f);
+  const auto schlick = [](double c) { return 0.04 + 0.96 * std::pow(1.0 - c, 5.0); };
+  const auto ratio = [&](const Scene& open, bool sky, int spp) {
+    Scene roofed = open;
+    roofed.meshes.push_back(squareFacing(1.0f, 50.0f, true, 1));
+    return floorUnderTheRoof(roofed, sky, spp) / floorUnderTheRoof(open, sky, spp);
+  };
+  {
+    Scene open = floorUnderRoof(tint, false);
+    Light point;
+    point.type = LightType::Point;
+    const float theta = glm::radians(70.0f);
+    point.position = 4.0f * glm::vec3(std::sin(theta), 0.0f, std::cos(theta));
+    point.intensity = 10.0f;
+    open.lights.push_back(point);
+    const glm::dvec3 r = ratio(open, false, 4);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(r[k], tint[k] * (1.0 - schlick(std::cos(theta))), 0.002)
+          << "point light, channel " << k;
+  }
+  {
+    double passed = 0.0;
+    const int steps = 4000;
+    const double top = std::atan(50.0);
+    for (int i = 0; i < steps; ++i) {
+      const double t = (i + 0.5) / steps * top;
+      passed += 2.0 * (1.0 - schlick(std::cos(t))) * std::cos(t) * std::sin(t) * top / steps;
+    }
+    const glm::dvec3 r = ratio(floorUnderRoof(tint, false), true, 256);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(r[k], tint[k] * passed, 0.01 * tint[k] * passed) << "sky, channel " << k;
+  }
+  {
+    Scene open = floorUnderRoof(tint, false);
+    Light sphere;
+    sphere.type = LightType::Sphere;
+    sphere.position = glm::vec3(0.0f, 0.0f, 2.1f);
+    sphere.radius = 0.9f;
+    sphere.intensity = 10.0f;
+    open.lights.push_back(sphere);
+    const glm::dvec3 r = ratio(open, false, 256);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(r[k], tint[k] * 0.96, 0.01 * tint[k]) << "sphere light, channel " << k;
+  }
+  {
+    Scene open = floorUnderRoof(tint, false);
+    Material glow;
+    glow.baseColor = glm::vec3(0.0f);
+    glow.emissive = glm::vec3(2.0f);
+    open.materials.push_back(glow);
+    open.meshes.push_back(squareFacing(1.5f, 1.0f, false, 2));
+    const glm::dvec3 r = ratio(open, false, 256);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(r[k], tint[k] * 0.96, 0.01 * tint[k]) << "emissive square, channel " << k;
   }
 }
 

@@ -302,6 +302,33 @@ IBL_FN vec3 pathTransmission(PathBrdf b, vec3 v, vec3 l) {
   return b.transmissionColor * (value * diffuseWeight(b.reflectance, VoH));
 }
 
+// Whether b's transmission is a smooth thin wall's (no volume, GGX at its smallest alpha): the
+// light it passes goes on unbent (a mirror's lobe, mirrored, is the view's own direction), as if
+// the surface were not there, tinted by pathStraightTransmittance. The reference crosses such a
+// surface without scattering there, and lets the light sampled behind it through its shadow
+// rays: a delta lobe alone never meets a punctual light (src/render/path_tracer.cpp).
+IBL_FN bool pathCrossesStraight(PathBrdf b) {
+  return pathTransmissionLobe(b) && b.transmissionEta == 0.0f &&
+         max(b.lobe.alpha.x, b.lobe.alpha.y) <= kMinPathAlpha;
+}
+
+// What such a surface passes of the light that crosses it along -v (or v): pathTransmission's
+// lobe in the limit alpha -> 0, where its D V (n.l) integrates to 1 about l = -v: the share the
+// specular layer leaves at n.v (diffuseWeight), tinted by transmissionColor, under the sheen and
+// the coat as evaluatePathBrdf layers them.
+IBL_FN vec3 pathStraightTransmittance(IBL_ALBEDO_TABLES PathBrdf b, vec3 v) {
+  float c = max(v.z, 1e-4f);
+  vec3 t = b.transmissionColor * diffuseWeight(b.reflectance, c);
+  if (pathHasSheen(b)) t *= min(b.sheenScaleV, pathSheenScaling(IBL_ALBEDO_ARG b, c));
+  return t * (1.0f - b.coatWeight);
+}
+
+// b without its transmission: what is left of a surface the path meets rather than crosses.
+IBL_FN PathBrdf withoutTransmission(PathBrdf b) {
+  b.transmissionColor = vec3(0.0f);
+  return b;
+}
+
 // The density of samplePathTransmission's direction l (below the surface).
 IBL_FN float pathTransmissionPdf(PathBrdf b, vec3 v, vec3 l) {
   float eta = b.transmissionEta;
