@@ -82,13 +82,21 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
   if (mayBeFlat) {
     DecodedFile decoded = readImageFile(input, {o.layer});
     const Image& first = decoded.levels[0][0];
-    if (decoded.levels[0].size() == 1 && !layoutFromShape(first.width, first.height)) {
+    // A 4:3 frame is a cross's shape; a cross leaves its cells outside the cross empty.
+    const std::optional<Layout> shape = layoutFromShape(first.width, first.height);
+    const bool crossShaped = shape == Layout::HCross || shape == Layout::VCross;
+    if (decoded.levels[0].size() == 1 && (!shape || !crossGapsAreEmpty(first, *shape))) {
       Image image = std::move(decoded.levels[0][0]);
       warnAboutReplacedPixels(input, sanitizePixels(image), global);
       const std::vector<EncodedFile> files = encodeFlatImage(image, e);
       writeFilesTogether(files);
-      return fmt::format("wrote {} ({} bytes; a {}x{} image, not an environment)",
-                         files[0].path.string(), files[0].bytes.size(), image.width, image.height);
+      return fmt::format(
+          "wrote {} ({} bytes; a {}x{} image, not an environment{})", files[0].path.string(),
+          files[0].bytes.size(), image.width, image.height,
+          crossShaped ? fmt::format(": a cross's shape, its cells outside the cross not empty; "
+                                    "--input-layout {} reads it as one",
+                                    layoutName(*shape))
+                      : "");
     }
     source.name = input;
     source.loaded = loadEnvironment(std::move(decoded), input, loadOptions);

@@ -86,6 +86,25 @@ std::pair<int, int> layoutCells(Layout layout) {
 }
 }  // namespace
 
+bool crossGapsAreEmpty(const Image& image, Layout layout) {
+  if (layout != Layout::HCross && layout != Layout::VCross) return true;
+  const auto [cols, rows] = layoutCells(layout);
+  const int cw = image.width / cols, ch = image.height / rows;
+  for (int row = 0; row < rows; ++row)
+    for (int col = 0; col < cols; ++col) {
+      bool face = false;
+      for (int f = 0; f < kFaceCount; ++f) {
+        const CrossCell c = layoutCell(f, layout);
+        face = face || (c.col == col && c.row == row);
+      }
+      if (face) continue;
+      for (int y = row * ch; y < (row + 1) * ch; ++y)
+        for (int x = col * cw; x < (col + 1) * cw; ++x)
+          if (image.at(x, y) != glm::vec3(0.0f)) return false;
+    }
+  return true;
+}
+
 CubeMap cubeFromFlat(const Image& flat, Layout layout, std::string_view name) {
   const auto [cols, rows] = layoutCells(layout);
   if (flat.width % cols != 0 || flat.height % rows != 0 || flat.width / cols != flat.height / rows)

@@ -696,6 +696,26 @@ TEST(Cli, ConvertWritesFlatImagesAsImages) {
              " --input-layout mirrorball -q");
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(readImageFile(dir / "x.hdr").levels[0][0].width, 48);  // a 2:1 panorama of 24^2
+  // A 4:3 frame (a cross's shape) whose cells outside the cross are not empty is a frame; a
+  // cross (its gaps black) is read as a cube and written as one.
+  ASSERT_EQ(runIbl("render sphere --size 32x24 --spp 1 -q -o " + quote(dir / "f.exr")).status, 0);
+  r = runIbl("convert " + quote(dir / "f.exr") + " -o " + quote(dir / "f.png"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("a 32x24 image, not an environment: a cross's shape"), std::string::npos)
+      << r.output;
+  const Image frame = readImageFile(dir / "f.exr").levels[0][0];
+  const Image png = readImageFile(dir / "f.png").levels[0][0];
+  ASSERT_EQ(png.width, 32);
+  ASSERT_EQ(png.height, 24);
+  EXPECT_NEAR(png.at(0, 0).x, std::min(frame.at(0, 0).x, 1.0f), 0.01f);  // read back linear
+  ASSERT_EQ(runIbl("convert " + quote(dir / "b" / "source.ktx2") + " -o " +
+                   quote(dir / "cross.exr") + " -q")
+                .status,
+            0);
+  ASSERT_EQ(readImageFile(dir / "cross.exr").levels[0][0].width, 64);  // 4:3 of 16^2 faces
+  r = runIbl("convert " + quote(dir / "cross.exr") + " -o " + quote(dir / "c.exr"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.output.find("not an environment"), std::string::npos) << r.output;
 }
 
 // Rendering reads the ibl set: a bake of engine targets only says which target to add.

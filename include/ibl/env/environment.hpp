@@ -48,6 +48,11 @@ struct Environment {
 // they are named. None for any other shape.
 std::optional<Layout> layoutFromShape(int width, int height);
 
+// Whether image, of a cross's shape (`layout` HCross or VCross), leaves the cells that hold no
+// face empty (every pixel 0), as a cube's cross does; a rendered frame of 4:3 does not. True for
+// every other layout.
+bool crossGapsAreEmpty(const Image& image, Layout layout);
+
 // Where direction `d` is seen in a mirror-ball or angular map, (u, v) in [0, 1]^2 with v down
 // (Debevec's light probe conventions: the center looks toward +Z, the camera's side, the rim
 // toward -Z; +X right, +Y up). layout: MirrorBall or Angular (anything else is read as Angular);
