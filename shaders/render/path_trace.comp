@@ -308,7 +308,7 @@ vec3 shadowTransmittance(vec3 origin, vec3 w, float distance, bool seenByProbe) 
     origin += step * w;
     reach -= step;
   }
-  return passed;
+  return reach > 0.0 ? vec3(0.0) : passed;  // more surfaces than the bound: taken as opaque
 }
 
 // The most surfaces one path crosses straight (kMaxCrossings in src/render/path_tracer.cpp).
@@ -335,7 +335,10 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     vec3 offset = p.normal * 1e-4 * max(1.0, length(position));
     // A smooth thin wall is crossed (its transmission's share) or met (its other lobes).
     bool straight = false;
-    if (pathCrossesStraight(brdf) && ++crossings <= kMaxCrossings) {
+    // A surface that transmits (met or crossed) is left by the side of its own plane.
+    bool sidedByPlane = pathTransmissionLobe(brdf);
+    if (pathCrossesStraight(brdf)) {
+      if (++crossings > kMaxCrossings) break;
       float chance = pastLastBounce ? 1.0 : pathTransmissionProbability(brdf);
       straight = pastLastBounce || pathUniform(numbers) < chance;
       if (straight)
@@ -408,7 +411,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
                        : weighed ? powerHeuristic(pdf, pathBrdfPdf(brdf, v, l)) / pdf
                                  : 1.0 / pdf;
         sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * radiance * weight *
-               shadowTransmittance(originToward(p, twoSided, origin, position, offset, direction),
+               shadowTransmittance(originToward(p, sidedByPlane, origin, position, offset, direction),
                                    direction, distance, seenByProbe && l.z < 0.0) *
                crossing(mediumToward(p, twoSided, medium, direction), distance);
       }
@@ -421,22 +424,25 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
       w = frame * l;
       medium = mediumToward(p, twoSided, medium, w);
       seenByProbe = seenByProbe && twoSided && l.z < 0.0;
-      origin = originToward(p, twoSided, origin, position, offset, w);
+      origin = originToward(p, sidedByPlane, origin, position, offset, w);
       lastPdf = pb;
       lastOrigin = origin;
       lastPosition = position;
       travelled = 0.0;
     }
-    SceneHit hit = flag(kFlagVisibility) ? intersectScene(origin, w, kInfinity, false)
-                                         : SceneHit(false, kInfinity, false, 0u, 0u, 0.0, 0.0);
+    // The camera's ray through a window is seen as the camera sees (tracePath's fromCamera).
+    bool fromCamera = lastPdf == 0.0;
+    SceneHit hit = flag(kFlagVisibility) || fromCamera
+                       ? intersectScene(origin, w, kInfinity, false)
+                       : SceneHit(false, kInfinity, false, 0u, 0u, 0.0, 0.0);
     float ld;
     vec3 lr;
-    int seen = nearestLight(origin, w, ld, lr);
+    int seen = !fromCamera || flag(kFlagCameraSeesEmitters) ? nearestLight(origin, w, ld, lr) : -1;
     if (seen >= 0 && (!hit.found || ld < hit.t)) {
       ShadingLight light = lightAt(uint(seen));
-      float weight = lastPdf > 0.0 ? powerHeuristic(lastPdf, areaLightPdf(light, lastOrigin, w))
-                                   : 1.0;
-      sum += throughput * lr * lightRangeWindow(light, lastPosition) * weight * crossing(medium, ld);
+      float weight = fromCamera ? 1.0 : powerHeuristic(lastPdf, areaLightPdf(light, lastOrigin, w));
+      sum += throughput * lr * (fromCamera ? 1.0 : lightRangeWindow(light, lastPosition)) * weight *
+             crossing(medium, ld);
       break;
     }
     if (!hit.found) {

@@ -207,21 +207,23 @@ glm::vec3 shadowTransmittance(const PathTracerScene& s, glm::vec3 origin, glm::v
   if (!tracer.transmits()) return glm::vec3(tracer.occluded(origin, w, distance) ? 0.0f : 1.0f);
   if (tracer.occluded(origin, w, distance, RayTracer::kOpaque)) return glm::vec3(0.0f);
   glm::vec3 passed(1.0f);
-  crossTransmissive(tracer, {origin, w}, distance,
-                    [&](const RayTracer::Hit& hit, const Ray& segment, float) {
-                      if (passed == glm::vec3(0.0f)) return;
-                      SurfacePoint q = surfaceAt(s.scene, tracer, hit, segment);
-                      const glm::mat3 toLocal = glm::transpose(tangentFrame(q.normal));
-                      const glm::vec3 v = toLocal * -w;
-                      const Brdf brdf = vertexBrdf(s.options, q, toLocal, v, seenByProbe);
-                      passed *= shared::pathCrossesStraight(brdf.b)
-                                    ? shared::pathStraightTransmittance(brdf.tables, brdf.b, v)
-                                    : glm::vec3(0.0f);
-                    });
+  crossTransmissive(
+      tracer, {origin, w}, distance,
+      [&](const RayTracer::Hit& hit, const Ray& segment, float) {
+        if (passed == glm::vec3(0.0f)) return;
+        SurfacePoint q = surfaceAt(s.scene, tracer, hit, segment);
+        const glm::mat3 toLocal = glm::transpose(tangentFrame(q.normal));
+        const glm::vec3 v = toLocal * -w;
+        const Brdf brdf = vertexBrdf(s.options, q, toLocal, v, seenByProbe);
+        passed *= shared::pathCrossesStraight(brdf.b)
+                      ? shared::pathStraightTransmittance(brdf.tables, brdf.b, v)
+                      : glm::vec3(0.0f);
+      },
+      CrossingEnd::Exact);
   return passed;
 }
 
-// The most surfaces one path crosses straight (crossTransmissive's bound).
+// The most surfaces one path crosses straight (crossTransmissive's bound); past them it ends.
 constexpr int kMaxCrossings = 256;
 
 // Where the path last scattered: the density of its sample (0 for the camera's ray, which no
@@ -276,7 +278,10 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     // A smooth thin wall is crossed (its transmission's share, with the probability of choosing
     // its transmission) or met (its other lobes).
     bool straight = false;
-    if (shared::pathCrossesStraight(brdf.b) && ++crossings <= kMaxCrossings) {
+    // A surface that transmits (met or crossed) is left by the side of its own plane (below).
+    const bool sidedByPlane = shared::pathTransmissionLobe(brdf.b);
+    if (shared::pathCrossesStraight(brdf.b)) {
+      if (++crossings > kMaxCrossings) break;
       const float chance = pastLastBounce ? 1.0f : shared::pathTransmissionProbability(brdf.b);
       straight = pastLastBounce || sampler.uniform() < chance;
       if (straight)
@@ -295,7 +300,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     const auto leaves = [&](glm::vec3 l) { return l.z > 0.0f || (twoSided && l.z < 0.0f); };
     const auto inward = [&](glm::vec3 l) { return glm::dot(frame * l, p.faceNormal) < 0.0f; };
     const auto originToward = [&](glm::vec3 l) {
-      if (!twoSided) return origin;
+      if (!sidedByPlane) return origin;
       return position + p.faceNormal * (inward(l) ? -1.0f : 1.0f) * glm::length(offset);
     };
     const auto mediumToward = [&](glm::vec3 l) {
@@ -371,11 +376,17 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
       last = {pb, ray.origin, position, 0.0f};
     }
     const glm::vec3 w = ray.direction;
-    const RayTracer::Hit hit = visibility ? s.tracer.intersect(ray) : RayTracer::Hit{};
-    const NearestLight seen = nearestLight(lights, ray.origin, w);
+    // The camera's ray through a window is seen as the camera sees: what lies behind (without
+    // visibility too), the lights where it sees them, without their range's window.
+    const bool fromCamera = last.pdf == 0.0f;
+    const RayTracer::Hit hit =
+        visibility || fromCamera ? s.tracer.intersect(ray) : RayTracer::Hit{};
+    const NearestLight seen =
+        !fromCamera || o.cameraSeesEmitters ? nearestLight(lights, ray.origin, w) : NearestLight{};
     if (seen.index >= 0 && (!hit.found || seen.hit.distance < hit.t)) {
       const Light& light = lights[static_cast<std::size_t>(seen.index)];
-      sum += throughput * seen.hit.radiance * lightWindow(light, last.position) *
+      sum += throughput * seen.hit.radiance *
+             (fromCamera ? 1.0f : lightWindow(light, last.position)) *
              last.weight(lightPdf(light, last.origin, w)) * crossing(medium, seen.hit.distance);
       break;
     }

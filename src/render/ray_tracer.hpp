@@ -120,14 +120,18 @@ inline RayTracer::Hit firstOpaqueHit(const RayTracer& tracer, const Ray& ray) {
   return tracer.intersect(ray, RayTracer::kOpaque);
 }
 
-// Hands each surface that transmits along `ray` up to distance `end` (included, and 1e-5 of it
-// past: a glass resting on a table is in front of it) to crossed(hit, segment, distance), in
-// order, up to 256 of them:
+// Where crossTransmissive stops: 1e-5 past `end` (at least 1e-5 scene units: a glass resting on
+// a table is in front of it), or at `end` exactly (a light's own point).
+enum class CrossingEnd { Past, Exact };
+
+// Hands each surface that transmits along `ray` up to distance `end` (CrossingEnd: included, and
+// 1e-5 past it by default) to crossed(hit, segment, distance), in order, up to 256 of them:
 // the hit along `segment`, the part of `ray` that starts just past the previous one (the same
 // direction), and its distance along `ray`.
 template <class Crossed>
-void crossTransmissive(const RayTracer& tracer, const Ray& ray, float end, Crossed&& crossed) {
-  const float last = end + 1e-5f * std::max(1.0f, end);
+void crossTransmissive(const RayTracer& tracer, const Ray& ray, float end, Crossed&& crossed,
+                       CrossingEnd stop = CrossingEnd::Past) {
+  const float last = stop == CrossingEnd::Exact ? end : end + 1e-5f * std::max(1.0f, end);
   float travelled = 0.0f;
   Ray rest = ray;
   for (int surfaces = 0; surfaces < 256; ++surfaces) {

@@ -277,6 +277,23 @@ Scene gridBeforeTexturedWall(const Material& base, const Texture& texture, const
   return scene;
 }
 
+// A thin wall of roughness r that transmits (orange), its share from texture 0
+// (transmissionShares).
+Material transmissiveWall(float r) {
+  Material wall;
+  wall.baseColor = glm::vec3(0.8f, 0.5f, 0.3f);
+  wall.metallic = 0.0f;
+  wall.roughness = r;
+  wall.transmission = 1.0f;
+  wall.transmissionTexture.index = 0;
+  return wall;
+}
+
+// A 2 x 2 texture of transmission shares in R: 1, 0.24, 0, 0.71.
+Texture transmissionShares() {
+  return nearestTexture({255, 0, 0, 255, 60, 0, 0, 255, 0, 0, 0, 255, 180, 0, 0, 255});
+}
+
 }  // namespace
 
 // KHR_materials_iridescence: a grid of metals under a film (the walk's bounces each take the film's
@@ -337,14 +354,8 @@ TEST(GpuReference, TransmissionEqualsTheCpu) {
   base.thickness = 2.0f;
   base.attenuationDistance = 1.5f;
   base.attenuationColor = glm::vec3(0.9f, 0.6f, 0.3f);
-  Material wall;
-  wall.baseColor = glm::vec3(0.8f, 0.5f, 0.3f);
-  wall.metallic = 0.0f;
-  wall.roughness = 0.3f;
-  wall.transmission = 1.0f;
-  wall.transmissionTexture.index = 0;
-  const Texture share =
-      nearestTexture({255, 0, 0, 255, 60, 0, 0, 255, 0, 0, 0, 255, 180, 0, 0, 255});
+  const Material wall = transmissiveWall(0.3f);
+  const Texture share = transmissionShares();
   RenderOptions o;
   o.bounces = 4;
   // Seen by the camera, and as a probe captures it (the diffuse and the transmission of the
@@ -367,14 +378,8 @@ TEST(GpuReference, SmoothThinWallsPassLightAsOnTheCpu) {
   REQUIRE_DEVICE();
   Material base;
   base.baseColor = glm::vec3(0.8f, 0.7f, 0.6f);
-  Material wall;
-  wall.baseColor = glm::vec3(0.8f, 0.5f, 0.3f);
-  wall.metallic = 0.0f;
-  wall.roughness = 0.0f;
-  wall.transmission = 1.0f;
-  wall.transmissionTexture.index = 0;
-  const Texture share =
-      nearestTexture({255, 0, 0, 255, 60, 0, 0, 255, 0, 0, 0, 255, 180, 0, 0, 255});
+  const Material wall = transmissiveWall(0.0f);
+  const Texture share = transmissionShares();
   Scene scene = gridBeforeTexturedWall(base, share, wall);
   Material pane = wall;
   pane.baseColor = glm::vec3(0.9f, 0.8f, 0.6f);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <numbers>
 #include <string>
 
@@ -365,6 +366,93 @@ TEST(TransmissionRender, LightsReachTheFloorThroughASmoothRoof) {
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(r[k], tint[k] * 0.96, 0.01 * tint[k]) << "emissive square, channel " << k;
   }
+}
+
+// The same point light, 70 degrees off the vertical above the roof, with the roof changed: under a
+// clear coat (KHR_materials_clearcoat 1, F0 0.04) it passes c (1 - F) (1 - Fc), Fc the coat's
+// Schlick at 70 degrees; two roofs (z = 1 and 1.2, the light at 1.37) pass (c (1 - F))^2; a rough
+// roof (roughness 0.3, no longer a delta) stops the shadow ray, and with no bounce the floor sees
+// none of the light. And the floor seen through the roof, the camera above it: c (1 - F0) c (1 -
+// F(70)), with 256 samples (the camera's ray crosses with the transmission's probability).
+TEST(TransmissionRender, CoatedStackedRoughAndSeenThroughRoofs) {
+  const glm::vec3 tint(0.8f, 0.6f, 0.4f);
+  const auto schlick = [](double c) { return 0.04 + 0.96 * std::pow(1.0 - c, 5.0); };
+  const double theta = glm::radians(70.0);
+  Scene open = floorUnderRoof(tint, false);
+  Light point;
+  point.type = LightType::Point;
+  point.position = 4.0f * glm::vec3(std::sin(theta), 0.0f, std::cos(theta));
+  point.intensity = 10.0f;
+  open.lights.push_back(point);
+  const glm::dvec3 unroofed = floorUnderTheRoof(open, false, 4);
+  const double through = 1.0 - schlick(std::cos(theta));
+  const auto roofed = [&](const std::function<void(Scene&)>& change) {
+    Scene scene = open;
+    scene.meshes.push_back(squareFacing(1.0f, 50.0f, true, 1));
+    change(scene);
+    return scene;
+  };
+  glm::dvec3 r =
+      floorUnderTheRoof(roofed([](Scene& s) { s.materials[1].clearcoat = 1.0f; }), false, 4) /
+      unroofed;
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(r[k], tint[k] * through * through, 0.002) << "coat " << k;
+  r = floorUnderTheRoof(
+          roofed([](Scene& s) { s.meshes.push_back(squareFacing(1.2f, 50.0f, true, 1)); }), false,
+          4) /
+      unroofed;
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(r[k], tint[k] * tint[k] * through * through, 0.002) << "two roofs " << k;
+  r = floorUnderTheRoof(roofed([](Scene& s) { s.materials[1].roughness = 0.3f; }), false, 4) /
+      unroofed;
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(r[k], 0.0) << "rough roof " << k;
+  Camera above = headOn(0.002f);
+  RenderOptions o;
+  o.mode = RenderMode::Reference;
+  o.spp = 256;
+  o.bounces = 0;
+  o.shadows = true;
+  o.diffuse = DiffuseModel::Lambert;
+  o.environmentLight = false;
+  const auto seen = [&](const Scene& scene) {
+    return meanColor(
+        renderScene(scene, above, uniformWhiteLight().result, uniformWhiteLight().options, o)
+            .color);
+  };
+  r = seen(roofed([](Scene&) {})) / seen(open);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(r[k], tint[k] * tint[k] * 0.96 * through, 0.015 * tint[k] * tint[k])
+        << "seen through " << k;
+}
+
+// A point light 88 degrees off the axis behind a thin wall (roughness 0.5), the camera 20 degrees
+// off it in front: the shadow map's lookup moves the point off the wall toward the light's side,
+// where it is in front of the wall's own filter. Moved along the normal the camera sees (away
+// from the light), it would sit tan 88 = 28.6 normal offsets behind the wall, beyond the depth
+// bias (1 + at most 10 texels), and take the wall's tint as its own shadow. The map shades the wall
+// as the ray-traced shadow does (nothing in front of it), within 1 %.
+TEST(TransmissionRender, AWallLitFromBehindAtGrazingAngleIsNotItsOwnShadow) {
+  const glm::vec3 tint(0.8f, 0.6f, 0.4f);
+  Scene scene = thinWall(tint, 0.5f);
+  const float theta = glm::radians(88.0f);
+  Light light;
+  light.type = LightType::Point;
+  light.position = 2.0f * glm::vec3(-std::sin(theta), 0.0f, -std::cos(theta));
+  light.intensity = 10.0f;
+  scene.lights.push_back(light);
+  Camera c = headOn(0.002f);
+  c.from =
+      glm::vec3(3.0f * std::sin(glm::radians(20.0f)), 0.0f, 3.0f * std::cos(glm::radians(20.0f)));
+  RenderOptions o;
+  o.spp = 1;
+  o.environmentLight = false;
+  glm::dvec3 means[2];
+  for (int k = 0; k < 2; ++k) {
+    o.realTimeShadows = k == 0 ? ShadowMode::Map : ShadowMode::Ray;
+    means[k] = meanColor(
+        renderScene(scene, c, uniformWhiteLight().result, uniformWhiteLight().options, o).color);
+  }
+  ASSERT_GT(means[1].x, 0.0);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(means[0][ch] / means[1][ch], 1.0, 0.01) << ch;
 }
 
 // The area lights behind the same wall (roughness 0.5; a sphere and a disk 0.3 m across and a
