@@ -410,10 +410,13 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
         float weight = delta     ? 1.0
                        : weighed ? powerHeuristic(pdf, pathBrdfPdf(brdf, v, l)) / pdf
                                  : 1.0 / pdf;
-        sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * radiance * weight *
-               shadowTransmittance(originToward(p, sidedByPlane, origin, position, offset, direction),
-                                   direction, distance, seenByProbe && l.z < 0.0) *
-               crossing(mediumToward(p, twoSided, medium, direction), distance);
+        // The BRDF evaluated only where the shadow ray lets something through.
+        vec3 passed =
+            shadowTransmittance(originToward(p, sidedByPlane, origin, position, offset, direction),
+                                direction, distance, seenByProbe && l.z < 0.0) *
+            crossing(mediumToward(p, twoSided, medium, direction), distance);
+        if (passed == vec3(0.0)) continue;
+        sum += throughput * evaluatePathBrdf(brdf, v, l, numbers, true) * radiance * weight * passed;
       }
       // The BRDF's sample: it ends on a light or the environment, or goes on from what it meets.
       PathBrdfSample bs = samplePathBrdf(brdf, v, numbers);

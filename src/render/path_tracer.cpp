@@ -322,6 +322,14 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
                                    seenByProbe && l.z < 0.0f) *
                crossing(mediumToward(l), distance);
       };
+      // A light's sample at local l (world w, up to distance) of `radiance` and MIS weight
+      // `weight`: the BRDF evaluated only where the shadow ray lets something through.
+      const auto addLight = [&](glm::vec3 l, glm::vec3 w, float distance, glm::vec3 radiance,
+                                float weight) {
+        const glm::vec3 passed = unoccluded(l, w, distance);
+        if (passed != glm::vec3(0.0f))
+          sum += throughput * brdf.evaluate(v, l, sampler) * radiance * weight * passed;
+      };
       // Next-event estimation: one sample of each light (punctual lights exactly) and one of the
       // environment where no light hides it, each weighed against the BRDF's sampling.
       for (const Light& light : lights) {
@@ -330,8 +338,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
         const glm::vec3 l = toLocal * ls.direction;
         if (!leaves(l)) continue;
         const float weight = ls.delta ? 1.0f : powerHeuristic(ls.pdf, brdf.pdf(v, l)) / ls.pdf;
-        sum += throughput * brdf.evaluate(v, l, sampler) * ls.radiance * weight *
-               unoccluded(l, ls.direction, ls.distance);
+        addLight(l, ls.direction, ls.distance, ls.radiance, weight);
       }
       // One point on the emissive triangles (by power); without visibility the BRDF's samples
       // are not traced, so this sample takes all the weight. An analytic light in front hides
@@ -349,8 +356,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
         if (es.pdf > 0.0f && es.radiance != glm::vec3(0.0f) && leaves(l) && !lightInFront()) {
           const float weight =
               visibility ? powerHeuristic(es.pdf, brdf.pdf(v, l)) / es.pdf : 1.0f / es.pdf;
-          sum += throughput * brdf.evaluate(v, l, sampler) * es.radiance * weight *
-                 unoccluded(l, es.direction, es.distance);
+          addLight(l, es.direction, es.distance, es.radiance, weight);
         }
       }
       if (o.environmentLight) {
@@ -358,8 +364,8 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
         const glm::vec3 l = toLocal * w;
         const float pe = s.environment.pdf(w);
         if (leaves(l) && pe > 0.0f && nearestLight(lights, origin, w).index < 0)
-          sum += throughput * brdf.evaluate(v, l, sampler) * s.environment.radiance(w) *
-                 (powerHeuristic(pe, brdf.pdf(v, l)) / pe) * unoccluded(l, w, INFINITY);
+          addLight(l, w, INFINITY, s.environment.radiance(w),
+                   powerHeuristic(pe, brdf.pdf(v, l)) / pe);
       }
       // The BRDF's sample: it ends on a light or the environment (weighed against their
       // sampling), or goes on from the surface it meets.
