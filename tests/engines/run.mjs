@@ -11,11 +11,13 @@
 //
 // Page contract (tests/engines/pages/<engine>.html):
 //   ?set=ibl|own&bake=<url of the bake folder>&hdr=<url of the .hdr>&roughness=R&metallic=M
-//   &base=R,G,B&size=N&scale=K&view=front|side
+//   &base=R,G,B&size=N&scale=K&view=front|side[&ext=<the material's glTF extensions as JSON>]
 // The page draws into <canvas id="c"> of N x N pixels one sphere of radius 1 at the origin,
 // orthographic camera at (0,0,10) (view=side: (10,0,0)) looking at the origin, up +Y, 2.2 x 2.2
 // world units, right-handed world; glTF metallic-roughness material (base colour linear,
-// metallic M, perceptual roughness R, dielectric F0 0.04), no lights but the environment, whose
+// metallic M, perceptual roughness R, dielectric F0 0.04) with the KHR_materials_* extensions in
+// `ext` as the engine's glTF loader would apply them (the tangents along the parallels,
+// common.mjs's sphereMesh), no lights but the environment, whose
 // intensity is multiplied by K, no skybox (black), tone mapping off, sRGB-encoded output; then
 // sets window.iblDone = {ok: true, notes} once the frame is presented, or {ok: false, error}.
 
@@ -71,11 +73,31 @@ const ROT = {
 // multiple-scattering term (Fdez-Aguera's, getIBLGGXFresnel) is kept on our side too (ibl's
 // energy compensation; the same as the viewer's for F0 = 1), as --multiscatter off would leave
 // out what both do.
+// extensions: the glTF material extensions the engine renders (docs/materials.md, "In the
+// engines"); a case using any other is left out for that engine and listed as not rendered.
 const ENGINES = [
-  { name: 'filament', page: 'filament.html', sets: ['ibl'], rot: 'filament' },
-  { name: 'babylon', page: 'babylon.html', sets: ['ibl', 'own'], rot: 'babylon' },
-  { name: 'three', page: 'three.html', sets: ['own'], rot: 'identity' },
-  { name: 'sample-viewer', page: 'sample-viewer.html', sets: ['ibl'], rot: 'identity', ss: { key: 'nodominant', args: ['--no-dominant'] } },
+  { name: 'filament', page: 'filament.html', sets: ['ibl'], rot: 'filament', extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat'] },
+  { name: 'babylon', page: 'babylon.html', sets: ['ibl', 'own'], rot: 'babylon', extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_iridescence', 'KHR_materials_anisotropy'] },
+  { name: 'three', page: 'three.html', sets: ['own'], rot: 'identity', extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_iridescence', 'KHR_materials_anisotropy'] },
+  { name: 'sample-viewer', page: 'sample-viewer.html', sets: ['ibl'], rot: 'identity', ss: { key: 'nodominant', args: ['--no-dominant'] }, extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_iridescence', 'KHR_materials_anisotropy'] },
+];
+
+// The material extensions' cases (docs/materials.md, "In the engines"): the glTF material's
+// extensions (the page's `ext`) and the `ibl render sphere` options that make the same material.
+// Each is one sphere of the core cases' base colour; the engines that do not render an extension
+// are left out of its case. Transmission and volume are not here: a lone sphere in front of a
+// black background has nothing behind it for the engines' screen-space transmission to show.
+const EXTENSION_CASES = [
+  { name: 'ior 2', m: 0, r: 0.25, ext: { KHR_materials_ior: { ior: 2 } }, args: ['--ior', '2'] },
+  // The same material: a specular layer of factor 1 changes nothing in glTF (Filament 1.53 needs it,
+  // MEASURED below).
+  { name: 'ior 2 + specular 1', m: 0, r: 0.25, ext: { KHR_materials_ior: { ior: 2 }, KHR_materials_specular: { specularFactor: 1 } }, args: ['--ior', '2', '--specular', '1'] },
+  { name: 'specular 0.3', m: 0, r: 0.25, ext: { KHR_materials_specular: { specularFactor: 0.3 } }, args: ['--specular', '0.3'] },
+  { name: 'clearcoat 1, coat r=0.1', m: 0, r: 0.5, ext: { KHR_materials_clearcoat: { clearcoatFactor: 1, clearcoatRoughnessFactor: 0.1 } }, args: ['--clearcoat', '1', '--clearcoat-roughness', '0.1'] },
+  { name: 'clearcoat 1, coat r=0.1', m: 1, r: 0.5, ext: { KHR_materials_clearcoat: { clearcoatFactor: 1, clearcoatRoughnessFactor: 0.1 } }, args: ['--clearcoat', '1', '--clearcoat-roughness', '0.1'] },
+  { name: 'iridescence 1, film ior 1.3, 400 nm', m: 0, r: 0.25, ext: { KHR_materials_iridescence: { iridescenceFactor: 1, iridescenceIor: 1.3, iridescenceThicknessMaximum: 400 } }, args: ['--iridescence', '1', '--iridescence-ior', '1.3', '--iridescence-thickness', '400'] },
+  { name: 'iridescence 1, film ior 1.3, 400 nm', m: 1, r: 0.25, ext: { KHR_materials_iridescence: { iridescenceFactor: 1, iridescenceIor: 1.3, iridescenceThicknessMaximum: 400 } }, args: ['--iridescence', '1', '--iridescence-ior', '1.3', '--iridescence-thickness', '400'] },
+  { name: 'anisotropy 0.8', m: 1, r: 0.5, ext: { KHR_materials_anisotropy: { anisotropyStrength: 0.8 } }, args: ['--anisotropy', '0.8'] },
 ];
 
 // Thresholds, from what was measured (MEASURED: the engine with ibl's files against
@@ -91,19 +113,41 @@ const DEFAULT_SS = 0.12, DEFAULT_OWN = 0.05, DEFAULT_REF = 0.12;
 const OWN_MARGIN = 0.01;
 const MEASURED = {
   // engine: { case: [vs split sum, vs own pipeline, own pipeline vs reference] }, measured
-  // 2026-12-03, the dielectrics again 2026-12-05 after glTF's fresnel_mix (docs/targets.md)
+  // 2026-12-03, the dielectrics again 2026-12-05 after glTF's fresnel_mix (docs/targets.md), the
+  // material extensions' cases 2026-12-07 (docs/materials.md, "In the engines")
   filament: {
     'metal r=0': [0.068], 'metal r=0.25': [0.034], 'metal r=0.5': [0.043], 'metal r=0.75': [0.044], 'metal r=1': [0.008],
     'dielectric r=0': [0.029], 'dielectric r=0.25': [0.025], 'dielectric r=0.5': [0.017], 'dielectric r=0.75': [0.018], 'dielectric r=1': [0.028],
+    'ior 2, dielectric r=0.25': [0.076],
+    'ior 2 + specular 1, dielectric r=0.25': [0.025],
+    'specular 0.3, dielectric r=0.25': [0.018],
+    'clearcoat 1, coat r=0.1, dielectric r=0.5': [0.016],
+    'clearcoat 1, coat r=0.1, metal r=0.5': [0.039],
   },
   babylon: {
     'metal r=0': [0.122], 'metal r=0.25': [0.071, 0.014, 0.085], 'metal r=0.5': [0.056, 0.008, 0.096], 'metal r=0.75': [0.059], 'metal r=1': [0.027, 0.004, 0.088],
     'dielectric r=0': [0.050], 'dielectric r=0.25': [0.044, 0.005, 0.053], 'dielectric r=0.5': [0.032, 0.004, 0.042], 'dielectric r=0.75': [0.026], 'dielectric r=1': [0.025, 0.004, 0.030],
+    'ior 2, dielectric r=0.25': [0.041],
+    'ior 2 + specular 1, dielectric r=0.25': [0.041],
+    'specular 0.3, dielectric r=0.25': [0.028],
+    'clearcoat 1, coat r=0.1, dielectric r=0.5': [0.044],
+    'clearcoat 1, coat r=0.1, metal r=0.5': [0.059],
+    'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': [0.126],
+    'iridescence 1, film ior 1.3, 400 nm, metal r=0.25': [0.11],
+    'anisotropy 0.8, metal r=0.5': [0.177],
   },
   // Its own HDRLoader + PMREMGenerator only (three.js reads no prefiltered files).
   three: {
     'metal r=0': [null, null, 0.021], 'metal r=0.25': [null, null, 0.045], 'metal r=0.5': [null, null, 0.086], 'metal r=0.75': [null, null, 0.130], 'metal r=1': [null, null, 0.074],
     'dielectric r=0': [null, null, 0.032], 'dielectric r=0.25': [null, null, 0.031], 'dielectric r=0.5': [null, null, 0.022], 'dielectric r=0.75': [null, null, 0.018], 'dielectric r=1': [null, null, 0.026],
+    'ior 2, dielectric r=0.25': [null, null, 0.031],
+    'ior 2 + specular 1, dielectric r=0.25': [null, null, 0.031],
+    'specular 0.3, dielectric r=0.25': [null, null, 0.019],
+    'clearcoat 1, coat r=0.1, dielectric r=0.5': [null, null, 0.022],
+    'clearcoat 1, coat r=0.1, metal r=0.5': [null, null, 0.068],
+    'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': [null, null, 0.034],
+    'iridescence 1, film ior 1.3, 400 nm, metal r=0.25': [null, null, 0.045],
+    'anisotropy 0.8, metal r=0.5': [null, null, 0.345],
   },
   // Against the split sum with --no-dominant (ENGINES' ss). Metal r = 1 is the viewer's
   // multiple-scattering term (Fdez-Aguera's) against ibl's: 0.75-0.95 of ibl's brightness
@@ -111,6 +155,25 @@ const MEASURED = {
   'sample-viewer': {
     'metal r=0': [0.029], 'metal r=0.25': [0.011], 'metal r=0.5': [0.008], 'metal r=0.75': [0.024], 'metal r=1': [0.123],
     'dielectric r=0': [0.030], 'dielectric r=0.25': [0.025], 'dielectric r=0.5': [0.012], 'dielectric r=0.75': [0.012], 'dielectric r=1': [0.023],
+    'ior 2, dielectric r=0.25': [0.023],
+    'ior 2 + specular 1, dielectric r=0.25': [0.023],
+    'specular 0.3, dielectric r=0.25': [0.009],
+    'clearcoat 1, coat r=0.1, dielectric r=0.5': [0.011],
+    'clearcoat 1, coat r=0.1, metal r=0.5': [0.008],
+    'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': [0.003],
+    'iridescence 1, film ior 1.3, 400 nm, metal r=0.25': [0.006],
+    'anisotropy 0.8, metal r=0.5': [0.113],
+  },
+};
+// Where an engine departs from the extension's specification (measured; docs/materials.md, "In the
+// engines"): the check that the engine is nearer ibl's split sum with the extension than without is
+// not made there, and the table says why.
+const DEPARTURES = {
+  filament: {
+    'ior 2, dielectric r=0.25': "gltfio 1.53's ubershader for a material with KHR_materials_ior and no KHR_materials_specular leaves the specular strength at 0: no dielectric reflection (fixed after 1.53; with a specular layer of factor 1 it is right)",
+  },
+  babylon: {
+    'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': "Babylon's film over a dielectric brightens the rim toward white where the specification's (ibl's, the Sample Viewer's, three.js's) stays tinted",
   },
 };
 function threshold(engine, key, which) {  // which: 'ss', 'own' or 'ref'
@@ -289,8 +352,11 @@ function toSrgb8(x) {
 // ---------------------------------------------------------------------------------------------
 // The cases and the ibl renders
 
+// id: the case's part of the file names.
 const cases = [];
-for (const m of METALLIC) for (const r of ROUGHNESS) cases.push({ r, m, key: `${m ? 'metal' : 'dielectric'} r=${r}` });
+for (const m of METALLIC) for (const r of ROUGHNESS) cases.push({ r, m, key: `${m ? 'metal' : 'dielectric'} r=${r}`, id: `m${m}-r${r}`, args: [] });
+EXTENSION_CASES.forEach((x, k) => cases.push({ ...x, key: `${x.name}, ${x.m ? 'metal' : 'dielectric'} r=${x.r}`, id: `x${k}-m${x.m}-r${x.r}` }));
+const renders = (e, c) => !c.ext || Object.keys(c.ext).every((x) => e.extensions.includes(x));
 
 const engines = ENGINES.filter((e) => (!opt.only || opt.only.includes(e.name)));
 const present = [];
@@ -329,9 +395,10 @@ function renderArgs(c, eyeIbl, mode, extra = []) {
     '--look-from', vec(eyeIbl), '--look-at', '0,0,0', '--up', '0,1,0', '--size', `${IMAGE}x${IMAGE}`,
     '--base-color', vec(BASE), '--metallic', String(c.m), '--roughness', String(c.r),
     '--diffuse', 'lambert', '--background', '0,0,0', '--tonemap', 'none', '--ev100', '0', '-q',
-    '--mode', mode, ...(mode === 'reference' ? ['--spp', String(REF_SPP)] : ['--spp', '16']), ...extra];
+    '--mode', mode, ...(mode === 'reference' ? ['--spp', String(REF_SPP)] : ['--spp', '16']), ...c.args, ...extra];
 }
 const rdir = path.join(W, 'renders');
+function renderPath(camKey, c, mode) { return path.join(rdir, `${camKey}-${c.id}-${mode}.exr`); }
 fs.mkdirSync(rdir, { recursive: true });
 let nRendered = 0;
 const tr = Date.now();
@@ -340,11 +407,11 @@ for (const [camKey, eyeIbl] of cameras)
     for (const mode of ['split-sum', 'reference']) {
       if (camKey.startsWith('orient') && (mode === 'reference' || c !== cases[2])) continue;
       if (ssExtra.has(camKey) && mode === 'reference') continue;  // the reference has no such settings
-      const out = path.join(rdir, `${camKey}-m${c.m}-r${c.r}-${mode}.exr`);
+      if (c.ext && !present.some((e) => renders(e, c) && (camKey === e.rot || camKey === `${e.rot}-${e.ss?.key}`))) continue;
+      const out = renderPath(camKey, c, mode);
       if (cached(out, renderArgs(c, eyeIbl, mode, ssExtra.get(camKey) ?? []), bakeKey)) nRendered++;
     }
 log(`ibl renders: ${nRendered} made (${((Date.now() - tr) / 1000).toFixed(1)} s), the others cached`);
-const renderPath = (camKey, c, mode) => path.join(rdir, `${camKey}-m${c.m}-r${c.r}-${mode}.exr`);
 
 // ---------------------------------------------------------------------------------------------
 // HTTP server: /engines/ -> tests/engines/, /work/ -> the work folder
@@ -441,6 +508,7 @@ try {
     const q = new URLSearchParams({
       set, bake: '/work/bake', hdr: '/work/apartment.hdr', roughness: String(c.r), metallic: String(c.m),
       base: BASE.join(','), size: String(IMAGE), scale: String(scale), view: 'front',
+      ...(c.ext ? { ext: JSON.stringify(c.ext) } : {}),
     });
     const page = await context.newPage();
     const consoleLines = [];
@@ -454,7 +522,7 @@ try {
       if (!done.ok) throw new Error(done.error);
       notes[`${e.name}/${set}`] = done.notes;
       const png = await page.locator('#c').screenshot({ animations: 'disabled' });
-      fs.writeFileSync(path.join(shots, `${e.name}-${set}-m${c.m}-r${c.r}.png`), png);
+      fs.writeFileSync(path.join(shots, `${e.name}-${set}-${c.id}.png`), png);
       return PNG.sync.read(png);
     } catch (err) {
       throw new Error(`${e.name} set=${set} ${c.key}: ${err.message}\n  ${consoleLines.slice(-8).join('\n  ')}`);
@@ -491,6 +559,7 @@ try {
     const camKey = e.rot;
     const ssKey = e.ss ? `${e.rot}-${e.ss.key}` : e.rot;
     for (const c of cases) {
+      if (!renders(e, c)) continue;
       const ss = readExr(renderPath(ssKey, c, 'split-sum'));
       const ref = readExr(renderPath(camKey, c, 'reference'));
       // The sphere's pixels: fully covered in both renders, and their 4 neighbours too.
@@ -508,7 +577,7 @@ try {
       const K = +(TOP / p995).toPrecision(4);
       const row = { engine: e.name, case: c, K, clipped: 0, pixels: 0 };
       const imgs = {};
-      const sets = e.sets.filter((set) => !(set === 'own' && e.sets.includes('ibl') && !OWN_ROUGHNESS.includes(c.r)));
+      const sets = e.sets.filter((set) => !(set === 'own' && e.sets.includes('ibl') && (c.ext || !OWN_ROUGHNESS.includes(c.r))));
       try {
         for (const set of sets) imgs[set] = linear(await capture(e, set, c, K));
       } catch (err) {
@@ -529,6 +598,16 @@ try {
       if (imgs.own) row.ownVsRef = compare(imgs.own.rgb, R, mask);
       if (imgs.ibl && imgs.own) row.iblVsOwn = compare(imgs.ibl.rgb, imgs.own.rgb, mask);
       row.ssVsRef = compare(S, R, mask);
+      // An extension's case: the engine's image against ibl's split sum of the same material without
+      // the extension; the engine must be nearer ibl's with it (else it ignored the extension).
+      const engineImg = (imgs.ibl ?? imgs.own).rgb;
+      if (c.ext) {
+        const base = cases.find((b) => !b.ext && b.m === c.m && b.r === c.r);
+        const S0 = exrScaled(readExr(renderPath(ssKey, base, 'split-sum')), K);
+        row.effect = compare(S0, S, mask);
+        row.engineVsSs = compare(engineImg, S, mask);
+        row.engineVsBase = compare(engineImg, S0, mask);
+      }
       // Checks
       row.checks = [];
       if (row.iblVsSs !== undefined) {
@@ -546,10 +625,16 @@ try {
       if (row.iblVsRef !== undefined && row.ownVsRef !== undefined) {
         row.checks.push({ what: `vs reference <= own + ${OWN_MARGIN}`, ok: row.iblVsRef <= row.ownVsRef + OWN_MARGIN });
       }
+      const departure = DEPARTURES[e.name]?.[c.key];
+      if (departure) row.departure = departure;
+      if (row.effect !== undefined && !departure) {
+        row.checks.push({ what: `nearer ibl's split sum with ${Object.keys(c.ext).join(', ')} than without`, ok: row.engineVsSs < row.engineVsBase });
+      }
       for (const ch of row.checks) ch.ok ? passes++ : failures++;
       results.push(row);
       const f = (v) => (v === undefined ? '     -' : (100 * v).toFixed(1).padStart(5) + '%');
       log(`${e.name.padEnd(13)} ${c.key.padEnd(16)} K ${String(K).padEnd(7)} ibl/ss ${f(row.iblVsSs)} ibl/ref ${f(row.iblVsRef)} own/ref ${f(row.ownVsRef)} ibl/own ${f(row.iblVsOwn)} ss/ref ${f(row.ssVsRef)} clipped ${row.clipped}` +
+        (row.effect !== undefined ? ` extension's effect ${f(row.effect)}, engine vs ibl without it ${f(row.engineVsBase)}` : '') +
         row.checks.filter((x) => !x.ok).map((x) => `  FAILED ${x.what}`).join(''));
     }
   }
@@ -611,7 +696,8 @@ process.exit(failures ? 1 : 0);
 // images (docs/images/engines.png): one row per image kind, one column per case of roughness
 // 0, 0.5, 1 (metal, then dielectric).
 
-async function writeDocs(rows, shots) {
+async function writeDocs(results, shots) {
+  const rows = results.filter((r) => !r.case.ext);
   const doc = path.join(repo, 'docs', 'targets.md');
   let text = fs.readFileSync(doc, 'utf8');
   const begin = '<!-- engines:begin -->', end = '<!-- engines:end -->';
@@ -644,9 +730,42 @@ async function writeDocs(rows, shots) {
   text = text.slice(0, a) + lines.join('\n') + text.slice(b + end.length);
   fs.writeFileSync(doc, text);
 
-  // The sheet.
+  // The extensions' table in docs/materials.md: every extension case, per engine, also where the
+  // engine does not render the extension.
+  const mdoc = path.join(repo, 'docs', 'materials.md');
+  let mtext = fs.readFileSync(mdoc, 'utf8');
+  const xbegin = '<!-- engines-extensions:begin -->', xend = '<!-- engines-extensions:end -->';
+  const xa = mtext.indexOf(xbegin), xb = mtext.indexOf(xend);
+  if (xa < 0 || xb < xa) throw new Error('docs/materials.md has no <!-- engines-extensions:begin --> ... <!-- engines-extensions:end --> section');
+  const xlines = [
+    xbegin,
+    '',
+    `Measured by \`node tests/engines/run.mjs --ibl build/ibl --docs\` (${new Date().toISOString().slice(0, 10)}; ` +
+      'the setting of docs/targets.md, "In the engines themselves"; the engine with ibl\'s files, three.js with its own pipeline):',
+    '',
+    '| case | engine | engine vs split sum | engine vs reference | split sum vs reference | engine vs split sum without the extension | the extension\'s effect on the split sum | K | clipped pixels |',
+    '| --- | --- | --- | --- | --- | --- | --- | --- | --- |',
+  ];
+  for (const c of cases.filter((c) => c.ext)) {
+    for (const e of present) {
+      const r = results.find((row) => row.case === c && row.engine === e.name);
+      if (!renders(e, c)) xlines.push(`| ${c.key} | ${e.name} | not rendered: the engine ignores ${Object.keys(c.ext).join(', ')} | | | | | | |`);
+      else if (!r) xlines.push(`| ${c.key} | ${e.name} | failed | | | | | | |`);
+      else xlines.push(`| ${c.key} | ${e.name} | ${pc(r.engineVsSs)} | ${pc(r.iblVsRef ?? r.ownVsRef)} | ${pc(r.ssVsRef)} | ${pc(r.engineVsBase)}${r.departure ? ` (${r.departure})` : ''} | ${pc(r.effect)} | ${r.K} | ${r.clipped} |`);
+    }
+  }
+  xlines.push('', xend);
+  mtext = mtext.slice(0, xa) + xlines.join('\n') + mtext.slice(xb + xend.length);
+  fs.writeFileSync(mdoc, mtext);
+
+  sheet(results, shots, cases.filter((c) => !c.ext && [0, 0.5, 1].includes(c.r)), path.join(repo, 'docs', 'images', 'engines.png'));
+  sheet(results, shots, cases.filter((c) => c.ext), path.join(repo, 'docs', 'images', 'engines-extensions.png'));
+}
+
+// A sheet of the images: one row per image kind (ibl's renders from each engine's camera, then each
+// engine's sets), one column per case; black where an engine does not render a case.
+function sheet(results, shots, cols, outPng) {
   const T = 64;  // tile size: the sheet stays under 300 KB
-  const cols = cases.filter((c) => [0, 0.5, 1].includes(c.r));
   const kinds = [];
   const seen = new Set();
   for (const e of present) {
@@ -657,10 +776,13 @@ async function writeDocs(rows, shots) {
     if (e.ss) kinds.push({ exr: `${e.rot}-${e.ss.key}`, mode: 'split-sum', engine: e.name });
     for (const set of e.sets) kinds.push({ shot: `${e.name}-${set}` });
   }
+  // Rows with no image in any column (an engine's set that renders none of these cases) go.
+  const shown = (k, c) => (k.shot ? results.some((r) => r.case === c && r.engine === k.shot.slice(0, k.shot.lastIndexOf('-'))) && fs.existsSync(path.join(shots, `${k.shot}-${c.id}.png`)) : fs.existsSync(renderPath(k.exr, c, k.mode)));
+  for (let i = kinds.length - 1; i >= 0; i--) if (!cols.some((c) => shown(kinds[i], c))) kinds.splice(i, 1);
   const Wd = T * cols.length, Hd = T * kinds.length;
-  const sheet = new PNG({ width: Wd, height: Hd });
-  sheet.data.fill(0);
-  for (let i = 3; i < sheet.data.length; i += 4) sheet.data[i] = 255;
+  const png = new PNG({ width: Wd, height: Hd });
+  png.data.fill(0);
+  for (let i = 3; i < png.data.length; i += 4) png.data[i] = 255;
   const put = (col, rowI, rgb8) => {  // rgb8(x, y) over IMAGE x IMAGE, box-resampled to T x T
     for (let y = 0; y < T; y++)
       for (let x = 0; x < T; x++) {
@@ -670,26 +792,27 @@ async function writeDocs(rows, shots) {
         const y0 = Math.floor((y * IMAGE) / T), y1 = Math.floor(((y + 1) * IMAGE) / T);
         for (let yy = y0; yy < y1; yy++) for (let xx = x0; xx < x1; xx++) { const v = rgb8(xx, yy); acc[0] += v[0]; acc[1] += v[1]; acc[2] += v[2]; n++; }
         const o = 4 * ((rowI * T + y) * Wd + col * T + x);
-        for (let ch = 0; ch < 3; ch++) sheet.data[o + ch] = Math.round(acc[ch] / n);
+        for (let ch = 0; ch < 3; ch++) png.data[o + ch] = Math.round(acc[ch] / n);
       }
   };
   cols.forEach((c, col) => {
     kinds.forEach((k, rowI) => {
-      const row = rows.find((r) => r.case === c && (k.shot ? k.shot.startsWith(r.engine + '-') : k.engine ? r.engine === k.engine : ROT[ENGINES.find((e) => e.name === r.engine).rot] === ROT[k.exr]));
+      const row = results.find((r) => r.case === c && (k.shot ? k.shot.startsWith(r.engine + '-') : k.engine ? r.engine === k.engine : ROT[ENGINES.find((e) => e.name === r.engine).rot] === ROT[k.exr]));
       const K = row ? row.K : 1;
       if (k.shot) {
-        const f = path.join(shots, `${k.shot}-m${c.m}-r${c.r}.png`);
-        if (!fs.existsSync(f)) return;
-        const png = PNG.sync.read(fs.readFileSync(f));
-        put(col, rowI, (x, y) => { const o = 4 * (y * png.width + x); return [png.data[o], png.data[o + 1], png.data[o + 2]]; });
+        const f = path.join(shots, `${k.shot}-${c.id}.png`);
+        if (!row || !fs.existsSync(f)) return;
+        const img = PNG.sync.read(fs.readFileSync(f));
+        put(col, rowI, (x, y) => { const o = 4 * (y * img.width + x); return [img.data[o], img.data[o + 1], img.data[o + 2]]; });
       } else {
-        const ex = readExr(renderPath(k.exr, c, k.mode));
+        const file = renderPath(k.exr, c, k.mode);
+        if (!fs.existsSync(file)) return;
+        const ex = readExr(file);
         put(col, rowI, (x, y) => { const i = y * ex.w + x; return [toSrgb8(ex.R[i] * K), toSrgb8(ex.G[i] * K), toSrgb8(ex.B[i] * K)]; });
       }
     });
   });
-  const outPng = path.join(repo, 'docs', 'images', 'engines.png');
   fs.mkdirSync(path.dirname(outPng), { recursive: true });
-  fs.writeFileSync(outPng, PNG.sync.write(sheet, { colorType: 2 }));
-  log(`wrote docs/targets.md's engines section and docs/images/engines.png (${Wd}x${Hd}: rows ${kinds.map((k) => k.shot || `${k.exr} ${k.mode}`).join(', ')})`);
+  fs.writeFileSync(outPng, PNG.sync.write(png, { colorType: 2 }));
+  log(`wrote ${path.relative(repo, outPng)} (${Wd}x${Hd}: rows ${kinds.map((k) => k.shot || `${k.exr} ${k.mode}`).join(', ')})`);
 }

@@ -1,6 +1,7 @@
 // Shared by the engine pages (tests/engines/pages/*.html): the URL parameters of the page
-// contract (tests/engines/run.mjs) and a UV sphere as a glTF binary (GLB) with one glTF
-// metallic-roughness material, for engines that take their materials from glTF (Filament's gltfio).
+// contract (tests/engines/run.mjs), the sphere every page draws, and the sphere as a glTF binary (GLB)
+// with one material and its extensions, for engines that take their materials from glTF (Filament's
+// gltfio, three.js's GLTFLoader).
 
 // The page's URL parameters, checked: an Error naming the parameter where one is missing or
 // malformed. `set`: the default set; `sets`: those the page renders.
@@ -29,7 +30,18 @@ export function params({ set = 'ibl', sets = ['ibl', 'own'] } = {}) {
     scale: num('scale', 1),
     view: q.get('view') || 'front',
     envRotation: num('envRotation', 0),
+    ext: null,
   };
+  // ext: the material's glTF extensions as JSON, e.g. {"KHR_materials_clearcoat":{"clearcoatFactor":1}}.
+  const ext = q.get('ext');
+  if (ext) {
+    try {
+      p.ext = JSON.parse(ext);
+    } catch {
+      bad(`parameter ext=${ext} is not JSON`);
+    }
+    if (typeof p.ext !== 'object' || p.ext === null || Array.isArray(p.ext)) bad(`parameter ext=${ext} is not an object of glTF material extensions`);
+  }
   if (!sets.includes(p.set)) bad(`set=${p.set}: this page renders set=${sets.join(' or ')}`);
   if (p.set === 'ibl' && !p.bake) bad('missing parameter bake');
   if (p.set === 'own' && !p.hdr) bad('missing parameter hdr');
@@ -60,17 +72,20 @@ export function frames(n) {
   });
 }
 
-// A UV sphere of radius 1 (exact normals), `seg` segments around, seg/2 rings, as a GLB.
-export function sphereGlb({ base, metallic, roughness }, seg = 128) {
+// A UV sphere of radius 1 (exact normals), `seg` segments around, seg/2 rings: positions (also the
+// normals), tangents along the parallels as ibl's built-in spheres have them
+// (shared::sphereTangent: (-z, 0, x) normalized, w = 1, what KHR_materials_anisotropy's direction
+// follows), texture coordinates and triangle indices (counter-clockwise seen from outside).
+export function sphereMesh(seg = 128) {
   const rings = seg / 2;
-  const pos = [], nrm = [], idx = [];
+  const pos = [], tan = [], uv = [], idx = [];
   for (let j = 0; j <= rings; j++) {
     const th = (Math.PI * j) / rings;
     for (let i = 0; i <= seg; i++) {
       const ph = (2 * Math.PI * i) / seg;
-      const x = Math.sin(th) * Math.cos(ph), y = Math.cos(th), z = -Math.sin(th) * Math.sin(ph);
-      pos.push(x, y, z);
-      nrm.push(x, y, z);
+      pos.push(Math.sin(th) * Math.cos(ph), Math.cos(th), -Math.sin(th) * Math.sin(ph));
+      tan.push(Math.sin(ph), 0, Math.cos(ph), 1);
+      uv.push(i / seg, j / rings);
     }
   }
   const row = seg + 1;
@@ -79,38 +94,51 @@ export function sphereGlb({ base, metallic, roughness }, seg = 128) {
       const a = j * row + i, b = a + row;
       idx.push(a, b, a + 1, a + 1, b, b + 1);
     }
-  const P = new Float32Array(pos), N = new Float32Array(nrm), I = new Uint32Array(idx);
-  const bin = new Uint8Array(P.byteLength + N.byteLength + I.byteLength);
-  bin.set(new Uint8Array(P.buffer), 0);
-  bin.set(new Uint8Array(N.buffer), P.byteLength);
-  bin.set(new Uint8Array(I.buffer), P.byteLength + N.byteLength);
+  return { positions: new Float32Array(pos), tangents: new Float32Array(tan), uvs: new Float32Array(uv), indices: new Uint32Array(idx) };
+}
+
+// The sphere as a glTF binary (GLB) with one glTF metallic-roughness material and, where given,
+// the material's `extensions` (KHR_materials_*, as the page's `ext` parameter holds them).
+export function sphereGlb({ base, metallic, roughness, ext = null }, seg = 128) {
+  const m = sphereMesh(seg);
+  const arrays = [m.positions, m.positions, m.tangents, m.uvs, m.indices];  // POSITION, NORMAL, TANGENT, TEXCOORD_0, indices
+  const bin = new Uint8Array(arrays.reduce((n, a) => n + a.byteLength, 0));
+  const views = [];
+  let offset = 0;
+  arrays.forEach((a, k) => {
+    bin.set(new Uint8Array(a.buffer), offset);
+    views.push({ buffer: 0, byteOffset: offset, byteLength: a.byteLength, target: k === 4 ? 34963 : 34962 });
+    offset += a.byteLength;
+  });
+  const count = m.positions.length / 3;
+  const material = {
+    name: 'sphere',
+    pbrMetallicRoughness: {
+      baseColorFactor: [base[0], base[1], base[2], 1],
+      metallicFactor: metallic,
+      roughnessFactor: roughness,
+    },
+  };
+  if (ext) material.extensions = ext;
   const json = {
     asset: { version: '2.0', generator: 'ibl tests/engines' },
+    ...(ext ? { extensionsUsed: Object.keys(ext) } : {}),
     scene: 0,
     scenes: [{ nodes: [0] }],
     nodes: [{ mesh: 0, name: 'sphere' }],
-    meshes: [{ primitives: [{ attributes: { POSITION: 0, NORMAL: 1 }, indices: 2, material: 0 }] }],
-    materials: [{
-      name: 'sphere',
-      pbrMetallicRoughness: {
-        baseColorFactor: [base[0], base[1], base[2], 1],
-        metallicFactor: metallic,
-        roughnessFactor: roughness,
-      },
-    }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0, NORMAL: 1, TANGENT: 2, TEXCOORD_0: 3 }, indices: 4, material: 0 }] }],
+    materials: [material],
     buffers: [{ byteLength: bin.byteLength }],
-    bufferViews: [
-      { buffer: 0, byteOffset: 0, byteLength: P.byteLength, target: 34962 },
-      { buffer: 0, byteOffset: P.byteLength, byteLength: N.byteLength, target: 34962 },
-      { buffer: 0, byteOffset: P.byteLength + N.byteLength, byteLength: I.byteLength, target: 34963 },
-    ],
+    bufferViews: views,
     accessors: [
-      { bufferView: 0, componentType: 5126, count: P.length / 3, type: 'VEC3', min: [-1, -1, -1], max: [1, 1, 1] },
-      { bufferView: 1, componentType: 5126, count: N.length / 3, type: 'VEC3' },
-      { bufferView: 2, componentType: 5125, count: I.length, type: 'SCALAR' },
+      { bufferView: 0, componentType: 5126, count, type: 'VEC3', min: [-1, -1, -1], max: [1, 1, 1] },
+      { bufferView: 1, componentType: 5126, count, type: 'VEC3' },
+      { bufferView: 2, componentType: 5126, count, type: 'VEC4' },
+      { bufferView: 3, componentType: 5126, count, type: 'VEC2' },
+      { bufferView: 4, componentType: 5125, count: m.indices.length, type: 'SCALAR' },
     ],
   };
-  let js = new TextEncoder().encode(JSON.stringify(json));
+  const js = new TextEncoder().encode(JSON.stringify(json));
   const jsPad = (4 - (js.length % 4)) % 4;
   const jsonLen = js.length + jsPad;
   const total = 12 + 8 + jsonLen + 8 + bin.byteLength;

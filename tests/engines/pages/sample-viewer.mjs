@@ -37,11 +37,11 @@
 // under SwiftShader).
 //
 // Contract (tests/engines/run.mjs): ?set=ibl|own&bake=URL&hdr=URL&roughness=R&metallic=M
-// &base=R,G,B&size=N&scale=K&view=front|side[&envRotation=DEG]; draws into <canvas id="c">, then
+// &base=R,G,B&size=N&scale=K&view=front|side[&envRotation=DEG][&ext=JSON]; draws into <canvas id="c">, then
 // window.iblDone = {ok, notes|error}.
 
 import { read as readKtx2 } from '/engines/node_modules/ktx-parse/dist/index.mjs';
-import { params } from './common.mjs';
+import { params, sphereMesh } from './common.mjs';
 
 const VIEWER_BUNDLE = '/engines/node_modules/@khronosgroup/gltf-viewer/dist/gltf-viewer.module.js';
 
@@ -147,14 +147,61 @@ function link(gl, vs, fs, name) {
   return p;
 }
 
-function viewerProgram(gl, sources, debugDefines) {
+// The material extensions this page hands the viewer's shaders: glTF extension -> the define the
+// viewer's gltfMaterial adds for it, and the uniforms it sets from the extension's factors
+// (gltf-viewer.module.js, gltfMaterial.parseTextureInfoExtensions / updateTextureTransforms and its
+// "u_*" properties; defaults as the extensions' specifications give them).
+const EXTENSIONS = {
+  KHR_materials_ior: { define: 'MATERIAL_IOR', uniforms: (e, gl, loc) => gl.uniform1f(loc('u_Ior'), e.ior ?? 1.5) },
+  KHR_materials_specular: {
+    define: 'MATERIAL_SPECULAR',
+    uniforms: (e, gl, loc) => {
+      gl.uniform1f(loc('u_KHR_materials_specular_specularFactor'), e.specularFactor ?? 1);
+      gl.uniform3fv(loc('u_KHR_materials_specular_specularColorFactor'), e.specularColorFactor ?? [1, 1, 1]);
+    },
+  },
+  KHR_materials_clearcoat: {
+    define: 'MATERIAL_CLEARCOAT',
+    uniforms: (e, gl, loc) => {
+      gl.uniform1f(loc('u_ClearcoatFactor'), e.clearcoatFactor ?? 0);
+      gl.uniform1f(loc('u_ClearcoatRoughnessFactor'), e.clearcoatRoughnessFactor ?? 0);
+    },
+  },
+  KHR_materials_iridescence: {
+    define: 'MATERIAL_IRIDESCENCE',
+    uniforms: (e, gl, loc) => {
+      gl.uniform1f(loc('u_IridescenceFactor'), e.iridescenceFactor ?? 0);
+      gl.uniform1f(loc('u_IridescenceIor'), e.iridescenceIor ?? 1.3);
+      // Without a thickness texture the film is iridescenceThicknessMaximum thick.
+      gl.uniform1f(loc('u_IridescenceThicknessMaximum'), e.iridescenceThicknessMaximum ?? 400);
+    },
+  },
+  KHR_materials_anisotropy: {
+    define: 'MATERIAL_ANISOTROPY',
+    tangents: true,
+    uniforms: (e, gl, loc) => {
+      const rotation = e.anisotropyRotation ?? 0;
+      gl.uniform3f(loc('u_Anisotropy'), Math.cos(rotation), Math.sin(rotation), e.anisotropyStrength ?? 0);
+    },
+  },
+};
+
+function materialExtensions(ext) {
+  const used = Object.keys(ext ?? {});
+  for (const name of used) if (!EXTENSIONS[name]) fail(`ext: ${name} is not one this page hands the viewer (${Object.keys(EXTENSIONS).join(', ')})`);
+  return used.map((name) => ({ name, ...EXTENSIONS[name], factors: ext[name] }));
+}
+
+function viewerProgram(gl, sources, debugDefines, extensions) {
   // Defines as the viewer builds them for this primitive and material (gltf-viewer.module.js:
-  // gltfPrimitive defines HAS_<ATTRIBUTE>_<TYPE>, gltfMaterial ALPHAMODE_* and
-  // MATERIAL_METALLICROUGHNESS, renderer: LINEAR_OUTPUT for a linear pass, USE_IBL, DEBUG_*).
-  const vertDefines = ['HAS_NORMAL_VEC3 1', 'HAS_POSITION_VEC3 1'];
+  // gltfPrimitive defines HAS_<ATTRIBUTE>_<TYPE>, gltfMaterial ALPHAMODE_*,
+  // MATERIAL_METALLICROUGHNESS and one MATERIAL_* per extension, renderer: LINEAR_OUTPUT for a
+  // linear pass, USE_IBL, DEBUG_*).
+  const vertDefines = ['HAS_NORMAL_VEC3 1', 'HAS_POSITION_VEC3 1', ...(extensions.some((x) => x.tangents) ? ['HAS_TANGENT_VEC4 1'] : [])];
   const fragDefines = [
     'ALPHAMODE_OPAQUE 0', 'ALPHAMODE_MASK 1', 'ALPHAMODE_BLEND 2', 'ALPHAMODE ALPHAMODE_OPAQUE',
     'MATERIAL_METALLICROUGHNESS 1',
+    ...extensions.map((x) => `${x.define} 1`),
     ...vertDefines,
     'LINEAR_OUTPUT 1',
     'USE_IBL 1',
@@ -256,27 +303,6 @@ async function uploadLut(gl, url) {
 
 // A unit UV sphere, triangles counter-clockwise seen from outside (the viewer draws with
 // frontFace CCW and flips the normal of back faces in getNormalInfo).
-function sphereMesh(lon, lat) {
-  const pos = [];
-  for (let j = 0; j <= lat; j++) {
-    const theta = (Math.PI * j) / lat;
-    for (let i = 0; i <= lon; i++) {
-      const phi = (2 * Math.PI * i) / lon;
-      pos.push(Math.sin(theta) * Math.cos(phi), Math.cos(theta), -Math.sin(theta) * Math.sin(phi));
-    }
-  }
-  const idx = [];
-  const row = lon + 1;
-  for (let j = 0; j < lat; j++) {
-    for (let i = 0; i < lon; i++) {
-      const a = j * row + i, b = a + row, c = b + 1, d = a + 1;
-      // phi grows counter-clockwise seen from +Y (x = cos, z = -sin), theta downwards.
-      idx.push(a, b, d, d, b, c);
-    }
-  }
-  return { positions: new Float32Array(pos), indices: new Uint32Array(idx) };
-}
-
 // Column-major 4x4 matrices.
 function lookAt(eye, up) {
   const norm = (v) => { const l = Math.hypot(...v); return v.map((x) => x / l); };
@@ -387,21 +413,23 @@ async function main() {
   // The environment first: the viewer's own filtering (set=own) changes GL state freely.
   const env = p.set === 'ibl' ? await iblSet(gl, p) : await viewerOwn(gl, p);
 
-  const program = viewerProgram(gl, sources, debugDefines);
+  const extensions = materialExtensions(p.ext);
+  const program = viewerProgram(gl, sources, debugDefines, extensions);
   const encode = encodeProgram(gl);
 
   // Geometry.
-  const mesh = sphereMesh(512, 256);
+  const mesh = sphereMesh(512);
   const vao = gl.createVertexArray();
   gl.bindVertexArray(vao);
-  const vbo = gl.createBuffer();
-  gl.bindBuffer(gl.ARRAY_BUFFER, vbo);
-  gl.bufferData(gl.ARRAY_BUFFER, mesh.positions, gl.STATIC_DRAW);
-  for (const attr of ['a_position', 'a_normal']) {
+  const attributes = [['a_position', mesh.positions, 3], ['a_normal', mesh.positions, 3]];  // unit sphere: normal = position
+  if (extensions.some((x) => x.tangents)) attributes.push(['a_tangent', mesh.tangents, 4]);
+  for (const [attr, data, size] of attributes) {
     const loc = gl.getAttribLocation(program, attr);
     if (loc < 0) fail(`the viewer's primitive.vert has no attribute ${attr}`);
+    gl.bindBuffer(gl.ARRAY_BUFFER, gl.createBuffer());
+    gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
     gl.enableVertexAttribArray(loc);
-    gl.vertexAttribPointer(loc, 3, gl.FLOAT, false, 0, 0); // unit sphere: normal = position
+    gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
   }
   const ibo = gl.createBuffer();
   gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, ibo);
@@ -432,6 +460,7 @@ async function main() {
   gl.uniform1i(loc('u_MipCount'), env.mipCount);
   gl.uniform1f(loc('u_EnvIntensity'), p.scale * env.intensityScale);
   gl.uniformMatrix3fv(loc('u_EnvRotation'), false, envRotation(p.envRotation));
+  for (const x of extensions) x.uniforms(x.factors, gl, loc);
   const units = ['u_LambertianEnvSampler', 'u_GGXEnvSampler', 'u_GGXLUT'];
   units.forEach((name, unit) => env.bind(name, loc(name), unit));
   // Every other active uniform keeps its default (0); a sampler among them would be an error.
@@ -501,6 +530,7 @@ async function main() {
     env.notes,
     `u_MipCount ${env.mipCount} (lod = roughness*${env.mipCount - 1})`,
     `u_EnvRotation rotateY(${p.envRotation} deg) (viewer UI default 90), u_EnvIntensity ${p.scale}, u_Camera 1e6 along the view axis`,
+    `material extensions: ${extensions.map((x) => `${x.name} (${x.define})`).join(', ') || 'none'}`,
     `uniforms left at 0: ${others.join(' ') || 'none'}`,
   ].join('; ');
 }

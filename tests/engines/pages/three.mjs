@@ -1,5 +1,8 @@
 // three.js as a peer (set=own): the .hdr panorama through three's own pipeline only:
-// HDRLoader -> PMREMGenerator.fromEquirectangular -> MeshStandardMaterial.envMap.
+// HDRLoader -> PMREMGenerator.fromEquirectangular -> the material's envMap; the sphere is the
+// glTF of common.mjs read by three's GLTFLoader, which makes a MeshStandardMaterial of the core
+// material and a MeshPhysicalMaterial where KHR_materials_* extensions are used (ior, specular,
+// clearcoat, iridescence, anisotropy: GLTFLoader's GLTFMaterials*Extension classes).
 //
 // Conventions (three r187, node_modules/three):
 //   - src/renderers/shaders/ShaderChunk/common.glsl.js, equirectUv(dir):
@@ -16,11 +19,12 @@
 //     rotation is applied here (envMapRotation stays identity).
 //
 // Contract (tests/engines/run.mjs): ?set=own&hdr=URL&roughness=R&metallic=M&base=R,G,B&size=N
-// &scale=K&view=front|side; draws into <canvas id="c">, then window.iblDone = {ok, notes|error}.
+// &scale=K&view=front|side[&ext=JSON]; draws into <canvas id="c">, then window.iblDone = {ok, notes|error}.
 
 import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { HDRLoader } from 'three/addons/loaders/HDRLoader.js';
-import { params } from './common.mjs';
+import { params, sphereGlb } from './common.mjs';
 
 function fail(message) {
   throw new Error(message);
@@ -48,14 +52,16 @@ async function main() {
 
   const scene = new THREE.Scene();
   scene.background = null;
-  const material = new THREE.MeshStandardMaterial({
-    color: new THREE.Color().setRGB(p.base[0], p.base[1], p.base[2], THREE.LinearSRGBColorSpace),
-    metalness: p.metallic,
-    roughness: p.roughness,
-    envMap,
-    envMapIntensity: p.scale,
-  });
-  scene.add(new THREE.Mesh(new THREE.SphereGeometry(1, 512, 256), material));
+  const glb = sphereGlb(p, 512);
+  const gltf = await new GLTFLoader().parseAsync(glb.buffer, '');
+  let mesh = null;
+  gltf.scene.traverse((o) => { if (o.isMesh) mesh = o; });
+  if (!mesh) fail('GLTFLoader gave no mesh');
+  const material = mesh.material;
+  material.envMap = envMap;
+  material.envMapIntensity = p.scale;
+  material.needsUpdate = true;
+  scene.add(gltf.scene);
 
   const camera = new THREE.OrthographicCamera(-1.1, 1.1, 1.1, -1.1, 0.1, 100);
   if (p.view === 'side') camera.position.set(10, 0, 0);
@@ -76,7 +82,7 @@ async function main() {
   return [
     `three ${THREE.REVISION}: HDRLoader (${hdr.image.width}x${hdr.image.height}, ${hdr.type === THREE.FloatType ? 'float' : 'half'}) -> PMREMGenerator.fromEquirectangular`,
     `PMREM cube ${envTarget.width}^2, ${levels} levels (roughness(lod) = 1 - sqrt(1 - lod/maxLod))`,
-    'MeshStandardMaterial, envMapIntensity ' + p.scale + ', envMapRotation identity (three equirect u,v = ibl\'s)',
+    `GLTFLoader: ${material.type}${p.ext ? ' (' + Object.keys(p.ext).join(', ') + ')' : ''}, envMapIntensity ${p.scale}, envMapRotation identity (three equirect u,v = ibl's)`,
     'NoToneMapping, SRGBColorSpace output',
   ].join('; ');
 }
