@@ -339,7 +339,7 @@ vec3 tracePath(Surface p, vec3 position, vec3 view, inout PathSampler numbers) {
     bool sidedByPlane = pathTransmissionLobe(brdf);
     if (pathCrossesStraight(brdf)) {
       if (++crossings > kMaxCrossings) break;
-      float chance = pastLastBounce ? 1.0 : pathTransmissionProbability(brdf);
+      float chance = pastLastBounce ? 1.0 : pathTransmissionProbability(brdf, v);
       straight = pastLastBounce || pathUniform(numbers) < chance;
       if (straight)
         throughput *= pathStraightTransmittance(brdf, v) / chance;

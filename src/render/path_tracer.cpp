@@ -282,7 +282,7 @@ glm::vec3 tracePath(const PathTracerScene& s, SurfacePoint p, glm::vec3 position
     const bool sidedByPlane = shared::pathTransmissionLobe(brdf.b);
     if (shared::pathCrossesStraight(brdf.b)) {
       if (++crossings > kMaxCrossings) break;
-      const float chance = pastLastBounce ? 1.0f : shared::pathTransmissionProbability(brdf.b);
+      const float chance = pastLastBounce ? 1.0f : shared::pathTransmissionProbability(brdf.b, v);
       straight = pastLastBounce || sampler.uniform() < chance;
       if (straight)
         throughput *= shared::pathStraightTransmittance(brdf.tables, brdf.b, v) / chance;

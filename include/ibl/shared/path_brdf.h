@@ -427,12 +427,19 @@ IBL_FN float pathSpecularProbability(PathBrdf b) {
 }
 
 // The probability of picking the transmission when sampling the layer below (then the specular
-// or the diffuse by pathSpecularProbability): by its color's share, kept within 0.05 to 0.95.
-IBL_FN float pathTransmissionProbability(PathBrdf b) {
+// or the diffuse by pathSpecularProbability), seen from v: by its share of what the layer
+// sends on at n.v, where the Fresnel term decides between reflection and refraction: the
+// transmission's color times the share the specular layer leaves (diffuseWeight), against the
+// reflection's Fresnel and the diffuse's color under the same share; within 0.05 to 0.95. So a
+// grazing view, and one from inside a volume past the critical angle (fresnelCosine: total
+// internal reflection), mostly reflects, as the light does.
+IBL_FN float pathTransmissionProbability(PathBrdf b, vec3 v) {
   if (!pathTransmissionLobe(b)) return 0.0f;
-  float t = luminance(b.transmissionColor);
-  float rest = luminance(b.reflectance.f0) + 0.04f + luminance(b.diffuseColor);
-  return clamp(t / (t + rest), 0.05f, 0.95f);
+  float c = fresnelCosine(clamp(v.z, 1e-4f, 1.0f), b.transmissionEta);
+  float passed = diffuseWeight(b.reflectance, c);
+  float t = luminance(b.transmissionColor) * passed;
+  float rest = luminance(fresnelOf(b.reflectance, c)) + luminance(b.diffuseColor) * passed;
+  return t + rest > 0.0f ? clamp(t / (t + rest), 0.05f, 0.95f) : 0.05f;
 }
 
 // The density per solid angle of samplePathBrdf's direction l (single scattering for the
@@ -440,7 +447,7 @@ IBL_FN float pathTransmissionProbability(PathBrdf b) {
 IBL_FN float pathBrdfPdf(PathBrdf b, vec3 v, vec3 l) {
   float pSheen = pathSheenProbability(b);
   float pCoat = pathCoatProbability(b);
-  float pt = pathTransmissionProbability(b);
+  float pt = pathTransmissionProbability(b, v);
   if (l.z <= 0.0f)
     return pt > 0.0f && l.z < 0.0f
                ? (1.0f - pCoat) * (1.0f - pSheen) * pt * pathTransmissionPdf(b, v, l)
@@ -532,7 +539,7 @@ IBL_FN PathBrdfSample samplePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v,
     s.direction = sampleCosineHemisphere(xi);
   } else {
     choose = (choose - pSheen) / (1.0f - pSheen);
-    float pt = pathTransmissionProbability(b);
+    float pt = pathTransmissionProbability(b, v);
     below = choose < pt;
     choose = below ? 0.0f : (choose - pt) / (1.0f - pt);
     if (below) {
