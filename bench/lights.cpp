@@ -33,7 +33,9 @@ int main(int argc, char** argv) {
         metal ? "metal" : "dielectric", m.baseColor.x, spp);
     fmt::print("| light |");
     for (float r : roughnesses) fmt::print(" r = {} |", r);
-    fmt::print("\n| --- |{}\n", std::string(std::size(roughnesses) * 6, '-') + " |");
+    fmt::print("\n| --- |");
+    for (std::size_t k = 0; k < std::size(roughnesses); ++k) fmt::print(" --- |");
+    fmt::print("\n");
     for (LightType type : types) {
       // Area lights: Frostbite's approximations and LTCs against the same reference.
       const bool area = type >= LightType::Sphere;
