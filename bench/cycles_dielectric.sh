@@ -14,18 +14,9 @@
 set -euo pipefail
 IBL=${1:?usage: cycles_dielectric.sh IBL_BINARY [SPP]}
 SPP=${2:-512}
-ROOT=$(cd "$(dirname "$0")/.." && pwd)
-if ! command -v blender >/dev/null 2>&1; then
-  echo "cycles_dielectric.sh: blender is not on PATH (apt-get install blender); skipped"
-  exit 0
-fi
-IBL=$(cd "$(dirname "$IBL")" && pwd)/$(basename "$IBL")
-OUT=${OUT:-$(mktemp -d /tmp/ibl-cycles-dielectric.XXXXXX)}
-ENV_MAP=$ROOT/data/hdri/park.exr
-SIZE=128x128
-luminance() {  # the mean Rec. 709 luminance of an image, from `ibl info`
-  "$IBL" info "$1" | awk '/^mean/ { printf "%.6f", 0.2126 * $2 + 0.7152 * $3 + 0.0722 * $4 }'
-}
+NAME=cycles_dielectric.sh
+# shellcheck source=bench/cycles_common.sh
+source "$(dirname "$0")/cycles_common.sh"
 figures() {  # figures IBL CYCLES: the ratio of their means, frame and median block error
   local a b ratio
   a=$(luminance "$1")

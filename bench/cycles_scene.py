@@ -43,6 +43,10 @@ The scene, and how it matches ibl's:
   ibl). A white metal has Fresnel 1 in both (ibl's Schlick with F0 = f90 = 1). Cycles 3.4's
   GGX uses the separable Smith masking-shadowing G1(v) G1(l); ibl's the height-correlated
   form, which is slightly brighter at r = 0.5 (a known few-percent difference in brightness).
+- Glass (`--glass IOR`, bench/cycles_transmission.sh; `--geometry mesh`, as a point's sphere has
+  no inside): a Glass BSDF, white, GGX or Multiscatter GGX, its exact dielectric Fresnel (glTF's:
+  Schlick's); `--attenuation-color R,G,B --attenuation-distance D` adds a Volume Absorption of the
+  same coefficient as KHR_materials_volume's, -ln(c) / D. Transmission bounces as --bounces.
 - Light paths. Only the environment, seen through the sphere's reflection: max bounces 1
   (camera -> sphere -> environment; the sphere is convex, it never sees itself), caustics on
   (irrelevant), no clamping, Filter Glossy 0, no denoising, no adaptive sampling, no light tree
@@ -114,7 +118,14 @@ def parse_args():
                    help="--scene sphere: a black dielectric of this F0 (Principled BSDF, "
                    "Specular = F0 / 0.08, Specular Tint 0) instead of the white metal")
     p.add_argument("--multiscatter", action="store_true",
-                   help="with --dielectric-f0: Cycles' multiple-scattering GGX")
+                   help="with --dielectric-f0 or --glass: Cycles' multiple-scattering GGX")
+    p.add_argument("--glass", type=float, default=None, metavar="IOR",
+                   help="--scene sphere: a solid glass sphere of this index (Glass BSDF, white, "
+                   "--geometry mesh) instead of the white metal")
+    p.add_argument("--attenuation-color", default=None, metavar="R,G,B",
+                   help="with --glass: KHR_materials_volume's attenuation color, kept after "
+                   "--attenuation-distance inside (a Volume Absorption shader)")
+    p.add_argument("--attenuation-distance", type=float, default=1.0)
     p.add_argument("--fov", type=float, default=40.0, help="vertical field of view, degrees")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--bounces", type=int, default=None,
@@ -132,6 +143,8 @@ def parse_args():
         a.bounces = 1 if a.scene == "sphere" else 4
     if a.scene == "sphere" and not a.env:
         p.error("--scene sphere needs --env")
+    if a.glass is not None and a.geometry != "mesh":
+        p.error("--glass needs --geometry mesh (a point's sphere has no inside for the volume)")
     if a.scene == "room" and not (a.gltf and a.lights):
         p.error("--scene room needs --gltf and --lights")
     return a
@@ -146,17 +159,23 @@ def clear_scene():
             coll.remove(b)
 
 
-def make_material(roughness):
-    m = bpy.data.materials.new("metal")
+def node_material(name):
+    """A new material of nodes: the material, its node tree (empty) and its Cycles output node."""
+    m = bpy.data.materials.new(name)
     m.use_nodes = True
     nt = m.node_tree
     nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    out.target = "CYCLES"
+    return m, nt, out
+
+
+def make_material(roughness):
+    m, nt, out = node_material("metal")
     g = nt.nodes.new("ShaderNodeBsdfGlossy")
     g.distribution = "GGX"
     g.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
     g.inputs["Roughness"].default_value = roughness
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
-    out.target = "CYCLES"
     nt.links.new(g.outputs["BSDF"], out.inputs["Surface"])
     return m
 
@@ -164,10 +183,7 @@ def make_material(roughness):
 def make_dielectric(f0, roughness, multiscatter):
     """A black dielectric whose specular lobe has F0 `f0`: Cycles 3.4's Principled BSDF takes F0 =
     0.08 x Specular (KHR_materials_specular's conversion table names the same)."""
-    m = bpy.data.materials.new("dielectric")
-    m.use_nodes = True
-    nt = m.node_tree
-    nt.nodes.clear()
+    m, nt, out = node_material("dielectric")
     b = nt.nodes.new("ShaderNodeBsdfPrincipled")
     b.distribution = "MULTI_GGX" if multiscatter else "GGX"
     b.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
@@ -177,9 +193,32 @@ def make_dielectric(f0, roughness, multiscatter):
     b.inputs["Roughness"].default_value = roughness
     b.inputs["Sheen"].default_value = 0.0
     b.inputs["Clearcoat"].default_value = 0.0
-    out = nt.nodes.new("ShaderNodeOutputMaterial")
-    out.target = "CYCLES"
     nt.links.new(b.outputs["BSDF"], out.inputs["Surface"])
+    return m
+
+
+def make_glass(ior, roughness, multiscatter, attenuation_color, attenuation_distance):
+    """A solid glass sphere of index `ior`: Cycles 3.4's Glass BSDF (reflection and refraction by
+    its exact dielectric Fresnel; KHR_materials_volume's are Schlick's), white. An attenuation
+    color c after a distance d is KHR_materials_volume's sigma = -ln(c) / d per channel; Cycles'
+    Volume Absorption takes sigma = (1 - color) density, so density 1 and color 1 + ln(c) / d."""
+    m, nt, out = node_material("glass")
+    g = nt.nodes.new("ShaderNodeBsdfGlass")
+    g.distribution = "MULTI_GGX" if multiscatter else "GGX"
+    g.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    g.inputs["Roughness"].default_value = roughness
+    g.inputs["IOR"].default_value = ior
+    nt.links.new(g.outputs["BSDF"], out.inputs["Surface"])
+    if attenuation_color:
+        c = [float(v) for v in attenuation_color.split(",")]
+        color = [1.0 + math.log(v) / attenuation_distance for v in c]
+        if min(color) < 0.0:
+            raise SystemExit("cycles_scene.py: --attenuation-color too dark for --attenuation-distance "
+                             "(Volume Absorption's color would be below 0)")
+        a = nt.nodes.new("ShaderNodeVolumeAbsorption")
+        a.inputs["Color"].default_value = (*color, 1.0)
+        a.inputs["Density"].default_value = 1.0
+        nt.links.new(a.outputs["Volume"], out.inputs["Volume"])
     return m
 
 
@@ -321,7 +360,8 @@ def setup_render(a):
     c.diffuse_bounces = a.bounces if a.scene == "room" else 0
     if a.scene == "room":
         c.light_sampling_threshold = 0.0  # no probabilistic termination of light samples
-    c.transmission_bounces = 0
+    # A glass sphere's light goes in and out through refractions and reflections inside.
+    c.transmission_bounces = a.bounces if a.glass is not None else 0
     c.volume_bounces = 0
     c.transparent_max_bounces = 0
     c.caustics_reflective = True
@@ -499,8 +539,13 @@ def main():
     clear_scene()
     s = bpy.context.scene
     s.render.engine = "CYCLES"
-    material = (make_material(a.roughness) if a.dielectric_f0 is None else
-                make_dielectric(a.dielectric_f0, a.roughness, a.multiscatter))
+    if a.glass is not None:
+        material = make_glass(a.glass, a.roughness, a.multiscatter, a.attenuation_color,
+                              a.attenuation_distance)
+    elif a.dielectric_f0 is not None:
+        material = make_dielectric(a.dielectric_f0, a.roughness, a.multiscatter)
+    else:
+        material = make_material(a.roughness)
     make_sphere(a.geometry, material)
     make_world(a.env, a.env_rotate_z, a.env_mirror, a.clamp_negative)
     distance = make_camera(a.fov)

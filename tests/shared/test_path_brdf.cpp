@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibl/shared/path_brdf.h"
+#include "support/quadrature.hpp"
 
 using namespace ibl;
 
@@ -67,16 +68,8 @@ TEST(PathBrdf, DensityIntegratesToTheShareOfSamplesAboveTheHorizon) {
       kTables, glm::vec3(0.5f), 0.3f, 0.6f, gltfDefaultReflectance(glm::vec3(0.5f), 0.3f),
       glm::vec3(0.0f), 0.0f, v, shared::kLobesAll, singleScattering(0));
   // Over the hemisphere in (cos theta, phi), where d omega = d cos d phi: 512 x 512 cells.
-  constexpr int kCells = 512;
-  double integral = 0.0;
-  for (int i = 0; i < kCells; ++i)
-    for (int j = 0; j < kCells; ++j) {
-      const double c = (i + 0.5) / kCells, phi = 2.0 * std::numbers::pi * (j + 0.5) / kCells;
-      const double s = std::sqrt(1.0 - c * c);
-      const glm::vec3 l(static_cast<float>(s * std::cos(phi)),
-                        static_cast<float>(s * std::sin(phi)), static_cast<float>(c));
-      integral += shared::pathBrdfPdf(b, v, l) * (2.0 * std::numbers::pi / (kCells * kCells));
-    }
+  const double integral = test::integrateOverHemisphere(
+      [&](glm::vec3 l) { return double(shared::pathBrdfPdf(b, v, l)); }, 512);
   constexpr int kSamples = 1 << 16;
   int above = 0;
   const std::uint32_t key = shared::pathSamplerKey(3u, 0u, 4u, 0u);

@@ -16,6 +16,7 @@
 
 #include "ibl/shared/path_brdf.h"
 #include "ibl/shared/transmission.h"
+#include "support/quadrature.hpp"
 
 using namespace ibl;
 
@@ -137,18 +138,12 @@ TEST(Transmission, RefractionDensityIntegratesToTheShareThatLands) {
   const glm::vec2 alpha(0.5f, 0.2f);
   for (float eta : {1.5f, 1.0f / 1.5f}) {
     const glm::vec3 v = unitFromAngles(1.1f, 0.4f);
-    constexpr int kCells = 768;
-    double integral = 0.0;
-    for (int i = 0; i < kCells; ++i)
-      for (int j = 0; j < kCells; ++j) {
-        const double c = -(i + 0.5) / kCells, phi = 2.0 * std::numbers::pi * (j + 0.5) / kCells;
-        const double s = std::sqrt(1.0 - c * c);
-        const glm::vec3 l(static_cast<float>(s * std::cos(phi)),
-                          static_cast<float>(s * std::sin(phi)), static_cast<float>(c));
-        const glm::vec3 h = shared::refractionHalfVector(v, l, eta);
-        integral += shared::ggxRefractionPdf(v, l, h, eta, alpha) *
-                    (2.0 * std::numbers::pi / (double(kCells) * kCells));
-      }
+    const double integral = test::integrateOverHemisphere(
+        [&](glm::vec3 l) {
+          return double(
+              shared::ggxRefractionPdf(v, l, shared::refractionHalfVector(v, l, eta), eta, alpha));
+        },
+        768, false);
     constexpr int kSamples = 1 << 16;
     int landed = 0;
     for (int k = 0; k < kSamples; ++k) {
@@ -190,12 +185,12 @@ TEST(Transmission, SmoothInterfaceKeepsAllItReceives) {
   }
 }
 
-// The choice between reflection and refraction follows the Fresnel term at the view: through a
-// smooth interface a reflection is chosen with probability F, clamped to [0.05, 0.95], and each
-// sample carries the light that goes its way over that probability: weight F / P(reflect) or
-// (1 - F) / P(refract), 1 wherever the clamp leaves F alone. Chosen by the transmission's color
-// alone (0.93 for clear glass), a reflection at 75 degrees (Schlick's F = 0.26) would weigh 3.5,
-// one past the critical angle inside 13.
+// The choice between reflection and refraction follows the Fresnel term at the microfacet: through
+// a smooth interface (alpha 1e-3: h is n) a sample reflects with probability F and refracts with
+// 1 - F, so that each carries the light that goes its way, F / F = (1 - F) / (1 - F) = 1: no
+// sample outweighs another. Chosen by the transmission's color alone (0.93 for clear glass), a
+// reflection at 75 degrees (Schlick's F = 0.26) would weigh 3.5; and past the critical angle
+// inside, where all reflects, 7 % of the samples would be lost to refractions that do not exist.
 TEST(Transmission, FresnelChoosesBetweenReflectionAndRefraction) {
   for (float eta : {1.5f, 1.0f / 1.5f, 0.0f})
     for (float theta : {0.5f, 1.0f, 1.3f, 1.45f}) {
@@ -206,61 +201,63 @@ TEST(Transmission, FresnelChoosesBetweenReflectionAndRefraction) {
       const float c =
           eta > 0.0f && eta < 1.0f ? (sin2 < 1.0f ? std::sqrt(1.0f - sin2) : 0.0f) : v.z;
       const float f = 0.04f + 0.96f * std::pow(1.0f - c, 5.0f);
-      const float pReflect = std::clamp(f, 0.05f, 0.95f);
+      const float pReflect = std::min(f, 1.0f);  // the share of samples that reflect
       const shared::PathBrdf b = glass(0.0f, eta, v);
       const std::uint32_t key = shared::pathSamplerKey(5u, 0u, 3u, 0u);
-      int reflected = 0, transmitted = 0, off = 0;
+      int reflected = 0, transmitted = 0, lost = 0, off = 0;
       float worst = 0.0f;
       for (std::uint32_t i = 0; i < 512; ++i) {
         shared::PathSampler numbers = shared::pathSamplerAt(key, i);
         const shared::PathBrdfSample s = shared::samplePathBrdf(kNoTables, b, v, numbers);
-        if (s.weight == glm::vec3(0.0f)) continue;  // total internal reflection: no refraction
-        const bool up = s.direction.z > 0.0f;
-        (up ? reflected : transmitted)++;
+        if (s.weight == glm::vec3(0.0f)) {
+          ++lost;
+          continue;
+        }
+        (s.direction.z > 0.0f ? reflected : transmitted)++;
         // GGX's long tails leave a few microfacets far from n even at alpha 1e-3, whose v.h and
         // masking differ from the view's: a few samples off by some percent.
-        const float error =
-            std::abs(s.weight.x - (up ? f / pReflect : (1.0f - f) / (1.0f - pReflect)));
+        const float error = std::abs(s.weight.x - 1.0f);
         off += error > 0.03f;
         worst = std::max(worst, error);
       }
       EXPECT_LT(off, 512 / 50) << "eta " << eta << ", theta " << theta;
       EXPECT_LT(worst, 0.2f) << "eta " << eta << ", theta " << theta;
-      // The share of samples that reflect (of those kept: past the critical angle, all).
-      const float kept = f >= 1.0f ? 1.0f : pReflect;
-      EXPECT_NEAR(reflected / float(reflected + transmitted), kept, 0.05f)
-          << "eta " << eta << ", theta " << theta;
+      // The share of samples that reflect; none is lost, past the critical angle either.
+      EXPECT_EQ(lost, 0) << "eta " << eta << ", theta " << theta;
+      EXPECT_NEAR(reflected / 512.0f, pReflect, 0.03f) << "eta " << eta << ", theta " << theta;
     }
 }
 
-// Sampling draws transmitted directions with the density pathBrdfPdf gives them: the mean
-// weight of the samples that go through equals the transmission integrated by a midpoint rule
-// over the lower hemisphere, for a volume and a thin wall.
+// Sampling draws directions with the density pathBrdfPdf gives them: the mean weight of the
+// samples that go through equals the transmission integrated by a midpoint rule over the lower
+// hemisphere, and that of those that reflect the reflection integrated over the upper one, for a
+// volume and a thin wall.
 TEST(Transmission, TransmittedSamplesWeighTheIntegral) {
   for (float eta : {1.5f, 0.0f}) {
     const glm::vec3 v = unitFromAngles(0.6f, 1.0f);
     const shared::PathBrdf b = glass(0.5f, eta, v);
-    constexpr int kCells = 768;
-    double integral = 0.0;
-    for (int i = 0; i < kCells; ++i)
-      for (int j = 0; j < kCells; ++j) {
-        const double c = -(i + 0.5) / kCells, phi = 2.0 * std::numbers::pi * (j + 0.5) / kCells;
-        const double s = std::sqrt(1.0 - c * c);
-        const glm::vec3 l(static_cast<float>(s * std::cos(phi)),
-                          static_cast<float>(s * std::sin(phi)), static_cast<float>(c));
-        integral += shared::pathTransmission(b, v, l).x *
-                    (2.0 * std::numbers::pi / (double(kCells) * kCells));
-      }
+    const double integral = test::integrateOverHemisphere(
+        [&](glm::vec3 l) { return double(shared::pathTransmission(b, v, l).x); }, 768, false);
+    // The reflection above, as evaluatePathBrdf gives it (single scattering, no walk).
+    const shared::PathSampler none =
+        shared::pathSamplerAt(shared::pathSamplerKey(1u, 0u, 3u, 0u), 0u);
+    const double reflection = test::integrateOverHemisphere(
+        [&](glm::vec3 l) {
+          return double(shared::evaluatePathBrdf(kNoTables, b, v, l, none, true).x);
+        },
+        768);
     constexpr int kSamples = 1 << 15;
-    double below = 0.0;
+    double below = 0.0, above = 0.0;
     const std::uint32_t key = shared::pathSamplerKey(11u, 0u, 3u, 0u);
     for (int i = 0; i < kSamples; ++i) {
       shared::PathSampler numbers = shared::pathSamplerAt(key, static_cast<std::uint32_t>(i));
       const shared::PathBrdfSample s = shared::samplePathBrdf(kNoTables, b, v, numbers);
-      if (s.direction.z < 0.0f) below += s.weight.x;
+      (s.direction.z < 0.0f ? below : above) += s.weight.x;
     }
     EXPECT_NEAR(below / kSamples, integral, 0.01 * integral) << "eta " << eta;
+    EXPECT_NEAR(above / kSamples, reflection, 0.02 * reflection) << "eta " << eta;
     EXPECT_GT(integral, 0.5);
+    EXPECT_GT(reflection, 0.03);
   }
 }
 

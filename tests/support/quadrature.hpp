@@ -39,6 +39,23 @@ double integrateOverPatch(const F& f, const Q& q, const M& m, const J& jacobian,
   return sum / (static_cast<double>(steps) * steps);
 }
 
+// The midpoint rule over the hemisphere of unit directions above the surface (+z; upper = false:
+// below it), in (cos theta, phi), where d omega = d cos d phi: cells x cells points. f(l) takes a
+// glm::vec3 and returns a number.
+template <typename F>
+double integrateOverHemisphere(const F& f, int cells, bool upper = true) {
+  double sum = 0.0;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j) {
+      const double c = (upper ? 1.0 : -1.0) * (i + 0.5) / cells;
+      const double phi = 2.0 * std::numbers::pi * (j + 0.5) / cells;
+      const double s = std::sqrt(1.0 - c * c);
+      sum += f(glm::vec3(static_cast<float>(s * std::cos(phi)),
+                         static_cast<float>(s * std::sin(phi)), static_cast<float>(c)));
+    }
+  return sum * 2.0 * std::numbers::pi / (double(cells) * cells);
+}
+
 // The unit direction at thetaDegrees from +z, phiDegrees around it from +x.
 inline glm::dvec3 direction(double thetaDegrees, double phiDegrees = 0.0) {
   const double t = thetaDegrees * std::numbers::pi / 180.0,

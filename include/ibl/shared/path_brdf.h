@@ -329,7 +329,9 @@ IBL_FN PathBrdf withoutTransmission(PathBrdf b) {
   return b;
 }
 
-// The density of samplePathTransmission's direction l (below the surface).
+// The density of a direction l below the surface, refracted through a visible normal of the
+// specular lobe (or, through a thin wall, reflected and mirrored), before the choice between
+// reflection and refraction (pathReflectionChoice).
 IBL_FN float pathTransmissionPdf(PathBrdf b, vec3 v, vec3 l) {
   float eta = b.transmissionEta;
   bool thin = eta == 0.0f;
@@ -341,17 +343,6 @@ IBL_FN float pathTransmissionPdf(PathBrdf b, vec3 v, vec3 l) {
   float reflected = smithGgxMaskingAnisotropic(vl, b.lobe.alpha) *
                     ggxDistributionAnisotropic(hl, b.lobe.alpha) / (4.0f * vl.z);
   return thin ? reflected : ggxRefractionPdf(vl, toLobeFrame(b, l), hl, eta, b.lobe.alpha);
-}
-
-// The transmission sampled: a visible normal of the specular lobe, v refracted through it (or,
-// through a thin wall, reflected and mirrored). vec3(0) where the sample leaves no direction
-// below the surface (total internal reflection, a reflection below the horizon).
-IBL_FN vec3 samplePathTransmission(PathBrdf b, vec3 v, vec2 xi) {
-  vec3 h = fromLobeFrame(
-      b, sampleGgxVisibleNormalAnisotropic(toLobeFrame(b, walkView(v)), xi, b.lobe.alpha));
-  vec3 l = b.transmissionEta == 0.0f ? mirrorThroughSurface(2.0f * dot(v, h) * h - v)
-                                     : refractThrough(v, h, b.transmissionEta);
-  return l.z < 0.0f ? normalize(l) : vec3(0.0f);
 }
 
 // f(v, l) (n.l) (the coat's lobe: f_coat (n_c.l)). With the walk, an unbiased estimate, drawn
@@ -426,13 +417,11 @@ IBL_FN float pathSpecularProbability(PathBrdf b) {
   return clamp(s / (s + d), 0.1f, 0.9f);
 }
 
-// The probability of picking the transmission when sampling the layer below (then the specular
-// or the diffuse by pathSpecularProbability), seen from v: by its share of what the layer
-// sends on at n.v, where the Fresnel term decides between reflection and refraction: the
-// transmission's color times the share the specular layer leaves (diffuseWeight), against the
-// reflection's Fresnel and the diffuse's color under the same share; within 0.05 to 0.95. So a
-// grazing view, and one from inside a volume past the critical angle (fresnelCosine: total
-// internal reflection), mostly reflects, as the light does.
+// The probability that a path crosses a smooth thin wall (pathCrossesStraight) rather than meets
+// the rest of its material, seen from v: the transmission's share of what the layer sends on at
+// n.v, where the Fresnel term decides between reflection and refraction (the wall's microfacets
+// are its normal): its color times the share the specular layer leaves (diffuseWeight), against
+// the reflection's Fresnel and the diffuse's color under the same share; within 0.05 to 0.95.
 IBL_FN float pathTransmissionProbability(PathBrdf b, vec3 v) {
   if (!pathTransmissionLobe(b)) return 0.0f;
   float c = fresnelCosine(clamp(v.z, 1e-4f, 1.0f), b.transmissionEta);
@@ -442,16 +431,65 @@ IBL_FN float pathTransmissionProbability(PathBrdf b, vec3 v) {
   return t + rest > 0.0f ? clamp(t / (t + rest), 0.05f, 0.95f) : 0.05f;
 }
 
+// With a transmission, the reflection and the transmission are one strategy: a visible normal h
+// of the specular lobe, then v reflected about it with this probability, else refracted through
+// it (Walter et al. 2007, section 5.3, who choose by the Fresnel term at h; Pharr, Jakob &
+// Humphreys, pbrt-v4, 9.7.2, alike). By the luminance of what each sends on at h, VoH = v.h: the
+// reflection's Fresnel against the transmission's color times the share the specular layer leaves
+// (diffuseWeight); 1 under total internal reflection, where no refraction exists (fresnelCosine:
+// 0 past the critical angle), and 0 where the reflection is not shaded (a capture's lobes).
+IBL_FN float pathReflectionChoice(PathBrdf b, float VoH) {
+  if (!pathSpecularLobe(b)) return 0.0f;
+  float c = fresnelCosine(clamp(VoH, 0.0f, 1.0f), b.transmissionEta);
+  float r = luminance(fresnelOf(b.reflectance, c));
+  float t = luminance(b.transmissionColor) * diffuseWeight(b.reflectance, c);
+  return r + t > 0.0f ? r / (r + t) : 1.0f;
+}
+
+// The probability of the diffuse lobe when sampling the layer below a transmission (the rest is
+// pathReflectionChoice's strategy): by its color's share against the reflection's and the
+// transmission's, within 0.05 to 0.95.
+IBL_FN float pathDiffuseProbabilityBesideTransmission(PathBrdf b) {
+  float d = luminance(b.diffuseColor);
+  if (!pathDiffuseLobe(b) || d <= 0.0f) return 0.0f;
+  float rest = luminance(b.reflectance.f0) + 0.04f + luminance(b.transmissionColor);
+  return clamp(d / (d + rest), 0.05f, 0.95f);
+}
+
+// The half vector of a direction l below the surface, for the transmission's strategy: through a
+// thin wall the reflection's of l mirrored, through a volume Walter's refraction half vector.
+IBL_FN vec3 pathTransmissionHalfVector(PathBrdf b, vec3 v, vec3 l) {
+  return b.transmissionEta == 0.0f ? normalize(v + mirrorThroughSurface(l))
+                                   : refractionHalfVector(v, l, b.transmissionEta);
+}
+
 // The density per solid angle of samplePathBrdf's direction l (single scattering for the
 // walk's specular: see samplePathBrdf).
 IBL_FN float pathBrdfPdf(PathBrdf b, vec3 v, vec3 l) {
   float pSheen = pathSheenProbability(b);
   float pCoat = pathCoatProbability(b);
-  float pt = pathTransmissionProbability(b, v);
-  if (l.z <= 0.0f)
-    return pt > 0.0f && l.z < 0.0f
-               ? (1.0f - pCoat) * (1.0f - pSheen) * pt * pathTransmissionPdf(b, v, l)
-               : 0.0f;
+  if (pathTransmissionLobe(b)) {
+    // The layer below: the diffuse, or a visible normal that reflects or refracts by
+    // pathReflectionChoice (samplePathBrdf).
+    float pd = pathDiffuseProbabilityBesideTransmission(b);
+    vec3 vl = toLobeFrame(b, walkView(v));
+    float below = 0.0f;
+    if (l.z < 0.0f) {
+      vec3 h = pathTransmissionHalfVector(b, v, l);
+      below =
+          (1.0f - pd) * (1.0f - pathReflectionChoice(b, dot(v, h))) * pathTransmissionPdf(b, v, l);
+    } else if (l.z > 0.0f) {
+      vec3 h = normalize(v + l);
+      // Visible normals, reflected: pdf(l) = G1(v) D(h) / (4 n.v).
+      float reflected = smithGgxMaskingAnisotropic(vl, b.lobe.alpha) *
+                        ggxDistributionAnisotropic(toLobeFrame(b, h), b.lobe.alpha) / (4.0f * vl.z);
+      below = pd * l.z / kPi + (1.0f - pd) * pathReflectionChoice(b, dot(v, h)) * reflected;
+    }
+    float p = (1.0f - pSheen) * below + (l.z > 0.0f ? pSheen * l.z / kPi : 0.0f);
+    if (pCoat > 0.0f) p = mix(p, l.z > 0.0f ? pathCoatPdf(b, v, l) : 0.0f, pCoat);
+    return p;
+  }
+  if (l.z <= 0.0f) return 0.0f;
   float ps = pathSpecularProbability(b);
   float p = (1.0f - ps) * l.z / kPi;
   if (ps > 0.0f) {
@@ -461,7 +499,7 @@ IBL_FN float pathBrdfPdf(PathBrdf b, vec3 v, vec3 l) {
     p += ps * smithGgxMaskingAnisotropic(vl, b.lobe.alpha) *
          ggxDistributionAnisotropic(h, b.lobe.alpha) / (4.0f * vl.z);
   }
-  p = pSheen * l.z / kPi + (1.0f - pSheen) * (1.0f - pt) * p;
+  p = pSheen * l.z / kPi + (1.0f - pSheen) * p;
   if (pCoat > 0.0f) p = mix(p, pathCoatPdf(b, v, l), pCoat);
   return p;
 }
@@ -539,11 +577,24 @@ IBL_FN PathBrdfSample samplePathBrdf(IBL_ALBEDO_TABLES PathBrdf b, vec3 v,
     s.direction = sampleCosineHemisphere(xi);
   } else {
     choose = (choose - pSheen) / (1.0f - pSheen);
-    float pt = pathTransmissionProbability(b, v);
-    below = choose < pt;
-    choose = below ? 0.0f : (choose - pt) / (1.0f - pt);
-    if (below) {
-      s.direction = samplePathTransmission(b, v, xi);
+    float pd = pathTransmissionLobe(b) ? pathDiffuseProbabilityBesideTransmission(b) : 0.0f;
+    if (pathTransmissionLobe(b) && choose >= pd) {
+      // A visible normal, then reflection or refraction through it by pathReflectionChoice
+      // (`choose` rescaled to a fresh uniform number).
+      choose = (choose - pd) / (1.0f - pd);
+      vec3 h = fromLobeFrame(
+          b, sampleGgxVisibleNormalAnisotropic(toLobeFrame(b, walkView(v)), xi, b.lobe.alpha));
+      vec3 reflected = 2.0f * dot(v, h) * h - v;
+      below = choose >= pathReflectionChoice(b, dot(v, h));
+      if (!below) {
+        s.direction = reflected;
+      } else {
+        vec3 t = b.transmissionEta == 0.0f ? mirrorThroughSurface(reflected)
+                                           : refractThrough(v, h, b.transmissionEta);
+        s.direction = t.z < 0.0f ? normalize(t) : vec3(0.0f);
+      }
+    } else if (pathTransmissionLobe(b)) {
+      s.direction = sampleCosineHemisphere(xi);
     } else if (choose < pathSpecularProbability(b)) {
       vec3 h =
           fromLobeFrame(b, sampleGgxVisibleNormalAnisotropic(toLobeFrame(b, v), xi, b.lobe.alpha));
