@@ -261,6 +261,47 @@ TEST(Transmission, TransmittedSamplesWeighTheIntegral) {
   }
 }
 
+// The same with every strategy of the layer at once: half the light transmitted (so a diffuse
+// lobe beside the transmission), tinted, under a clear coat, seen from outside a volume, from
+// inside it (eta < 1) and through a thin wall. Each sample's weight is f cos over the mixture's
+// density, so the mean weight above and below equals evaluatePathBrdf integrated there.
+TEST(Transmission, LayeredGlassSamplesWeighTheIntegral) {
+  for (float eta : {1.5f, 1.0f / 1.5f, 0.0f}) {
+    const glm::vec3 v = unitFromAngles(0.5f, 2.0f);
+    shared::PathShading o;
+    o.diffuseModel = 1;
+    o.multipleScattering = shared::kMultipleScatteringOff;
+    o.specularMicroOcclusion = false;
+    o.sheenVisibility = 0;
+    const glm::vec3 color(0.9f, 0.6f, 0.3f);
+    const shared::SpecularReflectance f =
+        shared::specularReflectance(color, 0.0f, 1.5f, 1.0f, glm::vec3(1.0f), false);
+    shared::PathBrdf b = shared::pathBrdfOf(kNoTables, color, 0.0f, 0.4f, f, glm::vec3(0.0f), 0.0f,
+                                            v, shared::kLobesAll, o);
+    b = shared::withTransmission(kNoTables, b, 0.5f, color, 0.0f, eta, v);
+    b = shared::withClearcoat(b, 1.0f, 0.3f, glm::vec3(0.0f, 0.0f, 1.0f), v);
+    const shared::PathSampler none =
+        shared::pathSamplerAt(shared::pathSamplerKey(1u, 0u, 3u, 0u), 0u);
+    const auto f_cos = [&](glm::vec3 l) {
+      return double(shared::evaluatePathBrdf(kNoTables, b, v, l, none, true).x);
+    };
+    const double above = test::integrateOverHemisphere(f_cos, 768);
+    const double below = test::integrateOverHemisphere(f_cos, 768, false);
+    constexpr int kSamples = 1 << 16;
+    double sampledAbove = 0.0, sampledBelow = 0.0;
+    const std::uint32_t key = shared::pathSamplerKey(13u, 0u, 3u, 0u);
+    for (int i = 0; i < kSamples; ++i) {
+      shared::PathSampler numbers = shared::pathSamplerAt(key, static_cast<std::uint32_t>(i));
+      const shared::PathBrdfSample s = shared::samplePathBrdf(kNoTables, b, v, numbers);
+      (s.direction.z < 0.0f ? sampledBelow : sampledAbove) += s.weight.x;
+    }
+    EXPECT_NEAR(sampledAbove / kSamples, above, 0.02 * above) << "eta " << eta;
+    EXPECT_NEAR(sampledBelow / kSamples, below, 0.02 * below) << "eta " << eta;
+    EXPECT_GT(below, 0.1) << "eta " << eta;
+    EXPECT_GT(above, 0.1) << "eta " << eta;
+  }
+}
+
 // Beer-Lambert from KHR_materials_volume's definition: after attenuationDistance the light keeps
 // attenuationColor of itself, after twice that its square; nothing is lost without a distance,
 // and an infinite path through a medium keeps nothing.
