@@ -39,15 +39,16 @@ const std::vector<float> kNoTable(static_cast<std::size_t>(shared::kAlbedoTableN
 const shared::AlbedoTables kNoTables{kNoTable.data(), kNoTable.data()};
 
 // A clear dielectric of index 1.5 (F0 = 0.04), transmission 1, white, of perceptual roughness r,
-// seen from v, whose far side has relative index eta (0: a thin wall); single scattering.
-shared::PathBrdf glass(float r, float eta, glm::vec3 v) {
+// seen from v, whose far side has relative index eta (0: a thin wall), of KHR_materials_specular's
+// strength `specular`; single scattering.
+shared::PathBrdf glass(float r, float eta, glm::vec3 v, float specular = 1.0f) {
   shared::PathShading o;
   o.diffuseModel = 1;
   o.multipleScattering = shared::kMultipleScatteringOff;
   o.specularMicroOcclusion = false;
   o.sheenVisibility = 0;
   const shared::SpecularReflectance f =
-      shared::specularReflectance(glm::vec3(1.0f), 0.0f, 1.5f, 1.0f, glm::vec3(1.0f), false);
+      shared::specularReflectance(glm::vec3(1.0f), 0.0f, 1.5f, specular, glm::vec3(1.0f), false);
   shared::PathBrdf b = shared::pathBrdfOf(kNoTables, glm::vec3(1.0f), 0.0f, r, f, glm::vec3(0.0f),
                                           0.0f, v, shared::kLobesAll, o);
   return shared::withTransmission(kNoTables, b, 1.0f, glm::vec3(1.0f), 0.0f, eta, v);
@@ -226,6 +227,18 @@ TEST(Transmission, FresnelChoosesBetweenReflectionAndRefraction) {
       EXPECT_EQ(lost, 0) << "eta " << eta << ", theta " << theta;
       EXPECT_NEAR(reflected / 512.0f, pReflect, 0.03f) << "eta " << eta << ", theta " << theta;
     }
+  // A weaker specular layer (KHR_materials_specular 0.5) leaves half of Schlick's f90 to the
+  // transmission, but past the critical angle inside no refraction exists: still none is lost.
+  const glm::vec3 v = unitFromAngles(1.0f, 0.4f);  // sin 1.0 = 0.84 > 1 / 1.5
+  const shared::PathBrdf weak = glass(0.0f, 1.0f / 1.5f, v, 0.5f);
+  const std::uint32_t key = shared::pathSamplerKey(6u, 0u, 3u, 0u);
+  int lost = 0;
+  for (std::uint32_t i = 0; i < 512; ++i) {
+    shared::PathSampler numbers = shared::pathSamplerAt(key, i);
+    const shared::PathBrdfSample s = shared::samplePathBrdf(kNoTables, weak, v, numbers);
+    lost += s.direction.z < 0.0f || s.weight == glm::vec3(0.0f);
+  }
+  EXPECT_EQ(lost, 0);
 }
 
 // Sampling draws directions with the density pathBrdfPdf gives them: the mean weight of the
@@ -262,7 +275,8 @@ TEST(Transmission, TransmittedSamplesWeighTheIntegral) {
 }
 
 // The same with every strategy of the layer at once: half the light transmitted (so a diffuse
-// lobe beside the transmission), tinted, under a clear coat, seen from outside a volume, from
+// lobe beside the transmission), tinted, under a sheen and a clear coat, seen from outside a
+// volume, from
 // inside it (eta < 1) and through a thin wall. Each sample's weight is f cos over the mixture's
 // density, so the mean weight above and below equals evaluatePathBrdf integrated there.
 TEST(Transmission, LayeredGlassSamplesWeighTheIntegral) {
@@ -276,7 +290,7 @@ TEST(Transmission, LayeredGlassSamplesWeighTheIntegral) {
     const glm::vec3 color(0.9f, 0.6f, 0.3f);
     const shared::SpecularReflectance f =
         shared::specularReflectance(color, 0.0f, 1.5f, 1.0f, glm::vec3(1.0f), false);
-    shared::PathBrdf b = shared::pathBrdfOf(kNoTables, color, 0.0f, 0.4f, f, glm::vec3(0.0f), 0.0f,
+    shared::PathBrdf b = shared::pathBrdfOf(kNoTables, color, 0.0f, 0.4f, f, glm::vec3(0.5f), 0.5f,
                                             v, shared::kLobesAll, o);
     b = shared::withTransmission(kNoTables, b, 0.5f, color, 0.0f, eta, v);
     b = shared::withClearcoat(b, 1.0f, 0.3f, glm::vec3(0.0f, 0.0f, 1.0f), v);

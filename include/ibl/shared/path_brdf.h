@@ -285,6 +285,13 @@ IBL_FN bool pathTransmissionLobe(PathBrdf b) {
   return b.transmissionColor != vec3(0.0f) && (pathSpecularLobe(b) || b.lobes == kLobesCapture);
 }
 
+// The microfacet normal through which v goes to l below the surface: through a thin wall the
+// reflection's half vector of l mirrored, through a volume Walter's refraction half vector.
+IBL_FN vec3 pathTransmissionHalfVector(PathBrdf b, vec3 v, vec3 l) {
+  return b.transmissionEta == 0.0f ? normalize(v + mirrorThroughSurface(l))
+                                   : refractionHalfVector(v, l, b.transmissionEta);
+}
+
 // The transmission's f(v, l) |n.l| at l below the surface, without the layers above it: the
 // thin wall's specular lobe at l mirrored (KHR_materials_transmission), or Walter's refraction
 // (KHR_materials_volume), each times what the specular layer lets through at its microfacet
@@ -294,7 +301,7 @@ IBL_FN vec3 pathTransmission(PathBrdf b, vec3 v, vec3 l) {
   bool thin = eta == 0.0f;
   // A thin wall: l mirrored, and its half vector. (Selected, not branched: see transmission.h.)
   vec3 m = mirrorThroughSurface(l);
-  vec3 h = thin ? normalize(v + m) : refractionHalfVector(v, l, eta);
+  vec3 h = pathTransmissionHalfVector(b, v, l);
   float value = thin ? pathSpecularDV(b, v, m) * m.z
                      : ggxRefractionValue(toLobeFrame(b, v), toLobeFrame(b, l), toLobeFrame(b, h),
                                           eta, b.lobe.alpha);
@@ -337,8 +344,7 @@ IBL_FN float pathTransmissionPdf(PathBrdf b, vec3 v, vec3 l) {
   bool thin = eta == 0.0f;
   vec3 vl = toLobeFrame(b, v);
   vl.z = max(vl.z, 1e-4f);
-  vec3 h = thin ? normalize(v + mirrorThroughSurface(l)) : refractionHalfVector(v, l, eta);
-  vec3 hl = toLobeFrame(b, h);
+  vec3 hl = toLobeFrame(b, pathTransmissionHalfVector(b, v, l));
   // A thin wall's l mirrored is v reflected: the reflection's density, G1(v) D(h) / (4 n.v).
   float reflected = smithGgxMaskingAnisotropic(vl, b.lobe.alpha) *
                     ggxDistributionAnisotropic(hl, b.lobe.alpha) / (4.0f * vl.z);
@@ -436,14 +442,17 @@ IBL_FN float pathTransmissionProbability(PathBrdf b, vec3 v) {
 // it (Walter et al. 2007, section 5.3, who choose by the Fresnel term at h; Pharr, Jakob &
 // Humphreys, pbrt-v4, 9.7.2, alike). By the luminance of what each sends on at h, VoH = v.h: the
 // reflection's Fresnel against the transmission's color times the share the specular layer leaves
-// (diffuseWeight); 1 under total internal reflection, where no refraction exists (fresnelCosine:
-// 0 past the critical angle), and 0 where the reflection is not shaded (a capture's lobes).
+// (diffuseWeight); 0 where the reflection is not shaded (a capture's lobes), and 1 under total
+// internal reflection, where no refraction exists (refractThrough's test: whatever the specular
+// layer's weight, which leaves some of Schlick's f90 to the transmission there).
 IBL_FN float pathReflectionChoice(PathBrdf b, float VoH) {
   if (!pathSpecularLobe(b)) return 0.0f;
-  float c = fresnelCosine(clamp(VoH, 0.0f, 1.0f), b.transmissionEta);
+  float eta = b.transmissionEta;
+  if (eta > 0.0f && eta < 1.0f && 1.0f - VoH * VoH >= eta * eta) return 1.0f;
+  float c = fresnelCosine(clamp(VoH, 0.0f, 1.0f), eta);
   float r = luminance(fresnelOf(b.reflectance, c));
-  float t = luminance(b.transmissionColor) * diffuseWeight(b.reflectance, c);
-  return r + t > 0.0f ? r / (r + t) : 1.0f;
+  float t = luminance(b.transmissionColor) * max(diffuseWeight(b.reflectance, c), 0.0f);
+  return r + t > 0.0f ? clamp(r / (r + t), 0.0f, 1.0f) : 1.0f;
 }
 
 // The probability of the diffuse lobe when sampling the layer below a transmission (the rest is
@@ -454,13 +463,6 @@ IBL_FN float pathDiffuseProbabilityBesideTransmission(PathBrdf b) {
   if (!pathDiffuseLobe(b) || d <= 0.0f) return 0.0f;
   float rest = luminance(b.reflectance.f0) + 0.04f + luminance(b.transmissionColor);
   return clamp(d / (d + rest), 0.05f, 0.95f);
-}
-
-// The half vector of a direction l below the surface, for the transmission's strategy: through a
-// thin wall the reflection's of l mirrored, through a volume Walter's refraction half vector.
-IBL_FN vec3 pathTransmissionHalfVector(PathBrdf b, vec3 v, vec3 l) {
-  return b.transmissionEta == 0.0f ? normalize(v + mirrorThroughSurface(l))
-                                   : refractionHalfVector(v, l, b.transmissionEta);
 }
 
 // The density per solid angle of samplePathBrdf's direction l (single scattering for the
