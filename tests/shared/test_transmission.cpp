@@ -65,6 +65,23 @@ glm::dvec3 meanSampleWeight(const shared::PathBrdf& b, glm::vec3 v, int n) {
   return sum / static_cast<double>(n);
 }
 
+// The mean weight (red) of n samples of b's lobes from v that go above the surface, and of those
+// that go below: each the integral of f cos over its hemisphere, if the samples have the density
+// they report.
+struct SidesWeight {
+  double above = 0.0, below = 0.0;
+};
+SidesWeight meanWeightBySide(const shared::PathBrdf& b, glm::vec3 v, int n, std::uint32_t seed) {
+  SidesWeight sum;
+  const std::uint32_t key = shared::pathSamplerKey(seed, 0u, 3u, 0u);
+  for (int i = 0; i < n; ++i) {
+    shared::PathSampler numbers = shared::pathSamplerAt(key, static_cast<std::uint32_t>(i));
+    const shared::PathBrdfSample s = shared::samplePathBrdf(kNoTables, b, v, numbers);
+    (s.direction.z < 0.0f ? sum.below : sum.above) += s.weight.x;
+  }
+  return {sum.above / n, sum.below / n};
+}
+
 }  // namespace
 
 // v refracted through h: a unit vector on the far side of the microfacet, in the plane of v and
@@ -259,16 +276,9 @@ TEST(Transmission, TransmittedSamplesWeighTheIntegral) {
           return double(shared::evaluatePathBrdf(kNoTables, b, v, l, none, true).x);
         },
         768);
-    constexpr int kSamples = 1 << 15;
-    double below = 0.0, above = 0.0;
-    const std::uint32_t key = shared::pathSamplerKey(11u, 0u, 3u, 0u);
-    for (int i = 0; i < kSamples; ++i) {
-      shared::PathSampler numbers = shared::pathSamplerAt(key, static_cast<std::uint32_t>(i));
-      const shared::PathBrdfSample s = shared::samplePathBrdf(kNoTables, b, v, numbers);
-      (s.direction.z < 0.0f ? below : above) += s.weight.x;
-    }
-    EXPECT_NEAR(below / kSamples, integral, 0.01 * integral) << "eta " << eta;
-    EXPECT_NEAR(above / kSamples, reflection, 0.02 * reflection) << "eta " << eta;
+    const SidesWeight sampled = meanWeightBySide(b, v, 1 << 15, 11u);
+    EXPECT_NEAR(sampled.below, integral, 0.01 * integral) << "eta " << eta;
+    EXPECT_NEAR(sampled.above, reflection, 0.02 * reflection) << "eta " << eta;
     EXPECT_GT(integral, 0.5);
     EXPECT_GT(reflection, 0.03);
   }
@@ -301,16 +311,9 @@ TEST(Transmission, LayeredGlassSamplesWeighTheIntegral) {
     };
     const double above = test::integrateOverHemisphere(f_cos, 768);
     const double below = test::integrateOverHemisphere(f_cos, 768, false);
-    constexpr int kSamples = 1 << 16;
-    double sampledAbove = 0.0, sampledBelow = 0.0;
-    const std::uint32_t key = shared::pathSamplerKey(13u, 0u, 3u, 0u);
-    for (int i = 0; i < kSamples; ++i) {
-      shared::PathSampler numbers = shared::pathSamplerAt(key, static_cast<std::uint32_t>(i));
-      const shared::PathBrdfSample s = shared::samplePathBrdf(kNoTables, b, v, numbers);
-      (s.direction.z < 0.0f ? sampledBelow : sampledAbove) += s.weight.x;
-    }
-    EXPECT_NEAR(sampledAbove / kSamples, above, 0.02 * above) << "eta " << eta;
-    EXPECT_NEAR(sampledBelow / kSamples, below, 0.02 * below) << "eta " << eta;
+    const SidesWeight sampled = meanWeightBySide(b, v, 1 << 16, 13u);
+    EXPECT_NEAR(sampled.above, above, 0.02 * above) << "eta " << eta;
+    EXPECT_NEAR(sampled.below, below, 0.02 * below) << "eta " << eta;
     EXPECT_GT(below, 0.1) << "eta " << eta;
     EXPECT_GT(above, 0.1) << "eta " << eta;
   }
