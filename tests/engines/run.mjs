@@ -111,6 +111,10 @@ const SLACK = 1.75;
 const FLOOR_SS = 0.02, FLOOR_OWN = 0.01, FLOOR_REF = 0.02;
 const DEFAULT_SS = 0.12, DEFAULT_OWN = 0.05, DEFAULT_REF = 0.12;
 const OWN_MARGIN = 0.01;
+// An extension's case: the engine is taken to ignore the extension where it is at least this much
+// (absolute, in the metric's units) nearer ibl's split sum without it than with it; nearer with it
+// by any amount is a pass; in between, no check.
+const UNDECIDED = 0.005;
 const MEASURED = {
   // engine: { case: [vs split sum, vs own pipeline, own pipeline vs reference] }, measured
   // 2026-12-03, the dielectrics again 2026-12-05 after glTF's fresnel_mix (docs/targets.md), the
@@ -174,6 +178,7 @@ const DEPARTURES = {
   },
   babylon: {
     'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': "Babylon's film over a dielectric brightens the rim toward white where the specification's (ibl's, the Sample Viewer's, three.js's) stays tinted",
+    'iridescence 1, film ior 1.3, 400 nm, metal r=0.25': "Babylon's film over a metal is as far from ibl's as the metal without it (the Sample Viewer and three.js: within 0.6 and 3.4 %)",
   },
 };
 function threshold(engine, key, which) {  // which: 'ss', 'own' or 'ref'
@@ -598,8 +603,10 @@ try {
       if (imgs.own) row.ownVsRef = compare(imgs.own.rgb, R, mask);
       if (imgs.ibl && imgs.own) row.iblVsOwn = compare(imgs.ibl.rgb, imgs.own.rgb, mask);
       row.ssVsRef = compare(S, R, mask);
-      // An extension's case: the engine's image against ibl's split sum of the same material without
-      // the extension; the engine must be nearer ibl's with it (else it ignored the extension).
+      // An extension's case: the engine's image (its ibl set, else its own pipeline) against ibl's
+      // split sum with the extension and without it. The engine must be nearer ibl's with it (else
+      // it ignored the extension); within UNDECIDED of the other, the check is not made (three.js's
+      // own pipeline differs from ibl's split sum as much as a dielectric's film does).
       const engineImg = (imgs.ibl ?? imgs.own).rgb;
       if (c.ext) {
         const base = cases.find((b) => !b.ext && b.m === c.m && b.r === c.r);
@@ -607,6 +614,7 @@ try {
         row.effect = compare(S0, S, mask);
         row.engineVsSs = compare(engineImg, S, mask);
         row.engineVsBase = compare(engineImg, S0, mask);
+        row.decided = row.engineVsSs < row.engineVsBase || row.engineVsSs >= row.engineVsBase + UNDECIDED;
       }
       // Checks
       row.checks = [];
@@ -627,7 +635,7 @@ try {
       }
       const departure = DEPARTURES[e.name]?.[c.key];
       if (departure) row.departure = departure;
-      if (row.effect !== undefined && !departure) {
+      if (row.effect !== undefined && row.decided && !departure) {
         row.checks.push({ what: `nearer ibl's split sum with ${Object.keys(c.ext).join(', ')} than without`, ok: row.engineVsSs < row.engineVsBase });
       }
       for (const ch of row.checks) ch.ok ? passes++ : failures++;
@@ -751,7 +759,7 @@ async function writeDocs(results, shots) {
       const r = results.find((row) => row.case === c && row.engine === e.name);
       if (!renders(e, c)) xlines.push(`| ${c.key} | ${e.name} | not rendered: the engine ignores ${Object.keys(c.ext).join(', ')} | | | | | | |`);
       else if (!r) xlines.push(`| ${c.key} | ${e.name} | failed | | | | | | |`);
-      else xlines.push(`| ${c.key} | ${e.name} | ${pc(r.engineVsSs)} | ${pc(r.iblVsRef ?? r.ownVsRef)} | ${pc(r.ssVsRef)} | ${pc(r.engineVsBase)}${r.departure ? ` (${r.departure})` : ''} | ${pc(r.effect)} | ${r.K} | ${r.clipped} |`);
+      else xlines.push(`| ${c.key} | ${e.name} | ${pc(r.engineVsSs)} | ${pc(r.iblVsRef ?? r.ownVsRef)} | ${pc(r.ssVsRef)} | ${pc(r.engineVsBase)}${r.departure ? ` (${r.departure})` : r.decided ? '' : ` (not checked: within ${100 * UNDECIDED} % of the other)`} | ${pc(r.effect)} | ${r.K} | ${r.clipped} |`);
     }
   }
   xlines.push('', xend);
