@@ -12,13 +12,16 @@
 // Page contract (tests/engines/pages/<engine>.html):
 //   ?set=ibl|own&bake=<url of the bake folder>&hdr=<url of the .hdr>&roughness=R&metallic=M
 //   &base=R,G,B&size=N&scale=K&view=front|side[&ext=<the material's glTF extensions as JSON>]
+//   [&backdrop=1]
 // The page draws into <canvas id="c"> of N x N pixels one sphere of radius 1 at the origin,
 // orthographic camera at (0,0,10) (view=side: (10,0,0)) looking at the origin, up +Y, 2.2 x 2.2
 // world units, right-handed world; glTF metallic-roughness material (base colour linear,
 // metallic M, perceptual roughness R, dielectric F0 0.04) with the KHR_materials_* extensions in
 // `ext` as the engine's glTF loader would apply them (the tangents along the parallels,
 // common.mjs's sphereMesh), no lights but the environment, whose
-// intensity is multiplied by K, no skybox (black), tone mapping off, sRGB-encoded output; then
+// intensity is multiplied by K, no skybox (black), tone mapping off, sRGB-encoded output; with
+// backdrop=1, common.mjs's opaque backdrop behind the sphere, drawn as the engine draws opaque
+// objects before transmissive ones (its glTF loader's way where it has one); then
 // sets window.iblDone = {ok: true, notes} once the frame is presented, or {ok: false, error}.
 
 import { spawnSync } from 'node:child_process';
@@ -29,6 +32,8 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import zlib from 'node:zlib';
+
+import { sphereGlb } from './pages/common.mjs';
 
 if (+process.versions.node.split('.')[0] < 20) {
   console.error(`run.mjs: Node ${process.versions.node} is too old: playwright-core needs Node >= 20`);
@@ -76,17 +81,19 @@ const ROT = {
 // extensions: the glTF material extensions the engine renders (docs/materials.md, "In the
 // engines"); a case using any other is left out for that engine and listed as not rendered.
 const ENGINES = [
-  { name: 'filament', page: 'filament.html', sets: ['ibl'], rot: 'filament', extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat'] },
-  { name: 'babylon', page: 'babylon.html', sets: ['ibl', 'own'], rot: 'babylon', extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_iridescence', 'KHR_materials_anisotropy'] },
-  { name: 'three', page: 'three.html', sets: ['own'], rot: 'identity', extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_iridescence', 'KHR_materials_anisotropy'] },
-  { name: 'sample-viewer', page: 'sample-viewer.html', sets: ['ibl'], rot: 'identity', ss: { key: 'nodominant', args: ['--no-dominant'] }, extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_iridescence', 'KHR_materials_anisotropy'] },
+  { name: 'filament', page: 'filament.html', sets: ['ibl'], rot: 'filament', extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_transmission', 'KHR_materials_volume'] },
+  { name: 'babylon', page: 'babylon.html', sets: ['ibl', 'own'], rot: 'babylon', extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_iridescence', 'KHR_materials_anisotropy', 'KHR_materials_transmission', 'KHR_materials_volume'] },
+  { name: 'three', page: 'three.html', sets: ['own'], rot: 'identity', extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_iridescence', 'KHR_materials_anisotropy', 'KHR_materials_transmission', 'KHR_materials_volume'] },
+  { name: 'sample-viewer', page: 'sample-viewer.html', sets: ['ibl'], rot: 'identity', ss: { key: 'nodominant', args: ['--no-dominant'] }, extensions: ['KHR_materials_ior', 'KHR_materials_specular', 'KHR_materials_clearcoat', 'KHR_materials_iridescence', 'KHR_materials_anisotropy', 'KHR_materials_transmission', 'KHR_materials_volume'] },
 ];
 
 // The material extensions' cases (docs/materials.md, "In the engines"): the glTF material's
 // extensions (the page's `ext`) and the `ibl render sphere` options that make the same material.
 // Each is one sphere of the core cases' base colour; the engines that do not render an extension
-// are left out of its case. Transmission and volume are not here: a lone sphere in front of a
-// black background has nothing behind it for the engines' screen-space transmission to show.
+// are left out of its case. The transmission cases (`backdrop`) put the opaque backdrop of
+// common.mjs (BACKDROP: a wall of stripes) behind the sphere, as each engine shows through a
+// transmissive surface what it drew of the opaque objects first; ibl renders the same scene as a
+// glTF (sphereGlb), and the metric covers the sphere's disk alone.
 const EXTENSION_CASES = [
   { name: 'ior 2', m: 0, r: 0.25, ext: { KHR_materials_ior: { ior: 2 } }, args: ['--ior', '2'] },
   // The same material: a specular layer of factor 1 changes nothing in glTF (Filament 1.53 needs it,
@@ -98,7 +105,16 @@ const EXTENSION_CASES = [
   { name: 'iridescence 1, film ior 1.3, 400 nm', m: 0, r: 0.25, ext: { KHR_materials_iridescence: { iridescenceFactor: 1, iridescenceIor: 1.3, iridescenceThicknessMaximum: 400 } }, args: ['--iridescence', '1', '--iridescence-ior', '1.3', '--iridescence-thickness', '400'] },
   { name: 'iridescence 1, film ior 1.3, 400 nm', m: 1, r: 0.25, ext: { KHR_materials_iridescence: { iridescenceFactor: 1, iridescenceIor: 1.3, iridescenceThicknessMaximum: 400 } }, args: ['--iridescence', '1', '--iridescence-ior', '1.3', '--iridescence-thickness', '400'] },
   { name: 'anisotropy 0.8', m: 1, r: 0.5, ext: { KHR_materials_anisotropy: { anisotropyStrength: 0.8 } }, args: ['--anisotropy', '0.8'] },
+  // A thin wall tints once per crossing; the engines draw the sphere's front alone (one crossing),
+  // ibl's reference both walls: a light tint keeps that difference small.
+  { name: 'transmission 1, thin wall', m: 0, r: 0, backdrop: true, base: [0.9, 0.8, 0.6], ext: { KHR_materials_transmission: { transmissionFactor: 1 } } },
+  { name: 'transmission 1, thin wall', m: 0, r: 0.3, backdrop: true, base: [0.9, 0.8, 0.6], ext: { KHR_materials_transmission: { transmissionFactor: 1 } } },
+  { name: 'transmission 1, volume 2 (attenuation 0.8, 0.6, 0.4 after 2)', m: 0, r: 0, backdrop: true, base: [1, 1, 1],
+    ext: { KHR_materials_transmission: { transmissionFactor: 1 }, KHR_materials_volume: { thicknessFactor: 2, attenuationDistance: 2, attenuationColor: [0.8, 0.6, 0.4] } } },
 ];
+// The backdrop cases' reference: the light crosses the sphere's two walls before it reaches the
+// backdrop (each crossing is a bounce).
+const BACKDROP_BOUNCES = 8;
 
 // Thresholds, from what was measured (MEASURED: the engine with ibl's files against
 // `ibl render --mode split-sum`, against the engine's own pipeline, and the engine's own
@@ -118,7 +134,8 @@ const UNDECIDED = 0.005;
 const MEASURED = {
   // engine: { case: [vs split sum, vs own pipeline, own pipeline vs reference] }, measured
   // 2026-12-03, the dielectrics again 2026-12-05 after glTF's fresnel_mix (docs/targets.md), the
-  // material extensions' cases 2026-12-07 (docs/materials.md, "In the engines")
+  // material extensions' cases 2026-12-07, the transmission cases (the sphere in front of the
+  // backdrop) 2026-12-07 (docs/materials.md, "In the engines")
   filament: {
     'metal r=0': [0.068], 'metal r=0.25': [0.034], 'metal r=0.5': [0.043], 'metal r=0.75': [0.044], 'metal r=1': [0.008],
     'dielectric r=0': [0.029], 'dielectric r=0.25': [0.025], 'dielectric r=0.5': [0.017], 'dielectric r=0.75': [0.018], 'dielectric r=1': [0.028],
@@ -127,6 +144,8 @@ const MEASURED = {
     'specular 0.3, dielectric r=0.25': [0.018],
     'clearcoat 1, coat r=0.1, dielectric r=0.5': [0.016],
     'clearcoat 1, coat r=0.1, metal r=0.5': [0.039],
+    'transmission 1, thin wall, dielectric r=0': [0.096], 'transmission 1, thin wall, dielectric r=0.3': [0.139],
+    'transmission 1, volume 2 (attenuation 0.8, 0.6, 0.4 after 2), dielectric r=0': [0.302],
   },
   babylon: {
     'metal r=0': [0.122], 'metal r=0.25': [0.071, 0.014, 0.085], 'metal r=0.5': [0.056, 0.008, 0.096], 'metal r=0.75': [0.059], 'metal r=1': [0.027, 0.004, 0.088],
@@ -139,6 +158,8 @@ const MEASURED = {
     'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': [0.126],
     'iridescence 1, film ior 1.3, 400 nm, metal r=0.25': [0.11],
     'anisotropy 0.8, metal r=0.5': [0.177],
+    'transmission 1, thin wall, dielectric r=0': [0.222], 'transmission 1, thin wall, dielectric r=0.3': [0.217],
+    'transmission 1, volume 2 (attenuation 0.8, 0.6, 0.4 after 2), dielectric r=0': [0.165],
   },
   // Its own HDRLoader + PMREMGenerator only (three.js reads no prefiltered files).
   three: {
@@ -152,6 +173,8 @@ const MEASURED = {
     'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': [null, null, 0.034],
     'iridescence 1, film ior 1.3, 400 nm, metal r=0.25': [null, null, 0.045],
     'anisotropy 0.8, metal r=0.5': [null, null, 0.345],
+    'transmission 1, thin wall, dielectric r=0': [null, null, 0.555], 'transmission 1, thin wall, dielectric r=0.3': [null, null, 0.807],
+    'transmission 1, volume 2 (attenuation 0.8, 0.6, 0.4 after 2), dielectric r=0': [null, null, 1.429],
   },
   // Against the split sum with --no-dominant (ENGINES' ss). Metal r = 1 is the viewer's
   // multiple-scattering term (Fdez-Aguera's) against ibl's: 0.75-0.95 of ibl's brightness
@@ -167,6 +190,8 @@ const MEASURED = {
     'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': [0.003],
     'iridescence 1, film ior 1.3, 400 nm, metal r=0.25': [0.006],
     'anisotropy 0.8, metal r=0.5': [0.113],
+    'transmission 1, thin wall, dielectric r=0': [0.041], 'transmission 1, thin wall, dielectric r=0.3': [0.064],
+    'transmission 1, volume 2 (attenuation 0.8, 0.6, 0.4 after 2), dielectric r=0': [0.053],
   },
 };
 // Where an engine departs from the extension's specification (measured; docs/materials.md, "In the
@@ -179,6 +204,15 @@ const DEPARTURES = {
   babylon: {
     'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': "Babylon's film over a dielectric brightens the rim toward white where the specification's (ibl's, the Sample Viewer's, three.js's) stays tinted",
     'iridescence 1, film ior 1.3, 400 nm, metal r=0.25': "Babylon's film over a metal is as far from ibl's as the metal without it (the Sample Viewer and three.js: within 0.6 and 3.4 %)",
+  },
+};
+// What the table says beside a case where the engine is measured but shows something the
+// specification does not ask for (the checks are made).
+const NOTES = {
+  filament: {
+    'transmission 1, thin wall, dielectric r=0': "gltfio 1.53 gives a transmissive material without KHR_materials_specular no reflection, as with KHR_materials_ior alone",
+    'transmission 1, thin wall, dielectric r=0.3': "no reflection, as at r = 0, and 6.7 % with a specular layer of factor 1; the frame behind as sharp as through smooth glass",
+    'transmission 1, volume 2 (attenuation 0.8, 0.6, 0.4 after 2), dielectric r=0': 'no reflection, as for the thin wall',
   },
 };
 function threshold(engine, key, which) {  // which: 'ss', 'own' or 'ref'
@@ -357,10 +391,15 @@ function toSrgb8(x) {
 // ---------------------------------------------------------------------------------------------
 // The cases and the ibl renders
 
-// id: the case's part of the file names.
+// id: the case's part of the file names; base: its base colour. A backdrop case has a `without`:
+// the same scene without the extensions (the sphere opaque), rendered in the split sum alone.
 const cases = [];
-for (const m of METALLIC) for (const r of ROUGHNESS) cases.push({ r, m, key: `${m ? 'metal' : 'dielectric'} r=${r}`, id: `m${m}-r${r}`, args: [] });
-EXTENSION_CASES.forEach((x, k) => cases.push({ ...x, key: `${x.name}, ${x.m ? 'metal' : 'dielectric'} r=${x.r}`, id: `x${k}-m${x.m}-r${x.r}` }));
+for (const m of METALLIC) for (const r of ROUGHNESS) cases.push({ r, m, base: BASE, key: `${m ? 'metal' : 'dielectric'} r=${r}`, id: `m${m}-r${r}`, args: [] });
+EXTENSION_CASES.forEach((x, k) => {
+  const c = { base: BASE, args: [], ...x, key: `${x.name}, ${x.m ? 'metal' : 'dielectric'} r=${x.r}`, id: `x${k}-m${x.m}-r${x.r}` };
+  if (c.backdrop) c.without = { ...c, ext: null, id: `${c.id}-without` };
+  cases.push(c);
+});
 const renders = (e, c) => !c.ext || Object.keys(c.ext).every((x) => e.extensions.includes(x));
 
 const engines = ENGINES.filter((e) => (!opt.only || opt.only.includes(e.name)));
@@ -388,19 +427,34 @@ const bakeKey = fileHash([path.join(bakeDir, 'specular.ktx2'), path.join(bakeDir
 // sum settings (ss) adds a split-sum-only camera `<rot>-<ss.key>`.
 const cameras = new Map();  // key -> eye
 const ssExtra = new Map();  // camera key -> extra split-sum arguments
+const camRot = new Map();   // camera key -> the engine's rotation (ROT's key)
 for (const e of present) {
   const eyeIbl = scale10(ROT[e.rot]([0, 0, 1]));
   cameras.set(e.rot, eyeIbl);
-  if (e.ss) { cameras.set(`${e.rot}-${e.ss.key}`, eyeIbl); ssExtra.set(`${e.rot}-${e.ss.key}`, e.ss.args); }
+  camRot.set(e.rot, e.rot);
+  if (e.ss) { cameras.set(`${e.rot}-${e.ss.key}`, eyeIbl); ssExtra.set(`${e.rot}-${e.ss.key}`, e.ss.args); camRot.set(`${e.rot}-${e.ss.key}`, e.rot); }
 }
 if (opt.orient) for (const [k, v] of Object.entries({ pz: [0, 0, 10], px: [10, 0, 0], nz: [0, 0, -10], nx: [-10, 0, 0] })) cameras.set('orient-' + k, v);
 
-function renderArgs(c, eyeIbl, mode, extra = []) {
-  return ['render', 'sphere', '--bake', bakeDir, '--camera', 'ortho', '--ortho-width', '2.2',
+// A backdrop case's scene as ibl renders it from camera camKey: the GLB the pages build, its root
+// turned by the engine's rotation (the engine's world -> ibl's, as the environment is).
+const sceneDir = path.join(W, 'scenes');
+fs.mkdirSync(sceneDir, { recursive: true });
+function sceneGlbPath(camKey, c) {
+  const rot = ROT[camRot.get(camKey)];
+  const [x, y, z] = [rot([1, 0, 0]), rot([0, 1, 0]), rot([0, 0, 1])];
+  const file = path.join(sceneDir, `${camRot.get(camKey)}-${c.id}.glb`);
+  const glb = sphereGlb({ base: c.base, metallic: c.m, roughness: c.r, ext: c.ext, backdrop: true }, 128, [...x, 0, ...y, 0, ...z, 0, 0, 0, 0, 1]);
+  if (!fs.existsSync(file) || !fs.readFileSync(file).equals(Buffer.from(glb))) fs.writeFileSync(file, glb);
+  return file;
+}
+function renderArgs(c, eyeIbl, mode, extra = [], glb = null) {
+  const scene = glb ? [glb, '--ssao', 'off', '--ssr', 'off', ...(mode === 'reference' ? ['--bounces', String(BACKDROP_BOUNCES)] : [])]
+    : ['sphere', '--base-color', vec(c.base), '--metallic', String(c.m), '--roughness', String(c.r), ...c.args];
+  return ['render', ...scene, '--bake', bakeDir, '--camera', 'ortho', '--ortho-width', '2.2',
     '--look-from', vec(eyeIbl), '--look-at', '0,0,0', '--up', '0,1,0', '--size', `${IMAGE}x${IMAGE}`,
-    '--base-color', vec(BASE), '--metallic', String(c.m), '--roughness', String(c.r),
     '--diffuse', 'lambert', '--background', '0,0,0', '--tonemap', 'none', '--ev100', '0', '-q',
-    '--mode', mode, ...(mode === 'reference' ? ['--spp', String(REF_SPP)] : ['--spp', '16']), ...c.args, ...extra];
+    '--mode', mode, ...(mode === 'reference' ? ['--spp', String(REF_SPP)] : ['--spp', '16']), ...extra];
 }
 const rdir = path.join(W, 'renders');
 function renderPath(camKey, c, mode) { return path.join(rdir, `${camKey}-${c.id}-${mode}.exr`); }
@@ -413,8 +467,12 @@ for (const [camKey, eyeIbl] of cameras)
       if (camKey.startsWith('orient') && (mode === 'reference' || c !== cases[2])) continue;
       if (ssExtra.has(camKey) && mode === 'reference') continue;  // the reference has no such settings
       if (c.ext && !present.some((e) => renders(e, c) && (camKey === e.rot || camKey === `${e.rot}-${e.ss?.key}`))) continue;
-      const out = renderPath(camKey, c, mode);
-      if (cached(out, renderArgs(c, eyeIbl, mode, ssExtra.get(camKey) ?? []), bakeKey)) nRendered++;
+      if (c.backdrop && camKey.startsWith('orient')) continue;
+      for (const cc of mode === 'split-sum' && c.without ? [c, c.without] : [c]) {
+        const out = renderPath(camKey, cc, mode);
+        const glb = cc.backdrop ? sceneGlbPath(camKey, cc) : null;
+        if (cached(out, renderArgs(cc, eyeIbl, mode, ssExtra.get(camKey) ?? [], glb), glb ? bakeKey + fileHash([glb]) : bakeKey)) nRendered++;
+      }
     }
 log(`ibl renders: ${nRendered} made (${((Date.now() - tr) / 1000).toFixed(1)} s), the others cached`);
 
@@ -512,8 +570,8 @@ try {
   async function capture(e, set, c, scale) {
     const q = new URLSearchParams({
       set, bake: '/work/bake', hdr: '/work/apartment.hdr', roughness: String(c.r), metallic: String(c.m),
-      base: BASE.join(','), size: String(IMAGE), scale: String(scale), view: 'front',
-      ...(c.ext ? { ext: JSON.stringify(c.ext) } : {}),
+      base: c.base.join(','), size: String(IMAGE), scale: String(scale), view: 'front',
+      ...(c.ext ? { ext: JSON.stringify(c.ext) } : {}), ...(c.backdrop ? { backdrop: '1' } : {}),
     });
     const page = await context.newPage();
     const consoleLines = [];
@@ -569,7 +627,13 @@ try {
       const ref = readExr(renderPath(camKey, c, 'reference'));
       // The sphere's pixels: fully covered in both renders, and their 4 neighbours too.
       const mask0 = new Uint8Array(ss.w * ss.h);
-      const full = (i) => ss.A[i] >= 0.999 && ref.A[i] >= 0.999;
+      // A backdrop case covers the whole image: its mask is the sphere's disk (radius 1 in the
+      // view's 2.2 units), less two pixels at the rim.
+      const inDisk = (i) => {
+        const u = (((i % ss.w) + 0.5) / ss.w) * 2.2 - 1.1, v = ((Math.floor(i / ss.w) + 0.5) / ss.h) * 2.2 - 1.1;
+        return Math.hypot(u, v) < 1 - (2 * 2.2) / ss.w;
+      };
+      const full = (i) => ss.A[i] >= 0.999 && ref.A[i] >= 0.999 && (!c.backdrop || inDisk(i));
       for (let y = 1; y < ss.h - 1; y++)
         for (let x = 1; x < ss.w - 1; x++) {
           const i = y * ss.w + x;
@@ -609,7 +673,7 @@ try {
       // own pipeline differs from ibl's split sum as much as a dielectric's film does).
       const engineImg = (imgs.ibl ?? imgs.own).rgb;
       if (c.ext) {
-        const base = cases.find((b) => !b.ext && b.m === c.m && b.r === c.r);
+        const base = c.without ?? cases.find((b) => !b.ext && b.m === c.m && b.r === c.r);
         const S0 = exrScaled(readExr(renderPath(ssKey, base, 'split-sum')), K);
         row.effect = compare(S0, S, mask);
         row.engineVsSs = compare(engineImg, S, mask);
@@ -635,6 +699,7 @@ try {
       }
       const departure = DEPARTURES[e.name]?.[c.key];
       if (departure) row.departure = departure;
+      if (NOTES[e.name]?.[c.key]) row.note = NOTES[e.name][c.key];
       if (row.effect !== undefined && row.decided && !departure) {
         row.checks.push({ what: `nearer ibl's split sum with ${Object.keys(c.ext).join(', ')} than without`, ok: row.engineVsSs < row.engineVsBase });
       }
@@ -642,7 +707,7 @@ try {
       results.push(row);
       const f = (v) => (v === undefined ? '     -' : (100 * v).toFixed(1).padStart(5) + '%');
       log(`${e.name.padEnd(13)} ${c.key.padEnd(16)} K ${String(K).padEnd(7)} ibl/ss ${f(row.iblVsSs)} ibl/ref ${f(row.iblVsRef)} own/ref ${f(row.ownVsRef)} ibl/own ${f(row.iblVsOwn)} ss/ref ${f(row.ssVsRef)} clipped ${row.clipped}` +
-        (row.effect !== undefined ? ` extension's effect ${f(row.effect)}, engine vs ibl without it ${f(row.engineVsBase)}` : '') +
+        (row.effect !== undefined ? ` extension's effect ${f(row.effect)}, engine vs ibl ${f(row.engineVsSs)}, without it ${f(row.engineVsBase)}` : '') +
         row.checks.filter((x) => !x.ok).map((x) => `  FAILED ${x.what}`).join(''));
     }
   }
@@ -759,7 +824,7 @@ async function writeDocs(results, shots) {
       const r = results.find((row) => row.case === c && row.engine === e.name);
       if (!renders(e, c)) xlines.push(`| ${c.key} | ${e.name} | not rendered: the engine ignores ${Object.keys(c.ext).join(', ')} | | | | | | |`);
       else if (!r) xlines.push(`| ${c.key} | ${e.name} | failed | | | | | | |`);
-      else xlines.push(`| ${c.key} | ${e.name} | ${pc(r.engineVsSs)} | ${pc(r.iblVsRef ?? r.ownVsRef)} | ${pc(r.ssVsRef)} | ${pc(r.engineVsBase)}${r.departure ? ` (${r.departure})` : r.decided ? '' : ` (not checked: within ${100 * UNDECIDED} % of the other)`} | ${pc(r.effect)} | ${r.K} | ${r.clipped} |`);
+      else xlines.push(`| ${c.key} | ${e.name} | ${pc(r.engineVsSs)} | ${pc(r.iblVsRef ?? r.ownVsRef)} | ${pc(r.ssVsRef)} | ${pc(r.engineVsBase)}${r.departure ? ` (${r.departure})` : r.decided ? '' : ` (not checked: within ${100 * UNDECIDED} % of the other)`}${r.note ? ` (${r.note})` : ''} | ${pc(r.effect)} | ${r.K} | ${r.clipped} |`);
     }
   }
   xlines.push('', xend);
@@ -767,7 +832,8 @@ async function writeDocs(results, shots) {
   fs.writeFileSync(mdoc, mtext);
 
   sheet(results, shots, cases.filter((c) => !c.ext && [0, 0.5, 1].includes(c.r)), path.join(repo, 'docs', 'images', 'engines.png'));
-  sheet(results, shots, cases.filter((c) => c.ext), path.join(repo, 'docs', 'images', 'engines-extensions.png'));
+  sheet(results, shots, cases.filter((c) => c.ext && !c.backdrop), path.join(repo, 'docs', 'images', 'engines-extensions.png'));
+  sheet(results, shots, cases.filter((c) => c.backdrop), path.join(repo, 'docs', 'images', 'engines-transmission.png'));
 }
 
 // A sheet of the images: one row per image kind (ibl's renders from each engine's camera, then each

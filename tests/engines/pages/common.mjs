@@ -31,6 +31,8 @@ export function params({ set = 'ibl', sets = ['ibl', 'own'] } = {}) {
     view: q.get('view') || 'front',
     envRotation: num('envRotation', 0),
     ext: null,
+    // backdrop=1: the opaque backdrop (BACKDROP) behind the sphere.
+    backdrop: q.get('backdrop') === '1',
   };
   // ext: the material's glTF extensions as JSON, e.g. {"KHR_materials_clearcoat":{"clearcoatFactor":1}}.
   const ext = q.get('ext');
@@ -97,46 +99,85 @@ export function sphereMesh(seg = 128) {
   return { positions: new Float32Array(pos), tangents: new Float32Array(tan), uvs: new Float32Array(uv), indices: new Uint32Array(idx) };
 }
 
-// The sphere as a glTF binary (GLB) with one glTF metallic-roughness material and, where given,
-// the material's `extensions` (KHR_materials_*, as the page's `ext` parameter holds them).
-export function sphereGlb({ base, metallic, roughness, ext = null }, seg = 128) {
-  const m = sphereMesh(seg);
-  const arrays = [m.positions, m.positions, m.tangents, m.uvs, m.indices];  // POSITION, NORMAL, TANGENT, TEXCOORD_0, indices
-  const bin = new Uint8Array(arrays.reduce((n, a) => n + a.byteLength, 0));
-  const views = [];
-  let offset = 0;
-  arrays.forEach((a, k) => {
-    bin.set(new Uint8Array(a.buffer), offset);
-    views.push({ buffer: 0, byteOffset: offset, byteLength: a.byteLength, target: k === 4 ? 34963 : 34962 });
-    offset += a.byteLength;
+// The opaque backdrop of the transmission cases (run.mjs, TRANSMISSION_CASES): a wall of
+// vertical stripes facing +Z at z = BACKDROP.z, 2 * BACKDROP.half across, behind the sphere seen
+// from the front view; glTF dielectrics of roughness BACKDROP.roughness in two colors (linear).
+// What a transmissive sphere shows through it, each engine reads from its own frame of the opaque
+// objects drawn first.
+export const BACKDROP = { z: -1.5, half: 2, stripes: 8, colors: [[0.8, 0.8, 0.8], [0.1, 0.2, 0.4]], roughness: 1 };
+
+// The backdrop's stripes, one list of quads per color: positions, normals (+Z) and triangle
+// indices (counter-clockwise seen from +Z).
+export function backdropMesh() {
+  const { z, half, stripes } = BACKDROP;
+  return BACKDROP.colors.map((color, k) => {
+    const pos = [], nrm = [], idx = [];
+    for (let s = k; s < stripes; s += 2) {
+      const x0 = -half + (2 * half * s) / stripes, x1 = -half + (2 * half * (s + 1)) / stripes;
+      const v = pos.length / 3;
+      pos.push(x0, -half, z, x1, -half, z, x1, half, z, x0, half, z);
+      nrm.push(0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1);
+      idx.push(v, v + 1, v + 2, v, v + 2, v + 3);
+    }
+    return { color, positions: new Float32Array(pos), normals: new Float32Array(nrm), indices: new Uint32Array(idx) };
   });
-  const count = m.positions.length / 3;
-  const material = {
+}
+
+// The sphere as a glTF binary (GLB) with one glTF metallic-roughness material and, where given,
+// the material's `extensions` (KHR_materials_*, as the page's `ext` parameter holds them); with
+// `backdrop`, the backdrop's stripes too. `matrix` (column-major 4 x 4), where given, is the
+// root node's transform: ibl's renders of an engine whose world is turned against ibl's.
+export function sphereGlb({ base, metallic, roughness, ext = null, backdrop = false }, seg = 128, matrix = null) {
+  const m = sphereMesh(seg);
+  // [arrays (POSITION, NORMAL, TANGENT?, TEXCOORD_0?, indices), material]
+  const prims = [[[m.positions, m.positions, m.tangents, m.uvs, m.indices], {
     name: 'sphere',
-    pbrMetallicRoughness: {
-      baseColorFactor: [base[0], base[1], base[2], 1],
-      metallicFactor: metallic,
-      roughnessFactor: roughness,
-    },
+    pbrMetallicRoughness: { baseColorFactor: [base[0], base[1], base[2], 1], metallicFactor: metallic, roughnessFactor: roughness },
+    ...(ext ? { extensions: ext } : {}),
+  }]];
+  if (backdrop) {
+    backdropMesh().forEach((b, k) => prims.push([[b.positions, b.normals, null, null, b.indices], {
+      name: `backdrop ${k}`,
+      pbrMetallicRoughness: { baseColorFactor: [...b.color, 1], metallicFactor: 0, roughnessFactor: BACKDROP.roughness },
+    }]));
+  }
+  const arrays = prims.flatMap(([a]) => a.filter((x) => x));
+  const bin = new Uint8Array(arrays.reduce((n, a) => n + a.byteLength, 0));
+  const views = [], accessors = [], meshes = [];
+  let offset = 0;
+  const accessor = (a, type, target, minmax = null) => {
+    bin.set(new Uint8Array(a.buffer, a.byteOffset, a.byteLength), offset);
+    views.push({ buffer: 0, byteOffset: offset, byteLength: a.byteLength, target });
+    offset += a.byteLength;
+    const n = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4 }[type];
+    accessors.push({ bufferView: views.length - 1, componentType: a instanceof Uint32Array ? 5125 : 5126, count: a.length / n, type, ...(minmax ?? {}) });
+    return accessors.length - 1;
   };
-  if (ext) material.extensions = ext;
+  const bounds = (p) => {
+    const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < p.length; i++) { min[i % 3] = Math.min(min[i % 3], p[i]); max[i % 3] = Math.max(max[i % 3], p[i]); }
+    return { min, max };
+  };
+  prims.forEach(([[P, N, T, UV, I]], k) => {
+    const attributes = { POSITION: accessor(P, 'VEC3', 34962, bounds(P)), NORMAL: accessor(N, 'VEC3', 34962) };
+    if (T) attributes.TANGENT = accessor(T, 'VEC4', 34962);
+    if (UV) attributes.TEXCOORD_0 = accessor(UV, 'VEC2', 34962);
+    meshes.push({ primitives: [{ attributes, indices: accessor(I, 'SCALAR', 34963), material: k }] });
+  });
   const json = {
     asset: { version: '2.0', generator: 'ibl tests/engines' },
     ...(ext ? { extensionsUsed: Object.keys(ext) } : {}),
     scene: 0,
     scenes: [{ nodes: [0] }],
-    nodes: [{ mesh: 0, name: 'sphere' }],
-    meshes: [{ primitives: [{ attributes: { POSITION: 0, NORMAL: 1, TANGENT: 2, TEXCOORD_0: 3 }, indices: 4, material: 0 }] }],
-    materials: [material],
+    nodes: [
+      { name: 'root', children: meshes.map((_, k) => k + 1), ...(matrix ? { matrix } : {}) },
+      ...meshes.map((_, k) => ({ mesh: k, name: prims[k][1].name })),
+    ],
+    meshes,
+    materials: prims.map(([, material]) => material),
     buffers: [{ byteLength: bin.byteLength }],
     bufferViews: views,
-    accessors: [
-      { bufferView: 0, componentType: 5126, count, type: 'VEC3', min: [-1, -1, -1], max: [1, 1, 1] },
-      { bufferView: 1, componentType: 5126, count, type: 'VEC3' },
-      { bufferView: 2, componentType: 5126, count, type: 'VEC4' },
-      { bufferView: 3, componentType: 5126, count, type: 'VEC2' },
-      { bufferView: 4, componentType: 5125, count: m.indices.length, type: 'SCALAR' },
-    ],
+    accessors,
   };
   const js = new TextEncoder().encode(JSON.stringify(json));
   const jsPad = (4 - (js.length % 4)) % 4;

@@ -37,11 +37,11 @@
 // under SwiftShader).
 //
 // Contract (tests/engines/run.mjs): ?set=ibl|own&bake=URL&hdr=URL&roughness=R&metallic=M
-// &base=R,G,B&size=N&scale=K&view=front|side[&envRotation=DEG][&ext=JSON]; draws into <canvas id="c">, then
+// &base=R,G,B&size=N&scale=K&view=front|side[&envRotation=DEG][&ext=JSON][&backdrop=1]; draws into <canvas id="c">, then
 // window.iblDone = {ok, notes|error}.
 
 import { read as readKtx2 } from '/engines/node_modules/ktx-parse/dist/index.mjs';
-import { params, sphereMesh } from './common.mjs';
+import { params, sphereMesh, backdropMesh, BACKDROP } from './common.mjs';
 
 const VIEWER_BUNDLE = '/engines/node_modules/@khronosgroup/gltf-viewer/dist/gltf-viewer.module.js';
 
@@ -174,6 +174,20 @@ const EXTENSIONS = {
       gl.uniform1f(loc('u_IridescenceIor'), e.iridescenceIor ?? 1.3);
       // Without a thickness texture the film is iridescenceThicknessMaximum thick.
       gl.uniform1f(loc('u_IridescenceThicknessMaximum'), e.iridescenceThicknessMaximum ?? 400);
+    },
+  },
+  KHR_materials_transmission: {
+    define: 'MATERIAL_TRANSMISSION',
+    frame: true,
+    uniforms: (e, gl, loc) => gl.uniform1f(loc('u_TransmissionFactor'), e.transmissionFactor ?? 0),
+  },
+  KHR_materials_volume: {
+    define: 'MATERIAL_VOLUME',
+    uniforms: (e, gl, loc) => {
+      gl.uniform1f(loc('u_ThicknessFactor'), e.thicknessFactor ?? 0);
+      // The viewer's applyVolumeAttenuation takes a distance of 0 (its default) as none absorbed.
+      gl.uniform1f(loc('u_AttenuationDistance'), e.attenuationDistance ?? 0);
+      gl.uniform3fv(loc('u_AttenuationColor'), e.attenuationColor ?? [1, 1, 1]);
     },
   },
   KHR_materials_anisotropy: {
@@ -415,68 +429,143 @@ async function main() {
 
   const extensions = materialExtensions(p.ext);
   const program = viewerProgram(gl, sources, debugDefines, extensions);
+  // backdrop=1: the backdrop's stripes, opaque glTF dielectrics (their own permutation).
+  const opaqueProgram = p.backdrop ? viewerProgram(gl, sources, debugDefines, []) : null;
   const encode = encodeProgram(gl);
+  const transmission = extensions.some((x) => x.frame);
 
-  // Geometry.
-  const mesh = sphereMesh(512);
-  const vao = gl.createVertexArray();
-  gl.bindVertexArray(vao);
-  const attributes = [['a_position', mesh.positions, 3], ['a_normal', mesh.positions, 3]];  // unit sphere: normal = position
-  if (extensions.some((x) => x.tangents)) attributes.push(['a_tangent', mesh.tangents, 4]);
-  for (const [attr, data, size] of attributes) {
-    const loc = gl.getAttribLocation(program, attr);
-    if (loc < 0) fail(`the viewer's primitive.vert has no attribute ${attr}`);
-    gl.bindBuffer(gl.ARRAY_BUFFER, gl.createBuffer());
-    gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
-    gl.enableVertexAttribArray(loc);
-    gl.vertexAttribPointer(loc, size, gl.FLOAT, false, 0, 0);
+  // Geometry: a vertex array per program and mesh.
+  function vertexArray(prog, mesh, tangents) {
+    const vao = gl.createVertexArray();
+    gl.bindVertexArray(vao);
+    const attributes = [['a_position', mesh.positions, 3], ['a_normal', mesh.normals, 3]];
+    if (tangents) attributes.push(['a_tangent', mesh.tangents, 4]);
+    for (const [attr, data, size] of attributes) {
+      const l = gl.getAttribLocation(prog, attr);
+      if (l < 0) fail(`the viewer's primitive.vert has no attribute ${attr}`);
+      gl.bindBuffer(gl.ARRAY_BUFFER, gl.createBuffer());
+      gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
+      gl.enableVertexAttribArray(l);
+      gl.vertexAttribPointer(l, size, gl.FLOAT, false, 0, 0);
+    }
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, gl.createBuffer());
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, mesh.indices, gl.STATIC_DRAW);
+    gl.bindVertexArray(null);
+    return { vao, count: mesh.indices.length };
   }
-  const ibo = gl.createBuffer();
-  gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, ibo);
-  gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, mesh.indices, gl.STATIC_DRAW);
-  gl.bindVertexArray(null);
+  const sphere = sphereMesh(512);
+  sphere.normals = sphere.positions;  // unit sphere: normal = position
 
-  // Uniforms.
+  // Uniforms, as the viewer sets them per draw (gltf-viewer.module.js, drawPrimitive).
   const eyeDir = p.view === 'side' ? [1, 0, 0] : [0, 0, 1];
   const eye = eyeDir.map((x) => 10 * x);
-  const viewProj = mul(ortho(-1.1, 1.1, -1.1, 1.1, 0.1, 100), lookAt(eye, [0, 1, 0]));
+  const viewMatrix = lookAt(eye, [0, 1, 0]);
+  const projMatrix = ortho(-1.1, 1.1, -1.1, 1.1, 0.1, 100);
+  const viewProj = mul(projMatrix, viewMatrix);
   const identity = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
-  gl.useProgram(program);
-  const set = new Set();
-  const loc = (name) => {
-    const l = gl.getUniformLocation(program, name);
-    if (l === null) fail(`the viewer's shaders have no active uniform ${name}`);
-    set.add(name);
-    return l;
+  const FRAME = 1024;  // the viewer's opaqueFramebufferWidth and Height
+  const frameUnit = 3;
+  const others = new Set();
+  function setUniforms(prog, material, exts) {
+    gl.useProgram(prog);
+    const set = new Set();
+    const loc = (name) => {
+      const l = gl.getUniformLocation(prog, name);
+      if (l === null) fail(`the viewer's shaders have no active uniform ${name}`);
+      set.add(name);
+      return l;
+    };
+    gl.uniformMatrix4fv(loc('u_ViewProjectionMatrix'), false, viewProj);
+    gl.uniformMatrix4fv(loc('u_ModelMatrix'), false, identity);
+    gl.uniformMatrix4fv(loc('u_NormalMatrix'), false, identity);
+    gl.uniform3fv(loc('u_Camera'), eyeDir.map((x) => 1e6 * x));
+    gl.uniform4f(loc('u_BaseColorFactor'), material.base[0], material.base[1], material.base[2], 1);
+    gl.uniform1f(loc('u_MetallicFactor'), material.metallic);
+    gl.uniform1f(loc('u_RoughnessFactor'), material.roughness);
+    gl.uniform3f(loc('u_EmissiveFactor'), 0, 0, 0);
+    gl.uniform1i(loc('u_MipCount'), env.mipCount);
+    gl.uniform1f(loc('u_EnvIntensity'), p.scale * env.intensityScale);
+    gl.uniformMatrix3fv(loc('u_EnvRotation'), false, envRotation(p.envRotation));
+    for (const x of exts) x.uniforms(x.factors, gl, loc);
+    ['u_LambertianEnvSampler', 'u_GGXEnvSampler', 'u_GGXLUT'].forEach((name, unit) => env.bind(name, loc(name), unit));
+    if (exts.some((x) => x.frame)) {
+      // The opaque frame, its size and the matrices its lookup projects with.
+      gl.uniform1i(loc('u_TransmissionFramebufferSampler'), frameUnit);
+      gl.uniform2i(loc('u_TransmissionFramebufferSize'), FRAME, FRAME);
+      gl.uniformMatrix4fv(loc('u_ViewMatrix'), false, viewMatrix);
+      gl.uniformMatrix4fv(loc('u_ProjectionMatrix'), false, projMatrix);
+    }
+    // Every other active uniform keeps its default (0); a sampler among them would be an error.
+    const nUniforms = gl.getProgramParameter(prog, gl.ACTIVE_UNIFORMS);
+    for (let i = 0; i < nUniforms; i++) {
+      const info = gl.getActiveUniform(prog, i);
+      const name = info.name.replace(/\[0\]$/, '');
+      if (set.has(name)) continue;
+      if ([gl.SAMPLER_2D, gl.SAMPLER_CUBE, gl.SAMPLER_3D, gl.SAMPLER_2D_ARRAY].includes(info.type)) fail(`unexpected active sampler ${name}`);
+      others.add(name);
+    }
+  }
+  const drawables = [];
+  if (opaqueProgram) {
+    for (const b of backdropMesh()) {
+      drawables.push({ prog: opaqueProgram, ...vertexArray(opaqueProgram, b, false), material: { base: b.color, metallic: 0, roughness: BACKDROP.roughness }, exts: [], opaque: true });
+    }
+  }
+  drawables.push({ prog: program, ...vertexArray(program, sphere, extensions.some((x) => x.tangents)), material: p, exts: extensions, opaque: !transmission });
+  const draw = (d) => {
+    setUniforms(d.prog, d.material, d.exts);
+    gl.bindVertexArray(d.vao);
+    gl.drawElements(gl.TRIANGLES, d.count, gl.UNSIGNED_INT, 0);
+    gl.bindVertexArray(null);
   };
-  gl.uniformMatrix4fv(loc('u_ViewProjectionMatrix'), false, viewProj);
-  gl.uniformMatrix4fv(loc('u_ModelMatrix'), false, identity);
-  gl.uniformMatrix4fv(loc('u_NormalMatrix'), false, identity);
-  gl.uniform3fv(loc('u_Camera'), eyeDir.map((x) => 1e6 * x));
-  gl.uniform4f(loc('u_BaseColorFactor'), p.base[0], p.base[1], p.base[2], 1);
-  gl.uniform1f(loc('u_MetallicFactor'), p.metallic);
-  gl.uniform1f(loc('u_RoughnessFactor'), p.roughness);
-  gl.uniform3f(loc('u_EmissiveFactor'), 0, 0, 0);
-  gl.uniform1i(loc('u_MipCount'), env.mipCount);
-  gl.uniform1f(loc('u_EnvIntensity'), p.scale * env.intensityScale);
-  gl.uniformMatrix3fv(loc('u_EnvRotation'), false, envRotation(p.envRotation));
-  for (const x of extensions) x.uniforms(x.factors, gl, loc);
-  const units = ['u_LambertianEnvSampler', 'u_GGXEnvSampler', 'u_GGXLUT'];
-  units.forEach((name, unit) => env.bind(name, loc(name), unit));
-  // Every other active uniform keeps its default (0); a sampler among them would be an error.
-  const others = [];
-  const nUniforms = gl.getProgramParameter(program, gl.ACTIVE_UNIFORMS);
-  for (let i = 0; i < nUniforms; i++) {
-    const info = gl.getActiveUniform(program, i);
-    const name = info.name.replace(/\[0\]$/, '');
-    if (set.has(name)) continue;
-    if ([gl.SAMPLER_2D, gl.SAMPLER_CUBE, gl.SAMPLER_3D, gl.SAMPLER_2D_ARRAY].includes(info.type)) fail(`unexpected active sampler ${name}`);
-    others.push(name);
+  const state = () => {
+    gl.enable(gl.DEPTH_TEST);
+    gl.depthFunc(gl.LESS);
+    gl.frontFace(gl.CCW);
+    gl.enable(gl.CULL_FACE);
+    gl.cullFace(gl.BACK);
+    gl.disable(gl.BLEND);
+    gl.disable(gl.SCISSOR_TEST);
+    gl.colorMask(true, true, true, true);
+    gl.depthMask(true);
+    gl.clearColor(0, 0, 0, 1);
+    gl.clearDepth(1);
+  };
+
+  // Pass 0, where the sphere transmits: the viewer's transmission pass. The opaque drawables,
+  // linear, into a 1024^2 RGBA8 frame whose mipmaps the transmissive material reads
+  // (getTransmissionSample: lod = log2(1024) * applyIorToRoughness(roughness, ior)). The viewer
+  // draws them multisampled and blits; here they are drawn once, without multisampling.
+  if (transmission) {
+    const frameTex = gl.createTexture();
+    gl.activeTexture(gl.TEXTURE0 + frameUnit);
+    gl.bindTexture(gl.TEXTURE_2D, frameTex);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_LINEAR);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA, FRAME, FRAME, 0, gl.RGBA, gl.UNSIGNED_BYTE, null);
+    const frameDepth = gl.createRenderbuffer();
+    gl.bindRenderbuffer(gl.RENDERBUFFER, frameDepth);
+    gl.renderbufferStorage(gl.RENDERBUFFER, gl.DEPTH_COMPONENT16, FRAME, FRAME);
+    const frameFbo = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, frameFbo);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, frameTex, 0);
+    gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.RENDERBUFFER, frameDepth);
+    if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) fail('the opaque frame is incomplete');
+    gl.viewport(0, 0, FRAME, FRAME);
+    state();
+    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    for (const d of drawables) if (d.opaque) draw(d);
+    gl.activeTexture(gl.TEXTURE0 + frameUnit);
+    gl.bindTexture(gl.TEXTURE_2D, frameTex);
+    gl.generateMipmap(gl.TEXTURE_2D);
   }
 
-  // Pass 1: the viewer's shading, linear, into a float target.
+  // Pass 1: the viewer's shading, linear, into a float target: the opaque drawables, then the
+  // transmissive one.
   const target = gl.createTexture();
-  gl.activeTexture(gl.TEXTURE0 + units.length); // a unit of its own: keep the program's bindings
+  gl.activeTexture(gl.TEXTURE0 + frameUnit + 1); // a unit of its own: keep the programs' bindings
   gl.bindTexture(gl.TEXTURE_2D, target);
   gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, p.size, p.size);
   gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
@@ -491,23 +580,10 @@ async function main() {
   if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) fail('the RGBA32F framebuffer is incomplete');
 
   gl.viewport(0, 0, p.size, p.size);
-  gl.clearColor(0, 0, 0, 1);
-  gl.clearDepth(1);
+  state();
   gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
-  gl.enable(gl.DEPTH_TEST);
-  gl.depthFunc(gl.LESS);
-  gl.frontFace(gl.CCW);
-  gl.enable(gl.CULL_FACE);
-  gl.cullFace(gl.BACK);
-  gl.disable(gl.BLEND);
-  gl.disable(gl.SCISSOR_TEST);
-  gl.colorMask(true, true, true, true);
-  gl.depthMask(true);
-  gl.useProgram(program);
-  gl.bindVertexArray(vao);
-  gl.drawElements(gl.TRIANGLES, mesh.indices.length, gl.UNSIGNED_INT, 0);
-  gl.bindVertexArray(null);
-
+  for (const d of drawables) if (d.opaque) draw(d);
+  for (const d of drawables) if (!d.opaque) draw(d);
   // Pass 2: sRGB-encode into the canvas.
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   gl.disable(gl.DEPTH_TEST);
@@ -531,7 +607,7 @@ async function main() {
     `u_MipCount ${env.mipCount} (lod = roughness*${env.mipCount - 1})`,
     `u_EnvRotation rotateY(${p.envRotation} deg) (viewer UI default 90), u_EnvIntensity ${p.scale}, u_Camera 1e6 along the view axis`,
     `material extensions: ${extensions.map((x) => `${x.name} (${x.define})`).join(', ') || 'none'}`,
-    `uniforms left at 0: ${others.join(' ') || 'none'}`,
+    `uniforms left at 0: ${[...others].join(' ') || 'none'}`,
   ].join('; ');
 }
 

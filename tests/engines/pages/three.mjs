@@ -19,7 +19,7 @@
 //     rotation is applied here (envMapRotation stays identity).
 //
 // Contract (tests/engines/run.mjs): ?set=own&hdr=URL&roughness=R&metallic=M&base=R,G,B&size=N
-// &scale=K&view=front|side[&ext=JSON]; draws into <canvas id="c">, then window.iblDone = {ok, notes|error}.
+// &scale=K&view=front|side[&ext=JSON][&backdrop=1]; draws into <canvas id="c">, then window.iblDone = {ok, notes|error}.
 
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -52,15 +52,20 @@ async function main() {
 
   const scene = new THREE.Scene();
   scene.background = null;
+  // With backdrop=1 the GLB holds the backdrop too: three draws it first into its transmission
+  // render target (WebGLRenderer, renderTransmissionPass), which a transmissive material reads.
   const glb = sphereGlb(p, 512);
   const gltf = await new GLTFLoader().parseAsync(glb.buffer, '');
   let mesh = null;
-  gltf.scene.traverse((o) => { if (o.isMesh) mesh = o; });
-  if (!mesh) fail('GLTFLoader gave no mesh');
+  gltf.scene.traverse((o) => {
+    if (!o.isMesh) return;
+    if (o.material.name === 'sphere') mesh = o;
+    o.material.envMap = envMap;
+    o.material.envMapIntensity = p.scale;
+    o.material.needsUpdate = true;
+  });
+  if (!mesh) fail('GLTFLoader gave no sphere');
   const material = mesh.material;
-  material.envMap = envMap;
-  material.envMapIntensity = p.scale;
-  material.needsUpdate = true;
   scene.add(gltf.scene);
 
   const camera = new THREE.OrthographicCamera(-1.1, 1.1, 1.1, -1.1, 0.1, 100);
