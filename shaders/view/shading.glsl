@@ -259,11 +259,16 @@ vec3 shadeSplitSum(vec3 position, vec2 pixel, vec3 n, vec3 view, SplitSumMateria
     uvec2 list = clusterLights(pixel, position);
     for (uint k = list.x; k < list.x + list.y; ++k) {
       int i = int(clusterData[k]);
-      // The light's shadow first: what it hides costs nothing more.
-      vec3 visible = kCastShadows ? shadowVisibility(shadowCasterAt(i), position, n) : vec3(1.0);
-      if (visible == vec3(0.0)) continue;
       LightRecord record = lightRecordAt(i);
       ShadingLight l = unpackLight(record);
+      // The light's shadow first: what it hides costs nothing more. A surface that transmits
+      // leaves its own crossing out of the maps' filters.
+      vec3 visible =
+          kCastShadows ? shadowVisibility(shadowCasterAt(i), position, n,
+                                          shadowReceiverCrossing(direct, n,
+                                                                 directionToLight(l, position)))
+                       : vec3(1.0);
+      if (visible == vec3(0.0)) continue;
       LightIncidence inc = lightIncidence(l, position, n, view, lobeRoughness, s, ltc);
       vec3 profile = visible * iesProfileFactor(l, lightRecordProfile(record),
                                                  normalize(position - l.position));

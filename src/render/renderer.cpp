@@ -502,8 +502,12 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                       o.realTimeShadows == ShadowMode::Ray
                           ? rayTracedVisibility(scene, tracer, scene.lights[i], position, p.normal,
                                                 o.shadowSettings.raySamples, sampler)
-                          : shared::shadowVisibility(shadowView, maps->casters[i], position,
-                                                     p.normal);
+                          : shared::shadowVisibility(
+                                shadowView, maps->casters[i], position, p.normal,
+                                shared::shadowReceiverCrossing(
+                                    splitSumMaterial(p, 1.0f), p.normal,
+                                    shared::directionToLight(shadingLightOf(scene.lights[i]),
+                                                             position)));
               }
               c += shadeLightsRealTime(p, position, -ray.direction, scene.lights, bake.dfg, o,
                                        scaling, visibility);

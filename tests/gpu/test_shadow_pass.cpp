@@ -146,6 +146,8 @@ Scene transmissiveBlockers(const Light& light) {
   s.spheres[0].material = 2;
   for (std::size_t i = 1; i < s.meshes.size(); ++i) s.meshes[i].material = 2;  // the box
   addQuad(s, {-0.4f, 1.1f, -0.2f}, {1.2f, 0.0f, 0.0f}, {0.0f, 0.0f, 1.2f}, 1, {0.0f, 2.0f, 0.0f});
+  // A second pane under the first's corner: a receiver that transmits, lit through the first.
+  addQuad(s, {0.2f, 0.9f, 0.4f}, {0.6f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.6f}, 1, {0.0f, 2.0f, 0.0f});
   addBox(s, {-0.3f, 0.2f, 1.0f}, glm::vec3(0.2f), 0);
   return s;
 }
@@ -201,14 +203,20 @@ TEST(Viewer, ColoredShadowsMatchTheCpu) {
   o.backgroundEnvironment = false;
   Camera perspective = lookingAt({2.5f, 2.5f, 3.5f}, 192, 128);
   perspective.at = {0.0f, 0.3f, 0.0f};
+  // The lower pane from below: lit through the upper one, it leaves its own crossing out of the
+  // maps' filters (shadowReceiverCrossing).
+  Camera below = topDownCamera(glm::vec3(0.5f, 1.0f, 0.7f), 0.5f, 64);
+  below.from = {0.5f, 0.6f, 0.7f};
   for (LightType type : {LightType::Point, LightType::Sun}) {
     const Scene scene = transmissiveBlockers(shadowStudyLight(type));
-    for (const Camera& camera : {floorCamera(128), perspective}) {
+    for (const Camera& camera : {floorCamera(128), perspective, below}) {
       const Comparison c = renderBoth(scene, camera, o);
       std::printf("%s, %s: mean %.4f %%, over 1 %% %.3f %%\n",
                   std::string(lightTypeName(type)).c_str(),
-                  camera.perspective ? "perspective" : "from above", 100.0 * c.meanRelative,
-                  100.0 * c.fractionOver1);
+                  camera.perspective     ? "perspective"
+                  : camera.from.y < 1.0f ? "from below"
+                                         : "from above",
+                  100.0 * c.meanRelative, 100.0 * c.fractionOver1);
       EXPECT_LT(c.meanRelative, 5e-4) << lightTypeName(type);
       EXPECT_LT(c.fractionOver1, 3e-3) << lightTypeName(type);
     }

@@ -125,8 +125,12 @@ TEST(Shadows, TheSunShadowsNearAndFarThroughTheCascades) {
     const glm::vec3 middle(0.5f, 0.75f, z);
     const glm::vec3 shadow = middle - (middle.y / s.y) * s;  // on the floor, along the sun
     const glm::vec3 beside = shadow + glm::vec3(0.0f, 0.0f, 1.0f);
-    EXPECT_LT(shared::shadowVisibility(maps.view(), maps.casters[0], shadow, up).y, 0.1f) << z;
-    EXPECT_GT(shared::shadowVisibility(maps.view(), maps.casters[0], beside, up).y, 0.95f) << z;
+    EXPECT_LT(shared::shadowVisibility(maps.view(), maps.casters[0], shadow, up, glm::vec3(1.0f)).y,
+              0.1f)
+        << z;
+    EXPECT_GT(shared::shadowVisibility(maps.view(), maps.casters[0], beside, up, glm::vec3(1.0f)).y,
+              0.95f)
+        << z;
   }
 }
 
@@ -337,6 +341,61 @@ TEST(Shadows, AThinPaneTintsTheLightItPasses) {
   for (ShadowMode mode : {ShadowMode::Ray, ShadowMode::Map})
     EXPECT_LT(glm::length(passedToTheFloor(metal, 0.0f, mode, paneAbove)), 1e-3)
         << shadowModeName(mode);
+}
+
+// A rough pane that transmits, lit by the sun through a smooth pane above it and seen from
+// below (the light it passes on): what reaches it is the upper pane's crossing alone,
+// c (1 - F) at the sun's angle, as for the floor above; not that times its own crossing, which
+// the map's filter holds too (every surface that transmits in front of the opaque depth, the
+// receiver among them). Through rays and through the map.
+TEST(Shadows, ATransmissiveReceiverIsNotTintedByItsOwnCrossing) {
+  Material upper;
+  upper.baseColor = {0.9f, 0.6f, 0.3f};
+  upper.metallic = 0.0f;
+  upper.roughness = 0.0f;
+  upper.transmission = 1.0f;
+  Material lower = upper;
+  lower.baseColor = {0.4f, 0.7f, 0.9f};
+  lower.roughness = 0.4f;
+  Camera below;
+  below.perspective = false;
+  below.orthoWidth = 0.02f;
+  below.from = {0.0f, -9.0f, 0.0f};
+  below.at = {0.0f, 1.0f, 0.0f};
+  below.up = {0.0f, 0.0f, -1.0f};
+  below.width = below.height = 4;
+  for (float degrees : {0.0f, 30.0f})
+    for (ShadowMode mode : {ShadowMode::Ray, ShadowMode::Map}) {
+      Scene scene;
+      scene.materials = {upper, lower};
+      addQuad(scene, glm::vec3(-3.0f, 1.5f, -3.0f), glm::vec3(6.0f, 0.0f, 0.0f),
+              glm::vec3(0.0f, 0.0f, 6.0f), 0, glm::vec3(0.0f, 3.0f, 0.0f));
+      addQuad(scene, glm::vec3(-3.0f, 1.0f, -3.0f), glm::vec3(6.0f, 0.0f, 0.0f),
+              glm::vec3(0.0f, 0.0f, 6.0f), 1, glm::vec3(0.0f, 3.0f, 0.0f));
+      Light sun = shadowStudyLight(LightType::Sun);
+      const float a = glm::radians(degrees);
+      sun.direction = {std::sin(a), std::cos(a), 0.0f};
+      scene.lights = {sun};
+      RenderOptions o = shadowOptions(mode, 256);
+      o.shadowSettings.raySamples = 16;
+      o.environmentLight = false;
+      o.backgroundEnvironment = false;
+      const RenderResult lit = renderScene(scene, below, black().result, black().options, o);
+      o.realTimeShadows = ShadowMode::None;
+      const RenderResult open = renderScene(scene, below, black().result, black().options, o);
+      glm::dvec3 a0(0.0), a1(0.0);
+      for (std::size_t i = 0; i < lit.color.pixels.size(); ++i) {
+        a0 += glm::dvec3(lit.color.pixels[i]);
+        a1 += glm::dvec3(open.color.pixels[i]);
+      }
+      ASSERT_GT(a1.z, 0.0) << "nothing passes the lower pane toward the camera";
+      const glm::dvec3 passed = a0 / a1;
+      const glm::dvec3 expected =
+          glm::dvec3(upper.baseColor) * (1.0 - schlick004(std::cos(glm::radians(degrees))));
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(passed[c], expected[c], 0.01 * expected[c])
+            << shadowModeName(mode) << ", " << degrees << " degrees, channel " << c;
+    }
 }
 
 // A smooth slab of absorbing glass 0.2 m thick (KHR_materials_volume: thickness 0.2, half the

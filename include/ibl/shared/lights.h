@@ -17,6 +17,13 @@
 
 IBL_BEGIN
 
+// The unit direction from p toward the light: toward the sun, or toward the light's position
+// (an area light's center).
+IBL_FN vec3 directionToLight(ShadingLight light, vec3 p) {
+  if (light.type == kLightSun) return light.direction;
+  return normalize(light.position - p);
+}
+
 // The light's incidence at a point (position p, unit normal n, unit view v, perceptual
 // roughness). s.dominantDirections: the specular representative point follows the area dominant
 // direction; s.ltcAreaLights: spheres, disks, tubes and rects through LTCs, with `ltc` the GGX

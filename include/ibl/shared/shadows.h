@@ -208,11 +208,12 @@ float shadowMapSize();
 // Whether the receiver at depth receiverDepth (world) is lit at texel coordinates t, by bilinear
 // percentage-closer filtering of the 2 x 2 texels around t: each compared with the receiver
 // plane's depth at its center, less `bias`; a texel whose filter lies in front of the receiver
-// passes its color. Returns the light that passes (rgb), or with `blockers` the sum and count of
-// the depths (world) of the nearest surfaces, opaque or transmissive, that block or tint it, in
-// (x, y).
+// passes its color, less the receiver's own crossing `own` (a surface that transmits is among
+// the surfaces the filter multiplies, as it lies in front of the opaque depth: 1 for the others).
+// Returns the light that passes (rgb), or with `blockers` the sum and count of the depths
+// (world) of the nearest surfaces, opaque or transmissive, that block or tint it, in (x, y).
 IBL_FN vec3 shadowCompareBilinear(IBL_SHADOW_MAPS int layer, ShadowLayer l, vec3 p, vec3 n, vec2 t,
-                                  float depth, float bias, float limit, bool blockers) {
+                                  float depth, float bias, float limit, bool blockers, vec3 own) {
   float mapSize = shadowMapSize(IBL_SHADOW_ONLY);
   vec2 base = floor(t - vec2(0.5f));
   vec2 f = t - vec2(0.5f) - base;
@@ -234,17 +235,19 @@ IBL_FN vec3 shadowCompareBilinear(IBL_SHADOW_MAPS int layer, ShadowLayer l, vec3
       else if (blocked)
         result += vec3(occluder, 1.0f, 0.0f);
     } else if (!blocked) {
-      result += w * (tinted ? vec3(passed) : vec3(1.0f));
+      result += w * (tinted ? min(vec3(passed) / max(own, vec3(1e-4f)), vec3(1.0f)) : vec3(1.0f));
     }
   }
   return result;
 }
 
 // The share of `c`'s light that reaches point p (normal n, turned here toward the light's side) in
-// layer `layer`, per channel (colored by the surfaces that transmit): the blocker search, then
+// layer `layer`, per channel (colored by the surfaces that transmit, the receiver's own crossing
+// `own` left out: shadowCompareBilinear): the blocker search, then
 // percentage-closer filtering over the penumbra the light's size gives at the blockers' mean
 // depth (at least kShadowMinFilterTexels, at most shadowMaxFilterTexels). Outside the layer: 1.
-IBL_FN vec3 shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec3 p, vec3 n) {
+IBL_FN vec3 shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec3 p, vec3 n,
+                                  vec3 own) {
   float mapSize = shadowMapSize(IBL_SHADOW_ONLY);
   ShadowLayer l = shadowLayerAt(IBL_SHADOW_ARG layer);
   ShadowProjection at = shadowProject(l, p, mapSize);
@@ -277,7 +280,7 @@ IBL_FN vec3 shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec
     for (int i = 0; i < kShadowTaps; ++i)
       found += vec2(shadowCompareBilinear(IBL_SHADOW_ARG layer, l, q, n,
                                           at.texel + search * shadowDiskTap(i), at.depth, bias,
-                                          limit, true));
+                                          limit, true, own));
     if (found.y == 0.0f) return vec3(1.0f);
     float blocker = found.x / found.y;
     // The penumbra's half width at the receiver (similar triangles, PCSS eq. 1): r (z_r - z_b)
@@ -290,24 +293,26 @@ IBL_FN vec3 shadowLayerVisibility(IBL_SHADOW_MAPS ShadowCaster c, int layer, vec
   for (int i = 0; i < kShadowTaps; ++i)
     lit += shadowCompareBilinear(IBL_SHADOW_ARG layer, l, q, n,
                                  at.texel + filterTexels * shadowDiskTap(i), at.depth, bias, limit,
-                                 false);
+                                 false, own);
   return lit / float(kShadowTaps);
 }
 
 // The share of `c`'s light that reaches p (normal n, turned here toward the light's side), per
 // channel: the layer that holds p (the cascade of its view depth, the cube face of its direction
-// from the light, the single layer), filtered. 1 without a shadow.
-IBL_FN vec3 shadowVisibility(IBL_SHADOW_MAPS ShadowCaster c, vec3 p, vec3 n) {
+// from the light, the single layer), filtered. 1 without a shadow. `own`: what the receiver's
+// surface itself lets through toward the light (shadowReceiverCrossing in split_sum.h; 1 for a
+// surface that transmits nothing), which the maps' filters hold too.
+IBL_FN vec3 shadowVisibility(IBL_SHADOW_MAPS ShadowCaster c, vec3 p, vec3 n, vec3 own) {
   if (c.kind == kShadowNone || c.layerCount == 0) return vec3(1.0f);
   if (c.kind == kShadowCascades) {
     int i = shadowCascadeIndex(dot(p - c.viewOrigin, c.viewForward), c.splits, c.layerCount);
     if (i < 0) return vec3(1.0f);
-    return shadowLayerVisibility(IBL_SHADOW_ARG c, c.firstLayer + i, p, n);
+    return shadowLayerVisibility(IBL_SHADOW_ARG c, c.firstLayer + i, p, n, own);
   }
   if (c.kind == kShadowCube)
-    return shadowLayerVisibility(IBL_SHADOW_ARG c,
-                                 c.firstLayer + directionToFace(p - c.lightPosition).face, p, n);
-  return shadowLayerVisibility(IBL_SHADOW_ARG c, c.firstLayer, p, n);
+    return shadowLayerVisibility(
+        IBL_SHADOW_ARG c, c.firstLayer + directionToFace(p - c.lightPosition).face, p, n, own);
+  return shadowLayerVisibility(IBL_SHADOW_ARG c, c.firstLayer, p, n, own);
 }
 
 IBL_END

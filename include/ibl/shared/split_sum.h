@@ -285,6 +285,15 @@ IBL_FN vec3 shadowMapCrossing(SplitSumMaterial m, float cosine) {
          volumeTransmittance(m.attenuation, 0.5f * m.thickness);
 }
 
+// A receiver's own crossing toward a light in direction l (unit) from its normal n: the share
+// shadowMapCrossing gives its surface, which a shadow map's filter holds among those of the
+// transmissive surfaces in front of the opaque depth, and which the receiver leaves out
+// (shadowVisibility in shadows.h); 1 for a surface that transmits nothing.
+IBL_FN vec3 shadowReceiverCrossing(SplitSumMaterial m, vec3 n, vec3 l) {
+  if (m.transmission <= 0.0f) return vec3(1.0f);
+  return shadowMapCrossing(m, dot(n, l));
+}
+
 // KHR_materials_sheen over the split sum: the layer below is scaled by the sheen's albedo
 // scaling 1 - max(sheenColor) E (the specification's, with E at n.v: image-based light has no
 // single l), and the sheen adds sheenColor * prefilteredSheen * E, where E = the sheen table at
