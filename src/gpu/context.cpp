@@ -141,12 +141,23 @@ VkInstance createInstance(const std::vector<std::string>& extensions, bool valid
   app.apiVersion = VK_API_VERSION_1_1;
   std::vector<const char*> names;
   for (const auto& e : extensions) names.push_back(e.c_str());
-  if (validation) names.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  // With the layer, its synchronization validation too: the hazards between commands (a layout
+  // transition recorded before the reads it must wait for) that its core checks leave out.
+  const VkValidationFeatureEnableEXT enables[] = {
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = enables;
+  if (validation) {
+    names.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    names.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+  }
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
   info.enabledExtensionCount = static_cast<std::uint32_t>(names.size());
   info.ppEnabledExtensionNames = names.data();
   if (validation) {
+    info.pNext = &features;
     info.enabledLayerCount = 1;
     info.ppEnabledLayerNames = &kValidationLayer;
   }
@@ -654,10 +665,13 @@ void transitionImageLevels(VkCommandBuffer cmd, const DeviceImage& image, std::u
 }
 
 void recordReadback(VkCommandBuffer cmd, const DeviceImage& image, VkBuffer readback) {
+  // The layout transition after the shaders that read the image (a read needs no availability,
+  // only the wait).
   transitionImage(cmd, image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_READ_BIT);
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                      VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   region.imageExtent = {image.description().width, image.description().height, 1};
