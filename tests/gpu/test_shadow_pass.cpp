@@ -131,13 +131,8 @@ namespace {
 Scene transmissiveBlockers(const Light& light) {
   Scene s = blockersOverFloor(light);
   s.spheres[0].center.y = 0.3f;
-  Material pane;
-  pane.baseColor = {0.9f, 0.5f, 0.2f};
-  pane.metallic = 0.0f;
-  pane.roughness = 0.0f;
-  pane.transmission = 1.0f;
-  Material glass = pane;
-  glass.baseColor = {0.95f, 0.95f, 0.9f};
+  const Material pane = transmissiveGlass({0.9f, 0.5f, 0.2f});
+  Material glass = transmissiveGlass({0.95f, 0.95f, 0.9f});
   glass.thickness = 0.6f;
   glass.attenuationColor = {0.3f, 0.7f, 0.9f};
   glass.attenuationDistance = 0.5f;

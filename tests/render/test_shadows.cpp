@@ -268,6 +268,22 @@ double schlick004(double c) {
   return 0.04 + 0.96 * std::pow(1.0 - c, 5.0);
 }
 
+// `scene` from `camera` with the shadows of `o` over the same without shadows, per channel (the
+// sums of the pixels); `open`, where given, gets the latter.
+glm::dvec3 shadowedOverOpen(const Scene& scene, const Camera& camera, RenderOptions o,
+                            glm::dvec3* open = nullptr) {
+  const RenderResult lit = renderScene(scene, camera, black().result, black().options, o);
+  o.realTimeShadows = ShadowMode::None;
+  const RenderResult unshadowed = renderScene(scene, camera, black().result, black().options, o);
+  glm::dvec3 a0(0.0), a1(0.0);
+  for (std::size_t i = 0; i < lit.color.pixels.size(); ++i) {
+    a0 += glm::dvec3(lit.color.pixels[i]);
+    a1 += glm::dvec3(unshadowed.color.pixels[i]);
+  }
+  if (open) *open = a1;
+  return a0 / a1;
+}
+
 // A white floor lit by `light` through `blocker`'s surfaces of `glass`, seen from above without
 // them (the camera sees past what transmits): the floor's color with `mode`'s shadows over its
 // color without, per channel, at the origin (the mean of 4 x 4 pixels 2 cm wide).
@@ -286,16 +302,7 @@ glm::dvec3 passedToTheFloor(const Material& glass, const Light& light, ShadowMod
   o.environmentLight = false;
   o.backgroundEnvironment = false;
   o.cameraSeesTransmissive = false;
-  const Camera camera = topDownCamera(glm::vec3(0.0f), 0.02f, 4);
-  const RenderResult lit = renderScene(scene, camera, black().result, black().options, o);
-  o.realTimeShadows = ShadowMode::None;
-  const RenderResult open = renderScene(scene, camera, black().result, black().options, o);
-  glm::dvec3 a0(0.0), a1(0.0);
-  for (std::size_t i = 0; i < lit.color.pixels.size(); ++i) {
-    a0 += glm::dvec3(lit.color.pixels[i]);
-    a1 += glm::dvec3(open.color.pixels[i]);
-  }
-  return a0 / a1;
+  return shadowedOverOpen(scene, topDownCamera(glm::vec3(0.0f), 0.02f, 4), o);
 }
 
 // The same, lit by the sun `degrees` from the zenith (toward +X).
@@ -322,11 +329,7 @@ void slabAbove(Scene& scene) {
 // ray goes on unbent), through rays and through the map (whose filter holds the same); a
 // metallic pane (whose transmission the metal leaves out) passes nothing.
 TEST(Shadows, AThinPaneTintsTheLightItPasses) {
-  Material glass;
-  glass.baseColor = {0.9f, 0.6f, 0.3f};
-  glass.metallic = 0.0f;
-  glass.roughness = 0.0f;
-  glass.transmission = 1.0f;
+  Material glass = transmissiveGlass({0.9f, 0.6f, 0.3f});
   for (float degrees : {0.0f, 60.0f})
     for (ShadowMode mode : {ShadowMode::Ray, ShadowMode::Map}) {
       const glm::dvec3 expected =
@@ -349,14 +352,8 @@ TEST(Shadows, AThinPaneTintsTheLightItPasses) {
 // the map's filter holds too (every surface that transmits in front of the opaque depth, the
 // receiver among them). Through rays and through the map.
 TEST(Shadows, ATransmissiveReceiverIsNotTintedByItsOwnCrossing) {
-  Material upper;
-  upper.baseColor = {0.9f, 0.6f, 0.3f};
-  upper.metallic = 0.0f;
-  upper.roughness = 0.0f;
-  upper.transmission = 1.0f;
-  Material lower = upper;
-  lower.baseColor = {0.4f, 0.7f, 0.9f};
-  lower.roughness = 0.4f;
+  const Material upper = transmissiveGlass({0.9f, 0.6f, 0.3f});
+  const Material lower = transmissiveGlass({0.4f, 0.7f, 0.9f}, 0.4f);
   Camera below;
   below.perspective = false;
   below.orthoWidth = 0.02f;
@@ -380,16 +377,9 @@ TEST(Shadows, ATransmissiveReceiverIsNotTintedByItsOwnCrossing) {
       o.shadowSettings.raySamples = 16;
       o.environmentLight = false;
       o.backgroundEnvironment = false;
-      const RenderResult lit = renderScene(scene, below, black().result, black().options, o);
-      o.realTimeShadows = ShadowMode::None;
-      const RenderResult open = renderScene(scene, below, black().result, black().options, o);
-      glm::dvec3 a0(0.0), a1(0.0);
-      for (std::size_t i = 0; i < lit.color.pixels.size(); ++i) {
-        a0 += glm::dvec3(lit.color.pixels[i]);
-        a1 += glm::dvec3(open.color.pixels[i]);
-      }
-      ASSERT_GT(a1.z, 0.0) << "nothing passes the lower pane toward the camera";
-      const glm::dvec3 passed = a0 / a1;
+      glm::dvec3 open;
+      const glm::dvec3 passed = shadowedOverOpen(scene, below, o, &open);
+      ASSERT_GT(open.z, 0.0) << "nothing passes the lower pane toward the camera";
       const glm::dvec3 expected =
           glm::dvec3(upper.baseColor) * (1.0 - schlick004(std::cos(glm::radians(degrees))));
       for (int c = 0; c < 3; ++c)
@@ -404,11 +394,7 @@ TEST(Shadows, ATransmissiveReceiverIsNotTintedByItsOwnCrossing) {
 // through rays along the chord (0.2 m from the zenith, 0.4 m from 60 degrees); through the map
 // over the thickness the extension gives (0.2 m).
 TEST(Shadows, AnAbsorbingSlabPassesBeerLambertOverItsChord) {
-  Material glass;
-  glass.baseColor = {0.95f, 0.9f, 0.8f};
-  glass.metallic = 0.0f;
-  glass.roughness = 0.0f;
-  glass.transmission = 1.0f;
+  Material glass = transmissiveGlass({0.95f, 0.9f, 0.8f});
   glass.thickness = 0.2f;
   glass.attenuationColor = {0.5f, 1.0f, 1.0f};
   glass.attenuationDistance = 0.5f;

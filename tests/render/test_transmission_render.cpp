@@ -47,13 +47,8 @@ Mesh squareFacing(float height, float half, bool up, int material) {
 // A thin transmissive wall (transmission 1) of base color `tint` and roughness r: a square of
 // side 100 in the plane z = 0, facing +Z.
 Scene thinWall(glm::vec3 tint, float r) {
-  Material m;
-  m.baseColor = tint;
-  m.metallic = 0.0f;
-  m.roughness = r;
-  m.transmission = 1.0f;
   Scene scene;
-  scene.materials = {m};
+  scene.materials = {transmissiveGlass(tint, r)};
   scene.meshes = {squareFacing(0.0f, 50.0f, true, 0)};
   return scene;
 }
