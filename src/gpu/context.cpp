@@ -124,6 +124,17 @@ bool hasInstanceLayer(const char* name) {
   });
 }
 
+// Whether the instance layer `layer` provides the instance extension `name`.
+bool layerHasExtension(const char* layer, const char* name) {
+  std::uint32_t count = 0;
+  vkEnumerateInstanceExtensionProperties(layer, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateInstanceExtensionProperties(layer, &count, extensions.data());
+  return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+    return std::strcmp(e.extensionName, name) == 0;
+  });
+}
+
 VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
                                                    VkDebugUtilsMessageTypeFlagsEXT,
                                                    const VkDebugUtilsMessengerCallbackDataEXT* data,
@@ -141,23 +152,24 @@ VkInstance createInstance(const std::vector<std::string>& extensions, bool valid
   app.apiVersion = VK_API_VERSION_1_1;
   std::vector<const char*> names;
   for (const auto& e : extensions) names.push_back(e.c_str());
-  // With the layer, its synchronization validation too: the hazards between commands (a layout
-  // transition recorded before the reads it must wait for) that its core checks leave out.
+  // With the layer, its synchronization validation too, where the layer offers it: the hazards
+  // between commands (a layout transition recorded before the reads it must wait for) that its
+  // core checks leave out.
   const VkValidationFeatureEnableEXT enables[] = {
       VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
   VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
   features.enabledValidationFeatureCount = 1;
   features.pEnabledValidationFeatures = enables;
-  if (validation) {
-    names.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
-    names.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
-  }
+  const bool synchronization =
+      validation && layerHasExtension(kValidationLayer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+  if (validation) names.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (synchronization) names.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
   info.enabledExtensionCount = static_cast<std::uint32_t>(names.size());
   info.ppEnabledExtensionNames = names.data();
+  if (synchronization) info.pNext = &features;
   if (validation) {
-    info.pNext = &features;
     info.enabledLayerCount = 1;
     info.ppEnabledLayerNames = &kValidationLayer;
   }

@@ -158,8 +158,8 @@ const MEASURED = {
     'iridescence 1, film ior 1.3, 400 nm, dielectric r=0.25': [0.126],
     'iridescence 1, film ior 1.3, 400 nm, metal r=0.25': [0.11],
     'anisotropy 0.8, metal r=0.5': [0.177],
-    'transmission 1, thin wall, dielectric r=0': [0.222], 'transmission 1, thin wall, dielectric r=0.3': [0.217],
-    'transmission 1, volume 2 (attenuation 0.8, 0.6, 0.4 after 2), dielectric r=0': [0.165],
+    'transmission 1, thin wall, dielectric r=0': [0.159], 'transmission 1, thin wall, dielectric r=0.3': [0.122],
+    'transmission 1, volume 2 (attenuation 0.8, 0.6, 0.4 after 2), dielectric r=0': [0.114],
   },
   // Its own HDRLoader + PMREMGenerator only (three.js reads no prefiltered files).
   three: {

@@ -350,7 +350,8 @@ TEST(Shadows, AThinPaneTintsTheLightItPasses) {
 // below (the light it passes on): what reaches it is the upper pane's crossing alone,
 // c (1 - F) at the sun's angle, as for the floor above; not that times its own crossing, which
 // the map's filter holds too (every surface that transmits in front of the opaque depth, the
-// receiver among them). Through rays and through the map.
+// receiver among them). Through rays and through the map, at 0° and 60° (where its own crossing
+// taken at normal incidence would leave 3 % too much).
 TEST(Shadows, ATransmissiveReceiverIsNotTintedByItsOwnCrossing) {
   const Material upper = transmissiveGlass({0.9f, 0.6f, 0.3f});
   const Material lower = transmissiveGlass({0.4f, 0.7f, 0.9f}, 0.4f);
@@ -361,7 +362,7 @@ TEST(Shadows, ATransmissiveReceiverIsNotTintedByItsOwnCrossing) {
   below.at = {0.0f, 1.0f, 0.0f};
   below.up = {0.0f, 0.0f, -1.0f};
   below.width = below.height = 4;
-  for (float degrees : {0.0f, 30.0f})
+  for (float degrees : {0.0f, 60.0f})
     for (ShadowMode mode : {ShadowMode::Ray, ShadowMode::Map}) {
       Scene scene;
       scene.materials = {upper, lower};

@@ -21,6 +21,7 @@
 #include "ibl/render/camera.hpp"
 #include "ibl/render/gltf.hpp"
 #include "ibl/render/renderer.hpp"
+#include "support/glass.hpp"
 #include "support/gltf_writer.hpp"
 #include "support/helpers.hpp"
 #include "support/material_quads.hpp"

@@ -118,17 +118,6 @@ inline Camera frontOrthoCamera(float width, int pixels, float distance = 4.0f) {
   return c;
 }
 
-// Glass of base color c and perceptual roughness r that lets all of its light below the
-// specular layer through (KHR_materials_transmission 1): a thin wall unless given a thickness.
-inline Material transmissiveGlass(glm::vec3 c, float r = 0.0f) {
-  Material m;
-  m.baseColor = c;
-  m.metallic = 0.0f;
-  m.roughness = r;
-  m.transmission = 1.0f;
-  return m;
-}
-
 inline double maxRelativeError(glm::vec3 a, glm::vec3 ref) {
   double e = 0.0;
   for (int c = 0; c < 3; ++c)

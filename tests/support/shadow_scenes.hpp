@@ -14,7 +14,7 @@
 #include "ibl/render/renderer.hpp"
 #include "light_scenes.hpp"
 #include "room.hpp"
-#include "support/helpers.hpp"
+#include "support/glass.hpp"
 
 namespace ibl::test {
 
