@@ -497,6 +497,8 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                                          std::max(p.sheenRoughness, kMinSheenRoughness))
                                 .x);
               if (shadowed) {
+                // A surface that transmits leaves its own crossing out of the maps' filters.
+                const shared::SplitSumMaterial receiver = splitSumMaterial(p, 1.0f);
                 for (std::size_t i = 0; i < scene.lights.size(); ++i)
                   visibility[i] =
                       o.realTimeShadows == ShadowMode::Ray
@@ -505,7 +507,7 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
                           : shared::shadowVisibility(
                                 shadowView, maps->casters[i], position, p.normal,
                                 shared::shadowReceiverCrossing(
-                                    splitSumMaterial(p, 1.0f), p.normal,
+                                    receiver, p.normal,
                                     shared::directionToLight(shadingLightOf(scene.lights[i]),
                                                              position)));
               }
