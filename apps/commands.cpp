@@ -214,7 +214,7 @@ SourceEnvironment loadSourceEnvironment(const std::string& input, const LoadOpti
                               {"lights", nlohmann::json::array()}};
     if (sun.intensity > 0.0f) {
       s.lights.push_back(sun);
-      records["lights"].push_back(nlohmann::json::parse(sunLightJson(sun)));
+      records["lights"].push_back(nlohmann::json::parse(lightJson(sun)));
     }
     s.manifestRecords = records.dump();
     return s;
@@ -258,7 +258,7 @@ void extractSourceSun(SourceEnvironment& s, const GlobalOptions& global) {
   light.name = fmt::format("{}: extracted sun", s.name);
   s.lights.push_back(light);
   nlohmann::json records;
-  records["lights"] = nlohmann::json::array({nlohmann::json::parse(sunLightJson(light))});
+  records["lights"] = nlohmann::json::array({nlohmann::json::parse(lightJson(light))});
   records["extracted_sun"] = {{"pixels", sun->pixels}, {"peak_over_surroundings", sun->peakRatio}};
   s.manifestRecords = records.dump();
   if (!global.quiet)
@@ -330,7 +330,7 @@ EnvScale scaleSourceEnvironment(SourceEnvironment& s, const EnvScaleOptions& o,
   if (records.contains("lights")) {
     records["lights"] = nlohmann::json::array();
     for (const Light& light : s.lights)
-      records["lights"].push_back(nlohmann::json::parse(sunLightJson(light)));
+      records["lights"].push_back(nlohmann::json::parse(lightJson(light)));
   }
   records["environment_scale"] = nlohmann::json::parse(scale.recordJson());
   s.manifestRecords = records.dump();

@@ -112,7 +112,7 @@ std::string convertOne(const ConvertOptions& o, const std::string& input, const 
   if (!o.sunJson.empty()) {
     std::string text = "{\"lights\": [";
     for (std::size_t i = 0; i < source.lights.size(); ++i)
-      text += (i ? ", " : "") + sunLightJson(source.lights[i]);
+      text += (i ? ", " : "") + lightJson(source.lights[i]);
     text += "]}\n";
     files.push_back({o.sunJson, std::vector<std::uint8_t>(text.begin(), text.end())});
   }

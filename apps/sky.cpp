@@ -141,7 +141,7 @@ std::vector<EncodedFile> writeSkyOutputs(const SkyCliOptions& o, const SkyReques
   const Light sun = skySun(request.parameters);
   if (!o.sunJson.empty()) {
     const std::string text = sun.intensity > 0.0f
-                                 ? fmt::format("{{\"lights\": [{}]}}\n", sunLightJson(sun))
+                                 ? fmt::format("{{\"lights\": [{}]}}\n", lightJson(sun))
                                  : std::string("{\"lights\": []}\n");
     files.push_back({o.sunJson, std::vector<std::uint8_t>(text.begin(), text.end())});
   }

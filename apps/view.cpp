@@ -1,11 +1,13 @@
 // `ibl view`: the real-time viewer (Vulkan), in a window or headless to a screenshot.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "ibl/core/error.hpp"
@@ -16,8 +18,11 @@
 #include "ibl/gpu/viewer.hpp"
 #include "ibl/io/file_io.hpp"
 #include "ibl/io/image_io.hpp"
+#include "ibl/io/json_file.hpp"
 #include "ibl/render/bloom.hpp"
+#include "ibl/render/exposure.hpp"
 #include "ibl/render/irradiance_volume.hpp"
+#include "ibl/render/light.hpp"
 #include "preflight.hpp"
 #include "scene_options.hpp"
 
@@ -37,7 +42,35 @@ struct ViewCliOptions {
   std::string reference;  // the view: reference, difference or split (empty: real time)
   std::optional<int> referenceSpp;
   std::string volumeUpdate;  // on or off (empty: on)
+  std::string autoExposure;  // on or off (empty: on without --ev100 or camera settings)
+  std::string metering = "10,90";
+  float adaptationSpeed = 3.0f;
+  std::string panel = "on";
+  std::string settings;  // --settings FILE
 };
+
+// Whether the exposure is fixed by --ev100 or --aperture, --shutter and --iso.
+bool fixedExposure(const SceneCliOptions& o) {
+  return !o.ev100.empty() || (o.aperture > 0 && o.shutter > 0 && o.iso > 0);
+}
+
+// --metering LOW,HIGH: the percentiles auto exposure meters between.
+MeteringRange meteringRange(const ViewCliOptions& o) {
+  const std::vector<float> p = parseNumbers(o.metering, 2, "--metering");
+  if (!(p[0] >= 0.0f && p[0] < p[1] && p[1] <= 100.0f))
+    failUsage(
+        "--metering",
+        fmt::format("{}: wants two percentiles LOW,HIGH with 0 <= LOW < HIGH <= 100", o.metering));
+  return {p[0], p[1]};
+}
+
+// The exposure of a view's picture: fixed by the options, or metered as the window's auto
+// exposure meters a frame (the histogram between the --metering percentiles).
+float viewEv100(const ViewCliOptions& o, const Image& linear) {
+  return fixedExposure(o.scene) ? chooseEv100(o.scene, linear)
+                                : meteredEv100(luminanceHistogram(linear), meteringRange(o),
+                                               chooseEv100(o.scene, linear));
+}
 
 // The reference's samples per pixel of a screenshot unless --reference-spp says otherwise.
 constexpr int kScreenshotReferenceSpp = 64;
@@ -85,15 +118,127 @@ void writeView(const std::string& path, RenderResult shown, gpu::ViewMode view, 
   writeRenderedImage(path, shown, ev100, curve, false);
 }
 
-// ibl_view_001.png, 002, ...: the first name not taken in the working directory.
-std::string unusedScreenshotName() {
+// ibl_view_001.png, 002, ... (stem "ibl_view", extension ".png"): the first name not taken in
+// the working directory.
+std::string unusedName(const char* stem, const char* extension) {
   for (int n = 1;; ++n) {
-    std::string name = fmt::format("ibl_view_{:03}.png", n);
+    std::string name = fmt::format("{}_{:03}{}", stem, n, extension);
     if (!std::filesystem::exists(name)) return name;
   }
 }
 
-void runView(const ViewCliOptions& o, const GlobalOptions& global) {
+const char* toneMapOption(ToneMap t) {
+  return t == ToneMap::None ? "none" : t == ToneMap::Filmic ? "filmic" : "aces";
+}
+
+// The settings file the panel saves and --settings reads: each of what the window shows under
+// the name of its command-line option (without the dashes, '_' for '-').
+std::string settingsJson(const gpu::ViewSettings& v) {
+  const auto vec = [](glm::vec3 p) { return nlohmann::json::array({p.x, p.y, p.z}); };
+  nlohmann::ordered_json j;
+  j["look_from"] = vec(v.from);
+  j["look_at"] = vec(v.at);
+  j["up"] = vec(v.up);
+  if (v.perspective) j["fov"] = v.fov;
+  j["auto_exposure"] = !v.ev100.has_value();
+  if (v.ev100) j["ev100"] = *v.ev100;
+  j["adaptation_speed"] = v.adaptationSpeed;
+  j["metering"] = {v.metering.low, v.metering.high};
+  j["compensation"] = v.compensation;
+  j["tonemap"] = toneMapOption(v.toneMap);
+  j["bloom"] = v.bloom ? nlohmann::json(*v.bloom) : nlohmann::json("off");
+  j["only"] = v.only == ShadingTerms::Diffuse    ? "diffuse"
+              : v.only == ShadingTerms::Specular ? "specular"
+                                                 : "both";
+  j["skybox_mip"] = v.skyboxLod;
+  j["view"] = v.view == gpu::ViewMode::RealTime ? "real-time" : gpu::viewModeName(v.view);
+  j["panel"] = v.panel;
+  return j.dump(2) + "\n";
+}
+
+// --settings FILE: each setting of the file taken as its option, unless the command line gives
+// that option (the command line wins; a fixed exposure there overrides the file's exposure).
+void applySettingsFile(ViewCliOptions& o) {
+  if (o.settings.empty()) return;
+  const nlohmann::json j = readJsonFile(o.settings);
+  const auto bad = [&](const std::string& key, const std::string& problem) {
+    fail(o.settings, fmt::format("\"{}\" {}", key, problem));
+  };
+  if (!j.is_object()) fail(o.settings, "is not a JSON object of settings");
+  const auto number = [&](const std::string& key) {
+    if (!j[key].is_number() || !std::isfinite(j[key].get<double>())) bad(key, "must be a number");
+    return j[key].get<float>();
+  };
+  const auto text = [&](const std::string& key, std::initializer_list<const char*> allowed) {
+    if (!j[key].is_string()) bad(key, "must be a string");
+    const std::string value = j[key].get<std::string>();
+    for (const char* a : allowed)
+      if (value == a) return value;
+    std::string list;
+    for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+    bad(key, fmt::format("must be one of {}, not \"{}\"", list, value));
+    return value;
+  };
+  const auto point = [&](const std::string& key) {
+    if (!j[key].is_array() || j[key].size() != 3) bad(key, "must be [x, y, z]");
+    std::string joined;
+    for (const auto& c : j[key]) {
+      if (!c.is_number() || !std::isfinite(c.get<double>())) bad(key, "must be [x, y, z]");
+      joined += (joined.empty() ? "" : ",") + fmt::format("{}", c.get<double>());
+    }
+    return joined;
+  };
+  const auto boolean = [&](const std::string& key) {
+    if (!j[key].is_boolean()) bad(key, "must be true or false");
+    return j[key].get<bool>() ? std::string("on") : std::string("off");
+  };
+  const bool exposureGiven = given(o.scene, "--ev100") || given(o.scene, "--aperture") ||
+                             given(o.scene, "--auto-exposure");
+  for (const auto& [key, value] : j.items()) {
+    const std::string option = "--" + [&] {
+      std::string k = key;
+      std::replace(k.begin(), k.end(), '_', '-');
+      return k;
+    }();
+    const bool exposure = key == "ev100" || key == "auto_exposure";
+    if (key != "view" && key != "skybox_mip" && key != "metering" && key != "adaptation_speed" &&
+        key != "panel" && key != "look_from" && key != "look_at" && key != "up" && key != "fov" &&
+        !exposure && key != "compensation" && key != "tonemap" && key != "bloom" && key != "only")
+      fail(o.settings, fmt::format("unknown setting \"{}\"", key));
+    if (exposure ? exposureGiven : given(o.scene, key == "view" ? "--reference" : option)) continue;
+    if (key == "look_from") o.scene.lookFrom = point(key);
+    if (key == "look_at") o.scene.lookAt = point(key);
+    if (key == "up") o.scene.up = point(key);
+    if (key == "fov") o.scene.fov = number(key);
+    if (key == "ev100") o.scene.ev100 = fmt::format("{}", number(key));
+    if (key == "auto_exposure") o.autoExposure = boolean(key);
+    if (key == "adaptation_speed") o.adaptationSpeed = number(key);
+    if (key == "metering") {
+      if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number())
+        bad(key, "must be [low, high] percentiles");
+      o.metering = fmt::format("{},{}", value[0].get<double>(), value[1].get<double>());
+    }
+    if (key == "compensation") o.scene.compensation = number(key);
+    if (key == "tonemap") o.scene.tonemap = text(key, {"aces", "filmic", "none"});
+    if (key == "bloom")
+      o.scene.bloom = value.is_string() ? text(key, {"off"}) : fmt::format("{}", number(key));
+    if (key == "only") {
+      o.scene.only = text(key, {"both", "diffuse", "specular"});
+      if (o.scene.only == "both") o.scene.only.clear();
+    }
+    if (key == "skybox_mip") o.skyboxMip = number(key);
+    if (key == "view") {
+      o.reference = text(key, {"real-time", "reference", "difference", "split"});
+      if (o.reference == "real-time") o.reference.clear();
+    }
+    if (key == "panel") o.panel = boolean(key);
+  }
+  // A saved fixed exposure with auto exposure on contradicts nothing: the EV100 wins.
+  if (!o.scene.ev100.empty()) o.autoExposure.clear();
+}
+
+void runView(ViewCliOptions o, const GlobalOptions& global) {
+  applySettingsFile(o);
   if (!o.screenshot.empty()) checkRenderedImagePath(o.screenshot);
   if (o.referenceSpp && o.reference.empty())
     failUsage("--reference-spp", "needs --reference reference, difference or split");
@@ -105,6 +250,10 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     noteToneOptionsWithoutEffect(
         o.scene, fmt::format("{} holds linear radiance; write a .png", o.screenshot),
         bloomCompensation(o.scene, kViewBloom).has_value(), global);
+  meteringRange(o);  // checked before the scene loads
+  if (o.autoExposure == "on" && fixedExposure(o.scene))
+    failUsage("--auto-exposure",
+              "on contradicts a fixed exposure (--ev100, or --aperture, --shutter and --iso)");
   if (!o.screenshot.empty() && o.frames > 0)
     failUsage("--frames", "closes the window after so many frames; --screenshot opens none");
   if (o.skyboxMip > 0.0f && (o.scene.background != "env" || environmentIsNone(o.scene)))
@@ -185,8 +334,8 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
       updateVolumeBeforeScreenshot(renderer, camera, shading, o.scene, global);
       realTime = renderer.render(camera, shading, o.skyboxMip);
     }
-    // Exposed for the reference, as `ibl render --mode reference` exposes it.
-    const float ev100 = chooseEv100(o.scene, reference.color);
+    // Exposed for the reference, as the window's auto exposure meters it.
+    const float ev100 = viewEv100(o, reference.color);
     writeView(o.screenshot, gpu::composeView(view, realTime, reference), view,
               ev100 - o.scene.compensation, toneCurve(o.scene), o.scene);
     if (!global.quiet)
@@ -209,7 +358,7 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     if (renderer.samples() < shading.spp && !global.quiet)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
                  shading.spp, context->device().name, renderer.samples(), renderer.samples());
-    const float ev100 = chooseEv100(o.scene, result.color);
+    const float ev100 = viewEv100(o, result.color);
     if (const std::optional<float> bloom = bloomCompensation(o.scene, kViewBloom))
       result.color = applyBloom(result.color, ev100 - o.scene.compensation, *bloom);
     writeRenderedImage(o.screenshot, result, ev100 - o.scene.compensation, toneCurve(o.scene),
@@ -223,8 +372,11 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   gpu::WindowOptions w;
   w.camera = camera;
   w.render = shading;
-  if (!o.scene.ev100.empty() || (o.scene.aperture > 0 && o.scene.shutter > 0 && o.scene.iso > 0))
-    w.ev100 = chooseEv100(o.scene, Image(1, 1));
+  if (fixedExposure(o.scene)) w.ev100 = chooseEv100(o.scene, Image(1, 1));
+  w.autoExposure = o.autoExposure != "off";
+  w.metering = meteringRange(o);
+  w.adaptationSpeed = o.adaptationSpeed;
+  w.panel = o.panel == "on";
   w.compensation = o.scene.compensation;
   w.toneMap = toneCurve(o.scene);
   w.skyboxLod = o.skyboxMip;
@@ -235,9 +387,21 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
   w.referenceSpp = o.referenceSpp.value_or(0);
   w.volumeUpdate = o.volumeUpdate != "off";
   w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve, gpu::ViewMode shown) {
-    const std::string path = unusedScreenshotName();
+    const std::string path = unusedName("ibl_view", ".png");
     writeView(path, result, shown, ev100, curve, o.scene);
     if (!global.quiet) fmt::print(stderr, "screenshot {}\n", path);
+  };
+  w.saveSettings = [](const gpu::ViewSettings& settings) {
+    const std::string path = unusedName("ibl_view_settings", ".json");
+    const std::string text = settingsJson(settings);
+    writeFileAtomic(path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+    return path;
+  };
+  w.saveLights = [](const std::vector<Light>& lights) {
+    const std::string path = unusedName("ibl_view_lights", ".json");
+    const std::string text = lightsFileText(lights);
+    writeFileAtomic(path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+    return path;
   };
   if (skySpec) {
     // , and . move the sun 5 degrees; the sky is recomputed and baked on the viewer's device.
@@ -277,8 +441,8 @@ void runView(const ViewCliOptions& o, const GlobalOptions& global) {
     if (stats.samples < shading.spp)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
                  shading.spp, stats.device, stats.samples, stats.samples);
-    fmt::print(stderr, "viewed {} frames, {:.2f} ms per frame on {}\n", stats.frames,
-               stats.meanFrameMs, stats.device);
+    fmt::print(stderr, "viewed {} frames, {:.2f} ms per frame on {}, EV100 {:.2f} at the end\n",
+               stats.frames, stats.meanFrameMs, stats.device, stats.ev100);
     if (stats.referenceSpp > 0)
       fmt::print(
           stderr,
@@ -309,6 +473,27 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--skybox-mip", opts->skyboxMip, "Mip level of the skybox (0: sharpest)")
       ->check(numberIn(0.0f, 16.0f))
       ->capture_default_str();
+  cmd->add_option("--auto-exposure", opts->autoExposure,
+                  "Window: on (default without --ev100 or camera settings) meters every frame "
+                  "and eases the exposure toward it; off keeps the first frame's")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--metering", opts->metering,
+                  "Auto exposure meters the pixels between these percentiles of luminance, "
+                  "LOW,HIGH (the darkest and brightest left out; screenshots too)")
+      ->capture_default_str();
+  cmd->add_option("--adaptation-speed", opts->adaptationSpeed,
+                  "Window: how fast auto exposure follows the light, per second (the gap "
+                  "shrinks by e^-speed each second; 0: at once)")
+      ->check(numberIn(0.0f, 1000.0f))
+      ->capture_default_str();
+  cmd->add_option("--panel", opts->panel,
+                  "Window: show the panel of settings, lights and figures at the start (F1 "
+                  "toggles it; screenshots never show it)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--settings", opts->settings,
+                  "Show what a settings file saved by the panel describes (camera, exposure, "
+                  "tone curve, bloom, terms, view); options given here win over the file's");
   cmd->add_option("--frames", opts->frames, "Window: close after this many frames (0: never)")
       ->check(numberIn(0, 1 << 30));
   cmd->add_option("--reference", opts->reference,
@@ -322,7 +507,9 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
                   "window: where it stops adding samples)")
       ->check(numberIn(1, 1 << 20));
   cmd->footer(
-      "Window controls:\n"
+      "Window controls (the panel, F1, has every setting):\n"
+      "  F1             show / hide the panel\n"
+      "  A              auto exposure on / off     B   bloom on / off\n"
       "  left drag      orbit around the target      wheel   zoom\n"
       "  + / -          exposure up / down (half stops)\n"
       "  [ / ]          skybox mip level down / up\n"

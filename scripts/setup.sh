@@ -13,8 +13,12 @@ packages=(
   nlohmann-json3-dev libtbb-dev libtinygltf-dev libembree-dev libdraco-dev libmeshoptimizer-dev
   libwebp-dev
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers libglfw3-dev
+  # the viewer's panel (Dear ImGui with its GLFW and Vulkan back ends)
+  libimgui-dev
   # the viewer's window in tests, on a virtual X display
   xvfb xauth
+  # pressing the window's keys and clicking its panel in tests
+  xdotool
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3 python3-yaml
   # the Python module (python/) and its tests

@@ -123,6 +123,12 @@ SceneRenderer::Impl::~Impl() {
   vkDeviceWaitIdle(device);
 }
 
+void SceneRenderer::Impl::setLights(const std::vector<Light>& lights) {
+  scene.setLights(lights);
+  shadows.invalidate();
+  clusters.invalidate();
+}
+
 void SceneRenderer::Impl::setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                                          const std::vector<Light>& lights) {
   scene.setEnvironment(bake, bakeOptions, lights);
@@ -340,6 +346,10 @@ SceneRenderer::SceneRenderer(Context& context, const Scene& scene, const BakeRes
     : impl_(std::make_unique<Impl>(context, scene, bake, bakeOptions, probes, volume,
                                    updatableVolume)) {}
 SceneRenderer::~SceneRenderer() = default;
+
+void SceneRenderer::setLights(const std::vector<Light>& lights) {
+  impl_->setLights(lights);
+}
 
 void SceneRenderer::setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                                    const std::vector<Light>& lights) {

@@ -83,6 +83,8 @@ struct SceneRenderer::Impl {
   // SceneRenderer::shadowMaps: the maps as the device holds them (depths read back).
   ShadowMaps readShadowMaps(const Camera& camera, const RenderOptions& options);
   // SceneRenderer::setEnvironment.
+  // SceneRenderer::setLights.
+  void setLights(const std::vector<Light>& lights);
   void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                       const std::vector<Light>& lights);
   // What the frame's uniforms say besides the camera and the options.

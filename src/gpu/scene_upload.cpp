@@ -502,12 +502,22 @@ void SceneUpload::setEnvironment(const BakeResult& bake, const BakeOptions& bake
                                lights.size(), lights_.size()));
   vkDeviceWaitIdle(device_);  // nothing in flight reads what is replaced
   uploadBake(bake, bakeOptions);
+  setLights(lights);
+  writeBakeBindings();
+}
+
+void SceneUpload::setLights(const std::vector<Light>& lights) {
+  if (lights.size() != lights_.size())
+    fail("viewer", fmt::format("{} lights given; the scene has {}", lights.size(), lights_.size()));
+  for (std::size_t i = 0; i < lights.size(); ++i)
+    if (lights[i].type != lights_[i].type || lights[i].ies != lights_[i].ies)
+      fail("viewer", fmt::format("light {} changes its type or IES profile", i + 1));
+  vkDeviceWaitIdle(device_);  // nothing in flight reads the records
   std::vector<const IesProfile*> iesProfiles;
   std::vector<float> iesTexels;
   const std::vector<glm::vec4> data = lightRecords(lights, iesProfiles, iesTexels);
   std::memcpy(lightsBuffer_->mapped(), data.data(), data.size() * sizeof(glm::vec4));
   lights_ = lights;
-  writeBakeBindings();
 }
 
 void SceneUpload::writeBakeBindings() const {

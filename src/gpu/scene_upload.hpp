@@ -138,6 +138,9 @@ class SceneUpload {
   // scene's, else Error), and points the frame set at them. The device must be idle.
   void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                       const std::vector<Light>& lights);
+  // Replaces the lights' records alone (`lights`: as many as the scene's, of the same types and
+  // IES profiles, else Error). Waits for the device to be idle.
+  void setLights(const std::vector<Light>& lights);
   // Binds and draws every mesh with its material (set 1, through `layout`) and its push
   // constants (DrawConstants): its sphere, shadow layer `layer` and scene pass part `pass`
   // (kOpaqueFramePass and kShadowPass: the meshes whose material transmits nothing;

@@ -12,6 +12,8 @@
 #include <glm/geometric.hpp>
 
 #include "gpu/bloom.hpp"
+#include "gpu/exposure.hpp"
+#include "gpu/panel.hpp"
 #include "gpu/scene_renderer.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/core/stats.hpp"
@@ -21,21 +23,13 @@ namespace ibl::gpu {
 
 namespace {
 
-// What the user changes with the mouse and keys.
-struct Interaction {
+// What the user changes with the mouse, the keys and the panel.
+struct Interaction : ViewerControls {
   glm::vec3 target{0.0f};
   float yaw = 0.0f, pitch = 0.0f, distance = 1.0f;  // camera = target + distance * dir(yaw, pitch)
-  float compensation = 0.0f;
-  float skyboxLod = 0.0f;
-  bool diffuse = true, specular = true;
-  ToneMap toneMap = ToneMap::Aces;
   bool dragging = false;
   double lastX = 0.0, lastY = 0.0;
   Camera initial;
-  float maxSkyboxLod = 0.0f;
-  bool screenshotRequested = false;
-  int timeStep = 0;                    // , or . pressed: the sun lower (-1) or higher (+1)
-  ViewMode view = ViewMode::RealTime;  // M cycles it
 
   void orbitFrom(const Camera& c) {
     target = c.at;
@@ -43,6 +37,29 @@ struct Interaction {
     distance = std::max(glm::length(offset), 1e-4f);
     yaw = std::atan2(offset.x, offset.z);
     pitch = std::asin(std::clamp(offset.y / distance, -1.0f, 1.0f));
+  }
+  // What the window shows now, for --settings.
+  ViewSettings settings() const {
+    ViewSettings v;
+    const Camera c = camera(initial.width, initial.height);
+    v.from = c.from;
+    v.at = c.at;
+    v.up = c.up;
+    v.fov = c.yfovDegrees;
+    v.perspective = c.perspective;
+    if (!autoExposure) v.ev100 = ev100;
+    v.adaptationSpeed = adaptationSpeed;
+    v.metering = metering;
+    v.compensation = compensation;
+    v.toneMap = toneMap;
+    if (bloom) v.bloom = bloomStops;
+    v.only = diffuse && specular ? ShadingTerms::Both
+             : diffuse           ? ShadingTerms::Diffuse
+                                 : ShadingTerms::Specular;
+    v.skyboxLod = skyboxLod;
+    v.view = view;
+    v.panel = panel;
+    return v;
   }
   Camera camera(int width, int height) const {
     Camera c = initial;
@@ -61,9 +78,18 @@ const char* toneMapName(ToneMap t) {
 }
 
 void onKey(GLFWwindow* window, int key, int, int action, int) {
-  if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+  if ((action != GLFW_PRESS && action != GLFW_REPEAT) || Panel::wantsKeyboard()) return;
   auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
   switch (key) {
+    case GLFW_KEY_F1:
+      if (action == GLFW_PRESS) s.panel = !s.panel;
+      break;
+    case GLFW_KEY_A:
+      if (action == GLFW_PRESS) s.autoExposure = !s.autoExposure;
+      break;
+    case GLFW_KEY_B:
+      if (action == GLFW_PRESS) s.bloom = !s.bloom;
+      break;
     case GLFW_KEY_ESCAPE:
     case GLFW_KEY_Q:
       glfwSetWindowShouldClose(window, GLFW_TRUE);
@@ -117,20 +143,23 @@ void onKey(GLFWwindow* window, int key, int, int action, int) {
 void onMouseButton(GLFWwindow* window, int button, int action, int) {
   auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
   if (button != GLFW_MOUSE_BUTTON_LEFT) return;
-  s.dragging = action == GLFW_PRESS;
-  glfwGetCursorPos(window, &s.lastX, &s.lastY);
+  // The drag starts where the events last put the cursor (not where it is now: the events of
+  // a fast drag may all be queued before the press is handled).
+  s.dragging = action == GLFW_PRESS && !Panel::wantsMouse();  // a drag on the panel is its own
 }
 
 void onCursor(GLFWwindow* window, double x, double y) {
   auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
-  if (!s.dragging) return;
-  s.yaw -= 0.006f * static_cast<float>(x - s.lastX);
-  s.pitch = std::clamp(s.pitch + 0.006f * static_cast<float>(y - s.lastY), -1.55f, 1.55f);
+  if (s.dragging) {
+    s.yaw -= 0.006f * static_cast<float>(x - s.lastX);
+    s.pitch = std::clamp(s.pitch + 0.006f * static_cast<float>(y - s.lastY), -1.55f, 1.55f);
+  }
   s.lastX = x;
   s.lastY = y;
 }
 
 void onScroll(GLFWwindow* window, double, double dy) {
+  if (Panel::wantsMouse()) return;
   auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
   s.distance *= std::pow(0.9f, static_cast<float>(dy));
 }
@@ -166,8 +195,10 @@ struct WindowResources {
   std::unique_ptr<Context> context;
   VkSurfaceKHR surface = VK_NULL_HANDLE;
   std::unique_ptr<SceneRenderer> renderer;
-  std::unique_ptr<DeviceBloom> bloom;  // with WindowOptions::bloom
-  std::unique_ptr<PathTracer> tracer;  // made when a view first shows the reference
+  std::unique_ptr<DeviceBloom> bloom;          // with WindowOptions::bloom
+  std::unique_ptr<DeviceHistogram> histogram;  // auto exposure's
+  std::unique_ptr<Panel> panel;                // after the callbacks it chains
+  std::unique_ptr<PathTracer> tracer;          // made when a view first shows the reference
   // Outside the real-time view: the picture shown (composeView), uploaded from the host and
   // read by the bloom and the tone-mapping pass in place of the scene renderer's output.
   std::unique_ptr<DeviceImage> shown;
@@ -187,7 +218,9 @@ struct WindowResources {
     if (context) {
       VkDevice d = context->impl().device;
       vkDeviceWaitIdle(d);
+      panel.reset();
       bloom.reset();
+      histogram.reset();
       shown.reset();
       tracer.reset();
       renderer.reset();
@@ -447,31 +480,45 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   r.renderer = std::make_unique<SceneRenderer>(*r.context, scene, bake, bakeOptions, probes, volume,
                                                o.volumeUpdate);
   auto& renderer = r.renderer->impl();
-  if (o.bloom) r.bloom = std::make_unique<DeviceBloom>(*r.context);
   const int samples = renderer.supportedSamples(std::max(o.render.spp, 1));
 
   Interaction state;
   state.initial = o.camera;
   state.orbitFrom(o.camera);
   state.compensation = o.compensation;
+  state.autoExposure = !o.ev100 && o.autoExposure;
+  state.adaptationSpeed = o.adaptationSpeed;
+  state.metering = o.metering;
+  state.bloom = o.bloom.has_value();
+  state.bloomStops = o.bloom.value_or(3.0f);
+  state.panel = o.panel;
+  state.lights = scene.lights;
   state.skyboxLod = o.skyboxLod;
   state.toneMap = o.toneMap;
   state.maxSkyboxLod = renderer.scene.skyboxMaxLod();
   state.diffuse = o.render.only != ShadingTerms::Specular;
   state.specular = o.render.only != ShadingTerms::Diffuse;
   state.view = o.view;
-  const float ev100 =
-      o.ev100
-          ? *o.ev100
-          : ev100FromAverageLuminance(averageLogLuminance(
-                r.renderer
-                    ->render(state.camera(o.camera.width, o.camera.height), o.render, o.skyboxLod)
-                    .color));
+  // The exposure: fixed, or the first frame metered here and then, with auto exposure, each
+  // frame's histogram (counted on the device with the frame, read once its fence has signaled).
+  state.ev100 =
+      o.ev100 ? *o.ev100
+              : meteredEv100(
+                    luminanceHistogram(r.renderer
+                                           ->render(state.camera(o.camera.width, o.camera.height),
+                                                    o.render, o.skyboxLod)
+                                           .color),
+                    o.metering, 0.0f);
+  r.histogram = std::make_unique<DeviceHistogram>(*r.context);
+  bool histogramRecorded = false;
   glfwSetWindowUserPointer(r.window, &state);
   glfwSetKeyCallback(r.window, onKey);
   glfwSetMouseButtonCallback(r.window, onMouseButton);
   glfwSetCursorPosCallback(r.window, onCursor);
   glfwSetScrollCallback(r.window, onScroll);
+  r.panel = std::make_unique<Panel>(*r.context, r.window, r.pass,
+                                    static_cast<std::uint32_t>(r.swapchain.images.size()),
+                                    encodesSrgb(format.format));
 
   VkDescriptorSet set;
   VkDescriptorSetAllocateInfo setAlloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -495,7 +542,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   stats.samples = samples;
   using Clock = std::chrono::steady_clock;
   auto last = Clock::now(), lastTitle = last;
-  double windowMs = 0.0, totalMs = 0.0;
+  double windowMs = 0.0, totalMs = 0.0, lastFrameMs = 0.0;
   int windowFrames = 0;
   // The reference, and what it was started for (a change of any starts it over); the real-time
   // frame the difference and split views compare it with, and what it was drawn for; the
@@ -534,6 +581,12 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
       continue;
     }
     check(vkWaitForFences(c.device, 1, &r.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    // Auto exposure: eased toward what the last frame's histogram asks for, over the time since.
+    if (histogramRecorded && state.autoExposure)
+      state.ev100 =
+          adaptEv100(state.ev100, meteredEv100(r.histogram->read(), state.metering, state.ev100),
+                     static_cast<float>(lastFrameMs / 1000.0), state.adaptationSpeed);
+    histogramRecorded = false;
     std::uint32_t imageIndex = 0;
     const VkResult acquired = vkAcquireNextImageKHR(c.device, r.swapchain.handle, UINT64_MAX,
                                                     r.acquired, VK_NULL_HANDLE, &imageIndex);
@@ -547,16 +600,47 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     const VkExtent2D extent = r.swapchain.extent;
     const int width = static_cast<int>(extent.width), height = static_cast<int>(extent.height);
     renderer.prepare(width, height, samples);
+    if (state.bloom && !r.bloom) r.bloom = std::make_unique<DeviceBloom>(*r.context);
     if (r.bloom) r.bloom->prepare(width, height);
+    r.histogram->prepare(width, height);
+    // The panel, from the controls as the events left them (it may change them in turn).
+    PanelFigures figures;
+    figures.frameMs = lastFrameMs;
+    figures.device = c.info.name;
+    figures.samples = samples;
+    figures.timeOfDay = static_cast<bool>(o.timeOfDay);
+    if (r.tracer) {
+      figures.referenceSpp = r.tracer->samplesPerPixel();
+      figures.referenceNoise = r.tracer->noise();
+    }
+    figures.canSaveSettings = static_cast<bool>(o.saveSettings);
+    figures.canSaveLights = static_cast<bool>(o.saveLights);
+    r.panel->build(state, figures);
+    if (state.saveSettingsRequested || state.saveLightsRequested) {
+      try {
+        state.status = "saved " + (state.saveSettingsRequested ? o.saveSettings(state.settings())
+                                                               : o.saveLights(state.lights));
+      } catch (const Error& e) {
+        state.status = e.what();
+      }
+      state.saveSettingsRequested = state.saveLightsRequested = false;
+    }
     RenderOptions shading = o.render;
     shading.only = state.diffuse && state.specular ? ShadingTerms::Both
                    : state.diffuse                 ? ShadingTerms::Diffuse
                                                    : ShadingTerms::Specular;
     if (state.timeStep != 0 && o.timeOfDay) {
       const auto start = Clock::now();
-      const auto change = o.timeOfDay(state.timeStep, *r.context);
+      auto change = o.timeOfDay(state.timeStep, *r.context);
+      // The lights as the panel left them, the sun (the last) moved.
+      if (change && change->lights.size() == state.lights.size()) {
+        const Light sun = change->lights.back();
+        change->lights = state.lights;
+        change->lights.back() = sun;
+      }
       if (change) {
         renderer.setEnvironment(change->bake, change->options, change->lights);
+        state.lights = change->lights;
         state.maxSkyboxLod = renderer.scene.skyboxMaxLod();
         // The reference is traced again, by a tracer of the new environment and lights.
         r.tracer.reset();
@@ -575,6 +659,15 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
       }
     }
     state.timeStep = 0;
+    if (state.lightsChanged) {  // moved, dimmed or recolored in the panel
+      state.lightsChanged = false;
+      renderer.setLights(state.lights);
+      r.tracer.reset();
+      changedScene = scene;
+      changedScene.lights = state.lights;
+      referenceScene = &changedScene;
+      ++environmentGeneration;
+    }
 
     // Outside the real-time view: the reference (made on first use), started over when what it
     // shows changed, a batch of samples further; the real-time frame when the view compares
@@ -636,14 +729,14 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
         o.screenshot(view == ViewMode::RealTime
                          ? r.renderer->render(camera, shading, state.skyboxLod)
                          : picture,
-                     ev100 - state.compensation, state.toneMap, view);
+                     state.ev100 - state.compensation, state.toneMap, view);
     }
     // The difference view's colors are shown as they are: no bloom, exposure or tone curve.
     const bool difference = view == ViewMode::Difference;
     const struct {
       float exposure;
       std::int32_t curve, encode;
-    } push{difference ? 1.0f : exposureFromEv100(ev100 - state.compensation),
+    } push{difference ? 1.0f : exposureFromEv100(state.ev100 - state.compensation),
            difference || state.toneMap == ToneMap::None ? 0
            : state.toneMap == ToneMap::Aces             ? 1
                                                         : 2,
@@ -655,8 +748,13 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     if (view == ViewMode::RealTime)
       renderer.record(r.cmd, camera, shading, state.skyboxLod, o.volumeUpdate);
     const DeviceImage& frame = view == ViewMode::RealTime ? renderer.output() : *r.shown;
-    const bool bloomed = r.bloom && !difference;
-    if (bloomed) r.bloom->record(r.cmd, frame, ev100 - state.compensation, *o.bloom);
+    // Metered: what is shown, before bloom (the difference view's colors are no radiance).
+    if (state.autoExposure && !difference) {
+      r.histogram->record(r.cmd, frame);
+      histogramRecorded = true;
+    }
+    const bool bloomed = state.bloom && !difference;
+    if (bloomed) r.bloom->record(r.cmd, frame, state.ev100 - state.compensation, state.bloomStops);
     // The tone-mapping pass reads the frame, or its bloom.
     const VkDescriptorImageInfo hdrInfo{r.sampler,
                                         bloomed ? r.bloom->output().view() : frame.view(),
@@ -678,6 +776,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     vkCmdPushConstants(r.cmd, r.pipelineLayout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push),
                        &push);
     vkCmdDraw(r.cmd, 3, 1, 0, 0);
+    r.panel->record(r.cmd);
     vkCmdEndRenderPass(r.cmd);
     check(vkEndCommandBuffer(r.cmd), "vkEndCommandBuffer");
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -706,6 +805,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     const auto now = Clock::now();
     const double ms = std::chrono::duration<double, std::milli>(now - last).count();
     last = now;
+    lastFrameMs = ms;
     ++stats.frames;
     totalMs += ms;
     windowMs += ms;
@@ -722,7 +822,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
           r.window,
           fmt::format("{}{} - {:.2f} ms/frame ({:.0f} fps) - EV100 {:.1f} - skybox mip {:.1f} - "
                       "{} - {} - {}x MSAA - {}",
-                      o.title, shown, mean, 1000.0 / mean, ev100 - state.compensation,
+                      o.title, shown, mean, 1000.0 / mean, state.ev100 - state.compensation,
                       state.skyboxLod,
                       shading.only == ShadingTerms::Both      ? "diffuse + specular"
                       : shading.only == ShadingTerms::Diffuse ? "diffuse only"
@@ -736,6 +836,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   }
   stats.meanFrameMs = stats.frames > 0 ? totalMs / stats.frames : 0.0;
   stats.view = state.view;
+  stats.ev100 = state.ev100;
   if (r.tracer) {
     stats.referenceSpp = r.tracer->samplesPerPixel();
     stats.referenceNoise = r.tracer->noise();

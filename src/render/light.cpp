@@ -169,6 +169,7 @@ void attachIesProfile(const LightReader& r, const std::filesystem::path& baseDir
   }
   if (file.is_relative()) file = baseDirectory / file;
   auto profile = std::make_shared<IesProfile>(readIes(file));
+  light.iesFile = std::filesystem::absolute(file);
   if (absolute) {
     light.iesScale = multiplier;
   } else if (unit == "lm") {
@@ -435,14 +436,49 @@ std::vector<Light> parseLights(std::string_view text, const std::string& name,
   return lights;
 }
 
-std::string sunLightJson(const Light& sun) {
-  const Json j = {{"type", "sun"},
-                  {"direction", {sun.direction.x, sun.direction.y, sun.direction.z}},
-                  {"intensity", sun.intensity},
-                  {"unit", "lux"},
-                  {"color", {sun.color.x, sun.color.y, sun.color.z}},
-                  {"angular_diameter", glm::degrees(sun.angularDiameter)}};
+std::string lightJson(const Light& light) {
+  const auto vec = [](glm::vec3 v) { return Json::array({v.x, v.y, v.z}); };
+  Json j = {{"type", std::string(lightTypeName(light.type))}};
+  const LightType t = light.type;
+  if (t != LightType::Sun) j["position"] = vec(light.position);
+  if (t == LightType::Tube)
+    j["axis"] = vec(light.direction);
+  else if (t != LightType::Point && t != LightType::Sphere)
+    j["direction"] = vec(light.direction);
+  if (t == LightType::Spot) {
+    j["inner_angle"] = glm::degrees(light.innerAngle);
+    j["outer_angle"] = glm::degrees(light.outerAngle);
+  }
+  if (t == LightType::Sun) j["angular_diameter"] = glm::degrees(light.angularDiameter);
+  if (t == LightType::Sphere || t == LightType::Disk || t == LightType::Tube)
+    j["radius"] = light.radius;
+  if (t == LightType::Tube) j["length"] = light.length;
+  if (t == LightType::Rect) {
+    j["up"] = vec(light.up);
+    j["width"] = light.width;
+    j["height"] = light.height;
+  }
+  if (light.ies) {
+    if (light.iesFile.empty())
+      fail(light.name.empty() ? "light" : light.name,
+           "its IES profile was not read from a file and cannot be written");
+    j["ies"] = {{"file", light.iesFile.string()}, {"multiplier", light.iesScale}};
+  } else {
+    j["intensity"] = light.intensity;
+    j["unit"] = t == LightType::Sun                             ? "lux"
+                : t == LightType::Point || t == LightType::Spot ? "cd"
+                                                                : "nit";
+  }
+  j["color"] = vec(light.color);
+  if (light.range > 0.0f) j["range"] = light.range;
   return j.dump();
+}
+
+std::string lightsFileText(const std::vector<Light>& lights) {
+  std::string text = "{\"lights\": [";
+  for (std::size_t i = 0; i < lights.size(); ++i)
+    text += (i ? ",\n  " : "\n  ") + lightJson(lights[i]);
+  return text + "\n]}\n";
 }
 
 std::vector<Light> readLightsFile(const std::filesystem::path& path, SpotLumens spotLumens) {

@@ -3,6 +3,8 @@
 // what it says (a failure of the work), and nothing written either way. The table must name
 // every option that `--help` lists: a new option cannot escape it.
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <regex>
 #include <set>
@@ -352,7 +354,46 @@ TEST(Usage, View) {
                "--volume-update-frames: contradicts --volume-update off"},
               {"--volume-update-frames", "--frames 1 --volume . --volume-update-frames 2", 2,
                "--volume-update-frames: runs before a --screenshot"},
+              {"--auto-exposure", "--screenshot out.png --auto-exposure on --ev100 5", 2,
+               "--auto-exposure: on contradicts a fixed exposure"},
+              {"--auto-exposure", "--screenshot out.png --auto-exposure sometimes", 2,
+               "--auto-exposure"},
+              {"--metering", "--screenshot out.png --metering 90,10", 2,
+               "--metering: 90,10: wants two percentiles LOW,HIGH with 0 <= LOW < HIGH <= 100"},
+              {"--metering", "--screenshot out.png --metering 5", 2, "--metering"},
+              {"--adaptation-speed", "--frames 1 --adaptation-speed -1", 2,
+               "--adaptation-speed: must be from 0 to 1000, not -1"},
+              {"--panel", "--frames 1 --panel sometimes", 2, "--panel"},
+              {"--settings", "--screenshot out.png --settings nosuch.json", 1,
+               "nosuch.json: no such file"},
           });
+}
+
+// A settings file (--settings) with a mistake: one line naming the file and the setting, before
+// anything is loaded.
+TEST(Usage, ViewSettingsFileMistakesNameTheFile) {
+  const TempDir dir;
+  const auto run = [&](const std::string& text) {
+    const auto path = dir / "settings.json";
+    std::ofstream(path) << text;
+    return runIbl("view sphere --screenshot " + (dir / "out.png").string() + " --settings " +
+                  path.string());
+  };
+  const std::string name = (dir / "settings.json").string();
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"zoom": 2})", name + ": unknown setting \"zoom\""},
+           {R"({"fov": "wide"})", name + ": \"fov\" must be a number"},
+           {R"({"tonemap": "reinhard"})",
+            name + ": \"tonemap\" must be one of aces, filmic, none, not \"reinhard\""},
+           {R"({"look_from": [1, 2]})", name + ": \"look_from\" must be [x, y, z]"},
+           {R"({"auto_exposure": 1})", name + ": \"auto_exposure\" must be true or false"},
+           {R"([1, 2])", name + ": is not a JSON object of settings"},
+           {R"({"fov": 40,})", name + ": line 1, column 12"}}) {
+    const CliRun r = run(text);
+    EXPECT_EQ(r.status, 1) << text << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << text << "\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.png")) << text;
+  }
 }
 
 TEST(Usage, Probe) {

@@ -70,7 +70,7 @@ TEST(EnvironmentLighting, AWrittenBakeReadsBackTheSameData) {
   BakeOutputOptions output;
   output.format = PixelFormat::Rgba32f;  // exact
   output.preview = false;
-  output.manifestRecords = "{\"lights\": [" + sunLightJson(sun()) + "]}";
+  output.manifestRecords = "{\"lights\": [" + lightJson(sun()) + "]}";
   writeBakeOutputs(baked.bake, baked.options, output, BakeSource{}, dir / "bake");
   // The render asks for the sheen with the other visibility: the bake's table decides.
   BakeOptions wishes;

@@ -13,6 +13,7 @@
 #include "ibl/bake/bake.hpp"
 #include "ibl/gpu/compute.hpp"
 #include "ibl/render/camera.hpp"
+#include "ibl/render/exposure.hpp"
 #include "ibl/render/irradiance_volume.hpp"
 #include "ibl/render/probe.hpp"
 #include "ibl/render/renderer.hpp"
@@ -71,6 +72,9 @@ class SceneRenderer {
   // illuminance; an IES light keeps its profile). Waits for the device to be idle.
   void setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                       const std::vector<Light>& lights);
+  // Replaces the scene's lights alone (moved, dimmed, recolored: as many as the scene's, each of
+  // its type and IES profile, else Error("viewer: ...")). Waits for the device to be idle.
+  void setLights(const std::vector<Light>& lights);
   // The irradiance volume's live update (src/gpu/volume_update.hpp): `frames` frames of it,
   // lit by the lights and the environment with the shading switches of `options`, as
   // updateVolume runs them on the CPU (the same frames: the same rays); the frames drawn after
@@ -120,18 +124,44 @@ RenderResult composeView(ViewMode mode, const RenderResult& realTime,
 // RenderMode::Reference with `ibl render --mode reference`'s defaults (4 bounces, seed 1).
 RenderOptions viewReferenceOptions(const RenderOptions& realTime);
 
+// What the window shows, as its panel and keys left it: saved by the panel (WindowOptions::
+// saveSettings) for `ibl view --settings` to show the same again, in a window or a screenshot.
+struct ViewSettings {
+  glm::vec3 from{0.0f}, at{0.0f}, up{0.0f, 1.0f, 0.0f};  // the orbiting camera
+  float fov = 40.0f;
+  bool perspective = true;
+  std::optional<float> ev100;  // none: auto exposure
+  float adaptationSpeed = 3.0f;
+  MeteringRange metering;
+  float compensation = 0.0f;
+  ToneMap toneMap = ToneMap::Aces;
+  std::optional<float> bloom;  // none: off
+  ShadingTerms only = ShadingTerms::Both;
+  float skyboxLod = 0.0f;
+  ViewMode view = ViewMode::RealTime;
+  bool panel = true;
+};
+
 struct WindowOptions {
-  Camera camera;               // the initial view; width and height: the window's size
-  RenderOptions render;        // shading switches; spp: multisamples
-  std::optional<float> ev100;  // none: from the first frame's average luminance
-  float compensation = 0.0f;   // stops subtracted from EV100
+  Camera camera;         // the initial view; width and height: the window's size
+  RenderOptions render;  // shading switches; spp: multisamples
+  // The exposure: a fixed EV100, or none for auto exposure (ibl/render/exposure.hpp): the first
+  // frame metered on the host, then, with autoExposure, every frame's histogram counted on the
+  // device (shaders/view/luminance_histogram.comp) and the exposure eased toward what it asks for
+  // at adaptationSpeed (1/s; 0: at once); without autoExposure, the first frame's kept.
+  std::optional<float> ev100;
+  bool autoExposure = true;
+  MeteringRange metering;
+  float adaptationSpeed = 3.0f;
+  float compensation = 0.0f;  // stops subtracted from EV100
   ToneMap toneMap = ToneMap::Aces;
   float skyboxLod = 0.0f;
   // Bloom of the live image: the light this many stops above the average luminance the
   // exposure is set for spreads, as applyBloom (ibl/render/bloom.hpp) computes it, on the device
   // (bloomOnDevice); none: off.
   std::optional<float> bloom;
-  int frames = 0;  // stop after this many frames (0: when the window is closed)
+  int frames = 0;     // stop after this many frames (0: when the window is closed)
+  bool panel = true;  // the panel (Dear ImGui) shown at the start; F1 toggles it
   std::string title = "ibl view";
   // Called with the current view rendered offscreen (linear radiance), its EV100 and tone
   // curve when the user presses P or F12; none: the keys do nothing. Outside the real-time view:
@@ -141,6 +171,11 @@ struct WindowOptions {
   // the viewer's device to bake on; returns the new environment, or nothing. The title and
   // stderr show how long the change took.
   std::function<std::optional<EnvironmentChange>(int step, Context& device)> timeOfDay;
+  // The panel's "save settings" and "save lights" buttons: called with what the window shows, or
+  // with its lights as edited (types, sizes and profiles as loaded); they return the path they
+  // wrote, shown in the panel, or throw Error (its message shown). None: no button.
+  std::function<std::string(const ViewSettings&)> saveSettings;
+  std::function<std::string(const std::vector<Light>&)> saveLights;
   // The view the window starts in (M cycles it). Reference, difference and split views trace the
   // reference on the window's device (gpu::PathTracer, made when first shown) with
   // `reference`'s options (none: viewReferenceOptions(render); D and S still switch its terms),
@@ -162,6 +197,7 @@ struct WindowStats {
   std::string device;
   int samples = 0;                     // MSAA samples per pixel the device allowed
   ViewMode view = ViewMode::RealTime;  // the view shown when the window closed
+  float ev100 = 0.0f;                  // the exposure then (compensation not included)
   int referenceSpp = 0;                // the reference's samples per pixel then (0: none traced)
   float referenceNoise = 0.0f;         // and its estimated relative noise (PathTracer::noise)
 };
@@ -170,6 +206,11 @@ struct WindowStats {
 // (shaders/view/bloom_*.comp) as the window blooms its frames, and read back; what applyBloom
 // (ibl/render/bloom.hpp) computes on the CPU, to float rounding.
 Image bloomOnDevice(Context& context, const Image& linear, float ev100, float compensation);
+
+// Auto exposure's histogram of `linear` (radiance) counted on the device
+// (shaders/view/luminance_histogram.comp) as the window counts its frames: what
+// luminanceHistogram (ibl/render/exposure.hpp) counts on the CPU.
+LuminanceHistogram luminanceHistogramOnDevice(Context& context, const Image& linear);
 
 // Opens a GLFW window and runs the interactive viewer until it is closed (Esc, Q) or after
 // `frames` frames: left drag orbits, the wheel zooms, +/- change the exposure, [ and ] the

@@ -44,7 +44,8 @@ struct Light {
   // web's nadir along `direction`, or down (-Y) for a point light; its 0-degree plane toward
   // iesHorizontalAxis()).
   std::shared_ptr<const IesProfile> ies;
-  float iesScale = 1.0f;  // multiplier of the profile's candela
+  float iesScale = 1.0f;          // multiplier of the profile's candela
+  std::filesystem::path iesFile;  // the profile's file, as read (lightJson writes it back)
 
   bool isPunctual() const { return type == LightType::Point || type == LightType::Spot; }
   // Punctual lights: the luminous intensity (cd, before color) toward unit direction w from
@@ -75,10 +76,14 @@ std::vector<Light> parseLights(std::string_view text, const std::string& name,
 std::vector<Light> readLightsFile(const std::filesystem::path& path,
                                   SpotLumens spotLumens = SpotLumens::Physical);
 
-// A sun as one entry of a lights file (JSON text of the object: type, direction, intensity in
-// lx, color, angular_diameter in degrees): what `ibl sky --sun-json` and the manifests of bakes
-// with a sun hold, and parseLights reads back.
-std::string sunLightJson(const Light& sun);
+// A light as one entry of a lights file (JSON text of the object): its type, its placement and
+// size as the type takes them (angles in degrees), its intensity in cd, lux or nit (an IES light:
+// {"file": the profile's path, "multiplier": iesScale} instead), its color and range; what
+// `ibl sky --sun-json`, the manifests of bakes with a sun and the viewer's saved lights hold,
+// and parseLights reads back. Throws Error for a light with a profile but no iesFile.
+std::string lightJson(const Light& light);
+// A lights file of `lights`: {"lights": [...]}, one light per line.
+std::string lightsFileText(const std::vector<Light>& lights);
 
 // Throws Error(light.name: ...) unless the light's fields are finite and in range (sizes > 0,
 // 0 <= inner <= outer <= 90 degrees, unit directions, ...). Every reader calls it.

@@ -1,0 +1,217 @@
+#include "gpu/panel.hpp"
+
+#include <algorithm>
+#include <array>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+#include <fmt/format.h>
+#include <imgui.h>
+#include <glm/geometric.hpp>
+
+#include "ibl/core/error.hpp"
+#include "ibl/shared/color.h"
+
+namespace ibl::gpu {
+
+namespace {
+
+constexpr float kPanelWidth = 360.0f;
+
+// Dear ImGui's back end reports Vulkan errors through this.
+void checkImGuiVulkan(VkResult r) {
+  if (r < 0) check(r, "Dear ImGui's Vulkan back end");
+}
+
+const char* lightUnit(LightType type) {
+  switch (type) {
+    case LightType::Point:
+    case LightType::Spot:
+      return "cd";
+    case LightType::Sun:
+      return "lx";
+    default:
+      return "nit";
+  }
+}
+
+// Whether the light's `direction` means something (the point and the sphere shine all around).
+bool hasDirection(LightType type) {
+  return type != LightType::Point && type != LightType::Sphere;
+}
+
+// The light's fields the panel edits; true when one changed.
+bool editLight(Light& light) {
+  bool changed = false;
+  changed |= ImGui::DragFloat(fmt::format("intensity ({})", lightUnit(light.type)).c_str(),
+                              &light.intensity, std::max(light.intensity, 1.0f) * 0.01f, 0.0f, 1e9f,
+                              "%.4g");
+  light.intensity = std::max(light.intensity, 0.0f);
+  changed |= ImGui::ColorEdit3("color", &light.color.x, ImGuiColorEditFlags_Float);
+  if (light.type != LightType::Sun)
+    changed |= ImGui::DragFloat3("position", &light.position.x, 0.01f, -1e4f, 1e4f, "%.3f");
+  if (hasDirection(light.type)) {
+    glm::vec3 d = light.direction;
+    if (ImGui::DragFloat3("direction", &d.x, 0.01f, -1.0f, 1.0f, "%.3f") &&
+        glm::length(d) > 1e-3f) {
+      light.direction = glm::normalize(d);
+      // A rect's up stays orthogonal to its direction.
+      glm::vec3 up = light.up - glm::dot(light.up, light.direction) * light.direction;
+      if (glm::length(up) < 1e-3f)
+        up = glm::cross(light.direction, std::abs(light.direction.x) < 0.9f
+                                             ? glm::vec3(1.0f, 0.0f, 0.0f)
+                                             : glm::vec3(0.0f, 1.0f, 0.0f));
+      light.up = glm::normalize(up);
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+}  // namespace
+
+Panel::Panel(Context& context, GLFWwindow* window, VkRenderPass pass, std::uint32_t imageCount,
+             bool srgbTarget) {
+  auto& c = context.impl();
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // no imgui.ini in the user's folder
+  ImGui::StyleColorsDark();
+  if (srgbTarget)
+    for (ImVec4& color : ImGui::GetStyle().Colors) {
+      const glm::vec3 linear = shared::srgbToLinear(glm::vec3(color.x, color.y, color.z));
+      color = ImVec4(linear.x, linear.y, linear.z, color.w);
+    }
+  ImGui_ImplGlfw_InitForVulkan(window, true);
+  ImGui_ImplVulkan_InitInfo info{};
+  info.Instance = c.instance;
+  info.PhysicalDevice = c.physical;
+  info.Device = c.device;
+  info.QueueFamily = c.family;
+  info.Queue = c.queue;
+  info.DescriptorPool = VK_NULL_HANDLE;
+  // The font's one descriptor set.
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &size;
+  check(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &pool_), "vkCreateDescriptorPool");
+  info.DescriptorPool = pool_;
+  info.Subpass = 0;
+  info.MinImageCount = std::max(imageCount, 2u);
+  info.ImageCount = std::max(imageCount, 2u);
+  info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+  info.CheckVkResultFn = checkImGuiVulkan;
+  ImGui_ImplVulkan_Init(&info, pass);
+  c.submitAndWait([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+  device_ = c.device;
+}
+
+Panel::~Panel() {
+  ImGui_ImplVulkan_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  if (pool_) vkDestroyDescriptorPool(device_, pool_, nullptr);
+}
+
+bool Panel::wantsMouse() {
+  return ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse;
+}
+
+bool Panel::wantsKeyboard() {
+  return ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard;
+}
+
+void Panel::build(ViewerControls& s, const PanelFigures& f) {
+  ImGui_ImplVulkan_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  if (s.panel) {
+    // At the top left, as tall as its content up to the window's height (then it scrolls).
+    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(kPanelWidth, 0.0f),
+                                        ImVec2(kPanelWidth, ImGui::GetIO().DisplaySize.y));
+    ImGui::Begin("ibl view (F1 hides)", &s.panel, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Text("%.2f ms/frame (%.0f fps), %dx MSAA", f.frameMs, 1000.0 / std::max(f.frameMs, 1e-3),
+                f.samples);
+    ImGui::TextUnformatted(f.device.c_str());
+    if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+      // Every control keeps its place (those that do not apply are grayed out), so that the
+      // panel does not jump as they are switched.
+      ImGui::Checkbox("auto exposure (A)", &s.autoExposure);
+      ImGui::BeginDisabled(s.autoExposure);
+      ImGui::SliderFloat(s.autoExposure ? "EV100 (metered)" : "EV100", &s.ev100, -6.0f, 20.0f,
+                         "%.2f");
+      ImGui::EndDisabled();
+      ImGui::BeginDisabled(!s.autoExposure);
+      ImGui::SliderFloat("adaptation /s", &s.adaptationSpeed, 0.0f, 10.0f, "%.1f");
+      ImGui::DragFloatRange2("metering %", &s.metering.low, &s.metering.high, 0.5f, 0.0f, 100.0f,
+                             "%.1f");
+      s.metering.high = std::max(s.metering.high, s.metering.low + 0.5f);
+      ImGui::EndDisabled();
+      ImGui::SliderFloat("compensation (+ -)", &s.compensation, -6.0f, 6.0f, "%.1f stops");
+      int curve = static_cast<int>(s.toneMap);
+      const std::array<const char*, 3> curves{"none", "ACES", "filmic"};
+      if (ImGui::Combo("tone curve (T)", &curve, curves.data(), static_cast<int>(curves.size())))
+        s.toneMap = static_cast<ToneMap>(curve);
+      ImGui::Checkbox("bloom (B)", &s.bloom);
+      ImGui::BeginDisabled(!s.bloom);
+      ImGui::SliderFloat("bloom above", &s.bloomStops, -4.0f, 10.0f, "%.1f stops");
+      ImGui::EndDisabled();
+    }
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+      int view = static_cast<int>(s.view);
+      const std::array<const char*, 4> views{"real time", "reference", "difference", "split"};
+      if (ImGui::Combo("view (M)", &view, views.data(), static_cast<int>(views.size())))
+        s.view = static_cast<ViewMode>(view);
+      // Never both terms off.
+      if (ImGui::Checkbox("diffuse", &s.diffuse) && !s.diffuse) s.specular = true;
+      ImGui::SameLine();
+      if (ImGui::Checkbox("specular", &s.specular) && !s.specular) s.diffuse = true;
+      ImGui::SliderFloat("skybox mip", &s.skyboxLod, 0.0f, s.maxSkyboxLod, "%.1f");
+      if (ImGui::Button("screenshot (P)")) s.screenshotRequested = true;
+      if (f.canSaveSettings) {
+        ImGui::SameLine();
+        if (ImGui::Button("save settings")) s.saveSettingsRequested = true;
+      }
+      if (s.view != ViewMode::RealTime)
+        ImGui::Text("reference: %d spp, noise %.2f %%", f.referenceSpp, 100.0f * f.referenceNoise);
+    }
+    if (f.timeOfDay && ImGui::CollapsingHeader("Sky", ImGuiTreeNodeFlags_DefaultOpen)) {
+      if (ImGui::Button("sun lower (,)")) s.timeStep = -1;
+      ImGui::SameLine();
+      if (ImGui::Button("sun higher (.)")) s.timeStep = 1;
+    }
+    if (!s.lights.empty() &&
+        ImGui::CollapsingHeader(fmt::format("Lights ({})", s.lights.size()).c_str())) {
+      for (std::size_t i = 0; i < s.lights.size(); ++i) {
+        Light& light = s.lights[i];
+        const std::string label =
+            fmt::format("{} {}{}{}###light{}", i + 1, lightTypeName(light.type),
+                        light.name.empty() ? "" : ": ", light.name, i);
+        if (ImGui::TreeNode(label.c_str())) {
+          ImGui::PushID(static_cast<int>(i));
+          s.lightsChanged |= editLight(light);
+          ImGui::PopID();
+          ImGui::TreePop();
+        }
+      }
+      if (f.canSaveLights && ImGui::Button("save lights")) s.saveLightsRequested = true;
+    }
+    if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());
+    ImGui::End();
+  }
+  ImGui::Render();
+}
+
+void Panel::record(VkCommandBuffer cmd) {
+  ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
+}
+
+}  // namespace ibl::gpu

@@ -1,0 +1,82 @@
+#pragma once
+// Internal: the viewer's panel (Dear ImGui, drawn by its GLFW and Vulkan back ends into the
+// window's tone-mapping pass): every live setting of the window, the lights of the scene, and the
+// frame's figures. What the panel and the keys change lives in ViewerControls, which the window
+// reads each frame; screenshots are rendered offscreen and never show the panel.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gpu/vulkan.hpp"
+#include "ibl/gpu/viewer.hpp"
+#include "ibl/render/exposure.hpp"
+#include "ibl/render/light.hpp"
+
+struct GLFWwindow;
+
+namespace ibl::gpu {
+
+// The window's live settings, changed by the keys and the panel.
+struct ViewerControls {
+  bool panel = true;  // F1 toggles it
+  // Exposure: the EV100 shown (auto exposure eases it each frame; otherwise the user sets it),
+  // the compensation subtracted from it, and auto exposure's settings.
+  float ev100 = 0.0f;
+  float compensation = 0.0f;
+  bool autoExposure = true;
+  float adaptationSpeed = 3.0f;
+  MeteringRange metering;
+  ToneMap toneMap = ToneMap::Aces;
+  bool bloom = true;
+  float bloomStops = 3.0f;  // the bloom's threshold above the average luminance
+  bool diffuse = true, specular = true;
+  float skyboxLod = 0.0f, maxSkyboxLod = 0.0f;
+  ViewMode view = ViewMode::RealTime;
+  bool screenshotRequested = false;
+  int timeStep = 0;  // the sun lower (-1) or higher (+1)
+  // The panel's save buttons (the window writes the files) and what the last save said.
+  bool saveSettingsRequested = false, saveLightsRequested = false;
+  std::string status;
+  // The scene's lights as shown (edited in place); lightsChanged when the panel changed one.
+  std::vector<Light> lights;
+  bool lightsChanged = false;
+};
+
+// What the panel reports of the last frame.
+struct PanelFigures {
+  double frameMs = 0.0;
+  std::string device;
+  int samples = 0;
+  bool timeOfDay = false;  // the sun can move (, and .)
+  bool canSaveSettings = false, canSaveLights = false;
+  int referenceSpp = 0;  // outside the real-time view
+  float referenceNoise = 0.0f;
+};
+
+class Panel {
+ public:
+  // Sets up Dear ImGui on `window` (its GLFW callbacks chained after the window's own) and its
+  // Vulkan back end for `pass` (subpass 0, one sample) with `imageCount` swapchain images; the
+  // font is uploaded at once. srgbTarget: the pass writes an sRGB format, so the panel's colors
+  // are decoded to linear first (they are authored in sRGB).
+  Panel(Context& context, GLFWwindow* window, VkRenderPass pass, std::uint32_t imageCount,
+        bool srgbTarget);
+  ~Panel();
+  Panel(const Panel&) = delete;
+  Panel& operator=(const Panel&) = delete;
+
+  // Builds this frame's panel from `controls` (changing them as the user does), or nothing when
+  // controls.panel is off.
+  void build(ViewerControls& controls, const PanelFigures& figures);
+  // Records the built panel's draws into the pass being recorded.
+  void record(VkCommandBuffer cmd);
+  // Whether the panel takes the mouse or the keyboard now (the window then ignores them).
+  static bool wantsMouse();
+  static bool wantsKeyboard();
+
+ private:
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+};
+
+}  // namespace ibl::gpu

@@ -1,0 +1,272 @@
+// The viewer's window driven as a user drives it: on a virtual X display (Xvfb), xdotool presses
+// its keys, drags the mouse and clicks the panel; the window's pixels are read back from the
+// display and its title (the settings it shows) from the window, and what changed is checked.
+// Under the validation layer, as every GPU test.
+#include <cstdlib>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "ibl/io/image_io.hpp"
+#include "ibl/math/color.hpp"
+#include "support/helpers.hpp"
+#include "support/run_command.hpp"
+#include "support/text_file.hpp"
+#include "support/virtual_display.hpp"
+
+using namespace ibl;
+using namespace ibl::test;
+
+namespace {
+
+constexpr double kStart = 120.0;  // seconds for the window's first frame (a bake first)
+constexpr double kChange = 60.0;  // seconds for a change to show
+
+bool hasTools() {
+  return std::system("command -v Xvfb > /dev/null && command -v xdotool > /dev/null") == 0;
+}
+
+// The window's title: what the window shows, as `ibl view` words it.
+std::string title(const VirtualDisplay& d) {
+  return d.xdotool("search --name 'ibl view' getwindowname").output;
+}
+
+// Waits until the title contains `text`.
+bool titleShows(const VirtualDisplay& d, const std::string& text) {
+  return VirtualDisplay::waitFor([&] { return title(d).find(text) != std::string::npos; }, kChange);
+}
+
+// The EV100 the title shows (NaN without one).
+double titleEv100(const VirtualDisplay& d) {
+  std::smatch m;
+  const std::string t = title(d);
+  return std::regex_search(t, m, std::regex("EV100 (-?[0-9.]+)")) ? std::stod(m[1].str())
+                                                                  : std::nan("");
+}
+
+// `ibl view` in a window of width x height at the top left of the display, focused, its first
+// frame on the screen; run in `folder` when one is given.
+void openViewer(VirtualDisplay& d, const std::string& options, int width, int height,
+                const std::string& folder = "") {
+  ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+  d.launch((folder.empty() ? "" : "cd " + folder + " && ") + std::string(IBL_CLI) + " view " +
+           options + " --size " + std::to_string(width) + "x" + std::to_string(height));
+  ASSERT_TRUE(d.focusWindow("ibl view", kStart)) << d.log();
+  ASSERT_TRUE(titleShows(d, "ms/frame")) << d.log();
+  ASSERT_TRUE(
+      d.waitForScreen([&](const Screen& s) { return s.mean(0, 0, width, height) > 5.0; }, kChange))
+      << d.log();
+}
+
+// Closes the viewer with Q: it exits with status 0, saying so.
+void closeViewer(VirtualDisplay& d) {
+  d.xdotool("key q");
+  EXPECT_EQ(d.exitStatus(kChange), 0) << d.log();
+  EXPECT_NE(d.log().find("viewed "), std::string::npos) << d.log();
+  EXPECT_EQ(d.log().find("vulkan validation"), std::string::npos) << d.log();
+}
+
+}  // namespace
+
+// Every key of the window's footer, pressed: the exposure brightens and darkens the frame, the tone
+// curve, the terms and the view change what the title says, a drag orbits the camera and R
+// brings it back to the same pixels, F1 shows and hides the panel, Q closes the window.
+TEST(ViewerWindow, KeysChangeWhatTheWindowShows) {
+  ASSERT_TRUE(hasTools()) << "Xvfb or xdotool missing: run scripts/setup.sh";
+  VirtualDisplay d(320, 240);
+  const int w = 200, h = 150;
+  openViewer(d, "sphere --panel off --ev100 1 --bloom off --spp 1", w, h);
+  const auto brightness = [&](const Screen& s) { return s.mean(0, 0, w, h); };
+  const Screen start = d.screen();
+  d.xdotool("key equal");  // + : half a stop brighter
+  EXPECT_TRUE(d.waitForScreen(
+      [&](const Screen& s) { return brightness(s) > brightness(start) + 4.0; }, kChange));
+  d.xdotool("key minus minus");  // - twice: half a stop darker than at the start
+  EXPECT_TRUE(d.waitForScreen(
+      [&](const Screen& s) { return brightness(s) < brightness(start) - 4.0; }, kChange));
+  EXPECT_TRUE(titleShows(d, "EV100 1.5"));
+  d.xdotool("key equal");
+  EXPECT_TRUE(titleShows(d, "EV100 1.0"));
+  d.xdotool("key t");
+  EXPECT_TRUE(titleShows(d, "filmic"));
+  d.xdotool("key t");
+  EXPECT_TRUE(titleShows(d, "no tone curve"));
+  d.xdotool("key t");
+  EXPECT_TRUE(titleShows(d, "ACES"));
+  // The diffuse term off: the sphere's middle darkens.
+  const Screen lit = d.screen();
+  d.xdotool("key d");
+  EXPECT_TRUE(titleShows(d, "specular only"));
+  EXPECT_TRUE(d.waitForScreen(
+      [&](const Screen& s) {
+        return s.mean(w / 2 - 10, h / 2 - 10, w / 2 + 10, h / 2 + 10) <
+               lit.mean(w / 2 - 10, h / 2 - 10, w / 2 + 10, h / 2 + 10) - 20.0;
+      },
+      kChange));
+  d.xdotool("key d");
+  EXPECT_TRUE(titleShows(d, "diffuse + specular"));
+  ASSERT_TRUE(d.waitForScreen([&](const Screen& s) { return s.difference(lit, 0, 0, w, h) < 0.5; },
+                              kChange));
+  // A drag to the right orbits the camera (the environment behind moves); R resets the view.
+  d.xdotool("mousemove 100 75 mousedown 1 mousemove 160 80 mouseup 1");
+  EXPECT_TRUE(d.waitForScreen([&](const Screen& s) { return s.difference(lit, 0, 0, w, h) > 5.0; },
+                              kChange));
+  d.xdotool("key r");
+  EXPECT_TRUE(d.waitForScreen([&](const Screen& s) { return s.difference(lit, 0, 0, w, h) < 0.5; },
+                              kChange));
+  // The wheel zooms in: the sphere fills more of the frame, its rim moves past the corner's pixels.
+  d.xdotool("mousemove 100 75 click 4 click 4 click 4");
+  EXPECT_TRUE(d.waitForScreen([&](const Screen& s) { return s.difference(lit, 0, 0, w, h) > 5.0; },
+                              kChange))
+      << d.screen().difference(lit, 0, 0, w, h) << " " << title(d);
+  d.xdotool("key r");
+  EXPECT_TRUE(d.waitForScreen([&](const Screen& s) { return s.difference(lit, 0, 0, w, h) < 0.5; },
+                              kChange));
+  // F1: the panel over the top left; again: gone.
+  d.xdotool("key F1");
+  EXPECT_TRUE(d.waitForScreen(
+      [&](const Screen& s) { return s.difference(lit, 0, 0, w / 2, h / 2) > 20.0; }, kChange));
+  d.xdotool("key F1");
+  EXPECT_TRUE(d.waitForScreen([&](const Screen& s) { return s.difference(lit, 0, 0, w, h) < 0.5; },
+                              kChange));
+  // [ and ]: the skybox's mip level; M: the reference view, traced on the device.
+  d.xdotool("key bracketright");
+  EXPECT_TRUE(titleShows(d, "skybox mip 0.5"));
+  d.xdotool("key bracketleft m");
+  EXPECT_TRUE(titleShows(d, "reference: "));
+  closeViewer(d);
+  EXPECT_NE(d.log().find("(reference view at the end)"), std::string::npos) << d.log();
+}
+
+// Auto exposure follows the light: the sphere alone on black (a black background is not
+// metered), its diffuse term switched off, gets 3 or more stops darker; the window's exposure
+// settles on what `ibl view --screenshot` meters for that frame (the same histogram rule), and the
+// sphere comes back to about its brightness. With A (auto exposure off) the same change stays dark.
+TEST(ViewerWindow, AutoExposureFollowsTheLight) {
+  ASSERT_TRUE(hasTools()) << "Xvfb or xdotool missing: run scripts/setup.sh";
+  const std::string scene = "sphere --background 0,0,0 --bloom off --spp 1 --roughness 0.3 ";
+  const int w = 160, h = 120;
+  const CliRun shot = runCommand(std::string(IBL_CLI) + " view " + scene +
+                                 "--only specular --size 160x120 --screenshot " +
+                                 (testing::TempDir() + "/auto-exposure.png"));
+  ASSERT_EQ(shot.status, 0) << shot.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(shot.output, m, std::regex("EV100 (-?[0-9.]+)"))) << shot.output;
+  const double specularEv100 = std::stod(m[1].str());
+
+  VirtualDisplay d(320, 240);
+  openViewer(d, scene + "--panel off --adaptation-speed 20", w, h);
+  const double litEv100 = titleEv100(d);
+  EXPECT_GT(litEv100 - specularEv100, 2.0);  // the diffuse term is most of the sphere's light
+  const Screen lit = d.screen();
+  const auto middle = [&](const Screen& s) {
+    return s.mean(w / 2 - 15, h / 2 - 15, w / 2 + 15, h / 2 + 15);
+  };
+  d.xdotool("key d");
+  EXPECT_TRUE(VirtualDisplay::waitFor(
+      [&] { return std::abs(titleEv100(d) - specularEv100) < 0.15; }, kChange))
+      << title(d) << " against " << specularEv100;
+  // Settled: the metered exposure brings the sphere back near its brightness (the specular term
+  // has its own pattern: a loose bound).
+  EXPECT_TRUE(d.waitForScreen(
+      [&](const Screen& s) { return std::abs(middle(s) - middle(lit)) < 0.35 * middle(lit); },
+      kChange));
+  // Auto exposure off (A), the diffuse term back on: the exposure stays, the sphere is far
+  // brighter than it was.
+  d.xdotool("key a d");
+  EXPECT_TRUE(titleShows(d, "diffuse + specular"));
+  EXPECT_TRUE(
+      d.waitForScreen([&](const Screen& s) { return middle(s) > 1.5 * middle(lit); }, kChange));
+  EXPECT_NEAR(titleEv100(d), specularEv100, 0.15);
+  closeViewer(d);
+}
+
+// The panel's controls, clicked where Dear ImGui lays them out (the panel at the top left, 360
+// pixels wide, its default font and style): the diffuse check box, the compensation slider's
+// right end (+6 stops) and the tone curve's menu.
+TEST(ViewerWindow, PanelControlsChangeTheFrame) {
+  ASSERT_TRUE(hasTools()) << "Xvfb or xdotool missing: run scripts/setup.sh";
+  VirtualDisplay d(640, 480);
+  const int w = 560, h = 420;
+  openViewer(d, "sphere --ev100 1 --bloom off --spp 1", w, h);
+  // The panel is drawn: its title bar's blue over the frame.
+  ASSERT_TRUE(d.waitForScreen(
+      [&](const Screen& s) {
+        return s.rgb[3 * (5 * s.width + 150) + 2] > s.rgb[3 * (5 * s.width + 150)] + 40;
+      },
+      kChange));
+  d.xdotool("mousemove 17 323 click 1");  // "diffuse"
+  EXPECT_TRUE(titleShows(d, "specular only")) << title(d);
+  d.xdotool("mousemove 17 323 click 1");
+  EXPECT_TRUE(titleShows(d, "diffuse + specular")) << title(d);
+  const Screen before = d.screen();
+  d.xdotool("mousemove 212 185 click 1");  // "compensation" at its right end
+  EXPECT_TRUE(VirtualDisplay::waitFor([&] { return titleEv100(d) < -3.5; }, kChange)) << title(d);
+  EXPECT_TRUE(d.waitForScreen(
+      [&](const Screen& s) {
+        return s.mean(400, 100, 500, 300) > before.mean(400, 100, 500, 300) + 20.0;
+      },
+      kChange));
+  d.xdotool("mousemove 110 208 click 1");              // "tone curve": its menu opens below
+  VirtualDisplay::waitFor([] { return false; }, 2.0);  // a frame or more to open it
+  d.xdotool("mousemove 60 228 click 1");               // its first item, "none"
+  EXPECT_TRUE(titleShows(d, "no tone curve")) << title(d);
+  closeViewer(d);
+}
+
+// What the window shows, saved by the panel's "save settings" after the keys and a drag changed
+// it (exposure, tone curve, camera; auto exposure settled), is what `ibl view --settings FILE
+// --screenshot` renders: the window's pixels beside the panel and the screenshot's agree within
+// a code value of 8-bit sRGB on average.
+TEST(ViewerWindow, SavedSettingsReproduceTheWindowInAScreenshot) {
+  ASSERT_TRUE(hasTools()) << "Xvfb or xdotool missing: run scripts/setup.sh";
+  TempDir dir;
+  VirtualDisplay d(640, 480);
+  const int w = 480, h = 400;
+  const std::string scene = "sphere --spp 1 --bloom off --roughness 0.3 ";
+  openViewer(d, scene + "--adaptation-speed 20", w, h, dir.path().string());
+  const Screen start = d.screen();
+  d.xdotool("key equal t");
+  d.xdotool("mousemove 400 100 mousedown 1 mousemove 440 120 mouseup 1");
+  ASSERT_TRUE(titleShows(d, "filmic"));
+  ASSERT_TRUE(d.waitForScreen(
+      [&](const Screen& s) { return s.difference(start, 370, 0, w, h) > 5.0; }, kChange));
+  VirtualDisplay::waitFor([] { return false; }, 3.0);  // auto exposure settles
+  d.xdotool("mousemove 165 369 click 1");              // "save settings"
+  const auto saved = dir / "ibl_view_settings_001.json";
+  ASSERT_TRUE(VirtualDisplay::waitFor([&] { return std::filesystem::exists(saved); }, kChange))
+      << d.log();
+  const Screen window = d.screen();
+  closeViewer(d);
+  const std::string json = readText(saved);
+  EXPECT_NE(json.find("\"compensation\": 0.5"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"tonemap\": \"filmic\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"auto_exposure\": true"), std::string::npos) << json;
+
+  const auto shot = dir / "shot.png";
+  const CliRun r = runIbl("view " + scene + "--size 480x400 --settings " + quote(saved) +
+                          " --screenshot " + quote(shot));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Image image = readImageFile(shot).levels[0][0];
+  ASSERT_EQ(image.width, w);
+  double sum = 0.0;
+  int count = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 370; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        sum += std::abs(int(linearToSrgb8(image.at(x, y)[c])) -
+                        int(window.rgb[3 * (static_cast<std::size_t>(y) * window.width + x) + c]));
+        ++count;
+      }
+  EXPECT_LT(sum / count, 1.0);
+  // Without the settings the screenshot is another picture.
+  const CliRun plain =
+      runIbl("view " + scene + "--size 480x400 --screenshot " + quote(dir / "plain.png"));
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  const Image other = readImageFile(dir / "plain.png").levels[0][0];
+  double apart = 0.0;
+  for (std::size_t i = 0; i < other.pixels.size(); ++i)
+    apart += std::abs(luminance(other.pixels[i]) - luminance(image.pixels[i]));
+  EXPECT_GT(apart / static_cast<double>(other.pixels.size()), 0.02);
+}
