@@ -131,26 +131,47 @@ const char* toneMapOption(ToneMap t) {
   return t == ToneMap::None ? "none" : t == ToneMap::Filmic ? "filmic" : "aces";
 }
 
-// The settings file the panel saves and --settings reads: each of what the window shows under
-// the name of its command-line option (without the dashes, '_' for '-').
+// The settings file's keys and the options they stand for (the command line's wins).
+struct SettingKey {
+  const char* key;
+  const char* option;
+};
+constexpr SettingKey kSettingKeys[] = {
+    {"size", "--size"},         {"look_from", "--look-from"},
+    {"look_at", "--look-at"},   {"up", "--up"},
+    {"fov", "--fov"},           {"auto_exposure", "--auto-exposure"},
+    {"ev100", "--ev100"},       {"adaptation_speed", "--adaptation-speed"},
+    {"metering", "--metering"}, {"exposure_compensation", "--exposure-compensation"},
+    {"tonemap", "--tonemap"},   {"bloom", "--bloom"},
+    {"only", "--only"},         {"skybox_mip", "--skybox-mip"},
+    {"view", "--reference"},    {"panel", "--panel"},
+};
+
+// The settings file the panel saves and --settings reads: what the window shows, each setting
+// under its key of kSettingKeys.
 std::string settingsJson(const gpu::ViewSettings& v) {
-  const auto vec = [](glm::vec3 p) { return nlohmann::json::array({p.x, p.y, p.z}); };
+  // Each float as its shortest decimal (0.3f as 0.3, not as the double 0.30000001192092896).
+  const auto num = [](float x) { return std::stod(fmt::format("{}", x)); };
+  const auto vec = [&](glm::vec3 p) {
+    return nlohmann::json::array({num(p.x), num(p.y), num(p.z)});
+  };
   nlohmann::ordered_json j;
+  j["size"] = fmt::format("{}x{}", v.width, v.height);
   j["look_from"] = vec(v.from);
   j["look_at"] = vec(v.at);
   j["up"] = vec(v.up);
-  if (v.perspective) j["fov"] = v.fov;
+  if (v.perspective) j["fov"] = num(v.fov);
   j["auto_exposure"] = !v.ev100.has_value();
-  if (v.ev100) j["ev100"] = *v.ev100;
-  j["adaptation_speed"] = v.adaptationSpeed;
-  j["metering"] = {v.metering.low, v.metering.high};
-  j["compensation"] = v.compensation;
+  if (v.ev100) j["ev100"] = num(*v.ev100);
+  j["adaptation_speed"] = num(v.adaptationSpeed);
+  j["metering"] = {num(v.metering.low), num(v.metering.high)};
+  j["exposure_compensation"] = num(v.compensation);
   j["tonemap"] = toneMapOption(v.toneMap);
-  j["bloom"] = v.bloom ? nlohmann::json(*v.bloom) : nlohmann::json("off");
+  j["bloom"] = v.bloom ? nlohmann::json(num(*v.bloom)) : nlohmann::json("off");
   j["only"] = v.only == ShadingTerms::Diffuse    ? "diffuse"
               : v.only == ShadingTerms::Specular ? "specular"
                                                  : "both";
-  j["skybox_mip"] = v.skyboxLod;
+  j["skybox_mip"] = num(v.skyboxLod);
   j["view"] = v.view == gpu::ViewMode::RealTime ? "real-time" : gpu::viewModeName(v.view);
   j["panel"] = v.panel;
   return j.dump(2) + "\n";
@@ -158,6 +179,7 @@ std::string settingsJson(const gpu::ViewSettings& v) {
 
 // --settings FILE: each setting of the file taken as its option, unless the command line gives
 // that option (the command line wins; a fixed exposure there overrides the file's exposure).
+// Values are checked as their options check them; a mistake names the file and the setting.
 void applySettingsFile(ViewCliOptions& o) {
   if (o.settings.empty()) return;
   const nlohmann::json j = readJsonFile(o.settings);
@@ -165,25 +187,29 @@ void applySettingsFile(ViewCliOptions& o) {
     fail(o.settings, fmt::format("\"{}\" {}", key, problem));
   };
   if (!j.is_object()) fail(o.settings, "is not a JSON object of settings");
-  const auto number = [&](const std::string& key) {
-    if (!j[key].is_number() || !std::isfinite(j[key].get<double>())) bad(key, "must be a number");
-    return j[key].get<float>();
+  const auto number = [&](const std::string& key, double lo, double hi) {
+    if (!j[key].is_number()) bad(key, "must be a number");
+    const double v = j[key].get<double>();
+    if (!(v >= lo && v <= hi)) bad(key, fmt::format("must be from {} to {}, not {}", lo, hi, v));
+    return static_cast<float>(v);
   };
   const auto text = [&](const std::string& key, std::initializer_list<const char*> allowed) {
     if (!j[key].is_string()) bad(key, "must be a string");
     const std::string value = j[key].get<std::string>();
-    for (const char* a : allowed)
-      if (value == a) return value;
     std::string list;
-    for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+    for (const char* a : allowed) {
+      if (value == a) return value;
+      list += (list.empty() ? "" : ", ") + std::string(a);
+    }
     bad(key, fmt::format("must be one of {}, not \"{}\"", list, value));
     return value;
   };
-  const auto point = [&](const std::string& key) {
-    if (!j[key].is_array() || j[key].size() != 3) bad(key, "must be [x, y, z]");
+  const auto numbers = [&](const std::string& key, std::size_t count, const char* shape) {
+    if (!j[key].is_array() || j[key].size() != count) bad(key, fmt::format("must be {}", shape));
     std::string joined;
     for (const auto& c : j[key]) {
-      if (!c.is_number() || !std::isfinite(c.get<double>())) bad(key, "must be [x, y, z]");
+      if (!c.is_number() || !std::isfinite(c.get<double>()))
+        bad(key, fmt::format("must be {}", shape));
       joined += (joined.empty() ? "" : ",") + fmt::format("{}", c.get<double>());
     }
     return joined;
@@ -193,48 +219,52 @@ void applySettingsFile(ViewCliOptions& o) {
     return j[key].get<bool>() ? std::string("on") : std::string("off");
   };
   const bool exposureGiven = given(o.scene, "--ev100") || given(o.scene, "--aperture") ||
+                             given(o.scene, "--shutter") || given(o.scene, "--iso") ||
                              given(o.scene, "--auto-exposure");
   for (const auto& [key, value] : j.items()) {
-    const std::string option = "--" + [&] {
-      std::string k = key;
-      std::replace(k.begin(), k.end(), '_', '-');
-      return k;
-    }();
+    const SettingKey* setting = nullptr;
+    for (const SettingKey& s : kSettingKeys)
+      if (key == s.key) setting = &s;
+    if (!setting) fail(o.settings, fmt::format("unknown setting \"{}\"", key));
     const bool exposure = key == "ev100" || key == "auto_exposure";
-    if (key != "view" && key != "skybox_mip" && key != "metering" && key != "adaptation_speed" &&
-        key != "panel" && key != "look_from" && key != "look_at" && key != "up" && key != "fov" &&
-        !exposure && key != "compensation" && key != "tonemap" && key != "bloom" && key != "only")
-      fail(o.settings, fmt::format("unknown setting \"{}\"", key));
-    if (exposure ? exposureGiven : given(o.scene, key == "view" ? "--reference" : option)) continue;
-    if (key == "look_from") o.scene.lookFrom = point(key);
-    if (key == "look_at") o.scene.lookAt = point(key);
-    if (key == "up") o.scene.up = point(key);
-    if (key == "fov") o.scene.fov = number(key);
-    if (key == "ev100") o.scene.ev100 = fmt::format("{}", number(key));
-    if (key == "auto_exposure") o.autoExposure = boolean(key);
-    if (key == "adaptation_speed") o.adaptationSpeed = number(key);
-    if (key == "metering") {
-      if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number())
-        bad(key, "must be [low, high] percentiles");
-      o.metering = fmt::format("{},{}", value[0].get<double>(), value[1].get<double>());
+    if (exposure ? exposureGiven : given(o.scene, setting->option)) continue;
+    if (key == "size") {
+      if (!value.is_string()) bad(key, "must be a string WIDTHxHEIGHT");
+      o.scene.size = value.get<std::string>();  // checked as --size is
     }
-    if (key == "compensation") o.scene.compensation = number(key);
+    if (key == "look_from") o.scene.lookFrom = numbers(key, 3, "[x, y, z]");
+    if (key == "look_at") o.scene.lookAt = numbers(key, 3, "[x, y, z]");
+    if (key == "up") o.scene.up = numbers(key, 3, "[x, y, z]");
+    if (key == "fov") o.scene.fov = number(key, 1.0, 179.0);
+    if (key == "ev100") o.scene.ev100 = fmt::format("{}", number(key, -30.0, 40.0));
+    if (key == "auto_exposure") o.autoExposure = boolean(key);
+    if (key == "adaptation_speed") o.adaptationSpeed = number(key, 0.0, 1000.0);
+    if (key == "metering") o.metering = numbers(key, 2, "[low, high] percentiles");
+    if (key == "exposure_compensation") o.scene.compensation = number(key, -30.0, 30.0);
     if (key == "tonemap") o.scene.tonemap = text(key, {"aces", "filmic", "none"});
     if (key == "bloom")
-      o.scene.bloom = value.is_string() ? text(key, {"off"}) : fmt::format("{}", number(key));
+      o.scene.bloom =
+          value.is_string() ? text(key, {"off"}) : fmt::format("{}", number(key, -30.0, 30.0));
     if (key == "only") {
       o.scene.only = text(key, {"both", "diffuse", "specular"});
       if (o.scene.only == "both") o.scene.only.clear();
     }
-    if (key == "skybox_mip") o.skyboxMip = number(key);
+    if (key == "skybox_mip") o.skyboxMip = number(key, 0.0, 16.0);
     if (key == "view") {
       o.reference = text(key, {"real-time", "reference", "difference", "split"});
       if (o.reference == "real-time") o.reference.clear();
     }
     if (key == "panel") o.panel = boolean(key);
   }
-  // A saved fixed exposure with auto exposure on contradicts nothing: the EV100 wins.
-  if (!o.scene.ev100.empty()) o.autoExposure.clear();
+  // The file's fixed exposure: its auto_exposure (true when saved with auto exposure on, then
+  // without an ev100) says nothing more.
+  if (!exposureGiven && !o.scene.ev100.empty()) o.autoExposure.clear();
+  // Its metering is checked as --metering is, naming the file.
+  try {
+    meteringRange(o);
+  } catch (const Error&) {
+    bad("metering", "must be [low, high] percentiles with 0 <= low < high <= 100");
+  }
 }
 
 void runView(ViewCliOptions o, const GlobalOptions& global) {

@@ -19,7 +19,7 @@ void main() {
   // A grid of 64 groups walks the frame in strides.
   for (int p = int(gl_GlobalInvocationID.x); p < push.count; p += int(gl_NumWorkGroups.x) * 256) {
     float l = luminance(texels[p].rgb);
-    int bin = isinf(l) ? -1 : luminanceBin(l);
+    int bin = luminanceBin(l);
     if (bin >= 0) atomicAdd(counts[bin], 1u);
   }
   barrier();

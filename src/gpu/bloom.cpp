@@ -148,22 +148,8 @@ void DeviceBloom::record(VkCommandBuffer cmd, const DeviceImage& frame, float ev
   region.imageExtent = {static_cast<std::uint32_t>(width_), static_cast<std::uint32_t>(height_), 1};
   // The frame into the chain (after whatever wrote it; the previous frame's passes are done
   // with the chain).
-  transitionImage(cmd, frame, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
-                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
-                      VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  computeBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                 VK_ACCESS_TRANSFER_WRITE_BIT);
-  region.bufferOffset = static_cast<VkDeviceSize>(layout.frame.offset) * kTexelBytes;
-  vkCmdCopyImageToBuffer(cmd, frame.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, chain, 1,
-                         &region);
-  transitionImage(cmd, frame, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+  copyFrameToBuffer(cmd, frame, chain,
+                    static_cast<VkDeviceSize>(layout.frame.offset) * kTexelBytes);
   // Read by the passes below, or without a pyramid by the copy into the output.
   computeBarrier(
       cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -247,26 +233,17 @@ void DeviceBloom::record(VkCommandBuffer cmd, const DeviceImage& frame, float ev
 
 Image bloomOnDevice(Context& context, const Image& linear, float ev100, float compensation) {
   if (linear.width < 1 || linear.height < 1) return linear;
-  DeviceImage::Description d;
-  d.width = static_cast<std::uint32_t>(linear.width);
-  d.height = static_cast<std::uint32_t>(linear.height);
-  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-            VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  DeviceImage frame(context, d);
-  std::vector<float> texels;
-  texels.reserve(linear.pixels.size() * 4);
-  for (const glm::vec3& p : linear.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
-  uploadImage(context, frame,
-              {reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)},
-              kTexelBytes);
+  DeviceImage frame(context, radianceImage(linear.width, linear.height));
+  uploadRadiance(context, frame, linear);
   DeviceBloom bloom(context);
   bloom.prepare(linear.width, linear.height);
-  Buffer readback(context, texels.size() * sizeof(float), BufferMemory::Host);
+  const std::size_t floats = linear.pixels.size() * 4;
+  Buffer readback(context, floats * sizeof(float), BufferMemory::Host);
   context.impl().submitAndWait([&](VkCommandBuffer cmd) {
     bloom.record(cmd, frame, ev100, compensation);
     recordReadback(cmd, bloom.output(), static_cast<VkBuffer>(readback.handle()));
   });
-  const std::vector<float> out = readback.read<float>(texels.size());
+  const std::vector<float> out = readback.read<float>(floats);
   Image result(linear.width, linear.height);
   for (std::size_t i = 0; i < result.pixels.size(); ++i)
     result.pixels[i] = glm::vec3(out[4 * i], out[4 * i + 1], out[4 * i + 2]);

@@ -700,6 +700,62 @@ void recordReadback(VkCommandBuffer cmd, const DeviceImage& image, VkBuffer read
                        &barrier, 0, nullptr, 0, nullptr);
 }
 
+void copyFrameToBuffer(VkCommandBuffer cmd, const DeviceImage& frame, VkBuffer buffer,
+                       VkDeviceSize offset) {
+  transitionImage(cmd, frame, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
+                      VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+  VkBufferImageCopy region{};
+  region.bufferOffset = offset;
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {frame.description().width, frame.description().height, 1};
+  vkCmdCopyImageToBuffer(cmd, frame.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1,
+                         &region);
+  transitionImage(cmd, frame, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+}
+
+DeviceImage::Description radianceImage(int width, int height) {
+  DeviceImage::Description d;
+  d.width = static_cast<std::uint32_t>(width);
+  d.height = static_cast<std::uint32_t>(height);
+  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+            VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  return d;
+}
+
+void uploadRadiance(Context& context, const DeviceImage& image, const Image& linear) {
+  std::vector<glm::vec4> texels(linear.pixels.size());
+  for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = glm::vec4(linear.pixels[i], 1.0f);
+  uploadImage(
+      context, image,
+      {reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(glm::vec4)},
+      sizeof(glm::vec4));
+}
+
+VkDescriptorPool createDescriptorPool(VkDevice device, VkDescriptorType type, std::uint32_t count,
+                                      std::uint32_t sets) {
+  const VkDescriptorPoolSize size{type, count};
+  VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  info.maxSets = sets;
+  info.poolSizeCount = 1;
+  info.pPoolSizes = &size;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  check(vkCreateDescriptorPool(device, &info, nullptr, &pool), "vkCreateDescriptorPool");
+  return pool;
+}
+
 void uploadImage(Context& context, const DeviceImage& image, std::span<const std::uint8_t> texels,
                  std::size_t texelBytes) {
   const auto& d = image.description();

@@ -23,13 +23,7 @@ DeviceHistogram::DeviceHistogram(Context& context)
         c.computePipeline("luminance_histogram", 2, sizeof(std::int32_t));
     pipeline_ = p.pipeline;
     layout_ = p.layout;
-    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
-    poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &size;
-    check(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &pool_), "vkCreateDescriptorPool");
+    pool_ = createDescriptorPool(c.device, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2);
     VkDescriptorSetAllocateInfo setAlloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     setAlloc.descriptorPool = pool_;
     setAlloc.descriptorSetCount = 1;
@@ -64,22 +58,8 @@ void DeviceHistogram::record(VkCommandBuffer cmd, const DeviceImage& frame) {
   const VkBuffer bins = static_cast<VkBuffer>(bins_.handle());
   // The frame into the buffer, after whatever wrote it; the previous frame's pass is done with
   // both buffers (the window waits for its fence before recording).
-  transitionImage(cmd, frame, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
-                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
-                      VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {static_cast<std::uint32_t>(width_), static_cast<std::uint32_t>(height_), 1};
-  vkCmdCopyImageToBuffer(cmd, frame.image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, texels, 1,
-                         &region);
+  copyFrameToBuffer(cmd, frame, texels, 0);
   vkCmdFillBuffer(cmd, bins, 0, kBinBytes, 0u);
-  transitionImage(cmd, frame, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
   VkMemoryBarrier toShader{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   toShader.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   toShader.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -106,21 +86,15 @@ LuminanceHistogram DeviceHistogram::read() const {
 
 LuminanceHistogram luminanceHistogramOnDevice(Context& context, const Image& linear) {
   if (linear.pixels.empty()) return {};
-  DeviceImage::Description d;
-  d.width = static_cast<std::uint32_t>(linear.width);
-  d.height = static_cast<std::uint32_t>(linear.height);
-  d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-            VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  DeviceImage frame(context, d);
-  std::vector<float> texels;
-  texels.reserve(linear.pixels.size() * 4);
-  for (const glm::vec3& p : linear.pixels) texels.insert(texels.end(), {p.x, p.y, p.z, 1.0f});
-  uploadImage(context, frame,
-              {reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(float)},
-              kTexelBytes);
+  DeviceImage frame(context, radianceImage(linear.width, linear.height));
+  uploadRadiance(context, frame, linear);
   DeviceHistogram histogram(context);
   histogram.prepare(linear.width, linear.height);
-  context.impl().submitAndWait([&](VkCommandBuffer cmd) { histogram.record(cmd, frame); });
+  // Twice, as two frames in a row: the second's counts alone remain (each clears the bins).
+  context.impl().submitAndWait([&](VkCommandBuffer cmd) {
+    histogram.record(cmd, frame);
+    histogram.record(cmd, frame);
+  });
   return histogram.read();
 }
 

@@ -45,11 +45,15 @@ bool hasDirection(LightType type) {
 // The light's fields the panel edits; true when one changed.
 bool editLight(Light& light) {
   bool changed = false;
-  changed |= ImGui::DragFloat(fmt::format("intensity ({})", lightUnit(light.type)).c_str(),
-                              &light.intensity, std::max(light.intensity, 1.0f) * 0.01f, 0.0f, 1e9f,
-                              "%.4g");
-  light.intensity = std::max(light.intensity, 0.0f);
-  changed |= ImGui::ColorEdit3("color", &light.color.x, ImGuiColorEditFlags_Float);
+  // An IES light's candela are its profile's times iesScale (its `intensity` is not read).
+  float& value = light.ies ? light.iesScale : light.intensity;
+  const std::string label = light.ies ? std::string("profile multiplier")
+                                      : fmt::format("intensity ({})", lightUnit(light.type));
+  changed |=
+      ImGui::DragFloat(label.c_str(), &value, std::max(value, 1.0f) * 0.01f, 0.0f, 1e9f, "%.4g");
+  value = std::max(value, 0.0f);
+  changed |= ImGui::ColorEdit3("color", &light.color.x,
+                               ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
   if (light.type != LightType::Sun)
     changed |= ImGui::DragFloat3("position", &light.position.x, 0.01f, -1e4f, 1e4f, "%.3f");
   if (hasDirection(light.type)) {
@@ -92,15 +96,8 @@ Panel::Panel(Context& context, GLFWwindow* window, VkRenderPass pass, std::uint3
   info.Device = c.device;
   info.QueueFamily = c.family;
   info.Queue = c.queue;
-  info.DescriptorPool = VK_NULL_HANDLE;
   // The font's one descriptor set.
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
-  poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &size;
-  check(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &pool_), "vkCreateDescriptorPool");
+  pool_ = createDescriptorPool(c.device, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1);
   info.DescriptorPool = pool_;
   info.Subpass = 0;
   info.MinImageCount = std::max(imageCount, 2u);
@@ -120,18 +117,15 @@ Panel::~Panel() {
   if (pool_) vkDestroyDescriptorPool(device_, pool_, nullptr);
 }
 
-bool Panel::wantsMouse() {
-  return ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse;
-}
-
-bool Panel::wantsKeyboard() {
-  return ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard;
+bool Panel::editsText() {
+  return ImGui::GetCurrentContext() && ImGui::GetIO().WantTextInput;
 }
 
 void Panel::build(ViewerControls& s, const PanelFigures& f) {
   ImGui_ImplVulkan_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
+  s.panelArea = glm::vec4(0.0f);
   if (s.panel) {
     // At the top left, as tall as its content up to the window's height (then it scrolls).
     ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f), ImGuiCond_FirstUseEver);
@@ -153,7 +147,8 @@ void Panel::build(ViewerControls& s, const PanelFigures& f) {
       ImGui::SliderFloat("adaptation /s", &s.adaptationSpeed, 0.0f, 10.0f, "%.1f");
       ImGui::DragFloatRange2("metering %", &s.metering.low, &s.metering.high, 0.5f, 0.0f, 100.0f,
                              "%.1f");
-      s.metering.high = std::max(s.metering.high, s.metering.low + 0.5f);
+      s.metering.low = std::clamp(s.metering.low, 0.0f, 99.5f);
+      s.metering.high = std::clamp(s.metering.high, s.metering.low + 0.5f, 100.0f);
       ImGui::EndDisabled();
       ImGui::SliderFloat("compensation (+ -)", &s.compensation, -6.0f, 6.0f, "%.1f stops");
       int curve = static_cast<int>(s.toneMap);
@@ -205,8 +200,12 @@ void Panel::build(ViewerControls& s, const PanelFigures& f) {
       if (f.canSaveLights && ImGui::Button("save lights")) s.saveLightsRequested = true;
     }
     if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());
+    const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    s.panelArea = glm::vec4(at.x, at.y, at.x + size.x, at.y + size.y);
     ImGui::End();
   }
+  // An open menu (a combo's list) reaches beyond the panel: the pointer belongs to it anywhere.
+  s.menuOpen = ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId);
   ImGui::Render();
 }
 

@@ -19,6 +19,13 @@ namespace ibl::gpu {
 // The window's live settings, changed by the keys and the panel.
 struct ViewerControls {
   bool panel = true;  // F1 toggles it
+  // Where the panel was drawn last (x0, y0, x1, y1 in window pixels; zero when hidden) and
+  // whether one of its menus is open: a press or a scroll there is the panel's.
+  glm::vec4 panelArea{0.0f};
+  bool menuOpen = false;
+  bool onPanel(double x, double y) const {
+    return menuOpen || (x >= panelArea.x && x < panelArea.z && y >= panelArea.y && y < panelArea.w);
+  }
   // Exposure: the EV100 shown (auto exposure eases it each frame; otherwise the user sets it),
   // the compensation subtracted from it, and auto exposure's settings.
   float ev100 = 0.0f;
@@ -70,9 +77,10 @@ class Panel {
   void build(ViewerControls& controls, const PanelFigures& figures);
   // Records the built panel's draws into the pass being recorded.
   void record(VkCommandBuffer cmd);
-  // Whether the panel takes the mouse or the keyboard now (the window then ignores them).
-  static bool wantsMouse();
-  static bool wantsKeyboard();
+  // Whether a field of the panel is being typed into (the window then leaves the keys to it).
+  // Not Dear ImGui's WantCaptureKeyboard: that stays set for the frame after a click on a
+  // button, and a key pressed then would be lost. The mouse: ViewerControls::onPanel.
+  static bool editsText();
 
  private:
   VkDevice device_ = VK_NULL_HANDLE;

@@ -497,21 +497,23 @@ void SceneUpload::uploadLights(const std::vector<Light>& lights) {
 
 void SceneUpload::setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,
                                  const std::vector<Light>& lights) {
-  if (lights.size() != lights_.size())
-    fail("viewer", fmt::format("a new environment brings {} lights; the scene has {}",
-                               lights.size(), lights_.size()));
-  vkDeviceWaitIdle(device_);  // nothing in flight reads what is replaced
+  checkReplacementLights(lights);  // before anything is replaced
+  vkDeviceWaitIdle(device_);       // nothing in flight reads what is replaced
   uploadBake(bake, bakeOptions);
   setLights(lights);
   writeBakeBindings();
 }
 
-void SceneUpload::setLights(const std::vector<Light>& lights) {
+void SceneUpload::checkReplacementLights(const std::vector<Light>& lights) const {
   if (lights.size() != lights_.size())
     fail("viewer", fmt::format("{} lights given; the scene has {}", lights.size(), lights_.size()));
   for (std::size_t i = 0; i < lights.size(); ++i)
     if (lights[i].type != lights_[i].type || lights[i].ies != lights_[i].ies)
       fail("viewer", fmt::format("light {} changes its type or IES profile", i + 1));
+}
+
+void SceneUpload::setLights(const std::vector<Light>& lights) {
+  checkReplacementLights(lights);
   vkDeviceWaitIdle(device_);  // nothing in flight reads the records
   std::vector<const IesProfile*> iesProfiles;
   std::vector<float> iesTexels;

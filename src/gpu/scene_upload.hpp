@@ -141,6 +141,8 @@ class SceneUpload {
   // Replaces the lights' records alone (`lights`: as many as the scene's, of the same types and
   // IES profiles, else Error). Waits for the device to be idle.
   void setLights(const std::vector<Light>& lights);
+  // Throws Error("viewer: ...") unless `lights` can replace the scene's (setLights' rule).
+  void checkReplacementLights(const std::vector<Light>& lights) const;
   // Binds and draws every mesh with its material (set 1, through `layout`) and its push
   // constants (DrawConstants): its sphere, shadow layer `layer` and scene pass part `pass`
   // (kOpaqueFramePass and kShadowPass: the meshes whose material transmits nothing;

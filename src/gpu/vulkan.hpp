@@ -223,4 +223,23 @@ inline VkWriteDescriptorSet storageBufferWrite(VkDescriptorSet set, std::uint32_
 void uploadImage(Context& context, const DeviceImage& image, std::span<const std::uint8_t> texels,
                  std::size_t texelBytes);
 
+// Copies `frame` (RGBA32F, shader-readable, its size; written before by a render pass, a copy or a
+// compute pass) into `buffer` from byte `offset`, after those writes and after compute or transfer
+// writes to the buffer; leaves the frame shader-readable for the fragment shaders. The caller
+// makes the copy's writes visible to what reads them.
+void copyFrameToBuffer(VkCommandBuffer cmd, const DeviceImage& frame, VkBuffer buffer,
+                       VkDeviceSize offset);
+
+// An RGBA32F image for a frame of radiance, width x height: sampled, a transfer source and
+// destination (what the bloom and the histogram copy from).
+DeviceImage::Description radianceImage(int width, int height);
+// Uploads `linear` (alpha 1) into `image` (radianceImage of its size) and leaves it
+// shader-readable.
+void uploadRadiance(Context& context, const DeviceImage& image, const Image& linear);
+
+// A descriptor pool of `count` descriptors of `type` for `sets` sets, from which sets can be
+// freed one by one. Throws Error("vulkan: ...").
+VkDescriptorPool createDescriptorPool(VkDevice device, VkDescriptorType type, std::uint32_t count,
+                                      std::uint32_t sets = 1);
+
 }  // namespace ibl::gpu

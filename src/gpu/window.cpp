@@ -39,9 +39,11 @@ struct Interaction : ViewerControls {
     pitch = std::asin(std::clamp(offset.y / distance, -1.0f, 1.0f));
   }
   // What the window shows now, for --settings.
-  ViewSettings settings() const {
+  ViewSettings settings(int width, int height) const {
     ViewSettings v;
-    const Camera c = camera(initial.width, initial.height);
+    const Camera c = camera(width, height);
+    v.width = width;
+    v.height = height;
     v.from = c.from;
     v.at = c.at;
     v.up = c.up;
@@ -78,7 +80,7 @@ const char* toneMapName(ToneMap t) {
 }
 
 void onKey(GLFWwindow* window, int key, int, int action, int) {
-  if ((action != GLFW_PRESS && action != GLFW_REPEAT) || Panel::wantsKeyboard()) return;
+  if ((action != GLFW_PRESS && action != GLFW_REPEAT) || Panel::editsText()) return;
   auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
   switch (key) {
     case GLFW_KEY_F1:
@@ -144,8 +146,8 @@ void onMouseButton(GLFWwindow* window, int button, int action, int) {
   auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
   if (button != GLFW_MOUSE_BUTTON_LEFT) return;
   // The drag starts where the events last put the cursor (not where it is now: the events of
-  // a fast drag may all be queued before the press is handled).
-  s.dragging = action == GLFW_PRESS && !Panel::wantsMouse();  // a drag on the panel is its own
+  // a fast drag may all be queued before the press is handled), unless that is on the panel.
+  s.dragging = action == GLFW_PRESS && !s.onPanel(s.lastX, s.lastY);
 }
 
 void onCursor(GLFWwindow* window, double x, double y) {
@@ -159,8 +161,8 @@ void onCursor(GLFWwindow* window, double x, double y) {
 }
 
 void onScroll(GLFWwindow* window, double, double dy) {
-  if (Panel::wantsMouse()) return;
   auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
+  if (s.onPanel(s.lastX, s.lastY)) return;
   s.distance *= std::pow(0.9f, static_cast<float>(dy));
 }
 
@@ -376,23 +378,12 @@ void createTonemapPass(WindowResources& r, VkFormat format) {
 // Uploads `picture` into `image` (made, or made again, at its size: RGBA32F the bloom can copy
 // from), leaving it shader-readable. The device must not be reading the old image.
 void uploadPicture(Context& context, std::unique_ptr<DeviceImage>& image, const Image& picture) {
-  const auto w = static_cast<std::uint32_t>(picture.width),
-             h = static_cast<std::uint32_t>(picture.height);
-  if (!image || image->description().width != w || image->description().height != h) {
+  if (!image || image->description().width != static_cast<std::uint32_t>(picture.width) ||
+      image->description().height != static_cast<std::uint32_t>(picture.height)) {
     image.reset();
-    DeviceImage::Description d;
-    d.width = w;
-    d.height = h;
-    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-              VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    image = std::make_unique<DeviceImage>(context, d);
+    image = std::make_unique<DeviceImage>(context, radianceImage(picture.width, picture.height));
   }
-  std::vector<glm::vec4> texels(picture.pixels.size());
-  for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = glm::vec4(picture.pixels[i], 1.0f);
-  uploadImage(
-      context, *image,
-      {reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * sizeof(glm::vec4)},
-      sizeof(glm::vec4));
+  uploadRadiance(context, *image, picture);
 }
 
 }  // namespace
@@ -618,8 +609,9 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     r.panel->build(state, figures);
     if (state.saveSettingsRequested || state.saveLightsRequested) {
       try {
-        state.status = "saved " + (state.saveSettingsRequested ? o.saveSettings(state.settings())
-                                                               : o.saveLights(state.lights));
+        state.status =
+            "saved " + (state.saveSettingsRequested ? o.saveSettings(state.settings(width, height))
+                                                    : o.saveLights(state.lights));
       } catch (const Error& e) {
         state.status = e.what();
       }

@@ -10,9 +10,7 @@ namespace ibl {
 LuminanceHistogram luminanceHistogram(const Image& linear) {
   LuminanceHistogram h{};
   for (const glm::vec3& p : linear.pixels) {
-    const float l = shared::luminance(p);
-    if (!std::isfinite(l)) continue;
-    const int bin = shared::luminanceBin(l);
+    const int bin = shared::luminanceBin(shared::luminance(p));
     if (bin >= 0) ++h[static_cast<std::size_t>(bin)];
   }
   return h;

@@ -438,6 +438,11 @@ std::vector<Light> parseLights(std::string_view text, const std::string& name,
 
 std::string lightJson(const Light& light) {
   const auto vec = [](glm::vec3 v) { return Json::array({v.x, v.y, v.z}); };
+  // Angles to 1e-5 degree: a float's radians brought back to degrees may land a hair past a
+  // bound the reader checks (30 degrees: 30.0000019).
+  const auto degrees = [](float radians) {
+    return std::round(static_cast<double>(glm::degrees(radians)) * 1e5) / 1e5;
+  };
   Json j = {{"type", std::string(lightTypeName(light.type))}};
   const LightType t = light.type;
   if (t != LightType::Sun) j["position"] = vec(light.position);
@@ -446,10 +451,10 @@ std::string lightJson(const Light& light) {
   else if (t != LightType::Point && t != LightType::Sphere)
     j["direction"] = vec(light.direction);
   if (t == LightType::Spot) {
-    j["inner_angle"] = glm::degrees(light.innerAngle);
-    j["outer_angle"] = glm::degrees(light.outerAngle);
+    j["inner_angle"] = degrees(light.innerAngle);
+    j["outer_angle"] = degrees(light.outerAngle);
   }
-  if (t == LightType::Sun) j["angular_diameter"] = glm::degrees(light.angularDiameter);
+  if (t == LightType::Sun) j["angular_diameter"] = degrees(light.angularDiameter);
   if (t == LightType::Sphere || t == LightType::Disk || t == LightType::Tube)
     j["radius"] = light.radius;
   if (t == LightType::Tube) j["length"] = light.length;

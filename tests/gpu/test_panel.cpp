@@ -3,6 +3,7 @@
 // display and its title (the settings it shows) from the window, and what changed is checked.
 // Under the validation layer, as every GPU test.
 #include <cstdlib>
+#include <fstream>
 #include <regex>
 #include <string>
 
@@ -57,6 +58,13 @@ void openViewer(VirtualDisplay& d, const std::string& options, int width, int he
   ASSERT_TRUE(
       d.waitForScreen([&](const Screen& s) { return s.mean(0, 0, width, height) > 5.0; }, kChange))
       << d.log();
+}
+
+// Clicks the left button at (x, y) as a hand does: the pointer there first, the button held
+// over a frame or more (the panel sees a press and a release in separate frames).
+void click(const VirtualDisplay& d, int x, int y) {
+  d.xdotool("mousemove " + std::to_string(x) + " " + std::to_string(y) +
+            " sleep 1 mousedown 1 sleep 1 mouseup 1");
 }
 
 // Closes the viewer with Q: it exits with status 0, saying so.
@@ -196,27 +204,28 @@ TEST(ViewerWindow, PanelControlsChangeTheFrame) {
         return s.rgb[3 * (5 * s.width + 150) + 2] > s.rgb[3 * (5 * s.width + 150)] + 40;
       },
       kChange));
-  d.xdotool("mousemove 17 323 click 1");  // "diffuse"
+  click(d, 17, 323);  // "diffuse"
   EXPECT_TRUE(titleShows(d, "specular only")) << title(d);
-  d.xdotool("mousemove 17 323 click 1");
+  click(d, 17, 323);
   EXPECT_TRUE(titleShows(d, "diffuse + specular")) << title(d);
   const Screen before = d.screen();
-  d.xdotool("mousemove 212 185 click 1");  // "compensation" at its right end
-  EXPECT_TRUE(VirtualDisplay::waitFor([&] { return titleEv100(d) < -3.5; }, kChange)) << title(d);
+  click(d, 214, 185);  // "compensation" near its right end (+5 stops)
+  EXPECT_TRUE(VirtualDisplay::waitFor([&] { return titleEv100(d) < -3.0; }, kChange)) << title(d);
   EXPECT_TRUE(d.waitForScreen(
       [&](const Screen& s) {
         return s.mean(400, 100, 500, 300) > before.mean(400, 100, 500, 300) + 20.0;
       },
       kChange));
-  d.xdotool("mousemove 110 208 click 1");              // "tone curve": its menu opens below
+  click(d, 110, 208);                                  // "tone curve": its menu opens below
   VirtualDisplay::waitFor([] { return false; }, 2.0);  // a frame or more to open it
-  d.xdotool("mousemove 60 228 click 1");               // its first item, "none"
+  click(d, 60, 228);                                   // its first item, "none"
   EXPECT_TRUE(titleShows(d, "no tone curve")) << title(d);
   closeViewer(d);
 }
 
 // What the window shows, saved by the panel's "save settings" after the keys and a drag changed
-// it (exposure, tone curve, camera; auto exposure settled), is what `ibl view --settings FILE
+// it (exposure compensation, tone curve, camera; auto exposure settled, then switched off, so
+// that the file holds its EV100; the window's size), is what `ibl view --settings FILE
 // --screenshot` renders: the window's pixels beside the panel and the screenshot's agree within
 // a code value of 8-bit sRGB on average.
 TEST(ViewerWindow, SavedSettingsReproduceTheWindowInAScreenshot) {
@@ -233,20 +242,29 @@ TEST(ViewerWindow, SavedSettingsReproduceTheWindowInAScreenshot) {
   ASSERT_TRUE(d.waitForScreen(
       [&](const Screen& s) { return s.difference(start, 370, 0, w, h) > 5.0; }, kChange));
   VirtualDisplay::waitFor([] { return false; }, 3.0);  // auto exposure settles
-  d.xdotool("mousemove 165 369 click 1");              // "save settings"
+  d.xdotool("key a");                                  // then stays: the file holds that EV100
+  VirtualDisplay::waitFor([] { return false; }, 1.0);
+  click(d, 165, 369);  // "save settings"
   const auto saved = dir / "ibl_view_settings_001.json";
   ASSERT_TRUE(VirtualDisplay::waitFor([&] { return std::filesystem::exists(saved); }, kChange))
       << d.log();
   const Screen window = d.screen();
   closeViewer(d);
   const std::string json = readText(saved);
-  EXPECT_NE(json.find("\"compensation\": 0.5"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"exposure_compensation\": 0.5"), std::string::npos) << json;
   EXPECT_NE(json.find("\"tonemap\": \"filmic\""), std::string::npos) << json;
-  EXPECT_NE(json.find("\"auto_exposure\": true"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"auto_exposure\": false"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"ev100\": "), std::string::npos) << json;
+  EXPECT_NE(json.find("\"size\": \"480x400\""), std::string::npos) << json;
+  // The drag turned the camera off the scene's axis (the sphere's default view is along z).
+  std::smatch from;
+  ASSERT_TRUE(std::regex_search(json, from, std::regex("\"look_from\": \\[\\s*(-?[0-9.e+-]+)")))
+      << json;
+  EXPECT_GT(std::abs(std::stod(from[1].str())), 0.1) << json;
 
   const auto shot = dir / "shot.png";
-  const CliRun r = runIbl("view " + scene + "--size 480x400 --settings " + quote(saved) +
-                          " --screenshot " + quote(shot));
+  const CliRun r =
+      runIbl("view " + scene + "--settings " + quote(saved) + " --screenshot " + quote(shot));
   ASSERT_EQ(r.status, 0) << r.output;
   const Image image = readImageFile(shot).levels[0][0];
   ASSERT_EQ(image.width, w);
@@ -269,4 +287,35 @@ TEST(ViewerWindow, SavedSettingsReproduceTheWindowInAScreenshot) {
   for (std::size_t i = 0; i < other.pixels.size(); ++i)
     apart += std::abs(luminance(other.pixels[i]) - luminance(image.pixels[i]));
   EXPECT_GT(apart / static_cast<double>(other.pixels.size()), 0.02);
+}
+
+// --settings FILE with options of its own: the command line wins setting by setting (here the
+// compensation, then the exposure), the file gives the rest; the screenshots equal those of the
+// same settings given as options, pixel for pixel.
+TEST(ViewerSettings, TheCommandLineWinsOverTheFile) {
+  TempDir dir;
+  ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
+  CliRun r = runIbl("bake -o " + quote(dir / "bake") +
+                    " --size 64 --dfg-size 16 --dfg-samples 64 --no-preview -q");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const std::string same =
+      "view sphere --size 32x24 --spp 1 --bloom off -q --bake " + quote(dir / "bake") + " ";
+  const auto settings = dir / "settings.json";
+  std::ofstream(settings) << R"({"exposure_compensation": 1, "tonemap": "filmic",
+                                 "auto_exposure": false, "ev100": 2})";
+  const auto shot = [&](const std::string& name, const std::string& options) {
+    const CliRun run = runIbl(same + options + " --screenshot " + quote(dir / name));
+    EXPECT_EQ(run.status, 0) << run.output;
+    return readImageFile(dir / name).levels[0][0].pixels;
+  };
+  const auto fromFile = shot("a.png", "--settings " + quote(settings));
+  EXPECT_TRUE(fromFile == shot("b.png", "--tonemap filmic --exposure-compensation 1 --ev100 2"));
+  const auto noCompensation =
+      shot("c.png", "--settings " + quote(settings) + " --exposure-compensation 0");
+  EXPECT_TRUE(noCompensation == shot("d.png", "--tonemap filmic --ev100 2"));
+  EXPECT_FALSE(noCompensation == fromFile);
+  const auto otherExposure = shot("e.png", "--settings " + quote(settings) + " --ev100 4");
+  EXPECT_TRUE(otherExposure ==
+              shot("f.png", "--tonemap filmic --exposure-compensation 1 --ev100 4"));
+  EXPECT_FALSE(otherExposure == fromFile);
 }

@@ -127,6 +127,7 @@ RenderOptions viewReferenceOptions(const RenderOptions& realTime);
 // What the window shows, as its panel and keys left it: saved by the panel (WindowOptions::
 // saveSettings) for `ibl view --settings` to show the same again, in a window or a screenshot.
 struct ViewSettings {
+  int width = 0, height = 0;                             // the window's size
   glm::vec3 from{0.0f}, at{0.0f}, up{0.0f, 1.0f, 0.0f};  // the orbiting camera
   float fov = 40.0f;
   bool perspective = true;
@@ -208,15 +209,18 @@ struct WindowStats {
 Image bloomOnDevice(Context& context, const Image& linear, float ev100, float compensation);
 
 // Auto exposure's histogram of `linear` (radiance) counted on the device
-// (shaders/view/luminance_histogram.comp) as the window counts its frames: what
-// luminanceHistogram (ibl/render/exposure.hpp) counts on the CPU.
+// (shaders/view/luminance_histogram.comp) as the window counts its frames, twice in a row as two
+// frames would be (the second's bins returned): what luminanceHistogram
+// (ibl/render/exposure.hpp) counts on the CPU.
 LuminanceHistogram luminanceHistogramOnDevice(Context& context, const Image& linear);
 
 // Opens a GLFW window and runs the interactive viewer until it is closed (Esc, Q) or after
-// `frames` frames: left drag orbits, the wheel zooms, +/- change the exposure, [ and ] the
-// skybox's mip level, D and S toggle the diffuse and specular terms, P or F12 takes a
-// screenshot (options.screenshot), T cycles the tone curve, M cycles the view (real time,
-// reference, difference, split: ViewMode), R resets the view; the title shows the frame time,
+// `frames` frames: left drag orbits, the wheel zooms, +/- change the exposure compensation,
+// [ and ] the skybox's mip level, D and S toggle the diffuse and specular terms, P or F12 takes
+// a screenshot (options.screenshot), T cycles the tone curve, M cycles the view (real time,
+// reference, difference, split: ViewMode), A toggles auto exposure, B bloom, F1 the panel
+// (src/gpu/panel.hpp: every setting, the lights, saving them), R resets the view; the title
+// shows the frame time,
 // and outside the real-time view the view's name, the reference's samples per pixel and its
 // estimated noise (PathTracer::noise, in percent). Throws Error("window: ...") without a
 // display.

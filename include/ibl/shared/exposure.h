@@ -16,9 +16,10 @@ const float kLuminanceHistogramMinLog2 = -12.0f;
 const float kLuminanceBinStops = 0.125f;
 
 // The bin of luminance l: floor((log2 l - min) / width), clamped into the histogram; -1 for
-// l <= 0 (or NaN: a pixel that shows nothing, such as a black background, is not metered).
+// l <= 0 (a pixel that shows nothing, such as a black background, is not metered) and for an
+// infinite or NaN l, told by its exponent bits (a shader compiler may assume neither exists).
 IBL_FN int luminanceBin(float l) {
-  if (!(l > 0.0f)) return -1;
+  if ((IBL_FLOAT_BITS(l) & 0x7f800000u) == 0x7f800000u || !(l > 0.0f)) return -1;
   float bin = floor((log2(l) - kLuminanceHistogramMinLog2) / kLuminanceBinStops);
   return int(clamp(bin, 0.0f, float(kLuminanceBins - 1)));
 }
