@@ -177,6 +177,12 @@ void addSceneOptions(CLI::App* cmd, SceneCliOptions& o) {
                 "Both modes: Schlick's f90 from F0, saturate(50 dot(F0, 0.33)), darkening the "
                 "grazing reflection of materials whose F0 is below any real one's (0.02); off by "
                 "default, as glTF's Fresnel");
+  cmd->add_option("--specular-aa", o.specularAa,
+                  "Split sum and viewer: specular antialiasing, the GGX lobes widened by how much "
+                  "the shading normal (normal map included) turns across a pixel (Tokuyoshi & "
+                  "Kaplanyan 2019), so that highlights do not sparkle")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   cmd->add_option("--probes", o.probes,
                   "Split sum: local light probes (directories written by `ibl probe`: one probe, "
                   "or a grid with probes.json), composed before the distant environment");
@@ -691,6 +697,7 @@ RenderOptions shadingOptions(const SceneCliOptions& o, const LoadedBake& baked) 
                                   : ShadingTerms::Both;
   r.multipleScattering = multipleScatteringChoice(o);
   r.specularMicroOcclusion = o.specularMicroOcclusion;
+  r.specularAntialiasing = o.specularAa == "on";
   r.parallaxCorrection = !o.noParallax;
   r.distanceRoughness = !o.noDistanceRoughness;
   r.aoRays = o.aoRays;

@@ -64,6 +64,7 @@ struct SceneCliOptions {
   std::string multiscatter = "walk";  // --multiscatter walk|scale|off
   bool noMultiscatter = false;        // --no-multiscatter: an alias of --multiscatter off
   bool specularMicroOcclusion = false;
+  std::string specularAa = "on";  // --specular-aa on|off (split sum and viewer)
   bool noDominant = false;
   std::string irradiance = "cube";
   std::string areaLights = "ltc";

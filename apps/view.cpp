@@ -46,7 +46,9 @@ struct ViewCliOptions {
   std::string metering = "10,90";
   float adaptationSpeed = 3.0f;
   std::string panel = "on";
-  std::string settings;  // --settings FILE
+  std::string settings;           // --settings FILE
+  std::string buffer = "shaded";  // --buffer NAME (gpu::bufferViewName)
+  std::string clay = "off";       // --clay on|off
 };
 
 // Whether the exposure is fixed by --ev100 or --aperture, --shutter and --iso.
@@ -100,12 +102,12 @@ gpu::ViewMode viewMode(const std::string& name) {
                                 : gpu::ViewMode::RealTime;
 }
 
-// A screenshot of `view`: the difference view's false colors as they are (a PNG as
-// `ibl compare --error-png` writes it; an EXR of the same values and the coverage), the others
-// bloomed when asked and written like `ibl render`'s images.
-void writeView(const std::string& path, RenderResult shown, gpu::ViewMode view, float ev100,
-               ToneMap curve, const SceneCliOptions& scene) {
-  if (view == gpu::ViewMode::Difference) {
+// A screenshot of `view`: the difference view's false colors and a buffer's colors as they are
+// (a PNG as `ibl compare --error-png` writes it; an EXR of the same values and the coverage), the
+// others bloomed when asked and written like `ibl render`'s images.
+void writeView(const std::string& path, RenderResult shown, gpu::ViewMode view,
+               gpu::BufferView buffer, float ev100, ToneMap curve, const SceneCliOptions& scene) {
+  if (view == gpu::ViewMode::Difference || buffer != gpu::BufferView::Shaded) {
     checkRenderedImagePath(path);
     if (fileFormatFromExtension(path) == FileFormat::Exr)
       writeFileAtomic(path, encodeExr(shown.color, ExrPixelType::Float, &shown.alpha));
@@ -144,7 +146,8 @@ constexpr SettingKey kSettingKeys[] = {
     {"metering", "--metering"}, {"exposure_compensation", "--exposure-compensation"},
     {"tonemap", "--tonemap"},   {"bloom", "--bloom"},
     {"only", "--only"},         {"skybox_mip", "--skybox-mip"},
-    {"view", "--reference"},    {"panel", "--panel"},
+    {"view", "--reference"},    {"buffer", "--buffer"},
+    {"clay", "--clay"},         {"panel", "--panel"},
 };
 
 // The settings file the panel saves and --settings reads: what the window shows, each setting
@@ -173,6 +176,8 @@ std::string settingsJson(const gpu::ViewSettings& v) {
                                                  : "both";
   j["skybox_mip"] = num(v.skyboxLod);
   j["view"] = v.view == gpu::ViewMode::RealTime ? "real-time" : gpu::viewModeName(v.view);
+  j["buffer"] = gpu::bufferViewName(v.buffer);
+  j["clay"] = v.clay;
   j["panel"] = v.panel;
   return j.dump(2) + "\n";
 }
@@ -254,7 +259,28 @@ void applySettingsFile(ViewCliOptions& o) {
       o.reference = text(key, {"real-time", "reference", "difference", "split"});
       if (o.reference == "real-time") o.reference.clear();
     }
+    if (key == "buffer") {
+      if (!value.is_string() || !gpu::bufferViewNamed(value.get<std::string>()))
+        bad(key, "must be a buffer's name (ibl view --help lists them)");
+      o.buffer = value.get<std::string>();
+    }
+    if (key == "clay") o.clay = boolean(key);
     if (key == "panel") o.panel = boolean(key);
+  }
+  // A buffer and clay belong to the real-time view: a comparison view on the command line leaves
+  // the file's out, either of them there the file's comparison view; both in the file contradict.
+  if (!o.reference.empty() && (o.buffer != "shaded" || o.clay == "on")) {
+    const bool viewGiven = given(o.scene, "--reference");
+    const bool bufferGiven = given(o.scene, "--buffer"), clayGiven = given(o.scene, "--clay");
+    if (viewGiven) {
+      if (!bufferGiven) o.buffer = "shaded";
+      if (!clayGiven) o.clay = "off";
+    } else if (bufferGiven || clayGiven) {
+      o.reference.clear();
+    } else {
+      bad(o.buffer != "shaded" ? "buffer" : "clay",
+          fmt::format("shows the real-time frame, not the \"{}\" view", o.reference));
+    }
   }
   // The file's fixed exposure: its auto_exposure (true when saved with auto exposure on, then
   // without an ev100) says nothing more.
@@ -273,7 +299,19 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
   if (o.referenceSpp && o.reference.empty())
     failUsage("--reference-spp", "needs --reference reference, difference or split");
   checkSceneOptions(o.scene);
-  if (!o.screenshot.empty() && viewMode(o.reference) == gpu::ViewMode::Difference)
+  if (o.clay == "on" && !o.reference.empty())
+    failUsage("--clay", fmt::format("draws the real-time frame as clay; --reference {} shows the "
+                                    "shading compared with the reference",
+                                    o.reference));
+  if (o.buffer != "shaded" && !o.reference.empty())
+    failUsage("--buffer", fmt::format("{} is a buffer of the real-time frame; --reference {} shows "
+                                      "the shading compared with the reference",
+                                      o.buffer, o.reference));
+  if (!o.screenshot.empty() && o.buffer != "shaded")
+    noteToneOptionsWithoutEffect(
+        o.scene, fmt::format("--buffer {} shows its values as display colors", o.buffer), false,
+        global);
+  else if (!o.screenshot.empty() && viewMode(o.reference) == gpu::ViewMode::Difference)
     noteToneOptionsWithoutEffect(
         o.scene, "--reference difference shows the relative error in false colors", false, global);
   else if (!o.screenshot.empty() && fileFormatFromExtension(o.screenshot) == FileFormat::Exr)
@@ -346,6 +384,7 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
                   "use a smaller --shadow-map-size or --shadows none");
 
   const gpu::ViewMode view = viewMode(o.reference);
+  const gpu::BufferView buffer = *gpu::bufferViewNamed(o.buffer);
   if (!o.screenshot.empty() && view != gpu::ViewMode::RealTime) {
     // The reference traced on the device, with the real-time frame it is compared with.
     gpu::ContextOptions co;
@@ -367,7 +406,7 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
     // Exposed for the reference, as the window's auto exposure meters it.
     const float ev100 = viewEv100(o, reference.color);
     writeView(o.screenshot, gpu::composeView(view, realTime, reference), view,
-              ev100 - o.scene.compensation, toneCurve(o.scene), o.scene);
+              gpu::BufferView::Shaded, ev100 - o.scene.compensation, toneCurve(o.scene), o.scene);
     if (!global.quiet)
       fmt::print(
           stderr,
@@ -384,25 +423,40 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
     gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume,
                                 o.scene.volumeUpdateFrames > 0);
     updateVolumeBeforeScreenshot(renderer, camera, shading, o.scene, global);
+    renderer.setBufferView(buffer);
+    renderer.setClay(o.clay == "on");
     RenderResult result = renderer.render(camera, shading, o.skyboxMip);
     if (renderer.samples() < shading.spp && !global.quiet)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
                  shading.spp, context->device().name, renderer.samples(), renderer.samples());
-    const float ev100 = viewEv100(o, result.color);
-    if (const std::optional<float> bloom = bloomCompensation(o.scene, kViewBloom))
-      result.color = applyBloom(result.color, ev100 - o.scene.compensation, *bloom);
-    writeRenderedImage(o.screenshot, result, ev100 - o.scene.compensation, toneCurve(o.scene),
-                       false);
-    if (!global.quiet)
-      fmt::print(stderr, "screenshot {} ({}x{}, {}x MSAA, {:.1f} ms on {}, EV100 {:.2f})\n",
-                 o.screenshot, width, height, renderer.samples(), result.milliseconds,
-                 context->device().name, ev100);
+    const float ev100 =
+        buffer == gpu::BufferView::Shaded ? viewEv100(o, result.color) : 0.0f;  // unexposed
+    writeView(o.screenshot, result, gpu::ViewMode::RealTime, buffer, ev100 - o.scene.compensation,
+              toneCurve(o.scene), o.scene);
+    if (!global.quiet) {
+      fmt::print(stderr, "screenshot {} ({}x{}, {}x MSAA, {:.1f} ms on {}, {})\n", o.screenshot,
+                 width, height, renderer.samples(), result.milliseconds, context->device().name,
+                 buffer == gpu::BufferView::Shaded ? fmt::format("EV100 {:.2f}", ev100)
+                                                   : fmt::format("buffer {}", o.buffer));
+      // The passes' GPU time (timestamp queries), where the device writes them.
+      std::string passes;
+      for (const auto& [name, ms] : renderer.passTimes())
+        passes += fmt::format("{}{} {:.1f} ms", passes.empty() ? "" : ", ", name, ms);
+      if (!passes.empty())
+        fmt::print(stderr, "passes: {}; device memory {:.1f} MB\n", passes,
+                   static_cast<double>(context->deviceMemoryBytes()) / 1048576.0);
+    }
     return;
   }
   gpu::WindowOptions w;
   w.camera = camera;
   w.render = shading;
   if (fixedExposure(o.scene)) w.ev100 = chooseEv100(o.scene, Image(1, 1));
+  if (o.scene.ev100.empty() && fixedExposure(o.scene)) {
+    w.aperture = o.scene.aperture;
+    w.shutter = o.scene.shutter;
+    w.iso = o.scene.iso;
+  }
   w.autoExposure = o.autoExposure != "off";
   w.metering = meteringRange(o);
   w.adaptationSpeed = o.adaptationSpeed;
@@ -414,11 +468,14 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
   w.frames = o.frames;
   w.title = "ibl view " + o.scene.scene;
   w.view = view;
+  w.buffer = buffer;
+  w.clay = o.clay == "on";
   w.referenceSpp = o.referenceSpp.value_or(0);
   w.volumeUpdate = o.volumeUpdate != "off";
-  w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve, gpu::ViewMode shown) {
+  w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve, gpu::ViewMode shown,
+                     gpu::BufferView shownBuffer) {
     const std::string path = unusedName("ibl_view", ".png");
-    writeView(path, result, shown, ev100, curve, o.scene);
+    writeView(path, result, shown, shownBuffer, ev100, curve, o.scene);
     if (!global.quiet) fmt::print(stderr, "screenshot {}\n", path);
   };
   w.saveSettings = [](const gpu::ViewSettings& settings) {
@@ -515,6 +572,24 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
                   "Window: how fast auto exposure follows the light, per second (the gap "
                   "shrinks by e^-speed each second; 0: at once)")
       ->check(numberIn(0.0f, 1000.0f))
+      ->capture_default_str();
+  std::vector<std::string> buffers;
+  for (int i = 0; i < gpu::kBufferViewCount; ++i)
+    buffers.emplace_back(gpu::bufferViewName(static_cast<gpu::BufferView>(i)));
+  cmd->add_option("--buffer", opts->buffer,
+                  "Show one input of the real-time frame instead of its shading, as display "
+                  "colors (no exposure, bloom or tone curve): the material's base-color, "
+                  "roughness (specular antialiasing included), metallic, world normals, "
+                  "occlusion texture; gtao; the sun's shadow cascades; lights per cluster "
+                  "(clusters); screen-space reflection hits (reflections); probe and volume "
+                  "influence; validation, which marks implausible materials (V cycles them)")
+      ->check(CLI::IsMember(buffers))
+      ->capture_default_str();
+  cmd->add_option("--clay", opts->clay,
+                  "Draw every material as one matte gray dielectric (base color 0.5, roughness "
+                  "0.6), normal maps and occlusion kept, to judge shapes and light alone (C "
+                  "toggles it)")
+      ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--panel", opts->panel,
                   "Window: show the panel of settings, lights and figures at the start (F1 "

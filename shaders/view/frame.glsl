@@ -22,7 +22,8 @@ layout(std140, set = 0, binding = kFrameUniforms) uniform Frame {
                         // correction, 2 distance-based roughness, 4 Frostbite's roughness mapping)
   vec4 sh[9];           // radiance SH9 times the cosine lobe's A_l / pi: irradiance / pi
   ivec4 shading;        // the sheen lobe's visibility (kSheenVisibilityCharlie, ...Neubelt),
-                        // specular micro-occlusion (1 on), multiple-bounce occlusion (1 on)
+                        // specular micro-occlusion (1 on), multiple-bounce occlusion (1 on),
+                        // specular antialiasing (1 on)
   vec4 shadows;         // the lights' shadow maps: texels per side, 1 when they are on, the first
                         // layer's record in shadowData, the layers whose filters follow the
                         // depths in shadowDepths (0: nothing transmits)
@@ -40,6 +41,8 @@ layout(std140, set = 0, binding = kFrameUniforms) uniform Frame {
   vec4 volumeSpacing;    // spacing, view bias
   ivec4 volumeCounts;    // probes per axis, rules (kVolume* bits)
   ivec4 volumeTexels;    // the irradiance and distance tiles' interiors, 1 with a volume (0: none)
+  ivec4 bufferView;      // the buffer the scene pass shows (kBuffer*, ibl/shared/buffer_views.h;
+                         // 0: the shading), 1 every material drawn as clay, 0, 0
 } frame;
 layout(set = 0, binding = kFrameSpecularMap) uniform samplerCube specularMap;
 layout(set = 0, binding = kFrameIrradianceMap) uniform samplerCube irradianceMap;

@@ -69,16 +69,39 @@ bool hasTexture(int binding) {
 // material has none. The screen derivatives are the UV set's, carried through the map's linear
 // part and passed explicitly: an implicit one would difference the map across the pixel quad, and
 // lavapipe reads a storage buffer as zeros in the quad's helper invocations.
-vec4 slotTexel(sampler2D t, int binding) {
-  if (!hasTexture(binding)) return vec4(1.0);
+struct SlotLookup {
+  vec2 uv;      // transformed
+  vec2 dx, dy;  // the uv's change one pixel over in x and in y
+};
+SlotLookup slotLookup(int binding) {
   vec2 dx0 = dFdx(texCoord0), dy0 = dFdy(texCoord0), dx1 = dFdx(texCoord1), dy1 = dFdy(texCoord1);
   bool second = (material.texCoordMask & (1u << uint(binding))) != 0u;
   UvTransform m;
   m.u = material.uvTransforms[2 * binding].xyz;
   m.v = material.uvTransforms[2 * binding + 1].xyz;
   mat2 linear = mat2(m.u.x, m.v.x, m.u.y, m.v.y);  // columns: d(uv')/du, d(uv')/dv
-  return textureGrad(t, transformUv(m, second ? texCoord1 : texCoord0),
-                     linear * (second ? dx1 : dx0), linear * (second ? dy1 : dy0));
+  SlotLookup l;
+  l.uv = transformUv(m, second ? texCoord1 : texCoord0);
+  l.dx = linear * (second ? dx1 : dx0);
+  l.dy = linear * (second ? dy1 : dy0);
+  return l;
+}
+vec4 slotTexel(sampler2D t, int binding) {
+  if (!hasTexture(binding)) return vec4(1.0);
+  SlotLookup l = slotLookup(binding);
+  return textureGrad(t, l.uv, l.dx, l.dy);
+}
+
+// How much metallic changes from this pixel to the next in x or in y (the larger): its texture
+// read one pixel over, in this invocation (the quad's helpers read the factors as zeros on
+// lavapipe, so no derivative of the factors is taken); 0 without a texture.
+float metallicChangeAcrossPixel() {
+  if (!hasTexture(kMaterialMetallicRoughness)) return 0.0;
+  SlotLookup l = slotLookup(kMaterialMetallicRoughness);
+  float here = textureGrad(metallicRoughnessTexture, l.uv, l.dx, l.dy).b;
+  float x = textureGrad(metallicRoughnessTexture, l.uv + l.dx, l.dx, l.dy).b;
+  float y = textureGrad(metallicRoughnessTexture, l.uv + l.dy, l.dx, l.dy).b;
+  return material.baseColorMetallic.a * max(abs(x - here), abs(y - here));
 }
 
 // A uniform number in [0, 1) per pixel and surface depth: BLEND's stochastic threshold (hashed
@@ -155,5 +178,20 @@ SplitSumMaterial fragmentMaterial() {
   m.attenuation = volume ? volumeAttenuationCoefficient(material.attenuation.rgb,
                                                         material.transmission.z)
                          : vec3(0.0);
+  if (frame.bufferView.y != 0) {
+    // Clay: a matte gray dielectric (the emission, the occlusion and, in fragmentSurface, the
+    // normal map and the coverage kept).
+    m.baseColor = vec3(0.5);
+    m.metallic = 0.0;
+    m.roughness = 0.6;
+    m.ior = 1.5;
+    m.specular = 1.0;
+    m.specularColor = vec3(1.0);
+    m.clearcoat = 0.0;
+    m.iridescence = 0.0;
+    m.transmission = 0.0;
+    m.thickness = 0.0;
+    m.attenuation = vec3(0.0);
+  }
   return m;
 }

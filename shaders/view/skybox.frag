@@ -8,6 +8,10 @@
 layout(location = 0) out vec4 outColor;
 
 void main() {
+  if (frame.bufferView.x != 0) {  // a buffer view: no surface, black
+    outColor = vec4(0.0);
+    return;
+  }
   Ray r = primaryRay(gl_FragCoord.xy);
   vec3 color = frame.background.w > 0.5 ? textureLod(sourceMap, r.direction, frame.lods.z).rgb
                                         : frame.background.rgb;

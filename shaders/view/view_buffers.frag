@@ -28,7 +28,8 @@ vec3 toView(vec3 w) {
 void main() {
   // The triangle's plane, before fragmentSurface may discard (derivatives need every fragment).
   vec3 geometric = cross(dFdx(worldPosition), dFdy(worldPosition));
-  ShadedSurface surface = fragmentSurface(1);  // single-sampled: the pixel center, as the CPU
+  // Single-sampled: the pixel center, as the CPU; the material's roughness as it is.
+  ShadedSurface surface = fragmentSurface(1, false);
   if (draw.sphere.w > 0.0) geometric = surface.normal;  // traced: the sphere's own
   outPosition = vec4(toView(surface.position - frame.cameraPosition.xyz), 1.0);
   vec3 normal = viewBufferNormal(surface.normal, geometric, surface.view);

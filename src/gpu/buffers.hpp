@@ -30,7 +30,8 @@ class Buffer {
         size_(other.size_),
         buffer_(other.buffer_),
         memory_(other.memory_),
-        mapped_(other.mapped_) {
+        mapped_(other.mapped_),
+        allocated_(other.allocated_) {
     other.buffer_ = other.memory_ = other.mapped_ = nullptr;
   }
 
@@ -61,6 +62,7 @@ class Buffer {
   void* buffer_ = nullptr;  // VkBuffer
   void* memory_ = nullptr;  // VkDeviceMemory
   void* mapped_ = nullptr;
+  std::uint64_t allocated_ = 0;  // bytes of device memory (Context::Impl::deviceMemoryBytes)
 };
 
 // The work groups of `size` invocations that cover `count` items.

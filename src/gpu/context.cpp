@@ -333,6 +333,10 @@ const DeviceInfo& Context::device() const {
   return impl_->info;
 }
 
+std::uint64_t Context::deviceMemoryBytes() const {
+  return impl_->deviceMemoryBytes.load();
+}
+
 std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   auto impl = std::make_unique<Impl>();
   const bool validation = validationRequested();
@@ -462,6 +466,8 @@ Buffer::Buffer(Context& context, std::size_t bytes, BufferMemory memory)
   }
   buffer_ = buffer;
   memory_ = deviceMemory;
+  allocated_ = req.size;
+  c.deviceMemoryBytes += allocated_;
 }
 
 Buffer::~Buffer() {
@@ -470,6 +476,7 @@ Buffer::~Buffer() {
   if (mapped_) vkUnmapMemory(c.device, static_cast<VkDeviceMemory>(memory_));
   vkDestroyBuffer(c.device, static_cast<VkBuffer>(buffer_), nullptr);
   vkFreeMemory(c.device, static_cast<VkDeviceMemory>(memory_), nullptr);
+  c.deviceMemoryBytes -= allocated_;
 }
 
 void Buffer::upload(const void* data, std::size_t bytes) {
@@ -644,12 +651,15 @@ DeviceImage::DeviceImage(Context& context, const Description& d)
     vkFreeMemory(c_->device, memory_, nullptr);
     check(r, "vkCreateImageView");
   }
+  allocated_ = req.size;
+  c_->deviceMemoryBytes += allocated_;
 }
 
 DeviceImage::~DeviceImage() {
   vkDestroyImageView(c_->device, view_, nullptr);
   vkDestroyImage(c_->device, image_, nullptr);
   vkFreeMemory(c_->device, memory_, nullptr);
+  c_->deviceMemoryBytes -= allocated_;
 }
 
 void transitionImage(VkCommandBuffer cmd, const DeviceImage& image, VkImageLayout oldLayout,

@@ -107,7 +107,7 @@ FrameUniforms packFrameUniforms(const Camera& camera, const RenderOptions& o,
                 0.0f);
   for (int k = 0; k < 9; ++k) u.sh[k] = glm::vec4(state.shIrradianceOverPi[k], 0.0f);
   u.shading = glm::ivec4(s.sheenVisibility, s.specularMicroOcclusion ? 1 : 0,
-                         s.multiBounceOcclusion ? 1 : 0, 0);
+                         s.multiBounceOcclusion ? 1 : 0, o.specularAntialiasing ? 1 : 0);
   u.shadows = glm::vec4(static_cast<float>(state.shadowMapSize), state.shadows ? 1.0f : 0.0f,
                         5.0f * static_cast<float>(state.shadowCasters),
                         static_cast<float>(state.shadowFilterLayers));
@@ -137,6 +137,7 @@ FrameUniforms packFrameUniforms(const Camera& camera, const RenderOptions& o,
     u.volumeCounts = glm::ivec4(v.counts, v.rules);
     u.volumeTexels = glm::ivec4(v.irradianceTexels, v.distanceTexels, 1, 0);
   }
+  u.bufferView = glm::ivec4(state.bufferView, state.clay ? 1 : 0, 0, 0);
   return u;
 }
 

@@ -49,7 +49,7 @@ struct FrameUniforms {
   glm::ivec4 terms, models;
   glm::vec4 probes;  // count, the probes' specular levels - 1, flags (view/frame.glsl)
   std::array<glm::vec4, 9> sh;
-  glm::ivec4 shading;      // the sheen lobe's visibility, specular micro-occlusion
+  glm::ivec4 shading;      // sheen visibility, micro-occlusion, multi-bounce AO, specular AA
   glm::vec4 shadows;       // texels per side, 1 when on, the first layer's record (view/frame.glsl)
   glm::ivec4 clusterGrid;  // tile size, tiles across and down, slices (view/frame.glsl)
   glm::vec4 clusterDepths;     // near, far, 1 perspective
@@ -62,8 +62,9 @@ struct FrameUniforms {
   glm::vec4 volumeSpacing;  // spacing, view bias
   glm::ivec4 volumeCounts;  // probes per axis, rules (kVolume* bits)
   glm::ivec4 volumeTexels;  // irradiance and distance tiles' interiors, 1 with a volume
+  glm::ivec4 bufferView;    // the buffer shown (kBuffer*, ibl/shared/buffer_views.h), clay, 0, 0
 };
-static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32 + 32 + 32 + 64);
+static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32 + 32 + 32 + 64 + 16);
 
 // What the frame's block says besides the camera and the options: the state of the renderer's
 // targets, uploads (SceneUpload) and passes (ShadowPass, the light clusters) for this frame.
@@ -90,6 +91,8 @@ struct FrameState {
   shared::LightClusterGrid clusterGrid{};    // the light clusters of this camera
   std::optional<shared::VolumeGrid> volume;  // the irradiance volume's grid (none: no volume)
   bool transmissionFrame = false;  // the opaque frame behind transmissive surfaces is drawn
+  int bufferView = 0;  // what the scene pass shows (kBuffer*, ibl/shared/buffer_views.h)
+  bool clay = false;   // every material drawn as clay (SceneRenderer::setClay)
 };
 
 // World to clip space of `camera` (Vulkan: y down, depth 0..1), with depth planes around the

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibl/core/error.hpp"
+#include "ibl/render/camera.hpp"
 #include "ibl/shared/color.h"
 
 namespace ibl::gpu {
@@ -138,8 +139,9 @@ void Panel::build(ViewerControls& s, const PanelFigures& f) {
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
       // Every control keeps its place (those that do not apply are grayed out), so that the
       // panel does not jump as they are switched.
-      ImGui::Checkbox("auto exposure (A)", &s.autoExposure);
-      ImGui::BeginDisabled(s.autoExposure);
+      if (ImGui::Checkbox("auto exposure (A)", &s.autoExposure) && s.autoExposure)
+        s.physicalCamera = false;
+      ImGui::BeginDisabled(s.autoExposure || s.physicalCamera);
       ImGui::SliderFloat(s.autoExposure ? "EV100 (metered)" : "EV100", &s.ev100, -6.0f, 20.0f,
                          "%.2f");
       ImGui::EndDisabled();
@@ -175,6 +177,16 @@ void Panel::build(ViewerControls& s, const PanelFigures& f) {
         ImGui::SameLine();
         if (ImGui::Button("save settings")) s.saveSettingsRequested = true;
       }
+      // The buffers, in the real-time view (their colors shown as they are).
+      ImGui::BeginDisabled(s.view != ViewMode::RealTime);
+      int buffer = static_cast<int>(s.buffer);
+      std::array<const char*, kBufferViewCount> buffers{};
+      for (int i = 0; i < kBufferViewCount; ++i)
+        buffers[static_cast<std::size_t>(i)] = bufferViewName(static_cast<BufferView>(i));
+      if (ImGui::Combo("buffer (V)", &buffer, buffers.data(), kBufferViewCount))
+        s.buffer = static_cast<BufferView>(buffer);
+      ImGui::Checkbox("clay (C)", &s.clay);
+      ImGui::EndDisabled();
       if (s.view != ViewMode::RealTime)
         ImGui::Text("reference: %d spp, noise %.2f %%", f.referenceSpp, 100.0f * f.referenceNoise);
     }
@@ -198,6 +210,37 @@ void Panel::build(ViewerControls& s, const PanelFigures& f) {
         }
       }
       if (f.canSaveLights && ImGui::Button("save lights")) s.saveLightsRequested = true;
+    }
+    // Last, so that the sections above keep their places when they open.
+    if (!s.picked.empty() &&
+        ImGui::CollapsingHeader("Picked (right button)", ImGuiTreeNodeFlags_DefaultOpen))
+      for (const std::string& line : s.picked) ImGui::TextWrapped("%s", line.c_str());
+    if (ImGui::CollapsingHeader("GPU")) {
+      double total = 0.0;
+      for (const auto& [name, ms] : f.passes) {
+        ImGui::Text("%-20s %7.2f ms", name.c_str(), ms);
+        total += ms;
+      }
+      if (f.passes.empty())
+        ImGui::TextUnformatted("no timestamps on this device");
+      else
+        ImGui::Text("%-20s %7.2f ms", "total", total);
+      ImGui::Text("device memory %.1f MB", static_cast<double>(f.deviceMemoryBytes) / 1048576.0);
+    }
+    if (ImGui::CollapsingHeader("Physical camera")) {
+      if (ImGui::Checkbox("expose by aperture, shutter, ISO", &s.physicalCamera) &&
+          s.physicalCamera)
+        s.autoExposure = false;
+      ImGui::BeginDisabled(!s.physicalCamera);
+      ImGui::SliderFloat("aperture f/", &s.aperture, 1.0f, 32.0f, "%.1f",
+                         ImGuiSliderFlags_Logarithmic);
+      float perSecond = 1.0f / s.shutter;  // shown as 1/N s
+      if (ImGui::SliderFloat("shutter 1/s", &perSecond, 1.0f / 30.0f, 8000.0f, "%.0f",
+                             ImGuiSliderFlags_Logarithmic))
+        s.shutter = 1.0f / perSecond;
+      ImGui::SliderFloat("ISO", &s.iso, 25.0f, 25600.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
+      ImGui::EndDisabled();
+      if (s.physicalCamera) s.ev100 = ev100FromSettings(s.aperture, s.shutter, s.iso);
     }
     if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());
     const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();

@@ -4,7 +4,9 @@
 // frame's figures. What the panel and the keys change lives in ViewerControls, which the window
 // reads each frame; screenshots are rendered offscreen and never show the panel.
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gpu/vulkan.hpp"
@@ -31,6 +33,10 @@ struct ViewerControls {
   float ev100 = 0.0f;
   float compensation = 0.0f;
   bool autoExposure = true;
+  // The physical camera: with physicalCamera, EV100 follows the aperture (f-number), shutter
+  // time (s) and ISO (ev100FromSettings), auto exposure off.
+  bool physicalCamera = false;
+  float aperture = 16.0f, shutter = 1.0f / 125.0f, iso = 100.0f;
   float adaptationSpeed = 3.0f;
   MeteringRange metering;
   ToneMap toneMap = ToneMap::Aces;
@@ -39,11 +45,17 @@ struct ViewerControls {
   bool diffuse = true, specular = true;
   float skyboxLod = 0.0f, maxSkyboxLod = 0.0f;
   ViewMode view = ViewMode::RealTime;
+  BufferView buffer = BufferView::Shaded;  // what the real-time view shows (V cycles it)
+  bool clay = false;                       // every material as clay (C)
   bool screenshotRequested = false;
   int timeStep = 0;  // the sun lower (-1) or higher (+1)
   // The panel's save buttons (the window writes the files) and what the last save said.
   bool saveSettingsRequested = false, saveLightsRequested = false;
   std::string status;
+  // A pick asked for at this window point (the right button), and what the last one found: one
+  // line per fact, empty before any.
+  std::optional<glm::vec2> pickAt;
+  std::vector<std::string> picked;
   // The scene's lights as shown (edited in place); lightsChanged when the panel changed one.
   std::vector<Light> lights;
   bool lightsChanged = false;
@@ -58,6 +70,10 @@ struct PanelFigures {
   bool canSaveSettings = false, canSaveLights = false;
   int referenceSpp = 0;  // outside the real-time view
   float referenceNoise = 0.0f;
+  // The last real-time frame's passes on the device (name, ms; empty without timestamps) and the
+  // device memory the viewer holds.
+  std::vector<std::pair<std::string, double>> passes;
+  std::uint64_t deviceMemoryBytes = 0;
 };
 
 class Panel {

@@ -9,6 +9,7 @@
 
 #include "gpu/frame_layout.hpp"
 #include "ibl/core/error.hpp"
+#include "ibl/shared/buffer_views.h"
 
 namespace ibl::gpu {
 
@@ -110,6 +111,7 @@ SceneRenderer::Impl::Impl(Context& c, const Scene& sceneData, const BakeResult& 
       volume(c, frame, irradianceVolume, volumeAtlasFormat(c)),
       shadows(c, frame, sceneData),
       clusters(c, frame),
+      timer(c),
       sceneVert(device, c.impl().shaderModule("scene_vert")),
       sceneFrag(device, c.impl().shaderModule("scene_frag")),
       fullscreenVert(device, c.impl().shaderModule("fullscreen_vert")),
@@ -250,6 +252,8 @@ FrameState SceneRenderer::Impl::frameState(float skyboxLod, bool shadowed) const
   shadows.describe(s, shadowed);
   s.clusterGrid = clusters.grid();
   s.transmissionFrame = scene.hasTransmission();
+  s.bufferView = static_cast<int>(bufferView);
+  s.clay = clay;
   return s;
 }
 
@@ -267,27 +271,43 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   if (transmits) prepareTransmission();
   const Targets& t = *targets;
   frame.setUniforms(packFrameUniforms(camera, o, frameState(skyboxLod, shadowed)));
+  timer.begin(cmd);
   // Before any pass binds the frame set: its images in the layout the pipelines read them in.
   if (transmits) t.transmission->recordBeforeFrame(cmd);
   if (reflected) t.reflections->recordBeforeLitFrame(cmd);
-  if (updateVolume && volumeUpdate) volumeUpdate->record(cmd, o);
-  if (shadowed) shadows.record(cmd, scene);  // none pending when traced on the CPU
-  if (occluded || reflected) t.viewBuffers->record(cmd, scene);
-  if (occluded) t.occlusion->record(cmd);
+  if (updateVolume && volumeUpdate) {
+    volumeUpdate->record(cmd, o);
+    timer.mark(cmd, "volume update");
+  }
+  if (shadowed) {
+    shadows.record(cmd, scene);  // none pending when traced on the CPU
+    timer.mark(cmd, "shadow maps");
+  }
+  if (occluded || reflected) {
+    t.viewBuffers->record(cmd, scene);
+    timer.mark(cmd, "view buffers");
+  }
+  if (occluded) {
+    t.occlusion->record(cmd);
+    timer.mark(cmd, "GTAO");
+  }
   const VkPipeline meshPipeline = scenePipeline(shadowed, o.areaLights == AreaLightModel::Ltc);
   if (transmits) {
     // KHR_materials_transmission: the opaque meshes' frame first, halved into its chain, which
     // the transmissive meshes of the passes below read (the glTF Sample Viewer's order).
     recordScenePass(cmd, t.transmission->framebuffer(), meshPipeline, kOpaqueFramePass);
     t.transmission->record(cmd);
+    timer.mark(cmd, "transmission frame");
   }
   if (reflected) {
     // The lit frame (without reflections), the reflections traced through it, then the frame.
     ReflectionPass& r = *t.reflections;
     recordScenePass(cmd, r.litFramebuffer(), meshPipeline, kLitFramePass);
     r.record(cmd);
+    timer.mark(cmd, "reflections");
   }
   recordScenePass(cmd, t.framebuffer, meshPipeline, reflected ? kReflectedPass : kOnlyScenePass);
+  timer.mark(cmd, "scene");
 }
 
 VkPipeline SceneRenderer::Impl::scenePipeline(bool shadowed, bool ltcAreaLights) {
@@ -349,6 +369,36 @@ SceneRenderer::~SceneRenderer() = default;
 
 void SceneRenderer::setLights(const std::vector<Light>& lights) {
   impl_->setLights(lights);
+}
+
+void SceneRenderer::setBufferView(BufferView view) {
+  impl_->bufferView = view;
+}
+
+void SceneRenderer::setClay(bool clay) {
+  impl_->clay = clay;
+}
+
+std::vector<std::pair<std::string, double>> SceneRenderer::passTimes() const {
+  return impl_->timer.read();
+}
+
+static_assert(static_cast<int>(BufferView::Validation) == shared::kBufferValidation &&
+              static_cast<int>(BufferView::ShadowCascades) == shared::kBufferShadowCascades &&
+              kBufferViewCount == shared::kBufferCount);
+constexpr std::array<const char*, kBufferViewCount> kBufferViewNames{
+    "shaded",   "base-color", "roughness",   "metallic", "normals", "occlusion", "gtao",
+    "cascades", "clusters",   "reflections", "probes",   "volume",  "validation"};
+
+const char* bufferViewName(BufferView view) {
+  const int i = static_cast<int>(view);
+  return i >= 0 && i < kBufferViewCount ? kBufferViewNames[static_cast<std::size_t>(i)] : "?";
+}
+
+std::optional<BufferView> bufferViewNamed(std::string_view name) {
+  for (int i = 0; i < kBufferViewCount; ++i)
+    if (name == kBufferViewNames[static_cast<std::size_t>(i)]) return static_cast<BufferView>(i);
+  return std::nullopt;
 }
 
 void SceneRenderer::setEnvironment(const BakeResult& bake, const BakeOptions& bakeOptions,

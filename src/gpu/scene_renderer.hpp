@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "gpu/frame_set.hpp"
+#include "gpu/pass_timer.hpp"
 #include "gpu/scene_upload.hpp"
 #include "gpu/shadow_pass.hpp"
 #include "gpu/transmission_pass.hpp"
@@ -37,6 +38,9 @@ struct SceneRenderer::Impl {
   std::unique_ptr<VolumeUpdate> volumeUpdate;  // with an updatable volume: its live update
   ShadowPass shadows;
   ClusterUpload clusters;
+  BufferView bufferView = BufferView::Shaded;  // what the scene pass shows (setBufferView)
+  bool clay = false;                           // setClay
+  PassTimer timer;  // the GPU time of the frame's passes (record marks them)
   // The scene pass's shaders: the meshes' (view/scene.vert and .frag) and the skybox's.
   UniqueShaderModule sceneVert, sceneFrag, fullscreenVert, skyboxFrag;
   // Size-dependent: attachments, render pass, framebuffer, pipelines, the screen-space passes.

@@ -1,6 +1,7 @@
 #pragma once
 // Internal: the Vulkan objects behind gpu::Context and the small helpers the compute stages and
 // the rasterizer share (checked calls, one-shot submissions, device images, barriers).
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -35,6 +36,8 @@ struct Context::Impl {
   bool mappableDeviceMemory = false;  // device-local memory the host can map (no staging)
   bool imageCubeArray = false;        // cube map arrays are enabled (the viewer's probes)
   DeviceInfo info;
+  // Bytes of device memory the context's buffers and images hold now (Buffer, DeviceImage).
+  std::atomic<std::uint64_t> deviceMemoryBytes{0};
   struct Pipeline {
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -129,6 +132,7 @@ class DeviceImage {
   VkImage image_ = VK_NULL_HANDLE;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
+  std::uint64_t allocated_ = 0;  // bytes of memory_ (Context::Impl::deviceMemoryBytes)
 };
 
 // A layout transition of every level and layer of `image`, ordered after the `from` stage and

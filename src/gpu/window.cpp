@@ -18,6 +18,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/core/stats.hpp"
 #include "ibl/gpu/path_tracer.hpp"
+#include "render/ray_tracer.hpp"
 
 namespace ibl::gpu {
 
@@ -60,6 +61,8 @@ struct Interaction : ViewerControls {
                                  : ShadingTerms::Specular;
     v.skyboxLod = skyboxLod;
     v.view = view;
+    v.buffer = view == ViewMode::RealTime ? buffer : BufferView::Shaded;
+    v.clay = view == ViewMode::RealTime && clay;
     v.panel = panel;
     return v;
   }
@@ -87,7 +90,10 @@ void onKey(GLFWwindow* window, int key, int, int action, int) {
       if (action == GLFW_PRESS) s.panel = !s.panel;
       break;
     case GLFW_KEY_A:
-      if (action == GLFW_PRESS) s.autoExposure = !s.autoExposure;
+      if (action == GLFW_PRESS) {
+        s.autoExposure = !s.autoExposure;
+        if (s.autoExposure) s.physicalCamera = false;
+      }
       break;
     case GLFW_KEY_B:
       if (action == GLFW_PRESS) s.bloom = !s.bloom;
@@ -127,6 +133,13 @@ void onKey(GLFWwindow* window, int key, int, int action, int) {
     case GLFW_KEY_M:
       if (action == GLFW_PRESS) s.view = static_cast<ViewMode>((static_cast<int>(s.view) + 1) % 4);
       break;
+    case GLFW_KEY_V:
+      if (action == GLFW_PRESS)
+        s.buffer = static_cast<BufferView>((static_cast<int>(s.buffer) + 1) % kBufferViewCount);
+      break;
+    case GLFW_KEY_C:
+      if (action == GLFW_PRESS) s.clay = !s.clay;
+      break;
     case GLFW_KEY_COMMA:
       s.timeStep = -1;
       break;
@@ -144,6 +157,9 @@ void onKey(GLFWwindow* window, int key, int, int action, int) {
 
 void onMouseButton(GLFWwindow* window, int button, int action, int) {
   auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
+  // The right button picks the surface under the cursor (its material, in the panel).
+  if (button == GLFW_MOUSE_BUTTON_RIGHT && action == GLFW_PRESS && !s.onPanel(s.lastX, s.lastY))
+    s.pickAt = glm::vec2(static_cast<float>(s.lastX), static_cast<float>(s.lastY));
   if (button != GLFW_MOUSE_BUTTON_LEFT) return;
   // The drag starts where the events last put the cursor (not where it is now: the events of
   // a fast drag may all be queued before the press is handled), unless that is on the panel.
@@ -386,6 +402,57 @@ void uploadPicture(Context& context, std::unique_ptr<DeviceImage>& image, const 
   uploadRadiance(context, *image, picture);
 }
 
+// What the surface at framebuffer point `pixel` of `camera`'s view is made of, as the CPU's
+// surfaceAt reads it (textures, normal map, the side the camera sees): a line per fact for the
+// panel, or one saying that nothing is there.
+std::vector<std::string> pickedSurface(const Scene& scene, const RayTracer& tracer,
+                                       const Camera& camera, glm::vec2 pixel) {
+  const Ray ray = camera.generateRay(pixel.x, pixel.y);
+  const RayTracer::Hit hit = tracer.intersect(ray);
+  const glm::ivec2 at(glm::floor(pixel));
+  if (!hit.found) return {fmt::format("pixel ({}, {}): no surface", at.x, at.y)};
+  const SurfacePoint p = surfaceAt(scene, tracer, hit, ray);
+  const auto v3 = [](glm::vec3 v) { return fmt::format("{:.3f}, {:.3f}, {:.3f}", v.x, v.y, v.z); };
+  std::string object;
+  int material = 0;
+  if (tracer.isSphere(hit.geometry)) {
+    object = fmt::format("sphere {}", hit.primitive);
+    material = scene.spheres[hit.primitive].material;
+  } else {
+    const Mesh& m = scene.meshes[hit.geometry];
+    object = fmt::format("mesh {}{}, triangle {}", hit.geometry,
+                         m.names.empty() ? "" : " \"" + m.names.front() + "\"", hit.primitive);
+    material = m.material;
+  }
+  std::vector<std::string> lines = {
+      fmt::format("pixel ({}, {}), {:.3f} away: {}", at.x, at.y, hit.t, object),
+      fmt::format("material {}", material),
+      "position " + v3(p.position),
+      "shading normal " + v3(p.normal),
+      "base color " + v3(p.baseColor) + " (linear)",
+      fmt::format("metallic {:.3f}, roughness {:.3f}, occlusion {:.3f}", p.metallic, p.roughness,
+                  p.occlusion),
+      fmt::format("ior {:.3f}, specular {:.3f}, specular color ", p.ior, p.specular) +
+          v3(p.specularColor),
+      "emission " + v3(p.emissive) + " nits"};
+  if (p.clearcoat > 0.0f)
+    lines.push_back(
+        fmt::format("clear coat {:.3f}, roughness {:.3f}", p.clearcoat, p.clearcoatRoughness));
+  if (p.sheenColor != glm::vec3(0.0f))
+    lines.push_back("sheen " + v3(p.sheenColor) +
+                    fmt::format(", roughness {:.3f}", p.sheenRoughness));
+  if (p.transmission > 0.0f)
+    lines.push_back(fmt::format("transmission {:.3f}, thickness {:.3f}{}", p.transmission,
+                                p.thickness, p.volume ? " (volume)" : " (thin wall)"));
+  if (p.iridescence > 0.0f)
+    lines.push_back(fmt::format("iridescence {:.3f}, ior {:.3f}, thickness {:.0f} nm",
+                                p.iridescence, p.iridescenceIor, p.iridescenceThickness));
+  if (p.anisotropy > 0.0f)
+    lines.push_back(fmt::format("anisotropy {:.3f} along ", p.anisotropy) +
+                    v3(p.anisotropyTangent));
+  return lines;
+}
+
 }  // namespace
 
 const char* viewModeName(ViewMode mode) {
@@ -490,6 +557,14 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   state.diffuse = o.render.only != ShadingTerms::Specular;
   state.specular = o.render.only != ShadingTerms::Diffuse;
   state.view = o.view;
+  state.buffer = o.buffer;
+  state.clay = o.clay;
+  if (o.aperture > 0.0f && o.shutter > 0.0f && o.iso > 0.0f) {
+    state.physicalCamera = true;
+    state.aperture = o.aperture;
+    state.shutter = o.shutter;
+    state.iso = o.iso;
+  }
   // The exposure: fixed, or the first frame metered here and then, with auto exposure, each
   // frame's histogram (counted on the device with the frame, read once its fence has signaled).
   state.ev100 =
@@ -502,6 +577,11 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
                     o.metering, 0.0f);
   r.histogram = std::make_unique<DeviceHistogram>(*r.context);
   bool histogramRecorded = false;
+  // The passes of the last real-time frame, timed on the device (SceneRenderer::passTimes and the
+  // window's own, marked after them).
+  std::vector<std::pair<std::string, double>> passTimes;
+  bool timedFrame = false;
+  std::unique_ptr<RayTracer> pickTracer;  // the scene on the CPU, for the right button's picks
   glfwSetWindowUserPointer(r.window, &state);
   glfwSetKeyCallback(r.window, onKey);
   glfwSetMouseButtonCallback(r.window, onMouseButton);
@@ -578,6 +658,9 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
           adaptEv100(state.ev100, meteredEv100(r.histogram->read(), state.metering, state.ev100),
                      static_cast<float>(lastFrameMs / 1000.0), state.adaptationSpeed);
     histogramRecorded = false;
+    // The last frame's passes on the device (a real-time frame's), for the panel.
+    if (timedFrame) passTimes = r.renderer->passTimes();
+    timedFrame = false;
     std::uint32_t imageIndex = 0;
     const VkResult acquired = vkAcquireNextImageKHR(c.device, r.swapchain.handle, UINT64_MAX,
                                                     r.acquired, VK_NULL_HANDLE, &imageIndex);
@@ -598,6 +681,8 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     PanelFigures figures;
     figures.frameMs = lastFrameMs;
     figures.device = c.info.name;
+    figures.passes = passTimes;
+    figures.deviceMemoryBytes = r.context->deviceMemoryBytes();
     figures.samples = samples;
     figures.timeOfDay = static_cast<bool>(o.timeOfDay);
     if (r.tracer) {
@@ -606,6 +691,22 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     }
     figures.canSaveSettings = static_cast<bool>(o.saveSettings);
     figures.canSaveLights = static_cast<bool>(o.saveLights);
+    if (state.pickAt) {
+      // The cursor's window point in framebuffer pixels, its center's ray into the CPU's scene
+      // (the geometry is the window's; made on the first pick).
+      int windowWidth = 0, windowHeight = 0;
+      glfwGetWindowSize(r.window, &windowWidth, &windowHeight);
+      const glm::vec2 scale(
+          static_cast<float>(width) / static_cast<float>(std::max(windowWidth, 1)),
+          static_cast<float>(height) / static_cast<float>(std::max(windowHeight, 1)));
+      if (!pickTracer) pickTracer = std::make_unique<RayTracer>(scene);
+      state.picked = pickedSurface(scene, *pickTracer, state.camera(width, height),
+                                   glm::floor(*state.pickAt * scale) + 0.5f);
+      std::string line;
+      for (const std::string& fact : state.picked) line += (line.empty() ? "" : "; ") + fact;
+      fmt::print(stderr, "ibl view: picked {}\n", line);
+      state.pickAt.reset();
+    }
     r.panel->build(state, figures);
     if (state.saveSettingsRequested || state.saveLightsRequested) {
       try {
@@ -679,6 +780,10 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
       }
     }
     const ViewMode view = state.view;
+    // A buffer view is the real-time view's: the comparisons with the reference show the shading.
+    const BufferView buffer = view == ViewMode::RealTime ? state.buffer : BufferView::Shaded;
+    r.renderer->setBufferView(buffer);
+    r.renderer->setClay(view == ViewMode::RealTime && state.clay);
     if (view != ViewMode::RealTime) {
       RenderOptions tracing = referenceBase;
       tracing.only = shading.only;
@@ -721,10 +826,11 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
         o.screenshot(view == ViewMode::RealTime
                          ? r.renderer->render(camera, shading, state.skyboxLod)
                          : picture,
-                     state.ev100 - state.compensation, state.toneMap, view);
+                     state.ev100 - state.compensation, state.toneMap, view, buffer);
     }
-    // The difference view's colors are shown as they are: no bloom, exposure or tone curve.
-    const bool difference = view == ViewMode::Difference;
+    // The difference view's colors and a buffer's are shown as they are: no bloom, exposure or
+    // tone curve.
+    const bool difference = view == ViewMode::Difference || buffer != BufferView::Shaded;
     const struct {
       float exposure;
       std::int32_t curve, encode;
@@ -737,16 +843,22 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(r.cmd, &begin), "vkBeginCommandBuffer");
-    if (view == ViewMode::RealTime)
+    if (view == ViewMode::RealTime) {
       renderer.record(r.cmd, camera, shading, state.skyboxLod, o.volumeUpdate);
+      timedFrame = true;
+    }
     const DeviceImage& frame = view == ViewMode::RealTime ? renderer.output() : *r.shown;
     // Metered: what is shown, before bloom (the difference view's colors are no radiance).
     if (state.autoExposure && !difference) {
       r.histogram->record(r.cmd, frame);
       histogramRecorded = true;
+      if (timedFrame) renderer.timer.mark(r.cmd, "histogram");
     }
     const bool bloomed = state.bloom && !difference;
-    if (bloomed) r.bloom->record(r.cmd, frame, state.ev100 - state.compensation, state.bloomStops);
+    if (bloomed) {
+      r.bloom->record(r.cmd, frame, state.ev100 - state.compensation, state.bloomStops);
+      if (timedFrame) renderer.timer.mark(r.cmd, "bloom");
+    }
     // The tone-mapping pass reads the frame, or its bloom.
     const VkDescriptorImageInfo hdrInfo{r.sampler,
                                         bloomed ? r.bloom->output().view() : frame.view(),
@@ -770,6 +882,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     vkCmdDraw(r.cmd, 3, 1, 0, 0);
     r.panel->record(r.cmd);
     vkCmdEndRenderPass(r.cmd);
+    if (timedFrame) renderer.timer.mark(r.cmd, "tone map and panel");
     check(vkEndCommandBuffer(r.cmd), "vkEndCommandBuffer");
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
@@ -804,9 +917,11 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     ++windowFrames;
     if (now - lastTitle > std::chrono::milliseconds(500) || stats.frames == 1) {
       const double mean = windowMs / windowFrames;
-      // Outside the real-time view: the view, the reference's samples per pixel and noise.
+      // A buffer's name; outside the real-time view: the view, the reference's samples per pixel
+      // and noise.
       const std::string shown =
-          view == ViewMode::RealTime || !r.tracer
+          buffer != BufferView::Shaded ? fmt::format(" - buffer {}", bufferViewName(buffer))
+          : view == ViewMode::RealTime || !r.tracer
               ? std::string()
               : fmt::format(" - {}: {} spp, reference noise {:.2f} %", viewModeName(view),
                             r.tracer->samplesPerPixel(), 100.0f * r.tracer->noise());

@@ -7,6 +7,7 @@
 
 #include "ibl/core/error.hpp"
 #include "ibl/shared/material.h"
+#include "ibl/shared/specular_antialiasing.h"
 #include "ibl/shared/transmission.h"
 
 namespace ibl {
@@ -138,6 +139,32 @@ const Material& hitMaterial(const Scene& scene, const RayTracer& tracer,
   return scene.materials[static_cast<std::size_t>(material)];
 }
 
+RayTracer::Hit hitOnSameSurface(const Scene& scene, const RayTracer& tracer,
+                                const RayTracer::Hit& hit, const Ray& ray) {
+  RayTracer::Hit h = hit;
+  if (tracer.isSphere(hit.geometry)) {
+    const Sphere& s = scene.spheres[hit.primitive];
+    const glm::vec3 oc = ray.origin - s.center;
+    const float b = glm::dot(oc, ray.direction);
+    const float disc = b * b - (glm::dot(oc, oc) - s.radius * s.radius);
+    h.t = disc >= 0.0f ? -b - std::sqrt(disc) : -b;  // the nearest point where it misses
+    return h;
+  }
+  // Moller & Trumbore 1997 without the bounds on the barycentrics.
+  const Mesh& m = scene.meshes[hit.geometry];
+  const glm::vec3 p0 = m.positions[m.indices[3 * hit.primitive]],
+                  e1 = m.positions[m.indices[3 * hit.primitive + 1]] - p0,
+                  e2 = m.positions[m.indices[3 * hit.primitive + 2]] - p0;
+  const glm::vec3 q = glm::cross(ray.direction, e2);
+  const float inverse = 1.0f / glm::dot(e1, q);
+  const glm::vec3 o = ray.origin - p0;
+  const glm::vec3 r = glm::cross(o, e1);
+  h.u = glm::dot(o, q) * inverse;
+  h.v = glm::dot(ray.direction, r) * inverse;
+  h.t = glm::dot(e2, r) * inverse;
+  return h;
+}
+
 SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTracer::Hit& hit,
                        const Ray& ray) {
   SurfacePoint p{};
@@ -241,10 +268,15 @@ SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTra
     coatNormal = n;
     if (!m.tangents.empty()) {
       tangent = m.tangents[i0] * w0 + m.tangents[i1] * w1 + m.tangents[i2] * w2;
-      if (lookup(mat->clearcoatNormalTexture, false, t))
+      if (lookup(mat->clearcoatNormalTexture, false, t)) {
         coatNormal = shared::applyNormalMap(n, tangent, t, mat->clearcoatNormalScale);
-      if (lookup(mat->normalTexture, false, t))
+        p.clearcoatNormalMapAlpha2 =
+            shared::normalMapAlpha2(glm::vec3(t), mat->clearcoatNormalScale);
+      }
+      if (lookup(mat->normalTexture, false, t)) {
         n = shared::applyNormalMap(n, tangent, t, mat->normalScale);
+        p.normalMapAlpha2 = shared::normalMapAlpha2(glm::vec3(t), mat->normalScale);
+      }
     }
     lookup(mat->anisotropyTexture, false, anisotropyTexel);
     p.baseColor = base;

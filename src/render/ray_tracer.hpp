@@ -112,6 +112,14 @@ class RayTracer {
 SurfacePoint surfaceAt(const Scene& scene, const RayTracer& tracer, const RayTracer::Hit& hit,
                        const Ray& ray);
 
+// Where `ray` meets the surface `hit` lies on, extended: the plane of its triangle (barycentrics
+// outside [0, 1] extrapolate its attributes, as a fragment shader's helper invocations do), or
+// its sphere (where the ray misses it, the point nearest the ray). For the differences of
+// shading quantities between neighboring rays; t is not finite where the ray runs along the
+// plane.
+RayTracer::Hit hitOnSameSurface(const Scene& scene, const RayTracer& tracer,
+                                const RayTracer::Hit& hit, const Ray& ray);
+
 // The material of the surface a hit met.
 const Material& hitMaterial(const Scene& scene, const RayTracer& tracer, const RayTracer::Hit& hit);
 

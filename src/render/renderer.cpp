@@ -22,6 +22,7 @@
 #include "ibl/shared/lights.h"
 #include "ibl/shared/screen_space_reflections.h"
 #include "ibl/shared/shadows.h"
+#include "ibl/shared/specular_antialiasing.h"
 #include "ibl/shared/split_sum.h"
 #include "path_tracer.hpp"
 #include "ray_tracer.hpp"
@@ -294,6 +295,45 @@ glm::vec3 shadeLightsRealTime(const SurfacePoint& p, glm::vec3 position, glm::ve
   return sum;
 }
 
+namespace {
+
+// Specular antialiasing of the split sum's sample at `pixel`, whose ray met `hit`: the shading
+// normals (and the coat's) of the rays one pixel over in x and in y, met on the same surface
+// extended, whatever the samples per pixel. The other pixel is the one the viewer's shader
+// differences, its partner in the 2 x 2 quad (dFdxFine, dFdyFine): right of an even column, left
+// of an odd one, and alike down the rows.
+void antialiasSpecular(SurfacePoint& p, const Scene& scene, const RayTracer& tracer,
+                       const RayTracer::Hit& hit, const RayGenerator& generateRay,
+                       glm::vec2 pixel) {
+  const auto partner = [](float c) {
+    return static_cast<int>(std::floor(c)) % 2 == 0 ? 1.0f : -1.0f;
+  };
+  // The neighbor's shading normals on this point's side (surfaceAt turns them to the neighbor's
+  // ray, which at a silhouette may see the other side; the viewer keeps the fragment's side);
+  // this point's where its ray runs (nearly) along the plane, whose barycentrics would be
+  // non-finite or far out (and so would the texture coordinates).
+  const auto neighbor = [&](glm::vec2 step) {
+    const Ray ray = generateRay(pixel + step);
+    const RayTracer::Hit h = hitOnSameSurface(scene, tracer, hit, ray);
+    if (!(std::isfinite(h.t) && std::abs(h.u) < 1e3f && std::abs(h.v) < 1e3f)) return p;
+    SurfacePoint q = surfaceAt(scene, tracer, h, ray);
+    if (glm::dot(q.normal, p.normal) < 0.0f) q.normal = -q.normal;
+    if (glm::dot(q.clearcoatNormal, p.clearcoatNormal) < 0.0f)
+      q.clearcoatNormal = -q.clearcoatNormal;
+    return q;
+  };
+  const SurfacePoint px = neighbor({partner(pixel.x), 0.0f});
+  const SurfacePoint py = neighbor({0.0f, partner(pixel.y)});
+  p.roughness = shared::specularAntialiasedRoughness(p.roughness, p.normalMapAlpha2,
+                                                     px.normal - p.normal, py.normal - p.normal);
+  if (p.clearcoat > 0.0f)
+    p.clearcoatRoughness = shared::specularAntialiasedRoughness(
+        p.clearcoatRoughness, p.clearcoatNormalMapAlpha2, px.clearcoatNormal - p.clearcoatNormal,
+        py.clearcoatNormal - p.clearcoatNormal);
+}
+
+}  // namespace
+
 void checkSheenVisibility(SheenVisibility table, const RenderOptions& o) {
   if (o.mode == RenderMode::SplitSum && table != o.sheenVisibility)
     fail("render", fmt::format("the sheen lobe's visibility is {}, but the bake's sheen table "
@@ -472,6 +512,9 @@ RenderResult renderRays(const Scene& scene, int width, int height, const RayGene
           SurfacePoint p = surfaceAt(scene, tracer, hit, ray);
           const glm::vec3 position = p.position;
           if (o.mode == RenderMode::SplitSum) {
+            if (o.specularAntialiasing)
+              antialiasSpecular(p, scene, tracer, hit, generateRay,
+                                {static_cast<float>(x) + jx, static_cast<float>(y) + jy});
             if (o.aoRays > 0 && !p.occlusionTexture)
               p.occlusion = ambientOcclusion(tracer, p, o.aoRays, aoDistance, sampler);
             if (screen) {

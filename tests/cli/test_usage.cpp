@@ -137,6 +137,7 @@ std::vector<Misuse> sceneMisuses() {
       {"--no-multiscatter", "--no-multiscatter=maybe", 2, "--no-multiscatter"},
       {"--no-multiscatter", "--no-multiscatter --multiscatter walk", 2, "--no-multiscatter"},
       {"--probes", "--probes nosuch", 1, "nosuch: no such directory"},
+      {"--specular-aa", "--specular-aa maybe", 2, "--specular-aa"},
       {"--force", "--force=maybe", 2, "--force"},
       {"--no-parallax", "--no-parallax=maybe", 2, "--no-parallax"},
       {"--no-distance-roughness", "--no-distance-roughness=maybe", 2, "--no-distance-roughness"},
@@ -364,6 +365,13 @@ TEST(Usage, View) {
               {"--adaptation-speed", "--frames 1 --adaptation-speed -1", 2,
                "--adaptation-speed: must be from 0 to 1000, not -1"},
               {"--panel", "--frames 1 --panel sometimes", 2, "--panel"},
+              {"--buffer", "--screenshot out.png --buffer depth", 2, "--buffer"},
+              {"--clay", "--screenshot out.png --clay maybe", 2, "--clay"},
+              {"--clay", "--screenshot out.png --clay on --reference difference", 2,
+               "--clay: draws the real-time frame as clay; --reference difference shows"},
+              {"--buffer", "--screenshot out.png --buffer roughness --reference split", 2,
+               "--buffer: roughness is a buffer of the real-time frame; --reference split shows "
+               "the shading"},
               {"--settings", "--screenshot out.png --settings nosuch.json", 1,
                "nosuch.json: no such file"},
           });
@@ -387,6 +395,10 @@ TEST(Usage, ViewSettingsFileMistakesNameTheFile) {
             name + ": \"tonemap\" must be one of aces, filmic, none, not \"reinhard\""},
            {R"({"look_from": [1, 2]})", name + ": \"look_from\" must be [x, y, z]"},
            {R"({"auto_exposure": 1})", name + ": \"auto_exposure\" must be true or false"},
+           {R"({"buffer": "depth"})", name + ": \"buffer\" must be a buffer's name"},
+           {R"({"buffer": "normals", "view": "split"})",
+            name + ": \"buffer\" shows the real-time frame, not the \"split\" view"},
+           {R"({"clay": "yes"})", name + ": \"clay\" must be true or false"},
            {R"([1, 2])", name + ": is not a JSON object of settings"},
            {R"({"fov": 40,})", name + ": line 1, column 12"}}) {
     const CliRun r = run(text);

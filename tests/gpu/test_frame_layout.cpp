@@ -124,7 +124,8 @@ TEST(FrameUniforms, Std140OffsetsFollowFrameGlsl) {
   EXPECT_EQ(offsetof(FrameUniforms, volumeSpacing), 512u);
   EXPECT_EQ(offsetof(FrameUniforms, volumeCounts), 528u);
   EXPECT_EQ(offsetof(FrameUniforms, volumeTexels), 544u);
-  EXPECT_EQ(sizeof(FrameUniforms), 560u);
+  EXPECT_EQ(offsetof(FrameUniforms, bufferView), 560u);
+  EXPECT_EQ(sizeof(FrameUniforms), 576u);
 }
 
 // A point anywhere on the ray through a pixel lands on that pixel (Vulkan: y down), in front of

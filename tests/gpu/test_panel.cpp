@@ -79,7 +79,8 @@ void closeViewer(VirtualDisplay& d) {
 
 // Every key of the window's footer, pressed: the exposure brightens and darkens the frame, the tone
 // curve, the terms and the view change what the title says, a drag orbits the camera and R
-// brings it back to the same pixels, F1 shows and hides the panel, Q closes the window.
+// brings it back to the same pixels, F1 shows and hides the panel, V shows the buffers, the right
+// button picks a surface, Q closes the window.
 TEST(ViewerWindow, KeysChangeWhatTheWindowShows) {
   ASSERT_TRUE(hasTools()) << "Xvfb or xdotool missing: run scripts/setup.sh";
   VirtualDisplay d(320, 240);
@@ -138,13 +139,33 @@ TEST(ViewerWindow, KeysChangeWhatTheWindowShows) {
   d.xdotool("key F1");
   EXPECT_TRUE(d.waitForScreen([&](const Screen& s) { return s.difference(lit, 0, 0, w, h) < 0.5; },
                               kChange));
+  // V: the buffers, the first the base color as it is (the sphere's white, the background black);
+  // twelve more come round to the shading.
+  d.xdotool("key v");
+  EXPECT_TRUE(titleShows(d, "buffer base-color"));
+  EXPECT_TRUE(d.waitForScreen(
+      [&](const Screen& s) {
+        return s.mean(w / 2 - 10, h / 2 - 10, w / 2 + 10, h / 2 + 10) > 250.0 &&
+               s.mean(0, 0, 10, 10) < 1.0;
+      },
+      kChange));
+  d.xdotool("key v v v v v v v v v v v v");
+  EXPECT_TRUE(d.waitForScreen([&](const Screen& s) { return s.difference(lit, 0, 0, w, h) < 0.5; },
+                              kChange));
   // [ and ]: the skybox's mip level; M: the reference view, traced on the device.
   d.xdotool("key bracketright");
   EXPECT_TRUE(titleShows(d, "skybox mip 0.5"));
   d.xdotool("key bracketleft m");
   EXPECT_TRUE(titleShows(d, "reference: "));
+  // The right button picks the surface under the cursor: the sphere's white dielectric of
+  // roughness 0.5, facing the camera, reported on stderr (and in the panel).
+  d.xdotool("mousemove 100 75 click 3");
   closeViewer(d);
   EXPECT_NE(d.log().find("(reference view at the end)"), std::string::npos) << d.log();
+  for (const char* fact : {"ibl view: picked pixel (100, 75)", ": sphere 0; material 0;",
+                           "base color 1.000, 1.000, 1.000 (linear)",
+                           "metallic 0.000, roughness 0.500", "shading normal 0."})
+    EXPECT_NE(d.log().find(fact), std::string::npos) << fact << "\n" << d.log();
 }
 
 // Auto exposure follows the light: the sphere alone on black (a black background is not
@@ -319,4 +340,11 @@ TEST(ViewerSettings, TheCommandLineWinsOverTheFile) {
   EXPECT_TRUE(otherExposure ==
               shot("f.png", "--tonemap filmic --exposure-compensation 1 --ev100 4"));
   EXPECT_FALSE(otherExposure == fromFile);
+  // A buffer from the file, and the command line's shading over it.
+  const auto buffered = dir / "buffered.json";
+  std::ofstream(buffered) << R"({"buffer": "normals", "tonemap": "filmic"})";
+  const auto normals = shot("g.png", "--settings " + quote(buffered));
+  EXPECT_TRUE(normals == shot("h.png", "--buffer normals"));
+  EXPECT_TRUE(shot("i.png", "--settings " + quote(buffered) + " --buffer shaded") ==
+              shot("j.png", "--tonemap filmic"));
 }

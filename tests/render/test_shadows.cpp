@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "ibl/render/shadows.hpp"
+#include "support/helpers.hpp"
 #include "support/shadow_scenes.hpp"
 
 using namespace ibl;

@@ -50,6 +50,8 @@ class Context {
   static std::unique_ptr<Context> create(const ContextOptions& options = {});
   ~Context();
   const DeviceInfo& device() const;
+  // Bytes of device memory the context's buffers and images hold now.
+  std::uint64_t deviceMemoryBytes() const;
 
   struct Impl;
   Impl& impl() { return *impl_; }

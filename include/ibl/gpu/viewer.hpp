@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -21,6 +22,34 @@
 #include "ibl/render/shadows.hpp"
 
 namespace ibl::gpu {
+
+// What the scene pass shows (kBuffer* of ibl/shared/buffer_views.h, the same values): the
+// shading, or one of its inputs as display colors (no exposure or tone curve): the material's
+// base color, roughness (as shaded, specular antialiasing included), metallic, world normals,
+// occlusion texture; GTAO's visibility; the sun's shadow cascades; the lights per cluster as a
+// heat map; the screen-space reflections' hits; the local probes' and the irradiance volume's
+// influence; the validation of the materials against measured ranges.
+enum class BufferView {
+  Shaded = 0,
+  BaseColor,
+  Roughness,
+  Metallic,
+  Normals,
+  MaterialOcclusion,
+  ScreenOcclusion,
+  ShadowCascades,
+  LightClusters,
+  ReflectionHits,
+  ProbeInfluence,
+  VolumeInfluence,
+  Validation
+};
+inline constexpr int kBufferViewCount = 13;
+// "shaded", "base-color", "roughness", "metallic", "normals", "occlusion", "gtao", "cascades",
+// "clusters", "reflections", "probes", "volume", "validation" (`ibl view --buffer`).
+const char* bufferViewName(BufferView view);
+// The view of that name, or none.
+std::optional<BufferView> bufferViewNamed(std::string_view name);
 
 // The scene and the bake on the device, and the pipelines that draw them.
 class SceneRenderer {
@@ -75,6 +104,19 @@ class SceneRenderer {
   // Replaces the scene's lights alone (moved, dimmed, recolored: as many as the scene's, each of
   // its type and IES profile, else Error("viewer: ...")). Waits for the device to be idle.
   void setLights(const std::vector<Light>& lights);
+  // What the frames drawn from now on show (BufferView::Shaded at first). A buffer that the
+  // frame's options leave out shows its neutral value: GTAO's and the reflections' none, no
+  // cascades without a sun that casts shadows, no influence without probes or a volume.
+  void setBufferView(BufferView view);
+  // Clay: every material drawn from now on as one matte gray dielectric (base color 0.5,
+  // roughness 0.6; no coat, sheen, film, anisotropy or transmission), its normal map, occlusion,
+  // coverage and emission kept, so that the shapes and the light are seen alone.
+  void setClay(bool clay);
+  // The GPU time of the last frame's passes (render, or the window's frame once done), in
+  // order, in milliseconds, from timestamp queries: "volume update", "shadow maps", "view
+  // buffers", "GTAO", "transmission frame", "reflections", "scene" (those the frame ran). Empty
+  // where the device writes no timestamps.
+  std::vector<std::pair<std::string, double>> passTimes() const;
   // The irradiance volume's live update (src/gpu/volume_update.hpp): `frames` frames of it,
   // lit by the lights and the environment with the shading switches of `options`, as
   // updateVolume runs them on the CPU (the same frames: the same rays); the frames drawn after
@@ -140,6 +182,8 @@ struct ViewSettings {
   ShadingTerms only = ShadingTerms::Both;
   float skyboxLod = 0.0f;
   ViewMode view = ViewMode::RealTime;
+  BufferView buffer = BufferView::Shaded;
+  bool clay = false;
   bool panel = true;
 };
 
@@ -152,6 +196,9 @@ struct WindowOptions {
   // at adaptationSpeed (1/s; 0: at once); without autoExposure, the first frame's kept.
   std::optional<float> ev100;
   bool autoExposure = true;
+  // The camera settings that fixed ev100, when they did (all > 0): the panel's physical camera
+  // starts from them.
+  float aperture = 0.0f, shutter = 0.0f, iso = 0.0f;
   MeteringRange metering;
   float adaptationSpeed = 3.0f;
   float compensation = 0.0f;  // stops subtracted from EV100
@@ -166,8 +213,9 @@ struct WindowOptions {
   std::string title = "ibl view";
   // Called with the current view rendered offscreen (linear radiance), its EV100 and tone
   // curve when the user presses P or F12; none: the keys do nothing. Outside the real-time view:
-  // the picture shown (composeView); ViewMode::Difference's colors are to be written as they are.
-  std::function<void(const RenderResult&, float ev100, ToneMap, ViewMode)> screenshot;
+  // the picture shown (composeView); ViewMode::Difference's colors, and a buffer's (BufferView
+  // other than Shaded), are to be written as they are.
+  std::function<void(const RenderResult&, float ev100, ToneMap, ViewMode, BufferView)> screenshot;
   // Time of day: called with -1 or +1 when the user presses , or . (the sun lower / higher), and
   // the viewer's device to bake on; returns the new environment, or nothing. The title and
   // stderr show how long the change took.
@@ -185,6 +233,10 @@ struct WindowOptions {
   // any change starts it over.
   ViewMode view = ViewMode::RealTime;
   std::optional<RenderOptions> reference;
+  // The buffer the real-time view starts showing (V cycles them; SceneRenderer::setBufferView):
+  // its colors shown as they are, without exposure, bloom or tone curve.
+  BufferView buffer = BufferView::Shaded;
+  bool clay = false;     // every material drawn as clay in the real-time view (C toggles it)
   int referenceSpp = 0;  // the reference stops adding samples at this many per pixel (0: 1 << 20)
   // With a volume: each real-time frame runs a frame of its live update first
   // (SceneRenderer::updateVolume), so that the sun, the environment and the lights relight it;
@@ -218,7 +270,9 @@ LuminanceHistogram luminanceHistogramOnDevice(Context& context, const Image& lin
 // `frames` frames: left drag orbits, the wheel zooms, +/- change the exposure compensation,
 // [ and ] the skybox's mip level, D and S toggle the diffuse and specular terms, P or F12 takes
 // a screenshot (options.screenshot), T cycles the tone curve, M cycles the view (real time,
-// reference, difference, split: ViewMode), A toggles auto exposure, B bloom, F1 the panel
+// reference, difference, split: ViewMode), V cycles the buffers (BufferView), C clay, the right
+// button picks the surface under the cursor (the panel and stderr list its material), A toggles
+// auto exposure, B bloom, F1 the panel
 // (src/gpu/panel.hpp: every setting, the lights, saving them), R resets the view; the title
 // shows the frame time,
 // and outside the real-time view the view's name, the reference's samples per pixel and its

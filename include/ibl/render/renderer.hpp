@@ -53,6 +53,9 @@ struct RenderOptions {
   // Both modes: f90 = saturate(50 dot(F0, 0.33)) in the Fresnel (shared::fresnelF90), for the
   // cavities a low F0 stands for; off (glTF's Fresnel, f90 = 1) by default.
   bool specularMicroOcclusion = false;
+  // Split sum: specular antialiasing, the GGX lobes widened by the shading normal's change across
+  // the pixel (ibl/shared/specular_antialiasing.h); the commands' default is on.
+  bool specularAntialiasing = false;
   IrradianceSource irradiance = IrradianceSource::Cube;
   AreaLightModel areaLights = AreaLightModel::Ltc;  // split sum (measured closer: docs/lights.md)
   // The sheen lobe's visibility: the split sum's lights, the reference. A split sum must use
@@ -186,6 +189,9 @@ struct SurfacePoint {
   float clearcoat = 0.0f;
   float clearcoatRoughness = 0.0f;
   glm::vec3 clearcoatNormal{0.0f, 0.0f, 1.0f};
+  // The alpha^2 of the spread of normals the base's and the coat's normal-map texels averaged
+  // (shared::normalMapAlpha2; 0 without a map), for specular antialiasing.
+  float normalMapAlpha2 = 0.0f, clearcoatNormalMapAlpha2 = 0.0f;
   // KHR_materials_iridescence, textures applied (iridescence 0: none): the film's strength, index
   // and thickness (nm).
   float iridescence = 0.0f;
