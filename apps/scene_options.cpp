@@ -481,7 +481,7 @@ void refuseOptionsTheModeIgnores(const SceneCliOptions& o, bool reference, int s
          {"--probes", "--volume", "--force", "--no-parallax", "--no-distance-roughness", "--ao",
           "--ssao-radius", "--ssao-quality", "--ssr-quality", "--ssr-thickness",
           "--shadow-map-size", "--shadow-cascades", "--shadow-rays", "--no-dominant",
-          "--irradiance", "--area-lights"})
+          "--irradiance", "--area-lights", "--specular-aa"})
       if (given(o, option))
         failUsage(option, "is the split sum's; --mode reference does not read it");
     if (o.ssao == "on")

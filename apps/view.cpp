@@ -272,10 +272,13 @@ void applySettingsFile(ViewCliOptions& o) {
   if (!o.reference.empty() && (o.buffer != "shaded" || o.clay == "on")) {
     const bool viewGiven = given(o.scene, "--reference");
     const bool bufferGiven = given(o.scene, "--buffer"), clayGiven = given(o.scene, "--clay");
+    // The command line asks for the real-time view only with a buffer or clay turned on.
+    const bool realTimeGiven =
+        (bufferGiven && o.buffer != "shaded") || (clayGiven && o.clay == "on");
     if (viewGiven) {
       if (!bufferGiven) o.buffer = "shaded";
       if (!clayGiven) o.clay = "off";
-    } else if (bufferGiven || clayGiven) {
+    } else if (realTimeGiven) {
       o.reference.clear();
     } else {
       bad(o.buffer != "shaded" ? "buffer" : "clay",
@@ -522,6 +525,43 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
       return change;
     };
   }
+  // A dropped environment is loaded (or, a folder, read as a bake) as --env (--bake) would be,
+  // scaled as --env-intensity / --env-illuminance asked, and baked on the CPU. Its sun takes the
+  // place of the scene's environment sun; without one there, that light goes dark; a sun the
+  // scene has no place for is left out (said on stderr).
+  const std::size_t ownCount = ownLights.size();
+  w.dropEnvironment = [&](const std::string& path,
+                          gpu::Context&) -> std::optional<gpu::EnvironmentChange> {
+    SceneCliOptions dropped = o.scene;
+    dropped.envPixels.reset();
+    if (std::filesystem::is_directory(path)) {
+      dropped.bakeDir = path;
+      dropped.env.clear();
+    } else {
+      dropped.env = path;
+      dropped.bakeDir.clear();
+    }
+    GlobalOptions quiet = global;
+    quiet.quiet = true;
+    LoadedBake lighting = loadOrBake(dropped, quiet, hasSheen(scene));
+    gpu::EnvironmentChange change;
+    change.bake = std::move(lighting.bake);
+    change.options = lighting.options;
+    change.lights = ownLights;
+    for (std::size_t i = ownCount; i < scene.lights.size(); ++i) {
+      const std::size_t k = i - ownCount;
+      Light sun = k < lighting.lights.size() ? lighting.lights[k] : scene.lights[i];
+      if (k >= lighting.lights.size()) sun.intensity = 0.0f;
+      change.lights.push_back(sun);
+    }
+    if (lighting.lights.size() > scene.lights.size() - ownCount && !global.quiet)
+      fmt::print(stderr,
+                 "ibl view: {}: its sun is left out (the scene had no sun light to carry it; "
+                 "start with --env {} to see it)\n",
+                 path, path);
+    change.label = std::filesystem::path(path).filename().string();
+    return change;
+  };
   const gpu::WindowStats stats =
       gpu::runViewerWindow(scene, baked.bake, baked.options, w, probes, volume);
   if (!global.quiet) {

@@ -17,8 +17,9 @@ packages=(
   libimgui-dev
   # the viewer's window in tests, on a virtual X display
   xvfb xauth
-  # pressing the window's keys and clicking its panel in tests
-  xdotool
+  # pressing the window's keys and clicking its panel in tests; Xlib for the tests' own
+  # drag-and-drop source (tests/support/xdnd_drop.cpp)
+  xdotool libx11-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3 python3-yaml
   # the Python module (python/) and its tests

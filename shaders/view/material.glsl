@@ -73,8 +73,13 @@ struct SlotLookup {
   vec2 uv;      // transformed
   vec2 dx, dy;  // the uv's change one pixel over in x and in y
 };
-SlotLookup slotLookup(int binding) {
-  vec2 dx0 = dFdx(texCoord0), dy0 = dFdy(texCoord0), dx1 = dFdx(texCoord1), dy1 = dFdy(texCoord1);
+// fine: the derivatives within the pixel's own row and column of the quad (dFdxFine), as the
+// specular antialiasing's partner pixel needs them; else the driver's choice (texture filtering).
+SlotLookup slotLookup(int binding, bool fine) {
+  vec2 dx0 = fine ? dFdxFine(texCoord0) : dFdx(texCoord0);
+  vec2 dy0 = fine ? dFdyFine(texCoord0) : dFdy(texCoord0);
+  vec2 dx1 = fine ? dFdxFine(texCoord1) : dFdx(texCoord1);
+  vec2 dy1 = fine ? dFdyFine(texCoord1) : dFdy(texCoord1);
   bool second = (material.texCoordMask & (1u << uint(binding))) != 0u;
   UvTransform m;
   m.u = material.uvTransforms[2 * binding].xyz;
@@ -88,7 +93,7 @@ SlotLookup slotLookup(int binding) {
 }
 vec4 slotTexel(sampler2D t, int binding) {
   if (!hasTexture(binding)) return vec4(1.0);
-  SlotLookup l = slotLookup(binding);
+  SlotLookup l = slotLookup(binding, false);
   return textureGrad(t, l.uv, l.dx, l.dy);
 }
 
@@ -97,7 +102,7 @@ vec4 slotTexel(sampler2D t, int binding) {
 // lavapipe, so no derivative of the factors is taken); 0 without a texture.
 float metallicChangeAcrossPixel() {
   if (!hasTexture(kMaterialMetallicRoughness)) return 0.0;
-  SlotLookup l = slotLookup(kMaterialMetallicRoughness);
+  SlotLookup l = slotLookup(kMaterialMetallicRoughness, false);
   float here = textureGrad(metallicRoughnessTexture, l.uv, l.dx, l.dy).b;
   float x = textureGrad(metallicRoughnessTexture, l.uv + l.dx, l.dx, l.dy).b;
   float y = textureGrad(metallicRoughnessTexture, l.uv + l.dy, l.dx, l.dy).b;
@@ -179,8 +184,8 @@ SplitSumMaterial fragmentMaterial() {
                                                         material.transmission.z)
                          : vec3(0.0);
   if (frame.bufferView.y != 0) {
-    // Clay: a matte gray dielectric (the emission, the occlusion and, in fragmentSurface, the
-    // normal map and the coverage kept).
+    // Clay: a matte gray dielectric (the emission but an unlit material's, the occlusion and, in
+    // fragmentSurface, the normal map and the coverage kept).
     m.baseColor = vec3(0.5);
     m.metallic = 0.0;
     m.roughness = 0.6;
@@ -192,6 +197,8 @@ SplitSumMaterial fragmentMaterial() {
     m.transmission = 0.0;
     m.thickness = 0.0;
     m.attenuation = vec3(0.0);
+    // An unlit material's color is its emission (KHR_materials_unlit): clay like the rest.
+    if (material.alpha.w != 0.0) m.emissive = vec3(0.0);
   }
   return m;
 }

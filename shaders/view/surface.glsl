@@ -92,7 +92,7 @@ vec3 partnerNormal(bool alongX, sampler2D t, int binding, float scale) {
   vec3 n = normalize(worldNormal + s * (alongX ? dFdxFine(worldNormal) : dFdyFine(worldNormal)));
   if (!hasTexture(binding)) return n;
   vec4 tangent = worldTangent + s * (alongX ? dFdxFine(worldTangent) : dFdyFine(worldTangent));
-  SlotLookup l = slotLookup(binding);
+  SlotLookup l = slotLookup(binding, true);
   vec4 texel = textureGrad(t, l.uv + s * (alongX ? l.dx : l.dy), l.dx, l.dy);
   return applyNormalMap(n, tangent, texel, scale);
 }
@@ -145,23 +145,26 @@ ShadedSurface fragmentSurface(int samples, bool specularAntialiasing) {
         n, draw.sphere.w > 0.0 ? sphereTangent(n) : worldTangent, anisotropy.xy);
   vec3 ray = frame.cameraPosition.w == 0.0 ? frame.cameraForward.xyz
                                            : normalize(position - frame.cameraPosition.xyz);
-  float facing = 1.0;
   if (dot(n, ray) > 0.0) {  // shade the side the camera sees (the coat's normal alike)
     n = -n;
     coatNormal = -coatNormal;
-    facing = -1.0;
   }
   // The coat lies over the emission too (KHR_materials_clearcoat, "Emission").
   if (m.clearcoat > 0.0) m.emissive *= 1.0 - clearcoatWeight(m.clearcoat, dot(coatNormal, -ray));
   m.clearcoatNormal = coatNormal;
   if (specularAntialiasing) {
-    vec3 nx = facing * partnerNormal(true, normalTexture, kMaterialNormal, material.scales.x);
-    vec3 ny = facing * partnerNormal(false, normalTexture, kMaterialNormal, material.scales.x);
+    // The partners' normals on this fragment's side (antialiasSpecular's rule on the CPU).
+    vec3 nx = partnerNormal(true, normalTexture, kMaterialNormal, material.scales.x);
+    vec3 ny = partnerNormal(false, normalTexture, kMaterialNormal, material.scales.x);
+    nx = dot(nx, n) < 0.0 ? -nx : nx;
+    ny = dot(ny, n) < 0.0 ? -ny : ny;
     m.roughness = specularAntialiasedRoughness(m.roughness, mapAlpha2, nx - n, ny - n);
-    vec3 cx = facing * partnerNormal(true, clearcoatNormalTexture, kMaterialClearcoatNormal,
-                                     material.scales.w);
-    vec3 cy = facing * partnerNormal(false, clearcoatNormalTexture, kMaterialClearcoatNormal,
-                                     material.scales.w);
+    vec3 cx = partnerNormal(true, clearcoatNormalTexture, kMaterialClearcoatNormal,
+                            material.scales.w);
+    vec3 cy = partnerNormal(false, clearcoatNormalTexture, kMaterialClearcoatNormal,
+                            material.scales.w);
+    cx = dot(cx, coatNormal) < 0.0 ? -cx : cx;
+    cy = dot(cy, coatNormal) < 0.0 ? -cy : cy;
     m.clearcoatRoughness = specularAntialiasedRoughness(m.clearcoatRoughness, coatMapAlpha2,
                                                         cx - coatNormal, cy - coatNormal);
   }

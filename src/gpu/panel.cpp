@@ -9,9 +9,11 @@
 #include <backends/imgui_impl_vulkan.h>
 #include <fmt/format.h>
 #include <imgui.h>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "ibl/core/error.hpp"
+#include "ibl/math/color.hpp"
 #include "ibl/render/camera.hpp"
 #include "ibl/shared/color.h"
 
@@ -55,6 +57,14 @@ bool editLight(Light& light) {
   value = std::max(value, 0.0f);
   changed |= ImGui::ColorEdit3("color", &light.color.x,
                                ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+  // Or a lamp's correlated color temperature: the blackbody's color at luminance 1
+  // (blackbodyColor), clamped into the gamut below 1900 K; the slider keeps its own value.
+  float& kelvin = *ImGui::GetStateStorage()->GetFloatRef(ImGui::GetID("kelvin"), 6500.0f);
+  if (ImGui::DragFloat("temperature K", &kelvin, 10.0f, 1000.0f, 40000.0f, "%.0f")) {
+    kelvin = std::clamp(kelvin, 1000.0f, 40000.0f);
+    light.color = glm::max(blackbodyColor(kelvin), glm::vec3(0.0f));
+    changed = true;
+  }
   if (light.type != LightType::Sun)
     changed |= ImGui::DragFloat3("position", &light.position.x, 0.01f, -1e4f, 1e4f, "%.3f");
   if (hasDirection(light.type)) {
@@ -235,7 +245,7 @@ void Panel::build(ViewerControls& s, const PanelFigures& f) {
       ImGui::SliderFloat("aperture f/", &s.aperture, 1.0f, 32.0f, "%.1f",
                          ImGuiSliderFlags_Logarithmic);
       float perSecond = 1.0f / s.shutter;  // shown as 1/N s
-      if (ImGui::SliderFloat("shutter 1/s", &perSecond, 1.0f / 30.0f, 8000.0f, "%.0f",
+      if (ImGui::SliderFloat("shutter 1/s", &perSecond, 1.0f / 30.0f, 8000.0f, "%.3g",
                              ImGuiSliderFlags_Logarithmic))
         s.shutter = 1.0f / perSecond;
       ImGui::SliderFloat("ISO", &s.iso, 25.0f, 25600.0f, "%.0f", ImGuiSliderFlags_Logarithmic);

@@ -55,6 +55,7 @@ struct ViewerControls {
   // A pick asked for at this window point (the right button), and what the last one found: one
   // line per fact, empty before any.
   std::optional<glm::vec2> pickAt;
+  std::string dropped;  // a file or folder dropped on the window, not yet loaded
   std::vector<std::string> picked;
   // The scene's lights as shown (edited in place); lightsChanged when the panel changed one.
   std::vector<Light> lights;

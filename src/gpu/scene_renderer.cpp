@@ -376,6 +376,8 @@ void SceneRenderer::setBufferView(BufferView view) {
 }
 
 void SceneRenderer::setClay(bool clay) {
+  // The shadow maps' colored filters read the materials too (view/shadow.glsl).
+  if (clay != impl_->clay) impl_->shadows.invalidate();
   impl_->clay = clay;
 }
 

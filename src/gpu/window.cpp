@@ -176,6 +176,12 @@ void onCursor(GLFWwindow* window, double x, double y) {
   s.lastY = y;
 }
 
+// A file (or folder) dropped on the window: the first, for the loop to load.
+void onDrop(GLFWwindow* window, int count, const char** paths) {
+  auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
+  if (count > 0 && paths[0]) s.dropped = paths[0];
+}
+
 void onScroll(GLFWwindow* window, double, double dy) {
   auto& s = *static_cast<Interaction*>(glfwGetWindowUserPointer(window));
   if (s.onPanel(s.lastX, s.lastY)) return;
@@ -587,6 +593,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   glfwSetMouseButtonCallback(r.window, onMouseButton);
   glfwSetCursorPosCallback(r.window, onCursor);
   glfwSetScrollCallback(r.window, onScroll);
+  glfwSetDropCallback(r.window, onDrop);
   r.panel = std::make_unique<Panel>(*r.context, r.window, r.pass,
                                     static_cast<std::uint32_t>(r.swapchain.images.size()),
                                     encodesSrgb(format.format));
@@ -722,15 +729,33 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     shading.only = state.diffuse && state.specular ? ShadingTerms::Both
                    : state.diffuse                 ? ShadingTerms::Diffuse
                                                    : ShadingTerms::Specular;
+    // A new environment: the sun moved (, and .), or a file or bake folder dropped on the window.
+    std::optional<EnvironmentChange> change;
+    const auto changeStart = Clock::now();
     if (state.timeStep != 0 && o.timeOfDay) {
-      const auto start = Clock::now();
-      auto change = o.timeOfDay(state.timeStep, *r.context);
+      change = o.timeOfDay(state.timeStep, *r.context);
       // The lights as the panel left them, the sun (the last) moved.
       if (change && change->lights.size() == state.lights.size()) {
         const Light sun = change->lights.back();
         change->lights = state.lights;
         change->lights.back() = sun;
       }
+    }
+    if (!state.dropped.empty() && o.dropEnvironment) {
+      try {
+        change = o.dropEnvironment(state.dropped, *r.context);
+        // The scene's own lights as the panel left them; the suns the new environment's.
+        if (change && change->lights.size() == state.lights.size())
+          for (std::size_t i = 0; i < state.lights.size(); ++i)
+            if (change->lights[i].type != LightType::Sun) change->lights[i] = state.lights[i];
+        state.status.clear();
+      } catch (const Error& e) {
+        state.status = e.what();
+        fmt::print(stderr, "ibl view: {}\n", e.what());
+      }
+    }
+    state.dropped.clear();
+    {
       if (change) {
         renderer.setEnvironment(change->bake, change->options, change->lights);
         state.lights = change->lights;
@@ -744,8 +769,10 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
         referenceBake = &environment->bake;
         referenceBakeOptions = &environment->options;
         ++environmentGeneration;
-        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        fmt::print(stderr, "ibl view: {}: new sky and bake in {:.0f} ms\n", environment->label, ms);
+        const double ms =
+            std::chrono::duration<double, std::milli>(Clock::now() - changeStart).count();
+        fmt::print(stderr, "ibl view: {}: new environment and bake in {:.0f} ms\n",
+                   environment->label, ms);
         glfwSetWindowTitle(
             r.window, fmt::format("{} - {} ({:.0f} ms)", o.title, environment->label, ms).c_str());
         lastTitle = Clock::now();  // the frame-time title waits a moment

@@ -147,7 +147,10 @@ RayTracer::Hit hitOnSameSurface(const Scene& scene, const RayTracer& tracer,
     const glm::vec3 oc = ray.origin - s.center;
     const float b = glm::dot(oc, ray.direction);
     const float disc = b * b - (glm::dot(oc, oc) - s.radius * s.radius);
-    h.t = disc >= 0.0f ? -b - std::sqrt(disc) : -b;  // the nearest point where it misses
+    // The first intersection in front of the ray's origin (the far one from inside), as the
+    // viewer's intersectSphere; the nearest point where it misses.
+    const float root = std::sqrt(std::max(disc, 0.0f));
+    h.t = disc < 0.0f ? -b : (-b - root >= 0.0f ? -b - root : -b + root);
     return h;
   }
   // Moller & Trumbore 1997 without the bounds on the barycentrics.

@@ -309,13 +309,19 @@ void antialiasSpecular(SurfacePoint& p, const Scene& scene, const RayTracer& tra
     return static_cast<int>(std::floor(c)) % 2 == 0 ? 1.0f : -1.0f;
   };
   // The neighbor's shading normals on this point's side (surfaceAt turns them to the neighbor's
-  // ray, which at a silhouette may see the other side; the viewer keeps the fragment's side);
-  // this point's where its ray runs (nearly) along the plane, whose barycentrics would be
-  // non-finite or far out (and so would the texture coordinates).
+  // ray, which at a silhouette may see the other side). Where that ray runs (nearly) along the
+  // plane, its barycentrics would be non-finite or far out (and so would the texture
+  // coordinates): the normal is taken as turned right over, the widest kernel, as the viewer's
+  // derivatives there give it.
   const auto neighbor = [&](glm::vec2 step) {
     const Ray ray = generateRay(pixel + step);
     const RayTracer::Hit h = hitOnSameSurface(scene, tracer, hit, ray);
-    if (!(std::isfinite(h.t) && std::abs(h.u) < 1e3f && std::abs(h.v) < 1e3f)) return p;
+    if (!(std::isfinite(h.t) && std::abs(h.u) < 1e3f && std::abs(h.v) < 1e3f)) {
+      SurfacePoint over = p;
+      over.normal = -p.normal;
+      over.clearcoatNormal = -p.clearcoatNormal;
+      return over;
+    }
     SurfacePoint q = surfaceAt(scene, tracer, h, ray);
     if (glm::dot(q.normal, p.normal) < 0.0f) q.normal = -q.normal;
     if (glm::dot(q.clearcoatNormal, p.clearcoatNormal) < 0.0f)

@@ -572,6 +572,8 @@ TEST(Usage, OptionsThatOthersMakeMeaninglessNameBoth) {
        {"--probes:", "--mode reference"}},
       {"render sphere --mode reference --no-dominant" + png,
        {"--no-dominant:", "--mode reference"}},
+      {"render sphere --mode reference --specular-aa off" + png,
+       {"--specular-aa:", "--mode reference"}},
       {"render sphere --mode reference --irradiance sh" + png,
        {"--irradiance:", "--mode reference"}},
       {"render sphere --mode reference --area-lights frostbite" + png,

@@ -454,7 +454,10 @@ function renderArgs(c, eyeIbl, mode, extra = [], glb = null) {
   return ['render', ...scene, '--bake', bakeDir, '--camera', 'ortho', '--ortho-width', '2.2',
     '--look-from', vec(eyeIbl), '--look-at', '0,0,0', '--up', '0,1,0', '--size', `${IMAGE}x${IMAGE}`,
     '--diffuse', 'lambert', '--background', '0,0,0', '--tonemap', 'none', '--ev100', '0', '-q',
-    '--mode', mode, ...(mode === 'reference' ? ['--spp', String(REF_SPP)] : ['--spp', '16']), ...extra];
+    '--mode', mode, ...(mode === 'reference' ? ['--spp', String(REF_SPP)] : ['--spp', '16']),
+    // The engines do not widen their lobes by the normal's change across the pixel (Filament's
+    // specular antialiasing is off by default; the Sample Viewer and Babylon.js have none).
+    ...(mode === 'reference' ? [] : ['--specular-aa', 'off']), ...extra];
 }
 const rdir = path.join(W, 'renders');
 function renderPath(camKey, c, mode) { return path.join(rdir, `${camKey}-${c.id}-${mode}.exr`); }

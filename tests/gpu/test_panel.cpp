@@ -168,6 +168,41 @@ TEST(ViewerWindow, KeysChangeWhatTheWindowShows) {
     EXPECT_NE(d.log().find(fact), std::string::npos) << fact << "\n" << d.log();
 }
 
+// A file dropped on the window (by the XDND protocol, as a file manager drops it:
+// support/xdnd_drop.cpp) relights the scene: the night sky after the default environment, at the
+// same exposure, darkens the frame, and stderr names the file. A file that is no environment is
+// one line on stderr, and the window goes on.
+TEST(ViewerWindow, ADroppedEnvironmentRelightsTheScene) {
+  ASSERT_TRUE(hasTools()) << "Xvfb or xdotool missing: run scripts/setup.sh";
+  VirtualDisplay d(320, 240);
+  const int w = 160, h = 120;
+  openViewer(d, "sphere --panel off --ev100 1 --bloom off --spp 1", w, h);
+  const Screen before = d.screen();
+  std::string window = d.xdotool("search --name 'ibl view'").output;
+  window = window.substr(0, window.find('\n'));
+  const auto dropFile = [&](const std::filesystem::path& file) {
+    return d.onDisplay(std::string(IBL_XDND_DROP) + " " + window + " " + quote(file));
+  };
+  const CliRun dropped = dropFile(std::filesystem::absolute(hdriPath("night")));
+  EXPECT_EQ(dropped.status, 0) << dropped.output;
+  EXPECT_TRUE(d.waitFor(
+      [&] { return d.log().find("ibl view: night.exr: new environment") != std::string::npos; },
+      kChange))
+      << d.log();
+  EXPECT_TRUE(d.waitForScreen(
+      [&](const Screen& s) { return s.mean(0, 0, w, h) < before.mean(0, 0, w, h) - 10.0; },
+      kChange))
+      << d.log();
+  const TempDir dir;
+  const auto bad = dir / "notes.exr";
+  std::ofstream(bad) << "not an image";
+  EXPECT_EQ(dropFile(bad).status, 0);
+  EXPECT_TRUE(d.waitFor([&] { return d.log().find("notes.exr") != std::string::npos; }, kChange))
+      << d.log();
+  EXPECT_TRUE(titleShows(d, "ms/frame"));  // still drawing
+  closeViewer(d);
+}
+
 // Auto exposure follows the light: the sphere alone on black (a black background is not
 // metered), its diffuse term switched off, gets 3 or more stops darker; the window's exposure
 // settles on what `ibl view --screenshot` meters for that frame (the same histogram rule), and the

@@ -54,7 +54,8 @@ TEST(SpecularAntialiasing, AFilteredTexelsLengthGivesTheSpreadItAveraged) {
     std::normal_distribution<double> slope(0.0, s);
     glm::dvec3 sum(0.0);
     const int count = 200000;
-    for (int i = 0; i < count; ++i) sum += glm::normalize(glm::dvec3(-slope(random), -slope(random), 1.0));
+    for (int i = 0; i < count; ++i)
+      sum += glm::normalize(glm::dvec3(-slope(random), -slope(random), 1.0));
     const glm::vec3 texel(sum / static_cast<double>(count) * 0.5 + 0.5);
     const double alpha2 = shared::normalMapAlpha2(texel, 1.0f);
     // Less the rounding allowance of 8-bit texels (0.0068 of length, 0.0136 of alpha^2).
@@ -71,11 +72,12 @@ TEST(SpecularAntialiasing, AFilteredTexelsLengthGivesTheSpreadItAveraged) {
 
 TEST(SpecularAntialiasing, AFlatOrRoughSurfaceKeepsItsRoughness) {
   for (float roughness : {0.0f, 0.05f, 0.5f, 1.0f})
-    EXPECT_NEAR(shared::specularAntialiasedRoughness(roughness, 0.0f, glm::vec3(0.0f), glm::vec3(0.0f)),
-                roughness, 1e-6f);
+    EXPECT_NEAR(
+        shared::specularAntialiasedRoughness(roughness, 0.0f, glm::vec3(0.0f), glm::vec3(0.0f)),
+        roughness, 1e-6f);
   // Fully rough stays fully rough, whatever the normal does.
-  EXPECT_NEAR(shared::specularAntialiasedRoughness(1.0f, 0.0f, glm::vec3(0.3f), glm::vec3(0.3f)), 1.0f,
-              1e-6f);
+  EXPECT_NEAR(shared::specularAntialiasedRoughness(1.0f, 0.0f, glm::vec3(0.3f), glm::vec3(0.3f)),
+              1.0f, 1e-6f);
 }
 
 TEST(SpecularAntialiasing, TheWideningIsClampedAndNaNWidensNothing) {
@@ -84,12 +86,12 @@ TEST(SpecularAntialiasing, TheWideningIsClampedAndNaNWidensNothing) {
                                                        glm::vec3(0.0f, 2.0f, 0.0f));
   EXPECT_NEAR(r, std::pow(std::pow(0.2, 4.0) + 0.18, 0.25), 1e-5);
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_NEAR(shared::specularAntialiasedRoughness(0.2f, 0.0f, glm::vec3(nan), glm::vec3(0.0f)), 0.2f,
-              1e-6f);
-  const float inf = std::numeric_limits<float>::infinity();
-  EXPECT_NEAR(shared::specularAntialiasedRoughness(0.2f, 0.0f, glm::vec3(inf, 0.0f, 0.0f),
-                                                   glm::vec3(0.0f)),
+  EXPECT_NEAR(shared::specularAntialiasedRoughness(0.2f, 0.0f, glm::vec3(nan), glm::vec3(0.0f)),
               0.2f, 1e-6f);
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_NEAR(
+      shared::specularAntialiasedRoughness(0.2f, 0.0f, glm::vec3(inf, 0.0f, 0.0f), glm::vec3(0.0f)),
+      0.2f, 1e-6f);
 }
 
 }  // namespace

@@ -102,10 +102,12 @@ class VirtualDisplay {
         [&] { return xdotool("search --name '" + name + "' windowfocus --sync").status == 0; },
         seconds);
   }
-  // Runs xdotool with `arguments` on the display.
-  CliRun xdotool(const std::string& arguments) const {
-    return runCommand("DISPLAY=:" + std::to_string(number_) + " xdotool " + arguments);
+  // Runs the shell command line `command` on the display.
+  CliRun onDisplay(const std::string& command) const {
+    return runCommand("DISPLAY=:" + std::to_string(number_) + " " + command);
   }
+  // Runs xdotool with `arguments` on the display.
+  CliRun xdotool(const std::string& arguments) const { return onDisplay("xdotool " + arguments); }
   // The screen now.
   Screen screen() const {
     const std::string bytes = fileText(dir_ / "Xvfb_screen0");

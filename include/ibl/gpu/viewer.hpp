@@ -220,6 +220,12 @@ struct WindowOptions {
   // the viewer's device to bake on; returns the new environment, or nothing. The title and
   // stderr show how long the change took.
   std::function<std::optional<EnvironmentChange>(int step, Context& device)> timeOfDay;
+  // A file or folder dropped on the window (an .hdr, .exr or .ktx2 environment, or a bake's
+  // folder): called with its path and the viewer's device; returns the new environment (the
+  // scene's lights as many as before: the window keeps the panel's edits of those that are not
+  // suns), or throws Error, whose message the panel and stderr show. None: drops are ignored.
+  std::function<std::optional<EnvironmentChange>(const std::string& path, Context& device)>
+      dropEnvironment;
   // The panel's "save settings" and "save lights" buttons: called with what the window shows, or
   // with its lights as edited (types, sizes and profiles as loaded); they return the path they
   // wrote, shown in the panel, or throw Error (its message shown). None: no button.
