@@ -23,6 +23,7 @@
 #include "ibl/render/exposure.hpp"
 #include "ibl/render/irradiance_volume.hpp"
 #include "ibl/render/light.hpp"
+#include "ibl/shared/temporal_antialiasing.h"
 #include "preflight.hpp"
 #include "scene_options.hpp"
 
@@ -49,7 +50,31 @@ struct ViewCliOptions {
   std::string settings;           // --settings FILE
   std::string buffer = "shaded";  // --buffer NAME (gpu::bufferViewName)
   std::string clay = "off";       // --clay on|off
+  std::string taa;                // --taa on|off|N (empty: on in the window, off in screenshots)
+  float split = 0.5f;             // --split: the split view's boundary, a share of the width
 };
+
+// The most frames --taa N accumulates.
+constexpr int kMaxTaaFrames = 4096;
+
+// --taa for a screenshot: the jittered frames it averages (0: one frame, unjittered); for the
+// window, whether temporal antialiasing starts on (any value but off).
+int taaFrames(const ViewCliOptions& o) {
+  if (o.taa.empty() || o.taa == "off") return 0;
+  if (o.taa == "on") return shared::kTemporalJitterPeriod;
+  int frames = 0;
+  std::size_t used = 0;
+  try {
+    frames = std::stoi(o.taa, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != o.taa.size() || frames < 1 || frames > kMaxTaaFrames)
+    failUsage("--taa",
+              fmt::format("{}: wants on, off, or the frames a screenshot averages, 1 to {}", o.taa,
+                          kMaxTaaFrames));
+  return frames;
+}
 
 // Whether the exposure is fixed by --ev100 or --aperture, --shutter and --iso.
 bool fixedExposure(const SceneCliOptions& o) {
@@ -148,6 +173,7 @@ constexpr SettingKey kSettingKeys[] = {
     {"only", "--only"},         {"skybox_mip", "--skybox-mip"},
     {"view", "--reference"},    {"buffer", "--buffer"},
     {"clay", "--clay"},         {"panel", "--panel"},
+    {"taa", "--taa"},           {"split", "--split"},
 };
 
 // The settings file the panel saves and --settings reads: what the window shows, each setting
@@ -176,8 +202,10 @@ std::string settingsJson(const gpu::ViewSettings& v) {
                                                  : "both";
   j["skybox_mip"] = num(v.skyboxLod);
   j["view"] = v.view == gpu::ViewMode::RealTime ? "real-time" : gpu::viewModeName(v.view);
+  j["split"] = num(v.split);
   j["buffer"] = gpu::bufferViewName(v.buffer);
   j["clay"] = v.clay;
+  j["taa"] = v.temporalAntialiasing;
   j["panel"] = v.panel;
   return j.dump(2) + "\n";
 }
@@ -265,6 +293,8 @@ void applySettingsFile(ViewCliOptions& o) {
       o.buffer = value.get<std::string>();
     }
     if (key == "clay") o.clay = boolean(key);
+    if (key == "taa") o.taa = boolean(key);
+    if (key == "split") o.split = number(key, 0.0, 1.0);
     if (key == "panel") o.panel = boolean(key);
   }
   // A buffer and clay belong to the real-time view: a comparison view on the command line leaves
@@ -301,6 +331,10 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
   if (!o.screenshot.empty()) checkRenderedImagePath(o.screenshot);
   if (o.referenceSpp && o.reference.empty())
     failUsage("--reference-spp", "needs --reference reference, difference or split");
+  if (!o.screenshot.empty() && given(o.scene, "--split") && o.reference != "split")
+    failUsage("--split",
+              "places the boundary of the split view; the screenshot needs --reference "
+              "split");
   checkSceneOptions(o.scene);
   if (o.clay == "on" && !o.reference.empty())
     failUsage("--clay", fmt::format("draws the real-time frame as clay; --reference {} shows the "
@@ -322,6 +356,14 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
         o.scene, fmt::format("{} holds linear radiance; write a .png", o.screenshot),
         bloomCompensation(o.scene, kViewBloom).has_value(), global);
   meteringRange(o);  // checked before the scene loads
+  int accumulated = taaFrames(o);
+  if (accumulated > 0 && o.buffer != "shaded") {
+    if (given(o.scene, "--taa"))
+      failUsage("--taa", fmt::format("averages jittered frames of the shading; --buffer {} shows "
+                                     "its values as they are",
+                                     o.buffer));
+    accumulated = 0;  // a settings file's: the window shows a buffer without temporal AA
+  }
   if (o.autoExposure == "on" && fixedExposure(o.scene))
     failUsage("--auto-exposure",
               "on contradicts a fixed exposure (--ev100, or --aperture, --shutter and --iso)");
@@ -404,11 +446,13 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
       gpu::SceneRenderer renderer(*context, scene, baked.bake, baked.options, probes, volume,
                                   o.scene.volumeUpdateFrames > 0);
       updateVolumeBeforeScreenshot(renderer, camera, shading, o.scene, global);
-      realTime = renderer.render(camera, shading, o.skyboxMip);
+      realTime = accumulated > 0
+                     ? renderer.renderAccumulated(camera, shading, accumulated, o.skyboxMip)
+                     : renderer.render(camera, shading, o.skyboxMip);
     }
     // Exposed for the reference, as the window's auto exposure meters it.
     const float ev100 = viewEv100(o, reference.color);
-    writeView(o.screenshot, gpu::composeView(view, realTime, reference), view,
+    writeView(o.screenshot, gpu::composeView(view, realTime, reference, o.split), view,
               gpu::BufferView::Shaded, ev100 - o.scene.compensation, toneCurve(o.scene), o.scene);
     if (!global.quiet)
       fmt::print(
@@ -428,7 +472,11 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
     updateVolumeBeforeScreenshot(renderer, camera, shading, o.scene, global);
     renderer.setBufferView(buffer);
     renderer.setClay(o.clay == "on");
-    RenderResult result = renderer.render(camera, shading, o.skyboxMip);
+    // --taa N: N jittered frames averaged, what the window's temporal antialiasing converges to
+    // while the camera stands still.
+    RenderResult result =
+        accumulated > 0 ? renderer.renderAccumulated(camera, shading, accumulated, o.skyboxMip)
+                        : renderer.render(camera, shading, o.skyboxMip);
     if (renderer.samples() < shading.spp && !global.quiet)
       fmt::print(stderr, "ibl: warning: --spp {}: {} allows at most {}x MSAA; rendered with {}\n",
                  shading.spp, context->device().name, renderer.samples(), renderer.samples());
@@ -437,8 +485,10 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
     writeView(o.screenshot, result, gpu::ViewMode::RealTime, buffer, ev100 - o.scene.compensation,
               toneCurve(o.scene), o.scene);
     if (!global.quiet) {
-      fmt::print(stderr, "screenshot {} ({}x{}, {}x MSAA, {:.1f} ms on {}, {})\n", o.screenshot,
-                 width, height, renderer.samples(), result.milliseconds, context->device().name,
+      fmt::print(stderr, "screenshot {} ({}x{}, {}x MSAA{}, {:.1f} ms on {}, {})\n", o.screenshot,
+                 width, height, renderer.samples(),
+                 accumulated > 0 ? fmt::format(", {} jittered frames", accumulated) : "",
+                 result.milliseconds, context->device().name,
                  buffer == gpu::BufferView::Shaded ? fmt::format("EV100 {:.2f}", ev100)
                                                    : fmt::format("buffer {}", o.buffer));
       // The passes' GPU time (timestamp queries), where the device writes them.
@@ -473,6 +523,8 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
   w.view = view;
   w.buffer = buffer;
   w.clay = o.clay == "on";
+  w.temporalAntialiasing = o.taa != "off";
+  w.split = o.split;
   w.referenceSpp = o.referenceSpp.value_or(0);
   w.volumeUpdate = o.volumeUpdate != "off";
   w.screenshot = [&](const RenderResult& result, float ev100, ToneMap curve, gpu::ViewMode shown,
@@ -631,6 +683,10 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
                   "toggles it)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  cmd->add_option("--taa", opts->taa,
+                  "Temporal antialiasing: the window's frames jittered and blended into a "
+                  "reprojected, clipped history (on by default there; off turns it off); a "
+                  "screenshot averages N jittered frames (on: 16; default: one unjittered frame)");
   cmd->add_option("--panel", opts->panel,
                   "Window: show the panel of settings, lights and figures at the start (F1 "
                   "toggles it; screenshots never show it)")
@@ -647,6 +703,11 @@ void addViewCommand(CLI::App& app, const GlobalOptions& global) {
                   "(left real time, right reference); the screenshot's picture, or the window's "
                   "first view (M cycles)")
       ->check(CLI::IsMember({"reference", "difference", "split"}));
+  cmd->add_option("--split", opts->split,
+                  "The split view's boundary, as a share of the width from the left (the real-time "
+                  "frame left of it, the reference right)")
+      ->check(numberIn(0.0f, 1.0f))
+      ->capture_default_str();
   cmd->add_option("--reference-spp", opts->referenceSpp,
                   "With --reference: the reference's samples per pixel (screenshot: default 64; "
                   "window: where it stops adding samples)")

@@ -43,6 +43,7 @@ layout(std140, set = 0, binding = kFrameUniforms) uniform Frame {
   ivec4 volumeTexels;    // the irradiance and distance tiles' interiors, 1 with a volume (0: none)
   ivec4 bufferView;      // the buffer the scene pass shows (kBuffer*, ibl/shared/buffer_views.h;
                          // 0: the shading), 1 every material drawn as clay, 0, 0
+  vec4 jitter;           // the projection's sub-pixel shift in pixels (temporal antialiasing), 0, 0
 } frame;
 layout(set = 0, binding = kFrameSpecularMap) uniform samplerCube specularMap;
 layout(set = 0, binding = kFrameIrradianceMap) uniform samplerCube irradianceMap;
@@ -65,8 +66,10 @@ struct Ray {
   vec3 origin, direction;
 };
 
-// The primary ray through framebuffer point p (Camera::generateRay).
+// The primary ray through framebuffer point p (Camera::generateRay) of the frame's image, which
+// the jitter shifts.
 Ray primaryRay(vec2 p) {
+  p -= frame.jitter.xy;
   float x = 2.0 * p.x / frame.viewport.x - 1.0;
   float y = 1.0 - 2.0 * p.y / frame.viewport.y;
   if (frame.cameraPosition.w == 0.0)

@@ -143,9 +143,6 @@ void DeviceBloom::record(VkCommandBuffer cmd, const DeviceImage& frame, float ev
                          float compensation) {
   const ChainLayout layout = chainLayout(width_, height_, levels_);
   const VkBuffer chain = static_cast<VkBuffer>(chain_->handle());
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {static_cast<std::uint32_t>(width_), static_cast<std::uint32_t>(height_), 1};
   // The frame into the chain (after whatever wrote it; the previous frame's passes are done
   // with the chain).
   copyFrameToBuffer(cmd, frame, chain,
@@ -218,17 +215,7 @@ void DeviceBloom::record(VkCommandBuffer cmd, const DeviceImage& frame, float ev
     result = layout.spread;
   }
   // The result into the output image.
-  transitionImage(cmd, *output_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-  region.bufferOffset = static_cast<VkDeviceSize>(result.offset) * kTexelBytes;
-  vkCmdCopyBufferToImage(cmd, chain, output_->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                         &region);
-  transitionImage(cmd, *output_, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+  copyBufferToFrame(cmd, chain, static_cast<VkDeviceSize>(result.offset) * kTexelBytes, *output_);
 }
 
 Image bloomOnDevice(Context& context, const Image& linear, float ev100, float compensation) {

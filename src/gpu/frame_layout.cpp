@@ -75,10 +75,19 @@ glm::mat4 viewProjectionOf(const Camera& camera, std::pair<glm::vec3, glm::vec3>
   return projection * view;
 }
 
+glm::mat4 jitteredViewProjection(const glm::mat4& viewProjection, glm::vec2 jitter, int width,
+                                 int height) {
+  glm::mat4 shift(1.0f);
+  shift[3][0] = 2.0f * jitter.x / static_cast<float>(width);
+  shift[3][1] = 2.0f * jitter.y / static_cast<float>(height);
+  return shift * viewProjection;
+}
+
 FrameUniforms packFrameUniforms(const Camera& camera, const RenderOptions& o,
                                 const FrameState& state) {
   FrameUniforms u{};
-  u.viewProjection = viewProjectionOf(camera, state.bounds);
+  u.viewProjection = jitteredViewProjection(viewProjectionOf(camera, state.bounds), state.jitter,
+                                            state.width, state.height);
   const auto [forward, right, up] = camera.frame();
   const float aspect = static_cast<float>(state.width) / static_cast<float>(state.height);
   // Half the view's extent at unit distance (perspective) or in world units (orthographic).
@@ -138,6 +147,7 @@ FrameUniforms packFrameUniforms(const Camera& camera, const RenderOptions& o,
     u.volumeTexels = glm::ivec4(v.irradianceTexels, v.distanceTexels, 1, 0);
   }
   u.bufferView = glm::ivec4(state.bufferView, state.clay ? 1 : 0, 0, 0);
+  u.jitter = glm::vec4(state.jitter, 0.0f, 0.0f);
   return u;
 }
 

@@ -63,8 +63,10 @@ struct FrameUniforms {
   glm::ivec4 volumeCounts;  // probes per axis, rules (kVolume* bits)
   glm::ivec4 volumeTexels;  // irradiance and distance tiles' interiors, 1 with a volume
   glm::ivec4 bufferView;    // the buffer shown (kBuffer*, ibl/shared/buffer_views.h), clay, 0, 0
+  glm::vec4 jitter;         // the projection's sub-pixel shift (temporal antialiasing), 0, 0
 };
-static_assert(sizeof(FrameUniforms) == 64 + 10 * 16 + 9 * 16 + 16 + 16 + 32 + 32 + 32 + 64 + 16);
+static_assert(sizeof(FrameUniforms) ==
+              64 + 10 * 16 + 9 * 16 + 16 + 16 + 32 + 32 + 32 + 64 + 16 + 16);
 
 // What the frame's block says besides the camera and the options: the state of the renderer's
 // targets, uploads (SceneUpload) and passes (ShadowPass, the light clusters) for this frame.
@@ -93,11 +95,20 @@ struct FrameState {
   bool transmissionFrame = false;  // the opaque frame behind transmissive surfaces is drawn
   int bufferView = 0;  // what the scene pass shows (kBuffer*, ibl/shared/buffer_views.h)
   bool clay = false;   // every material drawn as clay (SceneRenderer::setClay)
+  // The frame's sub-pixel shift in pixels (x right, y down), temporal antialiasing's jitter: the
+  // raster and the primary rays move by it (the screen-space passes' projections do not: half a
+  // pixel at most).
+  glm::vec2 jitter{0.0f};
 };
 
 // World to clip space of `camera` (Vulkan: y down, depth 0..1), with depth planes around the
 // scene's `bounds`. Matches Camera::generateRay: same basis, field of view and aspect.
 glm::mat4 viewProjectionOf(const Camera& camera, std::pair<glm::vec3, glm::vec3> bounds);
+
+// `viewProjection` with its image shifted by `jitter` pixels (x right, y down) on a screen of
+// width x height: a translation of clip space by 2 jitter / size, times w.
+glm::mat4 jitteredViewProjection(const glm::mat4& viewProjection, glm::vec2 jitter, int width,
+                                 int height);
 
 // The frame's block for `camera` drawn with `options` (shading switches, area-light model,
 // background, probes' flags, the screen-space effects' settings: zero when they are off) into

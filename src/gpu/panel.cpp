@@ -196,6 +196,10 @@ void Panel::build(ViewerControls& s, const PanelFigures& f) {
       if (ImGui::Combo("buffer (V)", &buffer, buffers.data(), kBufferViewCount))
         s.buffer = static_cast<BufferView>(buffer);
       ImGui::Checkbox("clay (C)", &s.clay);
+      ImGui::Checkbox("temporal antialiasing", &s.temporalAntialiasing);
+      ImGui::EndDisabled();
+      ImGui::BeginDisabled(s.view != ViewMode::Split);
+      ImGui::SliderFloat("split at", &s.split, 0.0f, 1.0f, "%.2f of the width");
       ImGui::EndDisabled();
       if (s.view != ViewMode::RealTime)
         ImGui::Text("reference: %d spp, noise %.2f %%", f.referenceSpp, 100.0f * f.referenceNoise);

@@ -45,8 +45,10 @@ struct ViewerControls {
   bool diffuse = true, specular = true;
   float skyboxLod = 0.0f, maxSkyboxLod = 0.0f;
   ViewMode view = ViewMode::RealTime;
+  float split = 0.5f;                      // the split view's boundary, a share of the width
   BufferView buffer = BufferView::Shaded;  // what the real-time view shows (V cycles it)
   bool clay = false;                       // every material as clay (C)
+  bool temporalAntialiasing = true;        // the real-time view's (SceneRenderer's)
   bool screenshotRequested = false;
   int timeStep = 0;  // the sun lower (-1) or higher (+1)
   // The panel's save buttons (the window writes the files) and what the last save said.

@@ -7,9 +7,12 @@
 #include <chrono>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "gpu/frame_layout.hpp"
 #include "ibl/core/error.hpp"
 #include "ibl/shared/buffer_views.h"
+#include "ibl/shared/temporal_antialiasing.h"
 
 namespace ibl::gpu {
 
@@ -165,11 +168,18 @@ int SceneRenderer::Impl::supportedSamples(int requested) const {
 }
 
 void SceneRenderer::Impl::prepare(int width, int height, int samples) {
+  prepareTargets(width, height, samples);
+  // Outside the frame's commands: the temporal pass takes the context's lock to make its pipeline.
+  if (temporal.enabled || temporal.accumulate >= 0) prepareTemporal();
+}
+
+void SceneRenderer::Impl::prepareTargets(int width, int height, int samples) {
   if (targets && targets->width == width && targets->height == height &&
       targets->samples == samples)
     return;
   vkDeviceWaitIdle(device);
-  targets.reset();  // the screen-space passes' bindings go back to their stand-ins
+  targets.reset();      // the screen-space passes' bindings go back to their stand-ins
+  temporal.frames = 0;  // the history went with them
   Targets t;
   t.width = width;
   t.height = height;
@@ -231,6 +241,14 @@ void SceneRenderer::Impl::prepareTransmission() {
                                                         t.renderPass, t.color.get(), *t.depth);
 }
 
+void SceneRenderer::Impl::prepareTemporal() {
+  Targets& t = *targets;
+  if (!t.temporal) {
+    vkDeviceWaitIdle(device);
+    t.temporal = std::make_unique<TemporalPass>(context, t.width, t.height);
+  }
+}
+
 void SceneRenderer::Impl::prepareScreenReflections() {
   prepareViewBuffers();
   Targets& t = *targets;
@@ -269,8 +287,37 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   if (reflected) prepareScreenReflections();
   const bool transmits = scene.hasTransmission();
   if (transmits) prepareTransmission();
+  // Temporal antialiasing: the frame jittered, then resolved into the history (the shaded view
+  // alone: a buffer is shown as it is, and starts the history over).
+  const bool accumulating = temporal.accumulate >= 0;
+  const bool temporalFrame = (temporal.enabled || accumulating) && bufferView == BufferView::Shaded;
+  TemporalFrame resolve;
+  if (temporalFrame) {
+    if (!targets->temporal) fail("view", "temporal antialiasing: the pass was not prepared");
+    resolve.camera = camera;
+    resolve.exposure = temporal.exposure;
+    if (accumulating) {
+      resolve.jitter = shared::temporalJitter(temporal.accumulate);
+      resolve.resolve =
+          temporal.accumulate == 0 ? TemporalResolve::First : TemporalResolve::Accumulate;
+      resolve.share = 1.0f / static_cast<float>(temporal.accumulate + 1);
+    } else {
+      prepareViewBuffers();  // the positions the history is reprojected from
+      resolve.jitter = shared::temporalJitter(temporal.jitter % shared::kTemporalJitterPeriod);
+      resolve.resolve = temporal.frames > 0 ? TemporalResolve::Reproject : TemporalResolve::First;
+      resolve.share = shared::kTemporalFeedback;
+      if (temporal.frames > 0)
+        resolve.previousViewProjection =
+            jitteredViewProjection(viewProjectionOf(temporal.previousCamera, bounds),
+                                   resolve.jitter, camera.width, camera.height);
+    }
+    ++temporal.jitter;
+  }
+  const bool reprojecting = resolve.resolve == TemporalResolve::Reproject;
   const Targets& t = *targets;
-  frame.setUniforms(packFrameUniforms(camera, o, frameState(skyboxLod, shadowed)));
+  FrameState state = frameState(skyboxLod, shadowed);
+  state.jitter = resolve.jitter;
+  frame.setUniforms(packFrameUniforms(camera, o, state));
   timer.begin(cmd);
   // Before any pass binds the frame set: its images in the layout the pipelines read them in.
   if (transmits) t.transmission->recordBeforeFrame(cmd);
@@ -283,7 +330,7 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
     shadows.record(cmd, scene);  // none pending when traced on the CPU
     timer.mark(cmd, "shadow maps");
   }
-  if (occluded || reflected) {
+  if (occluded || reflected || (temporalFrame && !accumulating)) {
     t.viewBuffers->record(cmd, scene);
     timer.mark(cmd, "view buffers");
   }
@@ -308,6 +355,16 @@ void SceneRenderer::Impl::record(VkCommandBuffer cmd, const Camera& camera, cons
   }
   recordScenePass(cmd, t.framebuffer, meshPipeline, reflected ? kReflectedPass : kOnlyScenePass);
   timer.mark(cmd, "scene");
+  targets->temporalShown = temporalFrame;
+  if (temporalFrame) {
+    t.temporal->record(cmd, *t.resolved, reprojecting ? &t.viewBuffers->positions() : nullptr,
+                       resolve);
+    timer.mark(cmd, "temporal AA");
+    temporal.previousCamera = camera;
+    ++temporal.frames;
+  } else {
+    temporal.frames = 0;
+  }
 }
 
 VkPipeline SceneRenderer::Impl::scenePipeline(bool shadowed, bool ltcAreaLights) {
@@ -373,6 +430,47 @@ void SceneRenderer::setLights(const std::vector<Light>& lights) {
 
 void SceneRenderer::setBufferView(BufferView view) {
   impl_->bufferView = view;
+}
+
+void SceneRenderer::setTemporalAntialiasing(bool enabled, float exposure) {
+  Impl& r = *impl_;
+  if (enabled != r.temporal.enabled) r.temporal.frames = 0;
+  r.temporal.enabled = enabled;
+  r.temporal.exposure = exposure;
+  if (enabled && r.targets) r.prepareTemporal();  // the next record() may come without prepare()
+}
+
+RenderResult SceneRenderer::renderAccumulated(const Camera& camera, const RenderOptions& options,
+                                              int frames, float skyboxLod) {
+  if (frames < 1) fail("view", fmt::format("cannot accumulate {} frames", frames));
+  Impl& r = *impl_;
+  const auto start = std::chrono::steady_clock::now();
+  const BufferView shown = r.bufferView;
+  r.bufferView = BufferView::Shaded;
+  RenderResult result;
+  try {
+    for (int k = 0; k < frames; ++k) {
+      r.temporal.accumulate = k;
+      checkCamera(camera);
+      if (k + 1 < frames) {
+        r.prepare(camera.width, camera.height, r.supportedSamples(std::max(options.spp, 1)));
+        r.context.impl().submitAndWait(
+            [&](VkCommandBuffer cmd) { r.record(cmd, camera, options, skyboxLod); });
+      } else {
+        result = render(camera, options, skyboxLod);  // the last, read back
+      }
+    }
+  } catch (...) {
+    r.temporal.accumulate = -1;
+    r.bufferView = shown;
+    throw;
+  }
+  r.temporal.accumulate = -1;
+  r.bufferView = shown;
+  result.samples *= frames;
+  result.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
 }
 
 void SceneRenderer::setClay(bool clay) {

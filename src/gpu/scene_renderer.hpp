@@ -16,6 +16,7 @@
 #include "gpu/pass_timer.hpp"
 #include "gpu/scene_upload.hpp"
 #include "gpu/shadow_pass.hpp"
+#include "gpu/temporal_pass.hpp"
 #include "gpu/transmission_pass.hpp"
 #include "gpu/view_buffer_pass.hpp"
 #include "gpu/volume_update.hpp"
@@ -40,6 +41,15 @@ struct SceneRenderer::Impl {
   ClusterUpload clusters;
   BufferView bufferView = BufferView::Shaded;  // what the scene pass shows (setBufferView)
   bool clay = false;                           // setClay
+  // Temporal antialiasing (setTemporalAntialiasing, renderAccumulated).
+  struct Temporal {
+    bool enabled = false;   // the window's moving average over a moving camera
+    float exposure = 1.0f;  // its luma weights' (exposureFromEv100)
+    int accumulate = -1;    // >= 0: the frame's index in a still camera's average
+    int frames = 0;         // frames in the history (0: none, the next frame starts it)
+    int jitter = 0;         // the next frame's jitter index (temporalJitter)
+    Camera previousCamera;  // the last frame's, when frames > 0
+  } temporal;
   PassTimer timer;  // the GPU time of the frame's passes (record marks them)
   // The scene pass's shaders: the meshes' (view/scene.vert and .frag) and the skybox's.
   UniqueShaderModule sceneVert, sceneFrag, fullscreenVert, skyboxFrag;
@@ -61,6 +71,8 @@ struct SceneRenderer::Impl {
     std::unique_ptr<OcclusionPass> occlusion;
     std::unique_ptr<ReflectionPass> reflections;
     std::unique_ptr<TransmissionPass> transmission;
+    std::unique_ptr<TemporalPass> temporal;
+    bool temporalShown = false;  // the last frame went through the temporal pass: output() is its
   };
   std::optional<Targets> targets;
 
@@ -75,15 +87,21 @@ struct SceneRenderer::Impl {
   Impl& operator=(const Impl&) = delete;
   // The largest power-of-two multisample count <= `requested` the device renders RGBA32F with.
   int supportedSamples(int requested) const;
-  // (Re)creates the attachments and pipelines for this size and multisample count.
+  // (Re)creates the attachments and pipelines for this size and multisample count, and the
+  // temporal pass when temporal antialiasing is on (outside a frame's commands).
   void prepare(int width, int height, int samples);
+  // The temporal pass for the current size (made once, after waiting for the device to be idle;
+  // outside a frame's commands: it takes the context's lock).
+  void prepareTemporal();
   // The meshes' pipeline for these switches (made on first use).
   VkPipeline scenePipeline(bool shadowed, bool ltcAreaLights);
   // Records the frame into `cmd`, after a frame of the volume's live update when `updateVolume`
   // (and a volume) is there; the output image ends shader-readable.
   void record(VkCommandBuffer cmd, const Camera& camera, const RenderOptions& options,
               float skyboxLod, bool updateVolume = false);
-  const DeviceImage& output() const { return *targets->resolved; }
+  const DeviceImage& output() const {
+    return targets->temporalShown ? targets->temporal->output() : *targets->resolved;
+  }
   // SceneRenderer::shadowMaps: the maps as the device holds them (depths read back).
   ShadowMaps readShadowMaps(const Camera& camera, const RenderOptions& options);
   // SceneRenderer::setEnvironment.
@@ -101,6 +119,7 @@ struct SceneRenderer::Impl {
   void prepareScreenOcclusion();
   void prepareScreenReflections();
   void prepareTransmission();
+  void prepareTargets(int width, int height, int samples);
   // Records the scene's pass (skybox and meshes) into `framebuffer` as part `pass` of the frame.
   void recordScenePass(VkCommandBuffer cmd, VkFramebuffer framebuffer, VkPipeline meshPipeline,
                        ScenePass pass) const;

@@ -234,6 +234,12 @@ void uploadImage(Context& context, const DeviceImage& image, std::span<const std
 void copyFrameToBuffer(VkCommandBuffer cmd, const DeviceImage& frame, VkBuffer buffer,
                        VkDeviceSize offset);
 
+// Copies RGBA32F texels from `buffer`, from byte `offset` (row by row, written before by compute
+// shaders or transfers), into `frame` (its size; what it held is discarded) and leaves it
+// readable by fragment and compute shaders and by transfers.
+void copyBufferToFrame(VkCommandBuffer cmd, VkBuffer buffer, VkDeviceSize offset,
+                       const DeviceImage& frame);
+
 // An RGBA32F image for a frame of radiance, width x height: sampled, a transfer source and
 // destination (what the bloom and the histogram copy from).
 DeviceImage::Description radianceImage(int width, int height);

@@ -18,6 +18,7 @@
 #include "ibl/core/error.hpp"
 #include "ibl/core/stats.hpp"
 #include "ibl/gpu/path_tracer.hpp"
+#include "ibl/shared/temporal_antialiasing.h"
 #include "render/ray_tracer.hpp"
 
 namespace ibl::gpu {
@@ -61,8 +62,10 @@ struct Interaction : ViewerControls {
                                  : ShadingTerms::Specular;
     v.skyboxLod = skyboxLod;
     v.view = view;
+    v.split = split;
     v.buffer = view == ViewMode::RealTime ? buffer : BufferView::Shaded;
     v.clay = view == ViewMode::RealTime && clay;
+    v.temporalAntialiasing = temporalAntialiasing;
     v.panel = panel;
     return v;
   }
@@ -475,8 +478,8 @@ const char* viewModeName(ViewMode mode) {
   return "?";
 }
 
-RenderResult composeView(ViewMode mode, const RenderResult& realTime,
-                         const RenderResult& reference) {
+RenderResult composeView(ViewMode mode, const RenderResult& realTime, const RenderResult& reference,
+                         float split) {
   if (mode == ViewMode::RealTime) return realTime;
   if (mode == ViewMode::Reference) return reference;
   const Image& a = realTime.color;
@@ -489,8 +492,10 @@ RenderResult composeView(ViewMode mode, const RenderResult& realTime,
     out.color = errorFalseColor(a, b, kViewDifferenceScale);
     return out;
   }
+  const int columns = static_cast<int>(std::clamp(split, 0.0f, 1.0f) *
+                                       static_cast<float>(a.width));  // rounded down
   for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width / 2; ++x) {
+    for (int x = 0; x < std::min(columns, a.width); ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * a.width + x;
       out.color.pixels[i] = a.pixels[i];
       if (i < out.alpha.size()) out.alpha[i] = realTime.alpha[i];
@@ -565,6 +570,8 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   state.view = o.view;
   state.buffer = o.buffer;
   state.clay = o.clay;
+  state.temporalAntialiasing = o.temporalAntialiasing;
+  state.split = std::clamp(o.split, 0.0f, 1.0f);
   if (o.aperture > 0.0f && o.shutter > 0.0f && o.iso > 0.0f) {
     state.physicalCamera = true;
     state.aperture = o.aperture;
@@ -644,6 +651,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
   RenderResult reference, realTime, picture;
   bool pictureCurrent = false, referenceFailed = false;
   ViewMode pictured = ViewMode::RealTime;
+  float picturedSplit = 0.5f;
   int batch = 1;  // samples per pixel added per frame: 1 to 16, sized to keep a frame interactive
   const auto recreate = [&] {
     vkDeviceWaitIdle(c.device);
@@ -811,6 +819,16 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     const BufferView buffer = view == ViewMode::RealTime ? state.buffer : BufferView::Shaded;
     r.renderer->setBufferView(buffer);
     r.renderer->setClay(view == ViewMode::RealTime && state.clay);
+    // Temporal antialiasing in the real-time view; a still frame of it elsewhere (the frame
+    // compared with the reference, a screenshot) is the jitters' average.
+    r.renderer->setTemporalAntialiasing(view == ViewMode::RealTime && state.temporalAntialiasing,
+                                        exposureFromEv100(state.ev100 - state.compensation));
+    const auto stillFrame = [&] {
+      return state.temporalAntialiasing
+                 ? r.renderer->renderAccumulated(camera, shading, shared::kTemporalJitterPeriod,
+                                                 state.skyboxLod)
+                 : r.renderer->render(camera, shading, state.skyboxLod);
+    };
     if (view != ViewMode::RealTime) {
       RenderOptions tracing = referenceBase;
       tracing.only = shading.only;
@@ -835,12 +853,13 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
       if (view != ViewMode::Reference &&
           (drawn.generation != environmentGeneration || drawn.camera != camera ||
            drawn.terms != shading.only || drawn.skyboxLod != state.skyboxLod)) {
-        realTime = r.renderer->render(camera, shading, state.skyboxLod);
+        realTime = stillFrame();
         drawn = {camera, shading.only, state.skyboxLod, environmentGeneration};
         pictureCurrent = false;
       }
-      if (!pictureCurrent || pictured != view) {
-        picture = composeView(view, realTime, reference);
+      if (!pictureCurrent || pictured != view || picturedSplit != state.split) {
+        picture = composeView(view, realTime, reference, state.split);
+        picturedSplit = state.split;
         uploadPicture(*r.context, r.shown, picture.color);
         pictureCurrent = true;
         pictured = view;
@@ -850,7 +869,8 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     if (state.screenshotRequested) {
       state.screenshotRequested = false;
       if (o.screenshot)
-        o.screenshot(view == ViewMode::RealTime
+        o.screenshot(view == ViewMode::RealTime && buffer == BufferView::Shaded ? stillFrame()
+                     : view == ViewMode::RealTime
                          ? r.renderer->render(camera, shading, state.skyboxLod)
                          : picture,
                      state.ev100 - state.compensation, state.toneMap, view, buffer);

@@ -367,6 +367,16 @@ TEST(Usage, View) {
               {"--panel", "--frames 1 --panel sometimes", 2, "--panel"},
               {"--buffer", "--screenshot out.png --buffer depth", 2, "--buffer"},
               {"--clay", "--screenshot out.png --clay maybe", 2, "--clay"},
+              {"--split", "--screenshot out.png --split 0.3", 2,
+               "--split: places the boundary of the split view; the screenshot needs --reference "
+               "split"},
+              {"--split", "--screenshot out.png --reference split --split 1.5", 2,
+               "--split: must be from 0 to 1, not 1.5"},
+              {"--taa", "--screenshot out.png --taa 0", 2,
+               "--taa: 0: wants on, off, or the frames a screenshot averages, 1 to 4096"},
+              {"--taa", "--screenshot out.png --taa 8x", 2, "--taa: 8x: wants on, off"},
+              {"--taa", "--screenshot out.png --taa 8 --buffer normals", 2,
+               "--taa: averages jittered frames of the shading; --buffer normals shows"},
               {"--clay", "--screenshot out.png --clay on --reference difference", 2,
                "--clay: draws the real-time frame as clay; --reference difference shows"},
               {"--buffer", "--screenshot out.png --buffer roughness --reference split", 2,
@@ -399,6 +409,8 @@ TEST(Usage, ViewSettingsFileMistakesNameTheFile) {
            {R"({"buffer": "normals", "view": "split"})",
             name + ": \"buffer\" shows the real-time frame, not the \"split\" view"},
            {R"({"clay": "yes"})", name + ": \"clay\" must be true or false"},
+           {R"({"taa": 16})", name + ": \"taa\" must be true or false"},
+           {R"({"split": 2})", name + ": \"split\" must be from 0 to 1, not 2"},
            {R"([1, 2])", name + ": is not a JSON object of settings"},
            {R"({"fov": 40,})", name + ": line 1, column 12"}}) {
     const CliRun r = run(text);

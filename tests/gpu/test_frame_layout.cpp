@@ -125,7 +125,8 @@ TEST(FrameUniforms, Std140OffsetsFollowFrameGlsl) {
   EXPECT_EQ(offsetof(FrameUniforms, volumeCounts), 528u);
   EXPECT_EQ(offsetof(FrameUniforms, volumeTexels), 544u);
   EXPECT_EQ(offsetof(FrameUniforms, bufferView), 560u);
-  EXPECT_EQ(sizeof(FrameUniforms), 576u);
+  EXPECT_EQ(offsetof(FrameUniforms, jitter), 576u);
+  EXPECT_EQ(sizeof(FrameUniforms), 592u);
 }
 
 // A point anywhere on the ray through a pixel lands on that pixel (Vulkan: y down), in front of
@@ -146,6 +147,32 @@ TEST(FrameUniforms, ViewProjectionTakesAPixelsRayToThePixel) {
         EXPECT_NEAR(window.y, pixel.y, 2e-3f) << perspective << " t " << t;
         EXPECT_GT(window.z, 0.0f) << perspective << " t " << t;
         EXPECT_LT(window.z, 1.0f) << perspective << " t " << t;
+      }
+  }
+}
+
+// Temporal antialiasing's jitter moves the image by that many pixels (x right, y down): a
+// point lands where the unjittered projection puts it plus the jitter, at the same depth.
+TEST(FrameUniforms, JitterShiftsTheImageByItsPixels) {
+  for (bool perspective : {true, false}) {
+    const Camera camera = testCamera(perspective);
+    gpu::FrameState state = stateFor(camera);
+    const FrameUniforms plain = gpu::packFrameUniforms(camera, RenderOptions{}, state);
+    state.jitter = glm::vec2(0.375f, -0.25f);
+    const FrameUniforms shifted = gpu::packFrameUniforms(camera, RenderOptions{}, state);
+    EXPECT_EQ(shifted.jitter, glm::vec4(0.375f, -0.25f, 0.0f, 0.0f));
+    const glm::vec4 viewport(0.0f, 0.0f, static_cast<float>(camera.width),
+                             static_cast<float>(camera.height));
+    for (const glm::vec2 pixel : {glm::vec2(0.5f, 0.5f), glm::vec2(80.0f, 45.0f)})
+      for (float t : {3.0f, 8.0f}) {
+        const Ray ray = camera.generateRay(pixel.x, pixel.y);
+        const glm::vec3 point = ray.origin + t * ray.direction;
+        const glm::vec3 a = glm::projectZO(point, glm::mat4(1.0f), plain.viewProjection, viewport);
+        const glm::vec3 b =
+            glm::projectZO(point, glm::mat4(1.0f), shifted.viewProjection, viewport);
+        EXPECT_NEAR(b.x - a.x, 0.375f, 1e-3f) << perspective;
+        EXPECT_NEAR(b.y - a.y, -0.25f, 1e-3f) << perspective;
+        EXPECT_NEAR(b.z, a.z, 1e-6f) << perspective;
       }
   }
 }

@@ -197,6 +197,17 @@ TEST(Viewer, ComposeViewShowsTheChosenPicture) {
       EXPECT_EQ(split.color.pixels[i], (left ? realTime : reference).color.pixels[i]) << x;
       EXPECT_EQ(split.alpha[i], left ? 1.0f : 0.5f) << x;
     }
+  // A boundary elsewhere: the first column alone (a fifth of five), none, all.
+  for (const auto& [share, columns] :
+       {std::pair{0.2f, 1}, std::pair{0.0f, 0}, std::pair{1.0f, 5}}) {
+    const RenderResult moved = gpu::composeView(gpu::ViewMode::Split, realTime, reference, share);
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < 5; ++x)
+        EXPECT_EQ(
+            moved.color.pixels[static_cast<std::size_t>(y * 5 + x)],
+            (x < columns ? realTime : reference).color.pixels[static_cast<std::size_t>(y * 5 + x)])
+            << share << " " << x;
+  }
   RenderResult other = reference;
   other.color = Image(4, 2);
   other.alpha.assign(8, 1.0f);

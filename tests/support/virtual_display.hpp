@@ -50,32 +50,37 @@ struct Screen {
 
 class VirtualDisplay {
  public:
-  // Starts Xvfb on the first free display from :90 + (pid % 400) with one screen of
-  // width x height x 24 bits, mapped to a file in a new folder.
+  // Starts Xvfb with one screen of width x height x 24 bits, mapped to a file in a new folder.
+  // The server picks a free display number itself and writes it to a file (-displayfd): tests
+  // that run side by side, each with its own server, never race for a number.
   VirtualDisplay(int width, int height) {
     dir_ = std::filesystem::temp_directory_path() /
            ("ibl-display-" + std::to_string(::getpid()) + "-" + std::to_string(counter()++));
     std::filesystem::create_directories(dir_);
-    // A number another server holds makes this one exit at once: the next is tried.
-    for (int n = 90 + ::getpid() % 400, tries = 0; tries < 20; ++n, ++tries) {
-      if (std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock")) continue;
-      number_ = n;
-      const CliRun r = runCommand("Xvfb :" + std::to_string(n) + " -screen 0 " +
-                                  std::to_string(width) + "x" + std::to_string(height) +
-                                  "x24 -fbdir " + dir_.string() + " -nolisten tcp -nocursor > " +
-                                  (dir_ / "xvfb.log").string() + " 2>&1 & echo $!");
-      xvfb_ = std::atoi(r.output.c_str());
-      if (waitFor(
-              [&] {
-                return ::kill(xvfb_, 0) != 0 || (std::filesystem::exists(dir_ / "Xvfb_screen0") &&
-                                                 xdotool("getmouselocation").status == 0);
-              },
-              20.0) &&
-          ::kill(xvfb_, 0) == 0)
-        return;
-      xvfb_ = 0;
+    const auto numberFile = dir_ / "display";
+    const CliRun r = runCommand("Xvfb -displayfd 3 -screen 0 " + std::to_string(width) + "x" +
+                                std::to_string(height) + "x24 -fbdir " + dir_.string() +
+                                " -nolisten tcp -nocursor 3> " + numberFile.string() + " > " +
+                                (dir_ / "xvfb.log").string() + " 2>&1 & echo $!");
+    xvfb_ = std::atoi(r.output.c_str());
+    // The number, then the screen's file, then a client that connects.
+    const bool started = waitFor(
+        [&] {
+          if (::kill(xvfb_, 0) != 0) return true;  // exited: the log says why
+          const std::string text = fileText(numberFile);
+          if (text.empty() || text.back() != '\n') return false;
+          number_ = std::atoi(text.c_str());
+          return std::filesystem::exists(dir_ / "Xvfb_screen0") &&
+                 xdotool("getmouselocation").status == 0;
+        },
+        30.0);
+    if (!started || ::kill(xvfb_, 0) != 0) {
+      if (xvfb_ > 0) ::kill(xvfb_, SIGTERM);
+      const std::string log = fileText(dir_ / "xvfb.log");
+      std::error_code ignored;
+      std::filesystem::remove_all(dir_, ignored);
+      throw std::runtime_error("Xvfb did not start: " + log);
     }
-    throw std::runtime_error("Xvfb did not start: " + fileText(dir_ / "xvfb.log"));
   }
   ~VirtualDisplay() {
     if (app_ > 0) ::kill(-app_, SIGKILL);  // the command's process group

@@ -112,6 +112,22 @@ class SceneRenderer {
   // roughness 0.6; no coat, sheen, film, anisotropy or transmission), its normal map, occlusion,
   // coverage and emission kept, so that the shapes and the light are seen alone.
   void setClay(bool clay);
+  // Temporal antialiasing (Karis 2014; ibl/shared/temporal_antialiasing.h) of the shaded frames
+  // drawn from now on, the window's and render()'s (a frame of it per call): each frame drawn
+  // with its projection shifted by the next of kTemporalJitterPeriod sub-pixel jitters, and
+  // blended, with the share kTemporalFeedback, into the history of the frames before, which is
+  // reprojected through the camera's motion (the view buffers' positions, the sky's directions)
+  // and clipped to the box of the frame's 3 x 3 neighborhood in YCoCg. `exposure`
+  // (exposureFromEv100) puts radiance into the display's range for the blend's weights,
+  // 1 / (1 + luma). Off at first. A buffer view, a new size or turning it on starts the history
+  // over.
+  void setTemporalAntialiasing(bool enabled, float exposure = 1.0f);
+  // `frames` (>= 1) frames of a still camera, the k-th shifted by temporalJitter(k), averaged
+  // with equal weights, unclipped: the pixel's box-filtered value as `frames` samples of a
+  // low-discrepancy set estimate it (with options.spp multisamples each), read back as render()
+  // does (`ibl view --taa N`'s screenshot). The shaded view, whatever setBufferView says.
+  RenderResult renderAccumulated(const Camera& camera, const RenderOptions& options, int frames,
+                                 float skyboxLod = 0.0f);
   // The GPU time of the last frame's passes (render, or the window's frame once done), in
   // order, in milliseconds, from timestamp queries: "volume update", "shadow maps", "view
   // buffers", "GTAO", "transmission frame", "reflections", "scene" (those the frame ran). Empty
@@ -157,9 +173,10 @@ inline constexpr double kViewDifferenceScale = 0.1;
 // The picture of `mode` from a real-time frame and a reference of the same size: the real-time
 // frame itself; the reference; errorFalseColor(realTime, reference, kViewDifferenceScale) (values
 // in [0, 1] to be shown without exposure or tone curve; coverage the reference's); or the columns
-// x < width / 2 of the real-time frame and the others of the reference, coverage likewise.
-RenderResult composeView(ViewMode mode, const RenderResult& realTime,
-                         const RenderResult& reference);
+// x < split * width (rounded down; split in [0, 1], 0.5 by default) of the real-time frame and
+// the others of the reference, coverage likewise.
+RenderResult composeView(ViewMode mode, const RenderResult& realTime, const RenderResult& reference,
+                         float split = 0.5f);
 
 // The options of the reference the viewer compares with: the real-time switches of `realTime`
 // (terms, diffuse model, multiple scattering, background, environment light, ...) in
@@ -182,8 +199,10 @@ struct ViewSettings {
   ShadingTerms only = ShadingTerms::Both;
   float skyboxLod = 0.0f;
   ViewMode view = ViewMode::RealTime;
+  float split = 0.5f;  // the split view's share of the real-time frame
   BufferView buffer = BufferView::Shaded;
   bool clay = false;
+  bool temporalAntialiasing = true;
   bool panel = true;
 };
 
@@ -239,10 +258,16 @@ struct WindowOptions {
   // any change starts it over.
   ViewMode view = ViewMode::RealTime;
   std::optional<RenderOptions> reference;
+  // The split view's boundary, as a share of the width from the left (composeView's split).
+  float split = 0.5f;
   // The buffer the real-time view starts showing (V cycles them; SceneRenderer::setBufferView):
   // its colors shown as they are, without exposure, bloom or tone curve.
   BufferView buffer = BufferView::Shaded;
-  bool clay = false;     // every material drawn as clay in the real-time view (C toggles it)
+  bool clay = false;  // every material drawn as clay in the real-time view (C toggles it)
+  // Temporal antialiasing of the real-time view (SceneRenderer::setTemporalAntialiasing,
+  // exposed as the window is); its screenshots (P) and the frame the comparison views show are
+  // kTemporalJitterPeriod jittered frames averaged (SceneRenderer::renderAccumulated).
+  bool temporalAntialiasing = true;
   int referenceSpp = 0;  // the reference stops adding samples at this many per pixel (0: 1 << 20)
   // With a volume: each real-time frame runs a frame of its live update first
   // (SceneRenderer::updateVolume), so that the sun, the environment and the lights relight it;
