@@ -357,7 +357,7 @@ void runView(ViewCliOptions o, const GlobalOptions& global) {
         bloomCompensation(o.scene, kViewBloom).has_value(), global);
   meteringRange(o);  // checked before the scene loads
   int accumulated = taaFrames(o);
-  if (accumulated > 0 && o.buffer != "shaded") {
+  if (accumulated > 0 && o.buffer != "shaded" && !o.screenshot.empty()) {
     if (given(o.scene, "--taa"))
       failUsage("--taa", fmt::format("averages jittered frames of the shading; --buffer {} shows "
                                      "its values as they are",

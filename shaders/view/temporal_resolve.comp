@@ -28,6 +28,12 @@ const int kTemporalFirst = 0;       // no history: the frame itself
 const int kTemporalReproject = 1;   // the window's moving average
 const int kTemporalAccumulate = 2;  // a still camera's average
 
+// Whether every channel is a finite number (false for NaN and infinities: a pixel of those is
+// never carried in the history, which would spread it through the filter).
+bool finiteColor(vec4 c) {
+  return all(lessThan(abs(c), vec4(3.0e38)));
+}
+
 ivec2 frameSize() {
   return p.size.xy;
 }
@@ -70,6 +76,7 @@ vec2 previousPixel(ivec2 pixel) {
                 : vec4(p.cameraPosition.xyz + x * p.cameraRight.xyz + y * p.cameraUp.xyz, 1.0);
   }
   vec4 clip = p.previousViewProjection * world;
+  if (!(clip.w > 1e-6)) return vec2(-1.0);  // behind the previous camera: off its screen
   vec2 ndc = clip.xy / clip.w;
   return (0.5 * ndc + 0.5) * vec2(frameSize());
 }
@@ -85,7 +92,7 @@ void main() {
     return;
   }
   if (mode == kTemporalAccumulate) {
-    historyOut[i] = mix(historyIn[i], color, p.jitter.w);
+    historyOut[i] = finiteColor(historyIn[i]) ? mix(historyIn[i], color, p.jitter.w) : color;
     return;
   }
   vec2 at = previousPixel(pixel);
@@ -103,6 +110,10 @@ void main() {
       mean += c / 9.0;
     }
   vec4 history = historyAt(at);
+  if (!finiteColor(color) || !finiteColor(history)) {
+    historyOut[i] = color;
+    return;
+  }
   vec3 clipped = clipToBox(rgbToYCoCg(history.rgb), boxMin, boxMax, mean);
   history = vec4(max(yCoCgToRgb(clipped), vec3(0.0)), clamp(history.a, 0.0, 1.0));
   historyOut[i] = temporalBlend(color, history, p.jitter.w, p.jitter.z);

@@ -141,8 +141,29 @@ void SceneRenderer::Impl::setEnvironment(const BakeResult& bake, const BakeOptio
   clusters.invalidate();
 }
 
+namespace {
+
+// Temporal antialiasing held off while it lives: a frame drawn to be read back as it is (the
+// shadow maps, GTAO, the reflections) is neither jittered nor blended into the history.
+class TemporalHeldOff {
+ public:
+  explicit TemporalHeldOff(SceneRenderer::Impl::Temporal& t) : t_(t), enabled_(t.enabled) {
+    t.enabled = false;
+  }
+  ~TemporalHeldOff() { t_.enabled = enabled_; }
+  TemporalHeldOff(const TemporalHeldOff&) = delete;
+  TemporalHeldOff& operator=(const TemporalHeldOff&) = delete;
+
+ private:
+  SceneRenderer::Impl::Temporal& t_;
+  bool enabled_;
+};
+
+}  // namespace
+
 ShadowMaps SceneRenderer::Impl::readShadowMaps(const Camera& camera, const RenderOptions& o) {
   checkCamera(camera);
+  const TemporalHeldOff heldOff(temporal);
   prepare(camera.width, camera.height, 1);
   context.impl().submitAndWait([&](VkCommandBuffer cmd) { record(cmd, camera, o, 0.0f); });
   if (o.realTimeShadows != ShadowMode::Map || scene.lights().empty()) return {};
@@ -462,6 +483,7 @@ RenderResult SceneRenderer::renderAccumulated(const Camera& camera, const Render
     }
   } catch (...) {
     r.temporal.accumulate = -1;
+    r.temporal.frames = 0;  // the history may hold a frame half made
     r.bufferView = shown;
     throw;
   }
@@ -542,6 +564,7 @@ ScreenOcclusion SceneRenderer::screenOcclusion(const Camera& camera, const Rende
   Impl& r = *impl_;
   RenderOptions o = options;
   o.screenAmbientOcclusion.enabled = true;
+  const TemporalHeldOff heldOff(r.temporal);
   r.prepare(camera.width, camera.height, r.supportedSamples(std::max(o.spp, 1)));
   const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
   Buffer readback(r.context, count * sizeof(glm::vec4), BufferMemory::Host);
@@ -569,6 +592,7 @@ SceneRenderer::Reflections SceneRenderer::screenReflections(const Camera& camera
   Impl& r = *impl_;
   RenderOptions o = options;
   o.screenReflections.enabled = true;
+  const TemporalHeldOff heldOff(r.temporal);
   r.prepare(camera.width, camera.height, r.supportedSamples(std::max(o.spp, 1)));
   const std::size_t count = static_cast<std::size_t>(camera.width) * camera.height;
   const std::size_t bytes = count * sizeof(glm::vec4);

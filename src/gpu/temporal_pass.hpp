@@ -24,11 +24,11 @@ enum class TemporalResolve {
 // What one resolve needs besides the images.
 struct TemporalFrame {
   TemporalResolve resolve = TemporalResolve::First;
-  Camera camera;                     // this frame's (its basis turns positions into the world)
-  glm::mat4 previousViewProjection;  // the previous frame's camera, jittered as this frame
-  glm::vec2 jitter{0.0f};            // this frame's, in pixels
-  float exposure = 1.0f;             // radiance to the display's range (Karis' weights)
-  float share = 1.0f;                // the frame's weight in the blend
+  Camera camera;  // this frame's (its basis turns positions into the world)
+  glm::mat4 previousViewProjection{1.0f};  // the previous frame's camera, jittered as this frame
+  glm::vec2 jitter{0.0f};                  // this frame's, in pixels
+  float exposure = 1.0f;                   // radiance to the display's range (Karis' weights)
+  float share = 1.0f;                      // the frame's weight in the blend
 };
 
 class TemporalPass {

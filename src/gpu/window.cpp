@@ -646,6 +646,7 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
     ShadingTerms terms = ShadingTerms::Both;
     float skyboxLod = 0.0f;
     int generation = -1;
+    bool temporal = false;  // the real-time frame is the jitters' average (stillFrame)
   };
   Drawn traced, drawn;
   RenderResult reference, realTime, picture;
@@ -852,9 +853,11 @@ WindowStats runViewerWindow(const Scene& scene, const BakeResult& bake,
       }
       if (view != ViewMode::Reference &&
           (drawn.generation != environmentGeneration || drawn.camera != camera ||
-           drawn.terms != shading.only || drawn.skyboxLod != state.skyboxLod)) {
+           drawn.terms != shading.only || drawn.skyboxLod != state.skyboxLod ||
+           drawn.temporal != state.temporalAntialiasing)) {
         realTime = stillFrame();
-        drawn = {camera, shading.only, state.skyboxLod, environmentGeneration};
+        drawn = {camera, shading.only, state.skyboxLod, environmentGeneration,
+                 state.temporalAntialiasing};
         pictureCurrent = false;
       }
       if (!pictureCurrent || pictured != view || picturedSplit != state.split) {
